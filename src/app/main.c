@@ -1,0 +1,50 @@
+// bedlam — entry point: dispatches to the subcommands.
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/app.h"
+
+static const char usage[] =
+    "bedlam " BDL_VERSION " — interactive simulator of gas–solid and granular flows\n"
+    "\n"
+    "usage: bedlam COMMAND [options]\n"
+    "\n"
+    "commands:\n"
+    "  run SCENE     run a scene headless and write its outputs (run.log, diagnostics.csv, VTK,\n"
+    "                checkpoints) into one folder\n"
+    "  check SCENE   validate a scene; print the active modules, contact time, stable time-step\n"
+    "                limit and the estimated cost\n"
+    "  bench [CASE]  performance benchmarks (dem)\n"
+    "\n"
+    "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
+    "interrupted), 2 bad input (scene, options).\n"
+    "Documentation: README.md and docs/ (docs/scene-format.md lists every scene key).\n";
+
+typedef struct command {
+    const char *name;
+    int (*fn)(int, char **);
+} command;
+
+int main(int argc, char **argv)
+{
+    static const command commands[] = {
+        {"run", bdl_cmd_run},
+        {"check", bdl_cmd_check},
+        {"bench", bdl_cmd_bench},
+    };
+    if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
+        strcmp(argv[1], "help") == 0) {
+        fputs(usage, argc < 2 ? stderr : stdout);
+        return argc < 2 ? 2 : 0;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("bedlam %s\n", BDL_VERSION);
+        return 0;
+    }
+    for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k)
+        if (strcmp(argv[1], commands[k].name) == 0)
+            return commands[k].fn(argc - 1, argv + 1);
+    fprintf(stderr, "error: unknown command '%s'\n\n%s", argv[1], usage);
+    return 2;
+}

@@ -1,0 +1,31 @@
+#include "core/log.h"
+
+#include <stdarg.h>
+
+// Logging configuration is process-wide by nature (one terminal, one run log).
+static bdl_log_level log_level = BDL_LOG_WARN;
+static FILE *log_file = NULL;
+
+void bdl_log_set_level(bdl_log_level level) { log_level = level; }
+void bdl_log_set_file(FILE *file) { log_file = file; }
+FILE *bdl_log_file(void) { return log_file; }
+
+void bdl_log(bdl_log_level level, const char *fmt, ...)
+{
+    static const char *const prefix[] = {"error: ", "warning: ", "", ""};
+    va_list ap;
+    if (level <= log_level) {
+        va_start(ap, fmt);
+        fputs(prefix[level], stderr);
+        vfprintf(stderr, fmt, ap);
+        fputc('\n', stderr);
+        va_end(ap);
+    }
+    if (log_file && level <= BDL_LOG_INFO) {
+        va_start(ap, fmt);
+        fputs(prefix[level], log_file);
+        vfprintf(log_file, fmt, ap);
+        fputc('\n', log_file);
+        va_end(ap);
+    }
+}

@@ -1,0 +1,8 @@
+// bedlam — wall-clock timing.
+#ifndef BDL_TIMER_H
+#define BDL_TIMER_H
+
+/// Monotonic wall-clock seconds since an arbitrary origin.
+double bdl_wall_seconds(void);
+
+#endif

@@ -1,0 +1,469 @@
+#include "dem/neighbor.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int grow_array(void **ptr, long count, size_t elem)
+{
+    void *q = realloc(*ptr, (size_t)(count > 0 ? count : 1) * elem);
+    if (!q)
+        return 0;
+    *ptr = q;
+    return 1;
+}
+
+static uint64_t spread_bits(uint64_t v)
+{
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffULL;
+    v = (v | v << 16) & 0x1f0000ff0000ffULL;
+    v = (v | v << 8) & 0x100f00f00f00f00fULL;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ULL;
+    v = (v | v << 2) & 0x1249249249249249ULL;
+    return v;
+}
+
+typedef struct morton_entry {
+    uint64_t code;
+    int32_t cell;
+} morton_entry;
+
+static int compare_morton(const void *a, const void *b)
+{
+    const morton_entry *x = a, *y = b;
+    if (x->code != y->code)
+        return x->code < y->code ? -1 : 1;
+    return x->cell - y->cell;
+}
+
+static bdl_result rank_cells(bdl_neighbor *nb)
+{
+    morton_entry *e = malloc((size_t)nb->cell_count * sizeof *e);
+    if (!e)
+        return BDL_ERR_NOMEM;
+    for (long c = 0; c < nb->cell_count; ++c) {
+        uint64_t cx = (uint64_t)(c % nb->dims[0]);
+        uint64_t cy = (uint64_t)((c / nb->dims[0]) % nb->dims[1]);
+        uint64_t cz = (uint64_t)(c / ((long)nb->dims[0] * nb->dims[1]));
+        e[c].code = spread_bits(cx) | spread_bits(cy) << 1 | spread_bits(cz) << 2;
+        e[c].cell = (int32_t)c;
+    }
+    qsort(e, (size_t)nb->cell_count, sizeof *e, compare_morton);
+    for (long r = 0; r < nb->cell_count; ++r)
+        nb->cell_rank[e[r].cell] = (int32_t)r;
+    free(e);
+    return BDL_OK;
+}
+
+bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const int periodic[3],
+                             double cutoff, double skin, long max_particles, int friction,
+                             int rolling)
+{
+    memset(nb, 0, sizeof *nb);
+    nb->origin = lo;
+    nb->length = bdl_v3_sub(hi, lo);
+    nb->skin = skin;
+    nb->friction = friction;
+    nb->rolling = rolling;
+    long max_cells = 4 * max_particles + 4096;
+    double size = cutoff;
+    for (;;) {
+        long total = 1;
+        for (int a = 0; a < 3; ++a) {
+            double len = bdl_v3_comp(nb->length, a);
+            int d = (int)floor(len / size);
+            if (d < 1)
+                d = 1;
+            if (d > 1 << 20)
+                d = 1 << 20;
+            nb->dims[a] = d;
+            nb->cell[a] = len / d;
+            nb->periodic[a] = periodic[a];
+            total *= d;
+        }
+        nb->cell_count = total;
+        if (total <= max_cells)
+            break;
+        size *= 1.25;
+    }
+    for (int a = 0; a < 3; ++a)
+        if (nb->periodic[a] && nb->dims[a] < 3)
+            return BDL_ERR_SCENE;
+    if (!grow_array((void **)&nb->cell_rank, nb->cell_count, sizeof(int32_t)) ||
+        !grow_array((void **)&nb->cell_start, nb->cell_count + 1, sizeof(int32_t)) ||
+        !grow_array((void **)&nb->cell_cursor, nb->cell_count, sizeof(int32_t)))
+        return BDL_ERR_NOMEM;
+    return rank_cells(nb);
+}
+
+void bdl_neighbor_free(bdl_neighbor *nb)
+{
+    void *arrays[] = {nb->cell_rank,  nb->cell_start, nb->cell_cursor,    nb->start,        nb->partner,
+                      nb->history,    nb->force,         nb->torque_j,
+                      nb->touching,   nb->jstart,        nb->jlist,        nb->wall_start,
+                      nb->wall_prim,  nb->wall_history,  nb->wall_force,   nb->wall_touching,
+                      nb->old_wall_start, nb->old_wall_prim, nb->old_wall_history, nb->perm,
+                      nb->pcell,      nb->scratch};
+    for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
+        free(arrays[k]);
+    memset(nb, 0, sizeof *nb);
+}
+
+static inline int clamp_cell(double x, double size, int dims)
+{
+    int c = (int)floor(x / size);
+    return c < 0 ? 0 : (c >= dims ? dims - 1 : c);
+}
+
+static inline void cell_of(const bdl_neighbor *nb, bdl_vec3 x, int c[3])
+{
+    c[0] = clamp_cell(x.x - nb->origin.x, nb->cell[0], nb->dims[0]);
+    c[1] = clamp_cell(x.y - nb->origin.y, nb->cell[1], nb->dims[1]);
+    c[2] = clamp_cell(x.z - nb->origin.z, nb->cell[2], nb->dims[2]);
+}
+
+/// Cell index along an axis after a step of -1, 0, +1; -1 when outside a non-periodic grid.
+static inline int step_cell(const bdl_neighbor *nb, int axis, int c)
+{
+    int d = nb->dims[axis];
+    if (c < 0)
+        return nb->periodic[axis] ? c + d : -1;
+    if (c >= d)
+        return nb->periodic[axis] ? c - d : -1;
+    return c;
+}
+
+/// Visits every j > i closer than r_i + r_j + skin; `out` NULL counts only.
+static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i, int32_t *out)
+{
+    int c[3];
+    cell_of(nb, p->pos[i], c);
+    int32_t n = 0;
+    bdl_vec3 xi = p->pos[i];
+    double ri = p->radius[i];
+    for (int dz = -1; dz <= 1; ++dz) {
+        int z = step_cell(nb, 2, c[2] + dz);
+        if (z < 0)
+            continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+            int y = step_cell(nb, 1, c[1] + dy);
+            if (y < 0)
+                continue;
+            for (int dx = -1; dx <= 1; ++dx) {
+                int x = step_cell(nb, 0, c[0] + dx);
+                if (x < 0)
+                    continue;
+                long cell = x + (long)nb->dims[0] * (y + (long)nb->dims[1] * z);
+                int32_t r = nb->cell_rank[cell];
+                for (int32_t j = nb->cell_start[r]; j < nb->cell_start[r + 1]; ++j) {
+                    if (j <= i)
+                        continue;
+                    bdl_vec3 d = bdl_neighbor_delta(nb, xi, p->pos[j]);
+                    double cut = ri + p->radius[j] + nb->skin;
+                    if (bdl_v3_len2(d) < cut * cut) {
+                        if (out)
+                            out[n] = j;
+                        ++n;
+                    }
+                }
+            }
+        }
+    }
+    return n;
+}
+
+static bdl_result reserve_particles(bdl_neighbor *nb, long n)
+{
+    if (n <= nb->scratch_count)
+        return BDL_OK;
+    long cap = n + n / 4 + 16;
+    int ok = grow_array((void **)&nb->start, cap + 1, sizeof(int32_t)) &&
+             grow_array((void **)&nb->jstart, cap + 1, sizeof(int32_t)) &&
+             grow_array((void **)&nb->wall_start, cap + 1, sizeof(int32_t)) &&
+             grow_array((void **)&nb->old_wall_start, cap + 1, sizeof(int32_t)) &&
+             grow_array((void **)&nb->perm, cap, sizeof(int32_t)) &&
+             grow_array((void **)&nb->pcell, cap, sizeof(int32_t)) &&
+             grow_array(&nb->scratch, cap, sizeof(bdl_vec3));
+    if (!ok)
+        return BDL_ERR_NOMEM;
+    nb->scratch_count = cap;
+    return BDL_OK;
+}
+
+static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
+{
+    if (pairs <= nb->pair_capacity)
+        return BDL_OK;
+    long cap = pairs + pairs / 8 + 64;
+    int ok = grow_array((void **)&nb->partner, cap, sizeof(int32_t)) &&
+             grow_array((void **)&nb->force, cap, sizeof(bdl_vec3)) &&
+             grow_array((void **)&nb->touching, cap, 1) &&
+             grow_array((void **)&nb->jlist, cap, sizeof(int32_t));
+    if (ok && nb->friction)
+        ok = grow_array((void **)&nb->history, cap, sizeof(bdl_vec3));
+    if (ok && (nb->friction || nb->rolling))
+        ok = grow_array((void **)&nb->torque_j, cap, sizeof(bdl_vec3));
+    if (!ok)
+        return BDL_ERR_NOMEM;
+    nb->pair_capacity = cap;
+    return BDL_OK;
+}
+
+/// Packs the history of pairs that were touching, grouped by their (old) first particle, into
+/// arrays the rebuild does not need until the end: force[] holds the displacement, jlist[] the
+/// old partner, jstart[] the offsets.
+static void stash_history(bdl_neighbor *nb)
+{
+    long c = 0;
+    nb->jstart[0] = 0;
+    for (long i = 0; i < nb->count; ++i) {
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            if (!nb->touching[k])
+                continue;
+            nb->force[c] = nb->history[k];
+            nb->jlist[c] = nb->partner[k];
+            ++c;
+        }
+        nb->jstart[i + 1] = (int32_t)c;
+    }
+}
+
+static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj)
+{
+    if (oi >= old_count || oj >= old_count)
+        return bdl_v3_zero();
+    int32_t a = oi < oj ? oi : oj, b = oi < oj ? oj : oi;
+    for (int32_t k = nb->jstart[a]; k < nb->jstart[a + 1]; ++k)
+        if (nb->jlist[k] == b)
+            return oi < oj ? nb->force[k] : bdl_v3_neg(nb->force[k]);
+    return bdl_v3_zero();
+}
+
+static void sort_particles(bdl_neighbor *nb, bdl_particles *p)
+{
+    long n = p->count;
+    memset(nb->cell_start, 0, (size_t)(nb->cell_count + 1) * sizeof(int32_t));
+    for (long i = 0; i < n; ++i) {
+        int c[3];
+        cell_of(nb, p->pos[i], c);
+        long cell = c[0] + (long)nb->dims[0] * (c[1] + (long)nb->dims[1] * c[2]);
+        nb->pcell[i] = nb->cell_rank[cell];
+        nb->cell_start[nb->pcell[i] + 1]++;
+    }
+    for (long r = 0; r < nb->cell_count; ++r)
+        nb->cell_start[r + 1] += nb->cell_start[r];
+    // Stable counting sort by ranked cell: perm[new] = old.
+    memcpy(nb->cell_cursor, nb->cell_start, (size_t)nb->cell_count * sizeof(int32_t));
+    for (long i = 0; i < n; ++i)
+        nb->perm[nb->cell_cursor[nb->pcell[i]]++] = (int32_t)i;
+    bdl_particles_permute(p, nb->perm, nb->scratch);
+}
+
+static void wrap_periodic(const bdl_neighbor *nb, bdl_particles *p)
+{
+    for (int a = 0; a < 3; ++a) {
+        if (!nb->periodic[a])
+            continue;
+        double lo = bdl_v3_comp(nb->origin, a), len = bdl_v3_comp(nb->length, a);
+        for (long i = 0; i < p->count; ++i) {
+            double x = bdl_v3_comp(p->pos[i], a);
+            if (x < lo || x >= lo + len) {
+                x -= len * floor((x - lo) / len);
+                if (x >= lo + len)
+                    x = lo;
+                bdl_v3_set_comp(&p->pos[i], a, x);
+            }
+        }
+    }
+}
+
+static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old_count)
+{
+    long n = p->count;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i)
+        nb->start[i + 1] = scan_pairs(nb, p, i, NULL);
+    nb->start[0] = 0;
+    for (long i = 0; i < n; ++i)
+        nb->start[i + 1] += nb->start[i];
+    long pairs = nb->start[n];
+    if (pairs > INT32_MAX)
+        return BDL_ERR_NOMEM;
+    bdl_result r = reserve_pairs(nb, pairs);
+    if (r != BDL_OK)
+        return r;
+    nb->pair_count = pairs;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i)
+        scan_pairs(nb, p, i, nb->partner + nb->start[i]);
+    if (nb->friction) {
+#pragma omp parallel for schedule(static)
+        for (long i = 0; i < n; ++i)
+            for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
+                nb->history[k] = find_stashed(nb, old_count, nb->perm[i], nb->perm[nb->partner[k]]);
+    }
+    memset(nb->touching, 0, (size_t)pairs);
+    // Incidence lists for the gather: for each particle, the pairs where it is j, by pair index.
+    memset(nb->jstart, 0, (size_t)(n + 1) * sizeof(int32_t));
+    for (long k = 0; k < pairs; ++k)
+        nb->jstart[nb->partner[k] + 1]++;
+    for (long i = 0; i < n; ++i)
+        nb->jstart[i + 1] += nb->jstart[i];
+    // Fill with a cursor kept in pcell (free scratch by now).
+    for (long i = 0; i < n; ++i)
+        nb->pcell[i] = nb->jstart[i];
+    for (long i = 0; i < n; ++i)
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
+            nb->jlist[nb->pcell[nb->partner[k]]++] = k;
+    return BDL_OK;
+}
+
+static bdl_result reserve_wall_pairs(bdl_neighbor *nb, long count);
+
+static int32_t scan_walls(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
+                          long i, int32_t *out)
+{
+    int32_t n = 0;
+    for (int w = 0; w < walls->prim_count; ++w) {
+        bdl_vec3 normal;
+        if (bdl_wall_gap(walls, w, p->pos[i], p->radius[i], &normal) < nb->skin) {
+            if (out)
+                out[n] = w;
+            ++n;
+        }
+    }
+    return n;
+}
+
+static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
+                              long old_count)
+{
+    long n = p->count;
+    // Keep the previous list for its history.
+    int32_t *ts = nb->old_wall_start;
+    nb->old_wall_start = nb->wall_start;
+    nb->wall_start = ts;
+    int32_t *tp = nb->old_wall_prim;
+    nb->old_wall_prim = nb->wall_prim;
+    nb->wall_prim = tp;
+    bdl_vec3 *th = nb->old_wall_history;
+    nb->old_wall_history = nb->wall_history;
+    nb->wall_history = th;
+    long tc = nb->old_wall_capacity;
+    nb->old_wall_capacity = nb->wall_pair_capacity;
+    nb->wall_pair_capacity = tc;
+
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i)
+        nb->wall_start[i + 1] = scan_walls(nb, p, walls, i, NULL);
+    nb->wall_start[0] = 0;
+    for (long i = 0; i < n; ++i)
+        nb->wall_start[i + 1] += nb->wall_start[i];
+    long count = nb->wall_start[n];
+    bdl_result r = reserve_wall_pairs(nb, count);
+    if (r != BDL_OK)
+        return r;
+    nb->wall_pair_count = count;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i) {
+        scan_walls(nb, p, walls, i, nb->wall_prim + nb->wall_start[i]);
+        int32_t oi = nb->perm[i];
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+            nb->wall_history[k] = bdl_v3_zero();
+            nb->wall_touching[k] = 0;
+            if (oi >= old_count || !nb->old_wall_prim)
+                continue;
+            for (int32_t m = nb->old_wall_start[oi]; m < nb->old_wall_start[oi + 1]; ++m)
+                if (nb->old_wall_prim[m] == nb->wall_prim[k])
+                    nb->wall_history[k] = nb->old_wall_history[m];
+        }
+    }
+    for (int w = 0; w < walls->wall_count; ++w)
+        nb->wall_offset_at_build[w] = walls->offset[w];
+    return BDL_OK;
+}
+
+bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls)
+{
+    long n = p->count;
+    long old_count = nb->count;
+    bdl_result r = reserve_particles(nb, n);
+    if (r != BDL_OK)
+        return r;
+    if (nb->friction && old_count > 0)
+        stash_history(nb);
+    else
+        old_count = 0;
+    wrap_periodic(nb, p);
+    sort_particles(nb, p);
+    for (long i = 0; i < n; ++i)
+        p->pos_at_build[i] = p->pos[i];
+    r = build_pairs(nb, p, old_count);
+    if (r != BDL_OK)
+        return r;
+    r = build_walls(nb, p, walls, nb->builds > 0 ? nb->count : 0);
+    if (r != BDL_OK)
+        return r;
+    nb->count = n;
+    nb->builds++;
+    return BDL_OK;
+}
+
+int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls)
+{
+    if (nb->builds == 0 || p->count != nb->count)
+        return 1;
+    double max2 = 0.0;
+    long n = p->count;
+#pragma omp parallel for schedule(static) reduction(max : max2)
+    for (long i = 0; i < n; ++i) {
+        double d2 = bdl_v3_len2(bdl_v3_sub(p->pos[i], p->pos_at_build[i]));
+        if (d2 > max2)
+            max2 = d2;
+    }
+    double move = sqrt(max2);
+    double wall_move = bdl_walls_max_shift(walls, nb->wall_offset_at_build);
+    return 2.0 * move > nb->skin || move + wall_move > nb->skin;
+}
+
+long bdl_neighbor_bytes(const bdl_neighbor *nb)
+{
+    long per_pair = (long)(sizeof(int32_t) * 2 + sizeof(bdl_vec3) + 1);
+    if (nb->friction)
+        per_pair += (long)sizeof(bdl_vec3);
+    if (nb->friction || nb->rolling)
+        per_pair += (long)sizeof(bdl_vec3);
+    long per_particle = 4 * (long)sizeof(int32_t) + 2 * (long)sizeof(int32_t) + (long)sizeof(bdl_vec3);
+    long per_wall = (long)(sizeof(int32_t) + 2 * sizeof(bdl_vec3) + 1);
+    return nb->pair_capacity * per_pair + nb->scratch_count * per_particle +
+           (nb->wall_pair_capacity + nb->old_wall_capacity) * per_wall +
+           nb->cell_count * 3 * (long)sizeof(int32_t);
+}
+
+static bdl_result reserve_wall_pairs(bdl_neighbor *nb, long count)
+{
+    if (count <= nb->wall_pair_capacity && nb->wall_prim)
+        return BDL_OK;
+    long cap = count + count / 8 + 64;
+    // Force and contact flags are not double-buffered: they must fit either list.
+    long shared = cap > nb->old_wall_capacity ? cap : nb->old_wall_capacity;
+    int ok = grow_array((void **)&nb->wall_prim, cap, sizeof(int32_t)) &&
+             grow_array((void **)&nb->wall_history, cap, sizeof(bdl_vec3)) &&
+             grow_array((void **)&nb->wall_force, shared, sizeof(bdl_vec3)) &&
+             grow_array((void **)&nb->wall_touching, shared, 1);
+    if (!ok)
+        return BDL_ERR_NOMEM;
+    nb->wall_pair_capacity = cap;
+    return BDL_OK;
+}
+
+bdl_result bdl_neighbor_reserve(bdl_neighbor *nb, long particles, long pairs, long wall_pairs)
+{
+    bdl_result r = reserve_particles(nb, particles);
+    if (r == BDL_OK)
+        r = reserve_pairs(nb, pairs);
+    if (r == BDL_OK)
+        r = reserve_wall_pairs(nb, wall_pairs);
+    return r;
+}

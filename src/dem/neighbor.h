@@ -1,0 +1,115 @@
+// bedlam — neighbour search: cell grid + Verlet pair list with skin, contact history.
+//
+// Particles are binned into cells of size >= d_max + skin and sorted by the cells' Morton
+// (Z-order) rank at every rebuild, so neighbours sit close in memory. The half pair list holds
+// every pair (i < j) closer than r_i + r_j + skin; it stays valid until a particle has moved
+// skin/2 (or a particle plus a wall have moved skin together), so it is rebuilt only then.
+//
+// Determinism: each pair's force is computed once and stored; each particle then gathers the
+// forces of its pairs in a fixed order (pairs where it is j, by pair index, then those where it
+// is i). No thread ever writes another's particle, so the result does not depend on the thread
+// count. Tangential history follows each pair across rebuilds and re-sorts (looked up by the
+// particles' previous indices).
+#ifndef BDL_NEIGHBOR_H
+#define BDL_NEIGHBOR_H
+
+#include <stdint.h>
+
+#include "dem/particles.h"
+#include "dem/walls.h"
+
+typedef struct bdl_neighbor {
+    // cell grid
+    bdl_vec3 origin;   ///< lower corner of the grid [m]
+    bdl_vec3 length;   ///< domain length per axis [m]
+    double cell[3];    ///< cell size per axis [m]
+    int dims[3];       ///< cells per axis
+    int periodic[3];
+    long cell_count;
+    int32_t *cell_rank;  ///< Morton rank of each cell
+    int32_t *cell_start; ///< first particle of each ranked cell (cell_count + 1)
+    int32_t *cell_cursor; ///< scratch for the counting sort
+    double skin;         ///< [m]
+
+    // pairs (half list, i < j, grouped by i)
+    long count;          ///< particles the list was built for
+    long pair_count, pair_capacity;
+    int32_t *start;      ///< pairs of i are [start[i], start[i+1])
+    int32_t *partner;    ///< j of each pair
+    bdl_vec3 *history;   ///< tangential displacement [m] (NULL without friction)
+    bdl_vec3 *force;     ///< force on i [N]
+    bdl_vec3 *torque_j;  ///< torque on j [N m] (NULL without friction and rolling); the torque
+                         ///< on i follows from angular momentum: -torque_j - (x_i - x_j) x force
+    uint8_t *touching;   ///< 1 if the pair overlapped this step
+    int32_t *jstart;     ///< pairs where p is j: jlist[jstart[p] .. jstart[p+1])
+    int32_t *jlist;
+
+    // wall contacts (grouped by particle)
+    long wall_pair_count, wall_pair_capacity;
+    int32_t *wall_start; ///< (count + 1)
+    int32_t *wall_prim;
+    bdl_vec3 *wall_history;
+    bdl_vec3 *wall_force; ///< force on the particle [N]
+    uint8_t *wall_touching;
+    // previous wall list, kept to carry history across rebuilds
+    int32_t *old_wall_start, *old_wall_prim;
+    bdl_vec3 *old_wall_history;
+    long old_wall_capacity;
+
+    bdl_vec3 wall_offset_at_build[BDL_MAX_WALLS];
+    int32_t *perm;       ///< scratch: new index -> old index
+    int32_t *pcell;      ///< scratch: ranked cell of each particle
+    void *scratch;       ///< scratch for permutations (count * 24 bytes)
+    long scratch_count;
+    int friction, rolling;
+    long builds;         ///< rebuilds so far
+} bdl_neighbor;
+
+/// Sets up the grid for the domain; `cutoff` = d_max + skin [m]. `max_particles` bounds the cell
+/// count (cells grow when the domain is much larger than the particles need).
+bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const int periodic[3],
+                             double cutoff, double skin, long max_particles, int friction,
+                             int rolling);
+void bdl_neighbor_free(bdl_neighbor *nb);
+
+/// Wraps positions into periodic axes, re-sorts the particles, rebuilds pair and wall lists and
+/// carries contact history over.
+bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls);
+
+/// True when the lists may have missed a contact: 2 max|x - x_build| > skin, or a particle and a
+/// wall together moved more than the skin.
+int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls);
+
+/// Minimum-image separation x_i - x_j.
+static inline bdl_vec3 bdl_neighbor_delta(const bdl_neighbor *nb, bdl_vec3 xi, bdl_vec3 xj)
+{
+    bdl_vec3 d = bdl_v3_sub(xi, xj);
+    if (nb->periodic[0]) {
+        if (d.x > 0.5 * nb->length.x)
+            d.x -= nb->length.x;
+        else if (d.x < -0.5 * nb->length.x)
+            d.x += nb->length.x;
+    }
+    if (nb->periodic[1]) {
+        if (d.y > 0.5 * nb->length.y)
+            d.y -= nb->length.y;
+        else if (d.y < -0.5 * nb->length.y)
+            d.y += nb->length.y;
+    }
+    if (nb->periodic[2]) {
+        if (d.z > 0.5 * nb->length.z)
+            d.z -= nb->length.z;
+        else if (d.z < -0.5 * nb->length.z)
+            d.z += nb->length.z;
+    }
+    return d;
+}
+
+/// Bytes allocated by the neighbour structures.
+long bdl_neighbor_bytes(const bdl_neighbor *nb);
+
+/// Makes room for `particles` particles, `pairs` pairs and `wall_pairs` wall contacts (used when
+/// a checkpoint restores the lists verbatim).
+bdl_result bdl_neighbor_reserve(bdl_neighbor *nb, long particles, long pairs, long wall_pairs);
+
+#endif

@@ -1,0 +1,100 @@
+#include "dem/particles.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static int grow(void **ptr, long count, size_t elem)
+{
+    void *q = realloc(*ptr, (size_t)count * elem);
+    if (!q)
+        return 0;
+    *ptr = q;
+    return 1;
+}
+
+bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)
+{
+    if (capacity <= p->capacity)
+        return BDL_OK;
+    int ok = grow((void **)&p->pos, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->vel, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->omega, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->force, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->torque, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->pos_at_build, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->radius, capacity, sizeof(double)) &&
+             grow((void **)&p->inv_mass, capacity, sizeof(double)) &&
+             grow((void **)&p->species, capacity, sizeof(int32_t)) &&
+             grow((void **)&p->id, capacity, sizeof(uint32_t));
+    if (!ok)
+        return BDL_ERR_NOMEM;
+    p->capacity = capacity;
+    return BDL_OK;
+}
+
+void bdl_particles_free(bdl_particles *p)
+{
+    free(p->pos);
+    free(p->vel);
+    free(p->omega);
+    free(p->force);
+    free(p->torque);
+    free(p->pos_at_build);
+    free(p->radius);
+    free(p->inv_mass);
+    free(p->species);
+    free(p->id);
+    memset(p, 0, sizeof *p);
+}
+
+long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radius, double density,
+                       int species)
+{
+    if (p->count == p->capacity) {
+        long cap = p->capacity < 64 ? 64 : p->capacity + p->capacity / 2;
+        if (bdl_particles_reserve(p, cap) != BDL_OK)
+            return -1;
+    }
+    long i = p->count++;
+    double mass = density * (4.0 / 3.0) * 3.14159265358979323846 * radius * radius * radius;
+    p->pos[i] = pos;
+    p->vel[i] = vel;
+    p->omega[i] = bdl_v3_zero();
+    p->force[i] = bdl_v3_zero();
+    p->torque[i] = bdl_v3_zero();
+    p->pos_at_build[i] = pos;
+    p->radius[i] = radius;
+    p->inv_mass[i] = 1.0 / mass;
+    p->species[i] = species;
+    p->id[i] = p->next_id++;
+    return i;
+}
+
+static void permute_array(void *array, size_t elem, long n, const int32_t *perm, void *scratch)
+{
+    char *src = array, *dst = scratch;
+    for (long k = 0; k < n; ++k)
+        memcpy(dst + (size_t)k * elem, src + (size_t)perm[k] * elem, elem);
+    memcpy(array, scratch, (size_t)n * elem);
+}
+
+void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
+{
+    long n = p->count;
+    permute_array(p->pos, sizeof(bdl_vec3), n, perm, scratch);
+    permute_array(p->vel, sizeof(bdl_vec3), n, perm, scratch);
+    permute_array(p->omega, sizeof(bdl_vec3), n, perm, scratch);
+    permute_array(p->force, sizeof(bdl_vec3), n, perm, scratch);
+    permute_array(p->torque, sizeof(bdl_vec3), n, perm, scratch);
+    permute_array(p->pos_at_build, sizeof(bdl_vec3), n, perm, scratch);
+    permute_array(p->radius, sizeof(double), n, perm, scratch);
+    permute_array(p->inv_mass, sizeof(double), n, perm, scratch);
+    permute_array(p->species, sizeof(int32_t), n, perm, scratch);
+    permute_array(p->id, sizeof(uint32_t), n, perm, scratch);
+}
+
+long bdl_particles_bytes(const bdl_particles *p)
+{
+    return p->capacity * (long)(6 * sizeof(bdl_vec3) + 2 * sizeof(double) + sizeof(int32_t) +
+                                sizeof(uint32_t));
+}

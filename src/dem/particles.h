@@ -1,0 +1,50 @@
+// bedlam — particle storage (structure of arrays).
+//
+// Hot state (position, velocity, spin, force, torque) lives in separate arrays from cold
+// metadata (species, id). Particles may be re-ordered for locality at neighbour-list rebuilds;
+// `id` is stable for a particle's lifetime and is what output and checkpoints use.
+#ifndef BDL_PARTICLES_H
+#define BDL_PARTICLES_H
+
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/vec3.h"
+
+typedef struct bdl_particles {
+    long count;           ///< live particles
+    long capacity;        ///< allocated slots
+    bdl_vec3 *pos;        ///< centre position [m]
+    bdl_vec3 *vel;        ///< velocity [m/s]
+    bdl_vec3 *omega;      ///< angular velocity [rad/s]
+    bdl_vec3 *force;      ///< total force of this step [N]
+    bdl_vec3 *torque;     ///< total torque of this step [N m]
+    bdl_vec3 *pos_at_build; ///< position when the neighbour list was built [m]
+    double *radius;       ///< [m]
+    double *inv_mass;     ///< 1/m [1/kg]
+    int32_t *species;     ///< species index
+    uint32_t *id;         ///< stable id
+    uint32_t next_id;     ///< id of the next particle added
+} bdl_particles;
+
+bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);
+void bdl_particles_free(bdl_particles *p);
+
+/// Appends a particle at rest (spin zero); returns its index or -1 when out of memory.
+long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radius, double density,
+                       int species);
+
+/// Moment of inertia of a solid sphere: I = 2/5 m r^2, returned as 1/I.
+static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
+{
+    return 2.5 * p->inv_mass[i] / (p->radius[i] * p->radius[i]);
+}
+
+/// Reorders all particle arrays so that new slot k holds old particle perm[k].
+/// `scratch` must hold count * sizeof(bdl_vec3) bytes.
+void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch);
+
+/// Bytes allocated for particle storage.
+long bdl_particles_bytes(const bdl_particles *p);
+
+#endif

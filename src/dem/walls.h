@@ -1,0 +1,73 @@
+// bedlam — walls: planes, boxes and cylinders with prescribed motion.
+//
+// Every scene wall expands into primitives (a box into six inward-facing planes). A primitive
+// moves rigidly with its wall: displacement s(t) = A sin(2 pi f t + phase) d along the unit
+// direction d, velocity s'(t). Contacts treat a wall as a body of infinite mass and radius
+// (a cylinder's inside is concave: 1/R* = 1/r - 1/R_cyl).
+#ifndef BDL_WALLS_H
+#define BDL_WALLS_H
+
+#include "scene/scene.h"
+
+#define BDL_MAX_PRIMS (6 * BDL_MAX_WALLS)
+
+typedef enum bdl_prim_kind { BDL_PRIM_PLANE, BDL_PRIM_CYLINDER } bdl_prim_kind;
+
+typedef struct bdl_wall_prim {
+    bdl_prim_kind kind;
+    int wall;        ///< index of the scene wall it belongs to
+    bdl_vec3 point;  ///< rest position of a point on the plane / axis [m]
+    bdl_vec3 normal; ///< plane: unit normal into the particle side; cylinder: unit axis
+    double radius;   ///< cylinder radius [m]
+} bdl_wall_prim;
+
+typedef struct bdl_walls {
+    int prim_count;
+    bdl_wall_prim prims[BDL_MAX_PRIMS];
+    int wall_count;
+    bdl_motion_kind motion[BDL_MAX_WALLS];
+    bdl_vec3 direction[BDL_MAX_WALLS];
+    double amplitude[BDL_MAX_WALLS], omega[BDL_MAX_WALLS], phase[BDL_MAX_WALLS];
+    // Live values, refreshed by bdl_walls_update; scaled by the live amplitude factor of commands.
+    bdl_vec3 offset[BDL_MAX_WALLS];   ///< displacement from rest [m]
+    bdl_vec3 velocity[BDL_MAX_WALLS]; ///< [m/s]
+} bdl_walls;
+
+void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls);
+
+/// Sets offset and velocity of every wall at time t [s].
+void bdl_walls_update(bdl_walls *walls, double t);
+
+/// Distance-to-contact query. Returns the gap s = (distance from the surface) - radius along the
+/// normal n pointing from the wall into the particle (s < 0: overlap -s), for a sphere at x.
+static inline double bdl_wall_gap(const bdl_walls *walls, int prim, bdl_vec3 x, double radius,
+                                  bdl_vec3 *n)
+{
+    const bdl_wall_prim *w = &walls->prims[prim];
+    bdl_vec3 q = bdl_v3_sub(x, bdl_v3_add(w->point, walls->offset[w->wall]));
+    if (w->kind == BDL_PRIM_PLANE) {
+        *n = w->normal;
+        return bdl_v3_dot(q, w->normal) - radius;
+    }
+    bdl_vec3 perp = bdl_v3_madd(q, w->normal, -bdl_v3_dot(q, w->normal));
+    double rho = bdl_v3_len(perp);
+    *n = rho > 0.0 ? bdl_v3_scale(perp, -1.0 / rho) : bdl_v3_zero();
+    return w->radius - rho - radius;
+}
+
+/// Effective radius of a sphere of radius r touching primitive `prim`.
+static inline double bdl_wall_r_eff(const bdl_walls *walls, int prim, double r)
+{
+    const bdl_wall_prim *w = &walls->prims[prim];
+    if (w->kind == BDL_PRIM_CYLINDER && w->radius > r)
+        return r * w->radius / (w->radius - r);
+    return r;
+}
+
+/// Largest displacement any wall has made since the offsets in `ref` were taken [m].
+double bdl_walls_max_shift(const bdl_walls *walls, const bdl_vec3 *ref);
+
+/// Largest speed any wall reaches over a cycle [m/s].
+double bdl_walls_max_speed(const bdl_walls *walls);
+
+#endif

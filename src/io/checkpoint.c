@@ -1,0 +1,201 @@
+#include "io/checkpoint.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/atomic_file.h"
+
+static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '1'};
+
+uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
+{
+    uint64_t h = BDL_HASH_INIT;
+    int counts[4] = {s->species_count, s->wall_count, s->create_count, (int)s->law};
+    h = bdl_hash_bytes(h, counts, sizeof counts);
+    for (int k = 0; k < s->species_count; ++k) {
+        double v[4] = {s->species[k].diameter, s->species[k].density, s->species[k].diameter_min,
+                       s->species[k].diameter_max};
+        h = bdl_hash_bytes(h, v, sizeof v);
+    }
+    for (int k = 0; k < s->wall_count; ++k) {
+        int kind = (int)s->walls[k].kind;
+        h = bdl_hash_bytes(h, &kind, sizeof kind);
+    }
+    return h;
+}
+
+typedef struct writer {
+    FILE *f;
+    int ok;
+} writer;
+
+static void put(writer *w, const void *data, size_t size)
+{
+    if (w->ok && size > 0 && fwrite(data, 1, size, w->f) != size)
+        w->ok = 0;
+}
+
+typedef struct reader {
+    FILE *f;
+    int ok;
+} reader;
+
+static void get(reader *r, void *data, size_t size)
+{
+    if (r->ok && size > 0 && fread(data, 1, size, r->f) != size)
+        r->ok = 0;
+}
+
+/// The fields saved and restored, in file order; `n` is the element count for arrays.
+#define SCALARS(X)                                                                                 \
+    X(time) X(step) X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy)                \
+        X(damping_work) X(energy0) X(contact_time) X(contact_time_dt_ratio)
+
+bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
+{
+    bdl_atomic_file af;
+    bdl_result res = bdl_atomic_open(&af, path);
+    if (res != BDL_OK)
+        return res;
+    writer out = {af.file, 1};
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    uint64_t fp = bdl_checkpoint_scene_fingerprint(&w->scene);
+    put(&out, magic, sizeof magic);
+    put(&out, &fp, sizeof fp);
+#define PUT_SCALAR(name) put(&out, &w->name, sizeof w->name);
+    SCALARS(PUT_SCALAR)
+#undef PUT_SCALAR
+    size_t n = (size_t)p->count;
+    long counts[6] = {p->count, (long)p->next_id, nb->pair_count, nb->wall_pair_count, nb->builds,
+                      nb->count};
+    put(&out, counts, sizeof counts);
+    put(&out, p->pos, n * sizeof(bdl_vec3));
+    put(&out, p->vel, n * sizeof(bdl_vec3));
+    put(&out, p->omega, n * sizeof(bdl_vec3));
+    put(&out, p->force, n * sizeof(bdl_vec3));
+    put(&out, p->torque, n * sizeof(bdl_vec3));
+    put(&out, p->pos_at_build, n * sizeof(bdl_vec3));
+    put(&out, p->radius, n * sizeof(double));
+    put(&out, p->inv_mass, n * sizeof(double));
+    put(&out, p->species, n * sizeof(int32_t));
+    put(&out, p->id, n * sizeof(uint32_t));
+    put(&out, w->coordination, n);
+    size_t np = (size_t)nb->pair_count, nw = (size_t)nb->wall_pair_count;
+    put(&out, nb->wall_offset_at_build, sizeof nb->wall_offset_at_build);
+    put(&out, nb->start, (n + 1) * sizeof(int32_t));
+    put(&out, nb->partner, np * sizeof(int32_t));
+    put(&out, nb->force, np * sizeof(bdl_vec3));
+    put(&out, nb->touching, np);
+    put(&out, nb->jstart, (n + 1) * sizeof(int32_t));
+    put(&out, nb->jlist, np * sizeof(int32_t));
+    if (nb->history)
+        put(&out, nb->history, np * sizeof(bdl_vec3));
+    if (nb->torque_j)
+        put(&out, nb->torque_j, np * sizeof(bdl_vec3));
+    put(&out, nb->wall_start, (n + 1) * sizeof(int32_t));
+    put(&out, nb->wall_prim, nw * sizeof(int32_t));
+    put(&out, nb->wall_history, nw * sizeof(bdl_vec3));
+    put(&out, nb->wall_force, nw * sizeof(bdl_vec3));
+    put(&out, nb->wall_touching, nw);
+    put(&out, magic, sizeof magic);
+    if (!out.ok) {
+        bdl_atomic_abort(&af);
+        return BDL_ERR_IO;
+    }
+    return bdl_atomic_commit(&af);
+}
+
+static bdl_result fail(char *why, size_t len, const char *path, const char *what)
+{
+    snprintf(why, len, "checkpoint '%s': %s", path, what);
+    return BDL_ERR_CHECKPOINT;
+}
+
+bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t why_len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return fail(why, why_len, path, "cannot be opened");
+    reader in = {f, 1};
+    char m[8];
+    uint64_t fp = 0;
+    get(&in, m, sizeof m);
+    get(&in, &fp, sizeof fp);
+    if (!in.ok || memcmp(m, magic, sizeof magic) != 0) {
+        fclose(f);
+        return fail(why, why_len, path, "is not a bedlam checkpoint (bad magic)");
+    }
+    if (fp != bdl_checkpoint_scene_fingerprint(&w->scene)) {
+        fclose(f);
+        return fail(why, why_len, path, "was written for a different scene (species, walls or law differ)");
+    }
+#define GET_SCALAR(name) get(&in, &w->name, sizeof w->name);
+    SCALARS(GET_SCALAR)
+#undef GET_SCALAR
+    long counts[6];
+    get(&in, counts, sizeof counts);
+    if (!in.ok || counts[0] < 0 || counts[2] < 0 || counts[3] < 0 || counts[0] > (1L << 31)) {
+        fclose(f);
+        return fail(why, why_len, path, "is truncated or damaged");
+    }
+    bdl_particles *p = &w->particles;
+    bdl_neighbor *nb = &w->neighbor;
+    if (bdl_particles_reserve(p, counts[0] + 1) != BDL_OK ||
+        bdl_neighbor_reserve(nb, counts[0], counts[2], counts[3]) != BDL_OK) {
+        fclose(f);
+        return BDL_ERR_NOMEM;
+    }
+    uint8_t *coord = realloc(w->coordination, (size_t)p->capacity);
+    if (!coord) {
+        fclose(f);
+        return BDL_ERR_NOMEM;
+    }
+    w->coordination = coord;
+    w->coordination_capacity = p->capacity;
+    p->count = counts[0];
+    p->next_id = (uint32_t)counts[1];
+    nb->pair_count = counts[2];
+    nb->wall_pair_count = counts[3];
+    nb->builds = counts[4];
+    nb->count = counts[5];
+    size_t n = (size_t)p->count;
+    get(&in, p->pos, n * sizeof(bdl_vec3));
+    get(&in, p->vel, n * sizeof(bdl_vec3));
+    get(&in, p->omega, n * sizeof(bdl_vec3));
+    get(&in, p->force, n * sizeof(bdl_vec3));
+    get(&in, p->torque, n * sizeof(bdl_vec3));
+    get(&in, p->pos_at_build, n * sizeof(bdl_vec3));
+    get(&in, p->radius, n * sizeof(double));
+    get(&in, p->inv_mass, n * sizeof(double));
+    get(&in, p->species, n * sizeof(int32_t));
+    get(&in, p->id, n * sizeof(uint32_t));
+    get(&in, w->coordination, n);
+    size_t np = (size_t)nb->pair_count, nw = (size_t)nb->wall_pair_count;
+    get(&in, nb->wall_offset_at_build, sizeof nb->wall_offset_at_build);
+    get(&in, nb->start, (n + 1) * sizeof(int32_t));
+    get(&in, nb->partner, np * sizeof(int32_t));
+    get(&in, nb->force, np * sizeof(bdl_vec3));
+    get(&in, nb->touching, np);
+    get(&in, nb->jstart, (n + 1) * sizeof(int32_t));
+    get(&in, nb->jlist, np * sizeof(int32_t));
+    if (nb->history)
+        get(&in, nb->history, np * sizeof(bdl_vec3));
+    if (nb->torque_j)
+        get(&in, nb->torque_j, np * sizeof(bdl_vec3));
+    get(&in, nb->wall_start, (n + 1) * sizeof(int32_t));
+    get(&in, nb->wall_prim, nw * sizeof(int32_t));
+    get(&in, nb->wall_history, nw * sizeof(bdl_vec3));
+    get(&in, nb->wall_force, nw * sizeof(bdl_vec3));
+    get(&in, nb->wall_touching, nw);
+    get(&in, m, sizeof m);
+    fclose(f);
+    if (!in.ok || memcmp(m, magic, sizeof magic) != 0)
+        return fail(why, why_len, path, "is truncated or damaged");
+    for (long i = 0; i < p->count; ++i)
+        if (p->species[i] < 0 || p->species[i] >= w->scene.species_count)
+            return fail(why, why_len, path, "holds a particle of an unknown species");
+    bdl_world_apply_live(w);
+    return BDL_OK;
+}

@@ -1,0 +1,21 @@
+// bedlam — checkpoints: the complete dynamic state of a world, for --resume.
+//
+// A checkpoint holds everything the next step reads: particle state including this step's forces,
+// the neighbour and wall-contact lists with their history and the positions they were built at,
+// the random generator, pour counters, live parameters and energy bookkeeping. Restoring it into a
+// world built from the same scene continues bit-for-bit. Files are written atomically.
+#ifndef BDL_CHECKPOINT_H
+#define BDL_CHECKPOINT_H
+
+#include "sim/world.h"
+
+/// Fingerprint of the scene quantities a checkpoint depends on (species, walls, law, counts).
+uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *scene);
+
+bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path);
+
+/// Replaces the state of `w` (built from the same scene) by the checkpoint's. On a mismatch or a
+/// damaged file returns BDL_ERR_CHECKPOINT with a sentence in `why`.
+bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t why_len);
+
+#endif

@@ -1,0 +1,203 @@
+// bedlam — the validated scene description.
+//
+// A scene file (INI, parsed with libinih) becomes a bdl_scene: plain data in SI units, every
+// value checked against its allowed range, no physics. The solver modules are built from it.
+// The key-by-key documentation (unit, default, range) is docs/scene-format.md; the table of keys
+// in scene_keys.c is the single source the parser, the "did you mean" hints and the docs test
+// read from.
+#ifndef BDL_SCENE_H
+#define BDL_SCENE_H
+
+#include <stdint.h>
+
+#include "core/error.h"
+#include "core/vec3.h"
+
+#define BDL_MAX_SPECIES 16
+#define BDL_MAX_PAIRS 64
+#define BDL_MAX_WALLS 16
+#define BDL_MAX_CREATES 16
+#define BDL_NAME_LEN 32
+#define BDL_PATH_LEN 512
+
+/// Normal contact law, chosen per scene ([contact] law).
+typedef enum bdl_normal_law {
+    BDL_LAW_LINEAR = 0, ///< linear spring-dashpot: F = k_n delta - gamma v_n
+    BDL_LAW_HERTZ = 1,  ///< Hertz-Mindlin with delta^(1/4)-scaled (restitution-based) damping
+} bdl_normal_law;
+
+/// How the Hertz damping coefficient is obtained from the restitution ([contact] damping).
+typedef enum bdl_damping_mode {
+    BDL_DAMPING_EXACT = 0,       ///< solved numerically once per pair so the realised e matches
+    BDL_DAMPING_CLOSED_FORM = 1, ///< the closed form of LIGGGHTS/EDEM (approximate at low e)
+} bdl_damping_mode;
+
+/// Rolling resistance model ([contact] rolling).
+typedef enum bdl_rolling_model {
+    BDL_ROLLING_NONE = 0,
+    BDL_ROLLING_CONSTANT = 1, ///< constant directional torque mu_r R* |F_n| against relative rolling
+} bdl_rolling_model;
+
+/// Diameter distribution of a species.
+typedef enum bdl_size_dist {
+    BDL_SIZE_SINGLE = 0,  ///< all particles have `diameter`
+    BDL_SIZE_UNIFORM = 1, ///< uniform in [diameter_min, diameter_max]
+    BDL_SIZE_NORMAL = 2,  ///< normal(diameter, diameter_std) truncated to [diameter_min, diameter_max]
+} bdl_size_dist;
+
+/// Material and contact parameters shared by species, pair overrides and walls.
+/// A value < 0 means "not given" where a default is derived (documented per key).
+typedef struct bdl_material {
+    double youngs_modulus;       ///< E [Pa] (Hertz law); < 0 if not given
+    double poisson_ratio;        ///< nu [-]
+    double stiffness;            ///< k_n [N/m] (linear law); < 0 if not given
+    double tangential_stiffness; ///< k_t [N/m] (linear law); < 0 -> 2/7 k_n
+    double restitution;          ///< normal coefficient of restitution e in (0, 1]
+    double tangential_damping_ratio; ///< gamma_t / gamma_n [-] (default 0: no tangential dashpot)
+    double friction;             ///< sliding friction coefficient mu [-]
+    double rolling_friction;     ///< rolling friction coefficient mu_r [-]
+} bdl_material;
+
+typedef struct bdl_species_def {
+    char name[BDL_NAME_LEN];
+    bdl_size_dist size_dist;
+    double diameter;     ///< [m] (mean for distributions)
+    double diameter_min; ///< [m]
+    double diameter_max; ///< [m]
+    double diameter_std; ///< [m] (normal distribution)
+    double density;      ///< [kg/m^3]
+    double background_damping; ///< b [1/s]: force -b m v on every particle of the species
+    bdl_material material;
+    int line; ///< line of the section header in the scene file (for messages)
+} bdl_species_def;
+
+/// Override of contact parameters for one pair of species ([pair A B]), or a species with a
+/// wall. Only the fields flagged in `has_*` replace the mixed values.
+typedef struct bdl_pair_def {
+    int species_a, species_b; ///< indices into bdl_scene.species
+    int has_restitution, has_friction, has_rolling_friction, has_stiffness;
+    double restitution, friction, rolling_friction, stiffness;
+    int line;
+} bdl_pair_def;
+
+typedef enum bdl_wall_kind {
+    BDL_WALL_PLANE = 0,    ///< half-space boundary: particles stay on the side `normal` points to
+    BDL_WALL_BOX = 1,      ///< the inside of an axis-aligned box (six planes)
+    BDL_WALL_CYLINDER = 2, ///< the inside of a cylinder around an axis (infinite unless capped)
+} bdl_wall_kind;
+
+typedef enum bdl_motion_kind {
+    BDL_MOTION_NONE = 0,
+    BDL_MOTION_VIBRATE = 1, ///< displacement A sin(2 pi f t + phase) along `direction`
+} bdl_motion_kind;
+
+typedef struct bdl_wall_def {
+    char name[BDL_NAME_LEN];
+    bdl_wall_kind kind;
+    bdl_vec3 point;  ///< plane: a point on it; cylinder: a point on the axis [m]
+    bdl_vec3 normal; ///< plane: unit normal into the particle side; cylinder: unit axis
+    bdl_vec3 box_min, box_max; ///< box corners [m]
+    double radius;   ///< cylinder radius [m]
+    bdl_motion_kind motion;
+    bdl_vec3 direction; ///< vibration direction (unit)
+    double amplitude;   ///< A [m]
+    double frequency;   ///< f [Hz]
+    double phase;       ///< [rad]
+    bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
+    int line;
+} bdl_wall_def;
+
+typedef enum bdl_create_kind {
+    BDL_CREATE_RANDOM = 0,  ///< non-overlapping random fill of a box region
+    BDL_CREATE_LATTICE = 1, ///< simple cubic lattice in a box region
+    BDL_CREATE_POUR = 2,    ///< insert particles in a region at a rate during the run
+    BDL_CREATE_FILE = 3,    ///< positions (and optionally diameter, velocity) from a CSV file
+} bdl_create_kind;
+
+typedef struct bdl_create_def {
+    char name[BDL_NAME_LEN];
+    bdl_create_kind kind;
+    int species;               ///< index into bdl_scene.species
+    bdl_vec3 region_min;       ///< [m]
+    bdl_vec3 region_max;       ///< [m]
+    long count;                ///< number of particles (random, lattice, pour); -1 if not given
+    double volume_fraction;    ///< target solids fraction of the region (random); < 0 if not given
+    double spacing;            ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
+    double rate;               ///< pour rate [particles/s]
+    double start_time;         ///< pour start [s]
+    bdl_vec3 velocity;         ///< initial velocity [m/s]
+    double velocity_jitter;    ///< random velocity magnitude added [m/s]
+    char file[BDL_PATH_LEN];   ///< CSV path (relative to the scene file's folder)
+    int line;
+} bdl_create_def;
+
+typedef struct bdl_output_def {
+    double diagnostics_interval; ///< [s] between rows of diagnostics.csv
+    double vtk_interval;         ///< [s] between particle VTK files; 0 = none
+    double checkpoint_interval;  ///< [s] between checkpoints; 0 = only at the end / on failure
+    double progress_interval;    ///< wall seconds between progress lines
+} bdl_output_def;
+
+typedef struct bdl_guard_def {
+    double max_overlap;     ///< stop when any overlap exceeds this fraction of the smaller radius
+    double dt_refuse;       ///< refuse dt above this fraction of the smallest contact time
+    double dt_warn;         ///< warn for dt above this fraction
+    double energy_growth;   ///< stop when energy grows by this fraction over work supplied
+    int check_interval;     ///< steps between in-run checks
+} bdl_guard_def;
+
+typedef struct bdl_scene {
+    char path[BDL_PATH_LEN]; ///< file the scene was read from ("" for a string)
+    char dir[BDL_PATH_LEN];  ///< folder of the scene file (for relative paths)
+
+    // [run]
+    double dt;            ///< time step [s]; <= 0 -> dt_fraction * smallest contact time
+    double dt_fraction;   ///< used when dt is not given
+    double end_time;      ///< [s]
+    bdl_vec3 gravity;     ///< [m/s^2]
+    uint64_t seed;        ///< random seed
+    int threads;          ///< 0 = all cores
+
+    // [domain]
+    bdl_vec3 domain_min, domain_max; ///< [m]
+    int periodic[3];                 ///< periodic flags per axis
+
+    // [contact]
+    bdl_normal_law law;
+    bdl_damping_mode damping;
+    bdl_rolling_model rolling;
+    double skin; ///< Verlet skin as a fraction of the largest diameter
+
+    int species_count;
+    bdl_species_def species[BDL_MAX_SPECIES];
+    int pair_count;
+    bdl_pair_def pairs[BDL_MAX_PAIRS];
+    int wall_count;
+    bdl_wall_def walls[BDL_MAX_WALLS];
+    int create_count;
+    bdl_create_def creates[BDL_MAX_CREATES];
+
+    bdl_output_def output;
+    bdl_guard_def guards;
+} bdl_scene;
+
+/// A problem found while reading or validating a scene. Messages look like
+/// `scenes/x.ini:12: [species glass] density = -3: must be > 0 (kg/m^3)`.
+typedef struct bdl_scene_error {
+    char message[1024];
+} bdl_scene_error;
+
+/// Scene with every default filled in and no species, walls or creators.
+void bdl_scene_defaults(bdl_scene *scene);
+
+/// Reads and validates a scene file. `overrides` are `section.key=value` strings (from --set),
+/// applied after the file as if they were written at its end; a section with a name is written
+/// `species.glass.density=2500`. On failure returns BDL_ERR_SCENE and fills `err`.
+bdl_result bdl_scene_load(const char *path, const char *const *overrides, int override_count,
+                          bdl_scene *scene, bdl_scene_error *err);
+
+/// Same from a string (tests); `name` stands for the file name in messages.
+bdl_result bdl_scene_load_string(const char *text, const char *name, const char *const *overrides,
+                                 int override_count, bdl_scene *scene, bdl_scene_error *err);
+
+#endif

@@ -1,0 +1,127 @@
+#include "sim/diagnostics.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "dem/integrate.h"
+
+const char *const bdl_diagnostics_columns[] = {
+    "time",           "step",           "wall_seconds",     "particles",
+    "kinetic_energy", "rotational_energy", "potential_energy", "elastic_energy",
+    "mean_coordination", "max_overlap_ratio", "wall_work",    "energy_balance",
+    "max_speed",
+};
+const int bdl_diagnostics_column_count =
+    (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
+
+#define BLOCKS 256
+
+typedef struct partial {
+    double kinetic, rotational, potential, elastic, contacts, overlap, speed;
+} partial;
+
+static void particle_terms(const bdl_world *w, long i, partial *s)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    double m = 1.0 / p->inv_mass[i];
+    double v2 = bdl_v3_len2(p->vel[i]);
+    s->kinetic += 0.5 * m * v2;
+    s->rotational += 0.5 * bdl_v3_len2(p->omega[i]) / bdl_particle_inv_inertia(p, i);
+    s->potential -= m * bdl_v3_dot(w->scene.gravity, p->pos[i]);
+    s->contacts += w->coordination ? w->coordination[i] : 0;
+    if (v2 > s->speed * s->speed)
+        s->speed = sqrt(v2);
+    int ns = w->scene.species_count;
+    for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+        int32_t j = nb->partner[k];
+        double cut = p->radius[i] + p->radius[j];
+        double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
+        if (dist >= cut)
+            continue;
+        double overlap = cut - dist;
+        double ratio = overlap / fmin(p->radius[i], p->radius[j]);
+        if (ratio > s->overlap)
+            s->overlap = ratio;
+        const bdl_contact_params *cp = &w->pair_params[p->species[i] * ns + p->species[j]];
+        double r_eff = p->radius[i] * p->radius[j] / cut;
+        s->elastic += w->hertz ? (8.0 / 15.0) * cp->e_star * sqrt(r_eff) * pow(overlap, 2.5)
+                               : 0.5 * cp->kn * overlap * overlap;
+    }
+    for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+        bdl_vec3 n;
+        int prim = nb->wall_prim[k];
+        double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
+        if (gap >= 0.0)
+            continue;
+        double ratio = -gap / p->radius[i];
+        if (ratio > s->overlap)
+            s->overlap = ratio;
+        const bdl_contact_params *cp = &w->wall_params[w->walls.prims[prim].wall * ns + p->species[i]];
+        double r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
+        s->elastic += w->hertz ? (8.0 / 15.0) * cp->e_star * sqrt(r_eff) * pow(-gap, 2.5)
+                               : 0.5 * cp->kn * gap * gap;
+    }
+}
+
+void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics *d)
+{
+    partial blocks[BLOCKS];
+    memset(blocks, 0, sizeof blocks);
+    long n = w->particles.count;
+    long per = (n + BLOCKS - 1) / BLOCKS;
+    if (per < 1)
+        per = 1;
+#pragma omp parallel for schedule(static)
+    for (int b = 0; b < BLOCKS; ++b) {
+        long lo = b * per, hi = lo + per < n ? lo + per : n;
+        for (long i = lo; i < hi; ++i)
+            particle_terms(w, i, &blocks[b]);
+    }
+    partial s;
+    memset(&s, 0, sizeof s);
+    for (int b = 0; b < BLOCKS; ++b) {
+        s.kinetic += blocks[b].kinetic;
+        s.rotational += blocks[b].rotational;
+        s.potential += blocks[b].potential;
+        s.elastic += blocks[b].elastic;
+        s.contacts += blocks[b].contacts;
+        s.overlap = fmax(s.overlap, blocks[b].overlap);
+        s.speed = fmax(s.speed, blocks[b].speed);
+    }
+    memset(d, 0, sizeof *d);
+    d->time = w->time;
+    d->step = w->step;
+    d->particle_count = n;
+    d->kinetic_energy = s.kinetic;
+    d->rotational_energy = s.rotational;
+    d->potential_energy = s.potential;
+    d->elastic_energy = s.elastic;
+    d->mean_coordination = n > 0 ? s.contacts / (double)n : 0.0;
+    d->max_overlap_ratio = s.overlap;
+    d->max_speed = s.speed;
+    d->wall_work = w->wall_work;
+    d->energy_balance = bdl_diagnostics_total_energy(d) - energy0 - w->wall_work - w->inserted_energy;
+}
+
+double bdl_diagnostics_total_energy(const bdl_diagnostics *d)
+{
+    return d->kinetic_energy + d->rotational_energy + d->potential_energy + d->elastic_energy;
+}
+
+void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
+{
+    v[0] = d->time;
+    v[1] = (double)d->step;
+    v[2] = d->wall_seconds;
+    v[3] = (double)d->particle_count;
+    v[4] = d->kinetic_energy;
+    v[5] = d->rotational_energy;
+    v[6] = d->potential_energy;
+    v[7] = d->elastic_energy;
+    v[8] = d->mean_coordination;
+    v[9] = d->max_overlap_ratio;
+    v[10] = d->wall_work;
+    v[11] = d->energy_balance;
+    v[12] = d->max_speed;
+}

@@ -1,0 +1,447 @@
+// The headless run driver: validation, output folder, solver thread, progress, clean stops.
+#define _POSIX_C_SOURCE 200809L
+#include "sim/run.h"
+
+#include <math.h>
+#include <omp.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "core/log.h"
+#include "core/timer.h"
+#include "io/atomic_file.h"
+#include "io/checkpoint.h"
+#include "io/csv.h"
+#include "io/vtk.h"
+#include "sim/diagnostics.h"
+#include "sim/guards.h"
+#include "sim/loop.h"
+
+static volatile sig_atomic_t stop_requested = 0;
+
+void bdl_run_request_stop(void) { stop_requested = 1; }
+
+static void on_sigint(int sig)
+{
+    (void)sig;
+    stop_requested = 1;
+}
+
+bdl_run_def bdl_default_run_def(void)
+{
+    bdl_run_def d;
+    memset(&d, 0, sizeof d);
+    d.until = -1.0;
+    d.progress = 1;
+    return d;
+}
+
+/// Everything the solver thread's per-step callback needs.
+typedef struct run_state {
+    const char *out;
+    bdl_world *world;
+    bdl_csv *csv;
+    bdl_pvd *pvd;
+    bdl_guard_state guard;
+    double energy0;
+    double start_wall;
+    double next_diag, next_vtk, next_checkpoint;
+    long vtk_index;
+    char failure[1024];
+} run_state;
+
+static void path_join(char *out, size_t len, const char *a, const char *b)
+{
+    snprintf(out, len, "%s/%s", a, b);
+}
+
+static bdl_result write_vtk(run_state *rs)
+{
+    const bdl_particles *p = &rs->world->particles;
+    long n = p->count;
+    double *radius = p->radius;
+    int32_t *id = malloc((size_t)(n > 0 ? n : 1) * sizeof(int32_t));
+    int32_t *coord = malloc((size_t)(n > 0 ? n : 1) * sizeof(int32_t));
+    if (!id || !coord) {
+        free(id);
+        free(coord);
+        return BDL_ERR_NOMEM;
+    }
+    for (long i = 0; i < n; ++i) {
+        id[i] = (int32_t)p->id[i];
+        coord[i] = rs->world->coordination[i];
+    }
+    bdl_vtk_array arrays[] = {
+        {"radius", BDL_VTK_FLOAT64, 1, radius},       {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
+        {"omega", BDL_VTK_FLOAT64, 3, p->omega},       {"id", BDL_VTK_INT32, 1, id},
+        {"species", BDL_VTK_INT32, 1, p->species},     {"coordination", BDL_VTK_INT32, 1, coord},
+    };
+    char rel[64], path[1200];
+    snprintf(rel, sizeof rel, "vtk/particles_%06ld.vtp", rs->vtk_index);
+    path_join(path, sizeof path, rs->out, rel);
+    bdl_result r = bdl_vtp_write(path, n, p->pos, arrays, (int)(sizeof arrays / sizeof arrays[0]));
+    free(id);
+    free(coord);
+    if (r == BDL_OK)
+        r = bdl_pvd_add(rs->pvd, rs->world->time, rel);
+    rs->vtk_index++;
+    return r;
+}
+
+static bdl_result write_checkpoint(run_state *rs)
+{
+    char path[1200];
+    path_join(path, sizeof path, rs->out, "checkpoint/state.bdlckpt");
+    bdl_result r = bdl_checkpoint_save(rs->world, path);
+    if (r != BDL_OK)
+        bdl_error("could not write checkpoint %s", path);
+    return r;
+}
+
+static bdl_result write_diagnostics(run_state *rs, bdl_diagnostics *d)
+{
+    double row[32];
+    d->wall_seconds = bdl_wall_seconds() - rs->start_wall;
+    bdl_diagnostics_row(d, row);
+    return bdl_csv_row(rs->csv, row);
+}
+
+/// Times are due when the step lands within half a step of them.
+static int due(const bdl_world *w, double t) { return w->time >= t - 0.5 * w->dt; }
+
+static bdl_result on_step(void *user, bdl_world *w)
+{
+    run_state *rs = user;
+    const bdl_scene *s = &w->scene;
+    int diag = due(w, rs->next_diag);
+    int check = w->step % s->guards.check_interval == 0;
+    if (diag || check) {
+        bdl_diagnostics d;
+        bdl_diagnostics_compute(w, rs->energy0, &d);
+        if (check) {
+            bdl_result r = bdl_guards_check(w, &rs->guard, &d, rs->failure, sizeof rs->failure);
+            if (r != BDL_OK)
+                return r;
+        }
+        if (diag) {
+            bdl_result r = write_diagnostics(rs, &d);
+            if (r != BDL_OK)
+                return r;
+            while (due(w, rs->next_diag))
+                rs->next_diag += s->output.diagnostics_interval;
+        }
+    }
+    if (s->output.vtk_interval > 0.0 && due(w, rs->next_vtk)) {
+        bdl_result r = write_vtk(rs);
+        if (r != BDL_OK)
+            return r;
+        while (due(w, rs->next_vtk))
+            rs->next_vtk += s->output.vtk_interval;
+    }
+    if (s->output.checkpoint_interval > 0.0 && due(w, rs->next_checkpoint)) {
+        bdl_result r = write_checkpoint(rs);
+        if (r != BDL_OK)
+            return r;
+        while (due(w, rs->next_checkpoint))
+            rs->next_checkpoint += s->output.checkpoint_interval;
+    }
+    if (stop_requested)
+        return BDL_ERR_INTERRUPTED;
+    return BDL_OK;
+}
+
+static void log_setup(const bdl_world *w, const bdl_run_def *def, int threads, const char *out)
+{
+    const bdl_scene *s = &w->scene;
+    bdl_info("bedlam %s", BDL_VERSION);
+    bdl_info("scene: %s", s->path);
+    for (int k = 0; k < def->override_count; ++k)
+        bdl_info("override: %s", def->overrides[k]);
+    bdl_info("output: %s", out);
+    bdl_info("threads: %d", threads);
+    bdl_info("modules: dem (%s normal law%s, %s%s), walls: %d, gas: none", w->hertz ? "Hertz" : "linear",
+             w->hertz ? (s->damping == BDL_DAMPING_EXACT ? ", exact restitution damping"
+                                                         : ", closed-form damping")
+                      : "",
+             w->friction ? "tangential history + Coulomb friction" : "frictionless, no tangential history",
+             w->rolling ? ", rolling resistance" : "", s->wall_count);
+    bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);
+    for (int k = 0; k < s->species_count; ++k) {
+        const bdl_species_def *sp = &s->species[k];
+        const bdl_contact_params *cp = &w->pair_params[k * s->species_count + k];
+        bdl_info("species %s: d = %g m, rho = %g kg/m^3, e = %g, mu = %g, mu_r = %g, %s = %g",
+                 sp->name, sp->diameter, sp->density, cp->restitution, cp->friction, cp->rolling_friction,
+                 w->hertz ? "damping c" : "damping ratio", cp->damping);
+    }
+    bdl_info("dt = %g s, smallest contact time = %g s (dt = t_c / %.1f), end time = %g s", w->dt,
+             w->contact_time, 1.0 / w->contact_time_dt_ratio, s->end_time);
+    bdl_info("limits: dt_refuse = %g t_c, dt_warn = %g t_c, max_overlap = %g r, energy_growth = %g",
+             s->guards.dt_refuse, s->guards.dt_warn, s->guards.max_overlap, s->guards.energy_growth);
+}
+
+static void format_hms(double s, char *out, size_t len)
+{
+    if (!isfinite(s) || s < 0) {
+        snprintf(out, len, "--:--:--");
+        return;
+    }
+    long t = (long)(s + 0.5);
+    snprintf(out, len, "%02ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
+}
+
+static void progress_line(bdl_loop *loop, double end_time, double start_wall, double t0, int tty,
+                          double *last_t, long *last_step, double *last_wall)
+{
+    double t, now = bdl_wall_seconds();
+    long step, particles;
+    int finished;
+    bdl_loop_progress(loop, &t, &step, &particles, &finished);
+    double dw = now - *last_wall;
+    double rate = dw > 0 ? (double)(step - *last_step) * (double)particles / dw : 0.0;
+    double speed = dw > 0 ? (t - *last_t) / dw : 0.0;
+    double elapsed = now - start_wall;
+    double eta = t > t0 ? (end_time - t) * elapsed / (t - t0) : NAN;
+    char e1[16], e2[16];
+    format_hms(elapsed, e1, sizeof e1);
+    format_hms(eta, e2, sizeof e2);
+    fprintf(stderr, "%st = %.4g / %.4g s  step %ld  %ld particles  %.3g particle-steps/s  %.3gx real time  elapsed %s  ETA %s%s",
+            tty ? "\r" : "", t, end_time, step, particles, rate, speed, e1, e2, tty ? "\033[K" : "\n");
+    fflush(stderr);
+    *last_t = t;
+    *last_step = step;
+    *last_wall = now;
+}
+
+static int resolve_checkpoint(const char *resume, char *out, size_t len)
+{
+    struct stat st;
+    if (stat(resume, &st) == 0 && S_ISDIR(st.st_mode)) {
+        snprintf(out, len, "%s/checkpoint/state.bdlckpt", resume);
+        return 1;
+    }
+    snprintf(out, len, "%s", resume);
+    return 0;
+}
+
+static void default_out_dir(const char *scene_path, char *out, size_t len)
+{
+    const char *base = strrchr(scene_path, '/');
+    base = base ? base + 1 : scene_path;
+    char stem[256];
+    snprintf(stem, sizeof stem, "%s", base);
+    char *dot = strrchr(stem, '.');
+    if (dot)
+        *dot = '\0';
+    snprintf(out, len, "runs/%s", stem);
+}
+
+static int finish(int code, bdl_world *w, FILE *log)
+{
+    bdl_world_destroy(w);
+    if (log) {
+        bdl_log_set_file(NULL);
+        fclose(log);
+    }
+    return code;
+}
+
+int bdl_run(const bdl_run_def *def)
+{
+    bdl_scene *scene = calloc(1, sizeof *scene);
+    bdl_scene_error err;
+    if (!scene)
+        return 1;
+    if (bdl_scene_load(def->scene_path, def->overrides, def->override_count, scene, &err) != BDL_OK) {
+        fprintf(stderr, "error: %s\n", err.message);
+        free(scene);
+        return 2;
+    }
+    if (def->until > 0.0)
+        scene->end_time = def->until;
+    int threads = def->threads > 0 ? def->threads : scene->threads;
+    if (threads > 0)
+        omp_set_num_threads(threads);
+    threads = omp_get_max_threads();
+
+    char out[1024], why[512], ckpt[1200];
+    int resume_dir = def->resume ? resolve_checkpoint(def->resume, ckpt, sizeof ckpt) : 0;
+    if (def->out_dir)
+        snprintf(out, sizeof out, "%s", def->out_dir);
+    else if (resume_dir)
+        snprintf(out, sizeof out, "%s", def->resume);
+    else
+        default_out_dir(def->scene_path, out, sizeof out);
+    char sub[1200];
+    if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
+        fprintf(stderr, "error: output folder '%s' is not writable: %s\n", out, why);
+        free(scene);
+        return 2;
+    }
+    path_join(sub, sizeof sub, out, "vtk");
+    bdl_mkdir_p(sub);
+    path_join(sub, sizeof sub, out, "checkpoint");
+    bdl_mkdir_p(sub);
+    path_join(sub, sizeof sub, out, "run.log");
+    FILE *log = fopen(sub, def->resume ? "a" : "w");
+    if (log) {
+        setvbuf(log, NULL, _IOLBF, 0);
+        bdl_log_set_file(log);
+    }
+
+    bdl_world *world = NULL;
+    bdl_result r = bdl_world_create(scene, &world, &err);
+    free(scene);
+    if (r != BDL_OK) {
+        if (r == BDL_ERR_SCENE)
+            bdl_error("%s", err.message);
+        else
+            bdl_error("cannot build the world: %s", bdl_result_text(r));
+        return finish(r == BDL_ERR_SCENE ? 2 : 1, NULL, log);
+    }
+    char message[1024], warning[1024];
+    if (bdl_guards_check_dt(world, message, sizeof message, warning, sizeof warning) != BDL_OK) {
+        bdl_error("%s", message);
+        return finish(2, world, log);
+    }
+    if (warning[0])
+        bdl_warn("%s", warning);
+    if (def->resume) {
+        if (bdl_checkpoint_load(world, ckpt, why, sizeof why) != BDL_OK) {
+            bdl_error("%s", why);
+            return finish(2, world, log);
+        }
+        bdl_info("resumed from %s at t = %.17g s, step %ld", ckpt, world->time, world->step);
+    }
+    log_setup(world, def, threads, out);
+
+    run_state rs;
+    memset(&rs, 0, sizeof rs);
+    rs.out = out;
+    rs.world = world;
+    rs.start_wall = bdl_wall_seconds();
+    bdl_diagnostics d0;
+    if (!def->resume) {
+        bdl_diagnostics_compute(world, 0.0, &d0);
+        world->energy0 = bdl_diagnostics_total_energy(&d0);
+    }
+    rs.energy0 = world->energy0;
+    bdl_diagnostics_compute(world, rs.energy0, &d0);
+    bdl_guards_init(&rs.guard, &d0);
+    const bdl_output_def *o = &world->scene.output;
+    path_join(sub, sizeof sub, out, "diagnostics.csv");
+    if (def->resume)
+        bdl_csv_truncate_after(sub, world->time);
+    rs.csv = bdl_csv_open(sub, bdl_diagnostics_columns, bdl_diagnostics_column_count, def->resume != NULL);
+    path_join(sub, sizeof sub, out, "particles.pvd");
+    rs.pvd = bdl_pvd_create(sub);
+    if (!rs.csv || !rs.pvd) {
+        bdl_error("cannot create output files in '%s'", out);
+        return finish(2, world, log);
+    }
+    double t0 = world->time;
+    rs.next_diag = t0;
+    rs.next_vtk = t0;
+    rs.next_checkpoint = t0 + o->checkpoint_interval;
+    if (def->resume) {
+        // The rows and frames at t0 were written by the first run already.
+        rs.next_diag = t0 + o->diagnostics_interval;
+        if (o->vtk_interval > 0.0) {
+            long k = (long)floor(t0 / o->vtk_interval + 1e-9);
+            for (long i = 0; i <= k; ++i) {
+                char rel[64];
+                snprintf(rel, sizeof rel, "vtk/particles_%06ld.vtp", i);
+                bdl_pvd_add(rs.pvd, i * o->vtk_interval, rel);
+            }
+            rs.vtk_index = k + 1;
+            rs.next_vtk = (k + 1) * o->vtk_interval;
+        }
+    }
+    if (!def->resume) {
+        bdl_result ir = write_diagnostics(&rs, &d0);
+        if (ir == BDL_OK && o->vtk_interval > 0.0)
+            ir = write_vtk(&rs);
+        rs.next_diag = t0 + o->diagnostics_interval;
+        rs.next_vtk = t0 + o->vtk_interval;
+        if (ir != BDL_OK) {
+            bdl_error("cannot write outputs in '%s'", out);
+            return finish(1, world, log);
+        }
+    }
+
+    stop_requested = 0;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_sigint;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+
+    bdl_loop_def ld = bdl_default_loop_def();
+    ld.world = world;
+    ld.end_time = world->scene.end_time;
+    ld.max_steps = def->max_steps;
+    ld.on_step = on_step;
+    ld.user = &rs;
+    bdl_loop *loop = bdl_loop_start(&ld);
+    if (!loop) {
+        bdl_error("cannot start the solver thread");
+        return finish(1, world, log);
+    }
+    int tty = def->progress && isatty(STDERR_FILENO);
+    double last_t = t0, last_wall = rs.start_wall, last_print = rs.start_wall;
+    long last_step = world->step;
+    double interval = world->scene.output.progress_interval;
+    for (;;) {
+        double t;
+        long step, particles;
+        int finished;
+        bdl_loop_progress(loop, &t, &step, &particles, &finished);
+        if (finished)
+            break;
+        usleep(20000);
+        double now = bdl_wall_seconds();
+        if (def->progress && now - last_print >= (tty ? interval : 10.0 * interval)) {
+            progress_line(loop, ld.end_time, rs.start_wall, t0, tty, &last_t, &last_step, &last_wall);
+            last_print = now;
+        }
+    }
+    r = bdl_loop_join(loop);
+    bdl_loop_destroy(loop);
+    if (tty)
+        fputc('\n', stderr);
+    signal(SIGINT, SIG_DFL);
+    signal(SIGTERM, SIG_DFL);
+
+    // Final row, checkpoint and summary, whatever the outcome.
+    bdl_diagnostics d;
+    bdl_diagnostics_compute(world, rs.energy0, &d);
+    if (r == BDL_OK && !due(world, rs.next_diag - o->diagnostics_interval))
+        write_diagnostics(&rs, &d);
+    bdl_csv_close(rs.csv);
+    bdl_pvd_destroy(rs.pvd);
+    bdl_result cr = write_checkpoint(&rs);
+    double wall = bdl_wall_seconds() - rs.start_wall;
+    int code = 0;
+    if (r == BDL_ERR_UNSTABLE) {
+        bdl_error("run stopped: %s", rs.failure);
+        bdl_error("a checkpoint of the last state is in %s/checkpoint/", out);
+        code = 1;
+    } else if (r == BDL_ERR_INTERRUPTED) {
+        bdl_warn("interrupted at t = %g s (step %ld); state saved in %s/checkpoint/ — continue with "
+                 "'bedlam run %s --resume %s'",
+                 world->time, world->step, out, def->scene_path, out);
+        code = 1;
+    } else if (r != BDL_OK) {
+        bdl_error("run failed: %s", bdl_result_text(r));
+        code = 1;
+    }
+    bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s", world->time,
+             world->step, world->particles.count, wall, cr == BDL_OK ? "written" : "FAILED");
+    if (code == 0 && def->progress)
+        fprintf(stderr, "done: t = %g s, %ld steps in %.2f s; outputs in %s\n", world->time,
+                world->step, wall, out);
+    return finish(code, world, log);
+}

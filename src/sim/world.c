@@ -1,0 +1,352 @@
+// The world: builds the modules a scene needs and advances them by one step.
+#include "sim/world.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dem/create.h"
+#include "dem/integrate.h"
+
+#define PI 3.14159265358979323846
+
+static bdl_force_def force_def(const bdl_world *w)
+{
+    bdl_force_def def;
+    def.pair_params = w->pair_params;
+    def.wall_params = w->wall_params;
+    def.species_count = w->scene.species_count;
+    def.background_damping = w->background_damping;
+    def.gravity = w->scene.gravity;
+    def.hertz = w->hertz;
+    def.friction = w->friction;
+    def.rolling = w->rolling;
+    def.dt = w->dt;
+    return def;
+}
+
+static double max_diameter(const bdl_scene *scene)
+{
+    double d = 0.0;
+    for (int s = 0; s < scene->species_count; ++s) {
+        double ds = bdl_species_max_diameter(&scene->species[s]);
+        if (ds > d)
+            d = ds;
+    }
+    return d;
+}
+
+static double min_diameter(const bdl_species_def *s)
+{
+    return s->size_dist == BDL_SIZE_SINGLE ? s->diameter : s->diameter_min;
+}
+
+static double sphere_mass(double d, double density) { return density * PI / 6.0 * d * d * d; }
+
+double bdl_world_reference_speed(const bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
+    double g = bdl_v3_len(s->gravity);
+    bdl_vec3 span = bdl_v3_sub(s->domain_max, s->domain_min);
+    double h = fmax(span.x, fmax(span.y, span.z));
+    double v = sqrt(2.0 * g * h) + bdl_walls_max_speed(&w->walls);
+    double vmax = 0.0;
+    for (long i = 0; i < w->particles.count; ++i) {
+        double vi = bdl_v3_len(w->particles.vel[i]);
+        if (vi > vmax)
+            vmax = vi;
+    }
+    for (int c = 0; c < s->create_count; ++c)
+        vmax = fmax(vmax, bdl_v3_len(s->creates[c].velocity) + s->creates[c].velocity_jitter);
+    v += vmax;
+    return v > 0.1 ? v : 0.1;
+}
+
+double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which, int which_len)
+{
+    const bdl_scene *s = &w->scene;
+    int ns = s->species_count;
+    double best = INFINITY;
+    for (int a = 0; a < ns; ++a) {
+        double da = min_diameter(&s->species[a]);
+        double ma = sphere_mass(da, s->species[a].density);
+        for (int b = a; b < ns; ++b) {
+            double db = min_diameter(&s->species[b]);
+            double mb = sphere_mass(db, s->species[b].density);
+            double tc = bdl_contact_time(&w->pair_params[a * ns + b], s->law, ma * mb / (ma + mb),
+                                         0.25 * da * db / (0.5 * (da + db)), v_ref);
+            if (tc < best) {
+                best = tc;
+                if (which)
+                    snprintf(which, (size_t)which_len, "species '%s' with '%s'", s->species[a].name,
+                             s->species[b].name);
+            }
+        }
+        for (int wall = 0; wall < s->wall_count; ++wall) {
+            double tc = bdl_contact_time(&w->wall_params[wall * ns + a], s->law, ma, 0.5 * da, v_ref);
+            if (tc < best) {
+                best = tc;
+                if (which)
+                    snprintf(which, (size_t)which_len, "species '%s' with wall '%s'",
+                             s->species[a].name, s->walls[wall].name);
+            }
+        }
+    }
+    return best;
+}
+
+void bdl_world_apply_live(bdl_world *w)
+{
+    for (int k = 0; k < w->scene.wall_count; ++k) {
+        const bdl_wall_def *d = &w->scene.walls[k];
+        if (d->motion != BDL_MOTION_VIBRATE)
+            continue;
+        w->walls.amplitude[k] = d->amplitude * w->live.amplitude_scale[k];
+        w->walls.omega[k] = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
+    }
+    bdl_walls_update(&w->walls, w->time);
+}
+
+bdl_result bdl_world_compute_forces(bdl_world *w)
+{
+    bdl_particles *p = &w->particles;
+    if (w->coordination_capacity < p->capacity) {
+        uint8_t *c = realloc(w->coordination, (size_t)p->capacity);
+        if (!c)
+            return BDL_ERR_NOMEM;
+        w->coordination = c;
+        w->coordination_capacity = p->capacity;
+    }
+    if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls)) {
+        bdl_result r = bdl_neighbor_build(&w->neighbor, p, &w->walls);
+        if (r != BDL_OK)
+            return r;
+    }
+    bdl_force_def def = force_def(w);
+    bdl_dem_pair_forces(p, &w->neighbor, &def);
+    bdl_dem_gather(p, &w->neighbor, &w->walls, &def, w->coordination);
+    return BDL_OK;
+}
+
+static double particle_energy(const bdl_particles *p, long i, bdl_vec3 g)
+{
+    double m = 1.0 / p->inv_mass[i];
+    double iner = 1.0 / bdl_particle_inv_inertia(p, i);
+    return 0.5 * m * bdl_v3_len2(p->vel[i]) + 0.5 * iner * bdl_v3_len2(p->omega[i]) -
+           m * bdl_v3_dot(g, p->pos[i]);
+}
+
+static bdl_result pour(bdl_world *w)
+{
+    for (int c = 0; c < w->scene.create_count; ++c) {
+        if (w->scene.creates[c].kind != BDL_CREATE_POUR)
+            continue;
+        long before = w->particles.count;
+        long added = bdl_create_pour(&w->scene, c, w->time, &w->poured[c], &w->particles, &w->walls,
+                                     &w->rng);
+        if (added < 0)
+            return BDL_ERR_NOMEM;
+        for (long i = before; i < w->particles.count; ++i) {
+            w->inserted_energy += particle_energy(&w->particles, i, w->scene.gravity);
+            w->particles.force[i] = bdl_v3_madd(bdl_v3_zero(), w->scene.gravity,
+                                                1.0 / w->particles.inv_mass[i]);
+        }
+    }
+    return BDL_OK;
+}
+
+bdl_result bdl_world_step(bdl_world *w)
+{
+    bdl_particles *p = &w->particles;
+    double h = 0.5 * w->dt;
+    bdl_dem_kick(p, h);
+    bdl_dem_drift(p, w->dt);
+    w->step++;
+    w->time += w->dt;
+    bdl_walls_update(&w->walls, w->time);
+    bdl_result r = pour(w);
+    if (r != BDL_OK)
+        return r;
+    r = bdl_world_compute_forces(w);
+    if (r != BDL_OK)
+        return r;
+    bdl_dem_kick(p, h);
+    w->wall_work += w->dt * bdl_dem_wall_power(p, &w->neighbor, &w->walls);
+    return BDL_OK;
+}
+
+uint64_t bdl_world_hash(const bdl_world *w)
+{
+    const bdl_particles *p = &w->particles;
+    uint64_t h = BDL_HASH_INIT;
+    size_t n = (size_t)p->count;
+    h = bdl_hash_bytes(h, p->pos, n * sizeof(bdl_vec3));
+    h = bdl_hash_bytes(h, p->vel, n * sizeof(bdl_vec3));
+    h = bdl_hash_bytes(h, p->omega, n * sizeof(bdl_vec3));
+    h = bdl_hash_bytes(h, p->id, n * sizeof(uint32_t));
+    if (w->neighbor.history)
+        h = bdl_hash_bytes(h, w->neighbor.history, (size_t)w->neighbor.pair_count * sizeof(bdl_vec3));
+    h = bdl_hash_bytes(h, &w->time, sizeof w->time);
+    h = bdl_hash_bytes(h, &w->step, sizeof w->step);
+    return h;
+}
+
+static int any_friction(const bdl_world *w)
+{
+    int ns = w->scene.species_count;
+    for (int k = 0; k < ns * ns; ++k)
+        if (w->pair_params[k].friction > 0.0)
+            return 1;
+    for (int k = 0; k < w->scene.wall_count * ns; ++k)
+        if (w->wall_params[k].friction > 0.0)
+            return 1;
+    return 0;
+}
+
+static int any_rolling(const bdl_world *w)
+{
+    if (w->scene.rolling == BDL_ROLLING_NONE)
+        return 0;
+    int ns = w->scene.species_count;
+    for (int k = 0; k < ns * ns; ++k)
+        if (w->pair_params[k].rolling_friction > 0.0)
+            return 1;
+    for (int k = 0; k < w->scene.wall_count * ns; ++k)
+        if (w->wall_params[k].rolling_friction > 0.0)
+            return 1;
+    return 0;
+}
+
+/// The [create] section a particle came from, for messages (by id order of creation).
+static const bdl_create_def *creator_of(const bdl_world *w, uint32_t id, const long *first_id)
+{
+    const bdl_create_def *c = NULL;
+    for (int k = 0; k < w->scene.create_count; ++k)
+        if ((long)id >= first_id[k])
+            c = &w->scene.creates[k];
+    return c;
+}
+
+static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_error *err)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    const bdl_scene *s = &w->scene;
+    for (long i = 0; i < p->count; ++i) {
+        for (int a = 0; a < 3; ++a) {
+            double x = bdl_v3_comp(p->pos[i], a);
+            if (!s->periodic[a] && (x < bdl_v3_comp(s->domain_min, a) || x > bdl_v3_comp(s->domain_max, a))) {
+                const bdl_create_def *c = creator_of(w, p->id[i], first_id);
+                snprintf(err->message, sizeof err->message,
+                         "%s:%d: [create %s]: particle %u at (%g, %g, %g) m lies outside the domain "
+                         "[%g, %g] x [%g, %g] x [%g, %g] m",
+                         s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->pos[i].x, p->pos[i].y,
+                         p->pos[i].z, s->domain_min.x, s->domain_max.x, s->domain_min.y,
+                         s->domain_max.y, s->domain_min.z, s->domain_max.z);
+                return BDL_ERR_SCENE;
+            }
+        }
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            int32_t j = nb->partner[k];
+            double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
+            double overlap = p->radius[i] + p->radius[j] - dist;
+            double rmin = fmin(p->radius[i], p->radius[j]);
+            if (overlap > 1e-6 * rmin) {
+                const bdl_create_def *c = creator_of(w, p->id[i], first_id);
+                snprintf(err->message, sizeof err->message,
+                         "%s:%d: [create %s]: initial particles %u and %u overlap by %.3g%% of the "
+                         "smaller radius (allowed: none); move them apart or use a random or lattice fill",
+                         s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->id[j],
+                         100.0 * overlap / rmin);
+                return BDL_ERR_SCENE;
+            }
+        }
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+            bdl_vec3 n;
+            int prim = nb->wall_prim[k];
+            double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
+            if (gap < -1e-6 * p->radius[i]) {
+                const bdl_create_def *c = creator_of(w, p->id[i], first_id);
+                snprintf(err->message, sizeof err->message,
+                         "%s:%d: [create %s]: initial particle %u overlaps wall '%s' by %.3g%% of its radius",
+                         s->path, c ? c->line : 0, c ? c->name : "?", p->id[i],
+                         s->walls[w->walls.prims[prim].wall].name, -100.0 * gap / p->radius[i]);
+                return BDL_ERR_SCENE;
+            }
+        }
+    }
+    return BDL_OK;
+}
+
+bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
+{
+    *out = NULL;
+    bdl_world *w = calloc(1, sizeof *w);
+    if (!w)
+        return BDL_ERR_NOMEM;
+    w->scene = *scene;
+    w->hertz = scene->law == BDL_LAW_HERTZ;
+    bdl_contact_table_build(scene, w->pair_params, w->wall_params);
+    w->friction = any_friction(w);
+    w->rolling = any_rolling(w);
+    for (int s = 0; s < scene->species_count; ++s)
+        w->background_damping[s] = scene->species[s].background_damping;
+    for (int k = 0; k < BDL_MAX_WALLS; ++k)
+        w->live.amplitude_scale[k] = w->live.frequency_scale[k] = 1.0;
+    bdl_walls_build(scene, &w->walls);
+    bdl_rng_seed(&w->rng, scene->seed);
+
+    long first_id[BDL_MAX_CREATES];
+    for (int c = 0; c < scene->create_count; ++c) {
+        first_id[c] = w->particles.next_id;
+        bdl_result r = bdl_create_initial(scene, c, &w->particles, &w->walls, &w->rng, err);
+        if (r != BDL_OK) {
+            bdl_world_destroy(w);
+            return r;
+        }
+    }
+
+    double d_max = max_diameter(scene);
+    double skin = scene->skin * d_max;
+    long expected = bdl_create_estimate_total(scene);
+    if (expected < w->particles.count)
+        expected = w->particles.count;
+    bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,
+                                     scene->periodic, d_max + skin, skin, expected, w->friction,
+                                     w->rolling);
+    if (r == BDL_ERR_SCENE) {
+        snprintf(err->message, sizeof err->message,
+                 "%s: [domain] periodic axes must be at least 3 x (largest diameter + skin) = %g m long",
+                 scene->path, 3.0 * (d_max + skin));
+    }
+    if (r != BDL_OK) {
+        bdl_world_destroy(w);
+        return r;
+    }
+
+    w->contact_time = bdl_world_min_contact_time(w, bdl_world_reference_speed(w), NULL, 0);
+    w->dt = scene->dt > 0.0 ? scene->dt : scene->dt_fraction * w->contact_time;
+    w->contact_time_dt_ratio = w->dt / w->contact_time;
+
+    r = bdl_world_compute_forces(w);
+    if (r == BDL_OK)
+        r = check_initial(w, first_id, err);
+    if (r != BDL_OK) {
+        bdl_world_destroy(w);
+        return r;
+    }
+    // The first neighbour build sorted particles for locality; forces are consistent with it.
+    *out = w;
+    return BDL_OK;
+}
+
+void bdl_world_destroy(bdl_world *w)
+{
+    if (!w)
+        return;
+    bdl_particles_free(&w->particles);
+    bdl_neighbor_free(&w->neighbor);
+    free(w->coordination);
+    free(w);
+}

@@ -1,0 +1,83 @@
+// bedlam — the world: the modules a scene needs, and one time step.
+//
+// A world is built from a validated scene. It owns the particles, walls, neighbour lists and
+// contact tables, and advances them with bdl_world_step. Nothing here starts threads or writes
+// files: the run loop (run.h, loop.h) does that around it.
+#ifndef BDL_WORLD_H
+#define BDL_WORLD_H
+
+#include <stdint.h>
+
+#include "core/rng.h"
+#include "dem/material.h"
+#include "dem/neighbor.h"
+#include "dem/particles.h"
+#include "dem/walls.h"
+#include "scene/scene.h"
+
+/// Live parameters a user may change between steps (commands); logged with their step.
+typedef struct bdl_live_params {
+    double amplitude_scale[BDL_MAX_WALLS]; ///< multiplies each wall's vibration amplitude
+    double frequency_scale[BDL_MAX_WALLS]; ///< multiplies each wall's vibration frequency
+} bdl_live_params;
+
+typedef struct bdl_world {
+    bdl_scene scene;
+    bdl_particles particles;
+    bdl_neighbor neighbor;
+    bdl_walls walls;
+    bdl_contact_params pair_params[BDL_MAX_SPECIES * BDL_MAX_SPECIES];
+    bdl_contact_params wall_params[BDL_MAX_WALLS * BDL_MAX_SPECIES];
+    double background_damping[BDL_MAX_SPECIES]; ///< b per species [1/s]
+    uint8_t *coordination; ///< particle contacts of each particle this step
+    long coordination_capacity;
+
+    int hertz;    ///< Hertz normal law (else linear)
+    int friction; ///< any sliding friction: tangential history is kept
+    int rolling;  ///< rolling resistance active
+
+    double dt;    ///< time step [s]
+    double time;  ///< simulated time [s]
+    long step;    ///< steps taken
+    bdl_rng rng;  ///< used by pouring
+    long poured[BDL_MAX_CREATES]; ///< particles inserted so far by each pour creator
+
+    bdl_live_params live;
+
+    // Energy bookkeeping for the balance check [J].
+    double wall_work;       ///< work done by walls on particles
+    double inserted_energy; ///< kinetic + potential energy of particles added during the run
+    double damping_work;    ///< work done by background damping (negative)
+    double energy0;         ///< total mechanical energy when the run started
+
+    double contact_time;    ///< smallest contact time over all pairs [s]
+    double contact_time_dt_ratio; ///< dt / contact_time
+} bdl_world;
+
+/// Builds every module the scene needs and creates the initial particles. Bad initial
+/// conditions (overlaps, particles outside the domain, a random fill that cannot be placed) fail
+/// with BDL_ERR_SCENE and a message in `err` naming the [create] section and its line.
+bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err);
+void bdl_world_destroy(bdl_world *world);
+
+/// Advances the world by one time step dt (velocity Verlet).
+bdl_result bdl_world_step(bdl_world *world);
+
+/// Recomputes forces for the current state (after creation, loading or a parameter change).
+bdl_result bdl_world_compute_forces(bdl_world *world);
+
+/// Hash of the full dynamic state (positions, velocities, spins, ids, history, time).
+uint64_t bdl_world_hash(const bdl_world *world);
+
+/// Smallest contact time over species pairs and species-wall pairs [s], with the pair that has
+/// it described in `which` (may be NULL). Hertz uses the impact speed `v_ref`.
+double bdl_world_min_contact_time(const bdl_world *world, double v_ref, char *which, int which_len);
+
+/// Reference impact speed for Hertz contact times [m/s]: free fall over the domain height, the
+/// fastest wall, and the initial particle speeds.
+double bdl_world_reference_speed(const bdl_world *world);
+
+/// Applies live parameters (after a command changed them).
+void bdl_world_apply_live(bdl_world *world);
+
+#endif

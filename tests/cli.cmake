@@ -1,0 +1,40 @@
+# The command line: every scene passes `check` and runs a few hundred steps; bad input exits 2.
+set(BDL_EXPECT ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.cmake)
+file(GLOB BDL_SCENES ${PROJECT_SOURCE_DIR}/scenes/*.ini)
+foreach(scene ${BDL_SCENES})
+  get_filename_component(stem ${scene} NAME_WE)
+  add_test(NAME scene_check_${stem} COMMAND ${CMAKE_COMMAND} -DEXPECT=0 -DCONTAINS=valid
+    "-DCMD=$<TARGET_FILE:bedlam>;check;${scene}" -P ${BDL_EXPECT})
+  add_test(NAME scene_run_${stem} COMMAND ${CMAKE_COMMAND} -DEXPECT=0
+    "-DCMD=$<TARGET_FILE:bedlam>;run;${scene};--steps;300;--quiet;--out;${CMAKE_CURRENT_BINARY_DIR}/runs/${stem}"
+    -P ${BDL_EXPECT})
+  set_tests_properties(scene_check_${stem} scene_run_${stem} PROPERTIES LABELS scenes TIMEOUT 600)
+endforeach()
+
+function(bdl_cli_expect name code text)
+  add_test(NAME ${name} COMMAND ${CMAKE_COMMAND} -DEXPECT=${code} -DCONTAINS=${text}
+    "-DCMD=$<TARGET_FILE:bedlam>;${ARGN}" -P ${BDL_EXPECT})
+  set_tests_properties(${name} PROPERTIES LABELS cli TIMEOUT 300)
+endfunction()
+
+set(S ${CMAKE_CURRENT_SOURCE_DIR}/scenes)
+bdl_cli_expect(cli_help 0 "usage: bedlam" --help)
+bdl_cli_expect(cli_run_help 0 "--resume" run --help)
+bdl_cli_expect(cli_check_help 0 "usage: bedlam check" check --help)
+bdl_cli_expect(cli_bench_help 0 "particle-steps" bench --help)
+bdl_cli_expect(cli_unknown_command 2 "unknown command" frobnicate)
+bdl_cli_expect(cli_missing_scene 2 "cannot|No such|not found|open" check ${S}/does_not_exist.ini)
+bdl_cli_expect(cli_bad_set 2 "densty" check ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --set species.steel.densty=3)
+bdl_cli_expect(cli_negative_diameter 2 "diameter" check ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --set species.steel.diameter=-0.01)
+bdl_cli_expect(cli_overlap 2 "overlap" check ${S}/overlap.ini)
+bdl_cli_expect(cli_outside 2 "outside the domain" check ${S}/outside.ini)
+bdl_cli_expect(cli_dt_too_big 2 "contact time" check ${S}/dt_too_big.ini)
+bdl_cli_expect(cli_dt_too_big_run 2 "contact time" run ${S}/dt_too_big.ini --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/dt)
+bdl_cli_expect(cli_unwritable_out 2 "not writable" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --quiet --out /proc/bedlam-cannot-write-here)
+bdl_cli_expect(cli_bad_threads 2 "threads" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --threads zero)
+bdl_cli_expect(cli_unstable 1 "overlap" run ${S}/explode.ini --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/explode)
+
+add_test(NAME cli_resume COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${PROJECT_SOURCE_DIR}/scenes/vibrated_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/resume_cli.cmake)
+set_tests_properties(cli_resume PROPERTIES LABELS cli TIMEOUT 600)

@@ -1,0 +1,2 @@
+bdl_add_test(test_determinism SOURCES test_determinism.c)
+target_link_libraries(test_determinism PRIVATE OpenMP::OpenMP_C)
