@@ -1,5 +1,5 @@
 # The command line: every scene passes `check` and runs a few hundred steps; bad input exits 2.
-set(BDL_EXPECT ${CMAKE_CURRENT_SOURCE_DIR}/expect_exit.cmake)
+set(BDL_EXPECT ${CMAKE_CURRENT_SOURCE_DIR}/scripts/expect_exit.cmake)
 file(GLOB BDL_SCENES ${PROJECT_SOURCE_DIR}/scenes/*.ini)
 foreach(scene ${BDL_SCENES})
   get_filename_component(stem ${scene} NAME_WE)
@@ -36,5 +36,5 @@ bdl_cli_expect(cli_unstable 1 "overlap" run ${S}/explode.ini --quiet --out ${CMA
 
 add_test(NAME cli_resume COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/vibrated_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume
-  -P ${CMAKE_CURRENT_SOURCE_DIR}/resume_cli.cmake)
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
 set_tests_properties(cli_resume PROPERTIES LABELS cli TIMEOUT 600)

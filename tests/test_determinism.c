@@ -1,4 +1,5 @@
 // Results do not depend on the thread count, and a checkpoint continues bit-for-bit.
+#define _POSIX_C_SOURCE 200809L
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -40,9 +40,15 @@ typedef struct bdl_contact_result {
     double normal;    ///< F_n >= 0 [N]
 } bdl_contact_result;
 
+#if defined(__GNUC__)
+#define BDL_FORCE_INLINE inline __attribute__((always_inline))
+#else
+#define BDL_FORCE_INLINE inline
+#endif
+
 /// Evaluates the contact. `history` is the tangential spring displacement [m] (updated), or NULL
 /// for frictionless contacts.
-static inline bdl_contact_result bdl_contact_eval(const bdl_contact_params *cp, int hertz,
+static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_params *cp, int hertz,
                                                   const bdl_contact_geom *g, bdl_vec3 *history,
                                                   double dt)
 {

@@ -424,6 +424,25 @@ long bdl_create_pour(const bdl_scene *scene, int c, double t, long *poured, bdl_
     return added;
 }
 
+/// Data rows of a particle file (lines after the header), 0 if it cannot be read.
+static long count_rows(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 0;
+    long lines = 0;
+    int c, last = '\n';
+    while ((c = fgetc(f)) != EOF) {
+        if (c == '\n')
+            ++lines;
+        last = c;
+    }
+    if (last != '\n')
+        ++lines;
+    fclose(f);
+    return lines > 0 ? lines - 1 : 0;
+}
+
 long bdl_create_estimate_total(const bdl_scene *scene)
 {
     long total = 0;
@@ -441,7 +460,7 @@ long bdl_create_estimate_total(const bdl_scene *scene)
         else if (def->kind == BDL_CREATE_LATTICE)
             total += (long)(region_volume(def) / (d * d * d)) + 1;
         else
-            total += 100000; // file: unknown until read
+            total += count_rows(def->file);
     }
     return total;
 }

@@ -41,13 +41,17 @@ void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def
         bdl_vec3 xi = p->pos[i];
         double ri = p->radius[i];
         const bdl_contact_params *row = def->pair_params + p->species[i] * ns;
+        // Particle i's own pairs are summed here, in list order; the gather adds the pairs where
+        // it is the second particle.
+        bdl_vec3 fi = bdl_v3_zero(), ti = bdl_v3_zero();
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
             int32_t j = nb->partner[k];
             bdl_vec3 d = bdl_neighbor_delta(nb, xi, p->pos[j]);
             double cut = ri + p->radius[j];
             double dist2 = bdl_v3_len2(d);
             if (dist2 >= cut * cut || dist2 == 0.0) {
-                clear_pair(nb, k);
+                if (nb->touching[k])
+                    clear_pair(nb, k);
                 continue;
             }
             double arm_i, arm_j;
@@ -57,17 +61,23 @@ void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def
                 bdl_contact_eval(cp, def->hertz, &g, def->friction ? &nb->history[k] : NULL, def->dt);
             nb->touching[k] = 1;
             nb->force[k] = res.force;
+            fi = bdl_v3_add(fi, res.force);
             if (!nb->torque_j)
                 continue;
             bdl_vec3 tj = bdl_v3_scale(res.n_x_ft, -arm_j);
+            bdl_vec3 tq = bdl_v3_scale(res.n_x_ft, -arm_i);
             if (def->rolling) {
                 double inv_i = bdl_particle_inv_inertia(p, i) + bdl_particle_inv_inertia(p, j);
                 bdl_vec3 roll = bdl_rolling_torque(cp, res.normal, g.r_eff,
                                                    bdl_v3_sub(p->omega[i], p->omega[j]), inv_i, def->dt);
                 tj = bdl_v3_sub(tj, roll);
+                tq = bdl_v3_add(tq, roll);
             }
             nb->torque_j[k] = tj;
+            ti = bdl_v3_add(ti, tq);
         }
+        p->force[i] = fi;
+        p->torque[i] = ti;
     }
 }
 
@@ -110,13 +120,16 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
 }
 
 void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                    const bdl_force_def *def, uint8_t *coordination)
+                    const bdl_force_def *def, uint8_t *coordination, double kick)
 {
     long n = p->count;
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i) {
-        bdl_vec3 f = bdl_v3_zero(), t = bdl_v3_zero();
+        // The pair pass left the sum over i's own pairs in force[i] and torque[i].
+        bdl_vec3 f = p->force[i], t = p->torque[i];
         int contacts = 0;
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
+            contacts += nb->touching[k];
         for (int32_t m = nb->jstart[i]; m < nb->jstart[i + 1]; ++m) {
             int32_t k = nb->jlist[m];
             if (!nb->touching[k])
@@ -125,17 +138,6 @@ void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
             f = bdl_v3_sub(f, nb->force[k]);
             if (nb->torque_j)
                 t = bdl_v3_add(t, nb->torque_j[k]);
-        }
-        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-            if (!nb->touching[k])
-                continue;
-            ++contacts;
-            f = bdl_v3_add(f, nb->force[k]);
-            if (nb->torque_j) {
-                // Torque on i from angular momentum balance of the pair.
-                bdl_vec3 d = bdl_neighbor_delta(nb, p->pos[i], p->pos[nb->partner[k]]);
-                t = bdl_v3_sub(t, bdl_v3_add(nb->torque_j[k], bdl_v3_cross(d, nb->force[k])));
-            }
         }
         wall_contacts(p, nb, walls, def, i, &f, &t);
         double m = 1.0 / p->inv_mass[i];
@@ -147,26 +149,30 @@ void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
         p->torque[i] = t;
         if (coordination)
             coordination[i] = (uint8_t)(contacts < 255 ? contacts : 255);
+        if (kick > 0.0) {
+            p->vel[i] = bdl_v3_madd(p->vel[i], f, kick * p->inv_mass[i]);
+            p->omega[i] = bdl_v3_madd(p->omega[i], t, kick * bdl_particle_inv_inertia(p, i));
+        }
     }
 }
 
-void bdl_dem_kick(bdl_particles *p, double h)
+double bdl_dem_kick_drift(bdl_particles *p, double h, double dt)
 {
     long n = p->count;
-#pragma omp parallel for schedule(static)
+    double max2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max2)
     for (long i = 0; i < n; ++i) {
         double im = p->inv_mass[i];
-        p->vel[i] = bdl_v3_madd(p->vel[i], p->force[i], h * im);
+        bdl_vec3 v = bdl_v3_madd(p->vel[i], p->force[i], h * im);
+        p->vel[i] = v;
         p->omega[i] = bdl_v3_madd(p->omega[i], p->torque[i], h * bdl_particle_inv_inertia(p, i));
+        bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);
+        p->pos[i] = x;
+        double d2 = bdl_v3_len2(bdl_v3_sub(x, p->pos_at_build[i]));
+        if (d2 > max2)
+            max2 = d2;
     }
-}
-
-void bdl_dem_drift(bdl_particles *p, double dt)
-{
-    long n = p->count;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i)
-        p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], dt);
+    return max2;
 }
 
 double bdl_dem_wall_power(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls)

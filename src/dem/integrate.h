@@ -30,14 +30,14 @@ typedef struct bdl_force_def {
 void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def);
 
 /// Sums each particle's pair forces in a fixed order, adds wall contacts, gravity and background
-/// damping, and counts particle contacts into `coordination` (may be NULL).
+/// damping, and counts particle contacts into `coordination` (may be NULL). With kick h > 0 the
+/// closing half kick v += h F/m, w += h T/I follows in the same pass.
 void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                    const bdl_force_def *def, uint8_t *coordination);
+                    const bdl_force_def *def, uint8_t *coordination, double kick);
 
-/// v += h F/m, w += h T/I.
-void bdl_dem_kick(bdl_particles *p, double h);
-/// x += dt v.
-void bdl_dem_drift(bdl_particles *p, double dt);
+/// The opening half of a step in one pass: v += h F/m, w += h T/I, x += dt v. Returns the largest
+/// squared displacement since the neighbour list was built [m^2].
+double bdl_dem_kick_drift(bdl_particles *p, double h, double dt);
 
 /// Power delivered by moving walls to the particles this step [W]: sum F_wall . v_wall.
 double bdl_dem_wall_power(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls);

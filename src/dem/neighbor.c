@@ -175,9 +175,9 @@ static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i
 
 static bdl_result reserve_particles(bdl_neighbor *nb, long n)
 {
-    if (n <= nb->scratch_count)
+    if (n <= nb->scratch_count && nb->start)
         return BDL_OK;
-    long cap = n + n / 4 + 16;
+    long cap = n + n / 16 + 16;
     int ok = grow_array((void **)&nb->start, cap + 1, sizeof(int32_t)) &&
              grow_array((void **)&nb->jstart, cap + 1, sizeof(int32_t)) &&
              grow_array((void **)&nb->wall_start, cap + 1, sizeof(int32_t)) &&
@@ -193,9 +193,9 @@ static bdl_result reserve_particles(bdl_neighbor *nb, long n)
 
 static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
 {
-    if (pairs <= nb->pair_capacity)
+    if (pairs <= nb->pair_capacity && nb->partner)
         return BDL_OK;
-    long cap = pairs + pairs / 8 + 64;
+    long cap = pairs + pairs / 16 + 64;
     int ok = grow_array((void **)&nb->partner, cap, sizeof(int32_t)) &&
              grow_array((void **)&nb->force, cap, sizeof(bdl_vec3)) &&
              grow_array((void **)&nb->touching, cap, 1) &&
@@ -229,14 +229,17 @@ static void stash_history(bdl_neighbor *nb)
     }
 }
 
-static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj)
+static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj,
+                             int *found)
 {
     if (oi >= old_count || oj >= old_count)
         return bdl_v3_zero();
     int32_t a = oi < oj ? oi : oj, b = oi < oj ? oj : oi;
     for (int32_t k = nb->jstart[a]; k < nb->jstart[a + 1]; ++k)
-        if (nb->jlist[k] == b)
+        if (nb->jlist[k] == b) {
+            *found = 1;
             return oi < oj ? nb->force[k] : bdl_v3_neg(nb->force[k]);
+        }
     return bdl_v3_zero();
 }
 
@@ -297,13 +300,19 @@ static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old
 #pragma omp parallel for schedule(static)
     for (long i = 0; i < n; ++i)
         scan_pairs(nb, p, i, nb->partner + nb->start[i]);
+    // A pair marked touching is visited by the next force pass either way: it is evaluated, or
+    // cleared (history included) if it no longer overlaps.
+    memset(nb->touching, 0, (size_t)pairs);
     if (nb->friction) {
 #pragma omp parallel for schedule(static)
         for (long i = 0; i < n; ++i)
-            for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
-                nb->history[k] = find_stashed(nb, old_count, nb->perm[i], nb->perm[nb->partner[k]]);
+            for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+                int found = 0;
+                nb->history[k] =
+                    find_stashed(nb, old_count, nb->perm[i], nb->perm[nb->partner[k]], &found);
+                nb->touching[k] = (uint8_t)found;
+            }
     }
-    memset(nb->touching, 0, (size_t)pairs);
     // Incidence lists for the gather: for each particle, the pairs where it is j, by pair index.
     memset(nb->jstart, 0, (size_t)(n + 1) * sizeof(int32_t));
     for (long k = 0; k < pairs; ++k)
@@ -410,17 +419,21 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
     return BDL_OK;
 }
 
-int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls)
+int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
+                             double max_move2)
 {
     if (nb->builds == 0 || p->count != nb->count)
         return 1;
-    double max2 = 0.0;
-    long n = p->count;
+    double max2 = max_move2;
+    if (max2 < 0.0) {
+        max2 = 0.0;
+        long n = p->count;
 #pragma omp parallel for schedule(static) reduction(max : max2)
-    for (long i = 0; i < n; ++i) {
-        double d2 = bdl_v3_len2(bdl_v3_sub(p->pos[i], p->pos_at_build[i]));
-        if (d2 > max2)
-            max2 = d2;
+        for (long i = 0; i < n; ++i) {
+            double d2 = bdl_v3_len2(bdl_v3_sub(p->pos[i], p->pos_at_build[i]));
+            if (d2 > max2)
+                max2 = d2;
+        }
     }
     double move = sqrt(max2);
     double wall_move = bdl_walls_max_shift(walls, nb->wall_offset_at_build);

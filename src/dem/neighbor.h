@@ -77,8 +77,10 @@ void bdl_neighbor_free(bdl_neighbor *nb);
 bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls);
 
 /// True when the lists may have missed a contact: 2 max|x - x_build| > skin, or a particle and a
-/// wall together moved more than the skin.
-int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls);
+/// wall together moved more than the skin. `max_move2` is max|x - x_build|^2 when the caller
+/// knows it (from bdl_dem_kick_drift), or < 0 to have it computed.
+int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
+                             double max_move2);
 
 /// Minimum-image separation x_i - x_j.
 static inline bdl_vec3 bdl_neighbor_delta(const bdl_neighbor *nb, bdl_vec3 xi, bdl_vec3 xj)

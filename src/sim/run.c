@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "core/log.h"
@@ -401,7 +402,7 @@ int bdl_run(const bdl_run_def *def)
         bdl_loop_progress(loop, &t, &step, &particles, &finished);
         if (finished)
             break;
-        usleep(20000);
+        nanosleep(&(struct timespec){0, 20000000L}, NULL);
         double now = bdl_wall_seconds();
         if (def->progress && now - last_print >= (tty ? interval : 10.0 * interval)) {
             progress_line(loop, ld.end_time, rs.start_wall, t0, tty, &last_t, &last_step, &last_wall);

@@ -108,7 +108,9 @@ void bdl_world_apply_live(bdl_world *w)
     bdl_walls_update(&w->walls, w->time);
 }
 
-bdl_result bdl_world_compute_forces(bdl_world *w)
+/// Rebuilds the lists if needed, then evaluates all forces; with kick > 0 the closing half kick
+/// of the step is applied in the same pass.
+static bdl_result forces(bdl_world *w, double max_move2, double kick)
 {
     bdl_particles *p = &w->particles;
     if (w->coordination_capacity < p->capacity) {
@@ -118,16 +120,18 @@ bdl_result bdl_world_compute_forces(bdl_world *w)
         w->coordination = c;
         w->coordination_capacity = p->capacity;
     }
-    if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls)) {
+    if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls, max_move2)) {
         bdl_result r = bdl_neighbor_build(&w->neighbor, p, &w->walls);
         if (r != BDL_OK)
             return r;
     }
     bdl_force_def def = force_def(w);
     bdl_dem_pair_forces(p, &w->neighbor, &def);
-    bdl_dem_gather(p, &w->neighbor, &w->walls, &def, w->coordination);
+    bdl_dem_gather(p, &w->neighbor, &w->walls, &def, w->coordination, kick);
     return BDL_OK;
 }
+
+bdl_result bdl_world_compute_forces(bdl_world *w) { return forces(w, -1.0, 0.0); }
 
 static double particle_energy(const bdl_particles *p, long i, bdl_vec3 g)
 {
@@ -160,18 +164,16 @@ bdl_result bdl_world_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
     double h = 0.5 * w->dt;
-    bdl_dem_kick(p, h);
-    bdl_dem_drift(p, w->dt);
+    double max_move2 = bdl_dem_kick_drift(p, h, w->dt);
     w->step++;
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
     bdl_result r = pour(w);
     if (r != BDL_OK)
         return r;
-    r = bdl_world_compute_forces(w);
+    r = forces(w, max_move2, h);
     if (r != BDL_OK)
         return r;
-    bdl_dem_kick(p, h);
     w->wall_work += w->dt * bdl_dem_wall_power(p, &w->neighbor, &w->walls);
     return BDL_OK;
 }
@@ -297,6 +299,13 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     bdl_walls_build(scene, &w->walls);
     bdl_rng_seed(&w->rng, scene->seed);
 
+    // Reserve what the creators will make, so storage carries no growth slack.
+    long expected = bdl_create_estimate_total(scene);
+    long reserve = expected < 64 ? 64 : (expected > 10000000 ? 10000000 : expected);
+    if (bdl_particles_reserve(&w->particles, reserve) != BDL_OK) {
+        bdl_world_destroy(w);
+        return BDL_ERR_NOMEM;
+    }
     long first_id[BDL_MAX_CREATES];
     for (int c = 0; c < scene->create_count; ++c) {
         first_id[c] = w->particles.next_id;
@@ -309,7 +318,6 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
 
     double d_max = max_diameter(scene);
     double skin = scene->skin * d_max;
-    long expected = bdl_create_estimate_total(scene);
     if (expected < w->particles.count)
         expected = w->particles.count;
     bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,

@@ -1,0 +1,180 @@
+// bedlam — crash-safe file writing: temporary sibling, fsync, rename.
+#define _POSIX_C_SOURCE 200809L
+#include "io/atomic_file.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+bdl_result bdl_atomic_open(bdl_atomic_file *af, const char *path)
+{
+    af->file = NULL;
+    af->final_path[0] = '\0';
+    af->temp_path[0] = '\0';
+    size_t length = strlen(path);
+    if (length == 0 || length >= sizeof af->final_path) {
+        errno = ENAMETOOLONG;
+        return BDL_ERR_IO;
+    }
+    memcpy(af->final_path, path, length + 1);
+    // The PID keeps two processes writing the same output folder from sharing a temporary file.
+    int written = snprintf(af->temp_path, sizeof af->temp_path, "%s.tmp.%ld", path, (long)getpid());
+    if (written < 0 || (size_t)written >= sizeof af->temp_path) {
+        errno = ENAMETOOLONG;
+        return BDL_ERR_IO;
+    }
+    af->file = fopen(af->temp_path, "wb");
+    return af->file ? BDL_OK : BDL_ERR_IO;
+}
+
+/// Makes the rename itself durable. Some file systems refuse fsync on folders; that only weakens
+/// durability after a power cut, never consistency, so failures here are ignored.
+static void sync_parent_folder(const char *path)
+{
+    char folder[1024];
+    const char *slash = strrchr(path, '/');
+    if (!slash) {
+        strcpy(folder, ".");
+    } else if (slash == path) {
+        strcpy(folder, "/");
+    } else {
+        size_t length = (size_t)(slash - path);
+        memcpy(folder, path, length);
+        folder[length] = '\0';
+    }
+    int fd = open(folder, O_RDONLY);
+    if (fd >= 0) {
+        fsync(fd);
+        close(fd);
+    }
+}
+
+bdl_result bdl_atomic_commit(bdl_atomic_file *af)
+{
+    if (!af->file)
+        return BDL_ERR_IO;
+    FILE *file = af->file;
+    af->file = NULL;
+    int ok = fflush(file) == 0 && !ferror(file);
+    ok = ok && fsync(fileno(file)) == 0;
+    // fclose can be the first call to see a full disk, so its result matters too.
+    int close_ok = fclose(file) == 0;
+    ok = ok && close_ok && rename(af->temp_path, af->final_path) == 0;
+    if (!ok) {
+        int saved = errno;
+        unlink(af->temp_path);
+        errno = saved;
+        return BDL_ERR_IO;
+    }
+    sync_parent_folder(af->final_path);
+    return BDL_OK;
+}
+
+void bdl_atomic_abort(bdl_atomic_file *af)
+{
+    if (!af->file)
+        return;
+    fclose(af->file);
+    af->file = NULL;
+    unlink(af->temp_path);
+}
+
+/// mkdir that accepts an existing folder and reports ENOTDIR for anything else in the way.
+static int make_one_folder(const char *path)
+{
+    if (mkdir(path, 0777) == 0)
+        return 0;
+    int saved = errno;
+    struct stat info;
+    if (stat(path, &info) == 0) {
+        if (S_ISDIR(info.st_mode))
+            return 0;
+        errno = ENOTDIR;
+        return -1;
+    }
+    errno = saved;
+    return -1;
+}
+
+bdl_result bdl_mkdir_p(const char *path)
+{
+    size_t length = strlen(path);
+    if (length == 0) {
+        errno = ENOENT;
+        return BDL_ERR_IO;
+    }
+    char *copy = malloc(length + 1);
+    if (!copy)
+        return BDL_ERR_NOMEM;
+    memcpy(copy, path, length + 1);
+    int status = 0;
+    // Create every prefix ending just before a '/', then the whole path.
+    for (size_t i = 1; i < length && status == 0; ++i) {
+        if (copy[i] != '/' || copy[i - 1] == '/')
+            continue;
+        copy[i] = '\0';
+        status = make_one_folder(copy);
+        copy[i] = '/';
+    }
+    if (status == 0)
+        status = make_one_folder(copy);
+    int saved = errno;
+    free(copy);
+    errno = saved;
+    return status == 0 ? BDL_OK : BDL_ERR_IO;
+}
+
+static void describe_errno(char *why, size_t why_len, const char *what, const char *path, int error)
+{
+    if (why_len == 0)
+        return;
+    char text[256];
+    if (strerror_r(error, text, sizeof text) != 0)
+        snprintf(text, sizeof text, "error %d", error);
+    snprintf(why, why_len, "cannot %s '%s': %s", what, path, text);
+}
+
+bdl_result bdl_check_writable_dir(const char *path, char *why, size_t why_len)
+{
+    if (why_len > 0)
+        why[0] = '\0';
+    bdl_result r = bdl_mkdir_p(path);
+    if (r != BDL_OK) {
+        describe_errno(why, why_len, "create the folder", path, errno);
+        return r;
+    }
+    char probe[1200];
+    int written = snprintf(probe, sizeof probe, "%s/.bedlam-probe.%ld", path, (long)getpid());
+    if (written < 0 || (size_t)written >= sizeof probe) {
+        describe_errno(why, why_len, "use the folder", path, ENAMETOOLONG);
+        return BDL_ERR_IO;
+    }
+    int fd = open(probe, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+    if (fd < 0) {
+        describe_errno(why, why_len, "create a file in the folder", path, errno);
+        return BDL_ERR_IO;
+    }
+    close(fd);
+    if (unlink(probe) != 0) {
+        describe_errno(why, why_len, "delete a file in the folder", path, errno);
+        return BDL_ERR_IO;
+    }
+    return BDL_OK;
+}
+
+bdl_result bdl_write_file_atomic(const char *path, const void *data, size_t size)
+{
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    if (size > 0 && fwrite(data, 1, size, af.file) != size) {
+        bdl_atomic_abort(&af);
+        return BDL_ERR_IO;
+    }
+    return bdl_atomic_commit(&af);
+}

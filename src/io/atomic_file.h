@@ -1,0 +1,48 @@
+// bedlam — crash-safe file writing and output-folder helpers.
+//
+// Output files are written to a temporary sibling ("path.tmp.PID") and renamed over the final
+// name only once everything reached the disk, so readers (ParaView, --resume) never see a
+// half-written file even if the run is killed or the disk fills up.
+#ifndef BDL_ATOMIC_FILE_H
+#define BDL_ATOMIC_FILE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "core/error.h"
+
+/// A file being written atomically. Write through `file` with the usual stdio calls, then call
+/// exactly one of bdl_atomic_commit or bdl_atomic_abort.
+typedef struct bdl_atomic_file {
+    FILE *file;            ///< open for binary writing; NULL once committed or aborted
+    char final_path[1024]; ///< the name the file gets on commit
+    char temp_path[1040];  ///< "final_path.tmp.PID", in the same folder so rename is atomic
+} bdl_atomic_file;
+
+/// Opens "path.tmp.PID" for writing. Returns BDL_ERR_IO if the path is too long (>= 1024 bytes)
+/// or the temporary file cannot be created (e.g. the folder does not exist); `af->file` is then
+/// NULL and nothing needs to be aborted.
+bdl_result bdl_atomic_open(bdl_atomic_file *af, const char *path);
+
+/// Flushes, fsyncs and closes the temporary file, then renames it over the final path. Any
+/// failure along the way (write error, disk full at flush or close, rename refused) removes the
+/// temporary file and returns BDL_ERR_IO; the previous content of the final path is then intact.
+bdl_result bdl_atomic_commit(bdl_atomic_file *af);
+
+/// Closes and deletes the temporary file, leaving the final path untouched. Safe to call on an
+/// already committed or aborted file.
+void bdl_atomic_abort(bdl_atomic_file *af);
+
+/// Creates a folder and its missing parents, like `mkdir -p`. Existing folders are fine; returns
+/// BDL_ERR_IO (errno set, ENOTDIR when a component is not a folder) on failure.
+bdl_result bdl_mkdir_p(const char *path);
+
+/// Makes sure `path` is a folder we can create files in: creates it if needed, then creates and
+/// deletes a probe file. On failure returns BDL_ERR_IO and writes a sentence naming the cause
+/// (the system's error text) into `why` (`why_len` bytes, always terminated when why_len > 0).
+bdl_result bdl_check_writable_dir(const char *path, char *why, size_t why_len);
+
+/// Writes `size` bytes to `path` atomically (see bdl_atomic_open and bdl_atomic_commit).
+bdl_result bdl_write_file_atomic(const char *path, const void *data, size_t size);
+
+#endif

@@ -1,0 +1,283 @@
+// bedlam — VTK XML PolyData writer (appended raw binary) and .pvd collections.
+#include "io/vtk.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "io/atomic_file.h"
+
+// Positions are written straight from memory as a 3-component Float64 array.
+_Static_assert(sizeof(bdl_vec3) == 3 * sizeof(double), "bdl_vec3 must be three packed doubles");
+
+/// Elements converted or generated per fwrite call, to bound scratch memory for any n.
+enum { CHUNK_ELEMENTS = 4096 };
+
+/// One appended block as described in the XML header: where it starts and what it holds.
+typedef struct block {
+    const char *name;
+    const char *type_name;
+    int components;
+    size_t element_size;
+    uint64_t count; ///< elements, i.e. points * components
+} block;
+
+static int host_is_little_endian(void)
+{
+    const uint16_t probe = 1;
+    unsigned char first;
+    memcpy(&first, &probe, 1);
+    return first == 1;
+}
+
+/// Writes `count` elements of `element_size` bytes in little-endian order.
+static int write_little_endian(FILE *file, const void *data, size_t element_size, uint64_t count)
+{
+    if (count == 0)
+        return 1;
+    if (host_is_little_endian())
+        return fwrite(data, element_size, (size_t)count, file) == (size_t)count;
+    unsigned char buffer[CHUNK_ELEMENTS * 8];
+    const unsigned char *source = data;
+    while (count > 0) {
+        size_t chunk = count < CHUNK_ELEMENTS ? (size_t)count : CHUNK_ELEMENTS;
+        for (size_t i = 0; i < chunk; ++i)
+            for (size_t b = 0; b < element_size; ++b)
+                buffer[i * element_size + b] = source[i * element_size + element_size - 1 - b];
+        if (fwrite(buffer, element_size, chunk, file) != chunk)
+            return 0;
+        source += chunk * element_size;
+        count -= chunk;
+    }
+    return 1;
+}
+
+static int write_block_header(FILE *file, uint64_t byte_count)
+{
+    return write_little_endian(file, &byte_count, sizeof byte_count, 1);
+}
+
+/// Writes the Int64 sequence first, first + 1, ... (vertex connectivity and offsets).
+static int write_int64_sequence(FILE *file, int64_t first, uint64_t count)
+{
+    int64_t buffer[CHUNK_ELEMENTS];
+    if (!write_block_header(file, count * sizeof(int64_t)))
+        return 0;
+    while (count > 0) {
+        size_t chunk = count < CHUNK_ELEMENTS ? (size_t)count : CHUNK_ELEMENTS;
+        for (size_t i = 0; i < chunk; ++i)
+            buffer[i] = first + (int64_t)i;
+        if (!write_little_endian(file, buffer, sizeof(int64_t), chunk))
+            return 0;
+        first += (int64_t)chunk;
+        count -= chunk;
+    }
+    return 1;
+}
+
+/// Writes `text` with the five XML special characters escaped, for attribute values.
+static void write_xml_escaped(FILE *file, const char *text)
+{
+    for (; *text; ++text) {
+        switch (*text) {
+        case '&': fputs("&amp;", file); break;
+        case '<': fputs("&lt;", file); break;
+        case '>': fputs("&gt;", file); break;
+        case '"': fputs("&quot;", file); break;
+        case '\'': fputs("&apos;", file); break;
+        default: fputc(*text, file); break;
+        }
+    }
+}
+
+/// Writes one DataArray element and advances `offset` past its appended block.
+static void write_data_array_tag(FILE *file, const block *b, uint64_t *offset)
+{
+    fprintf(file, "        <DataArray type=\"%s\" Name=\"", b->type_name);
+    write_xml_escaped(file, b->name);
+    fprintf(file, "\" NumberOfComponents=\"%d\" format=\"appended\" offset=\"%llu\"/>\n", b->components,
+            (unsigned long long)*offset);
+    *offset += sizeof(uint64_t) + b->count * b->element_size;
+}
+
+static int arrays_are_valid(long n, const bdl_vec3 *positions, const bdl_vtk_array *arrays, int array_count)
+{
+    if (n < 0 || array_count < 0 || (n > 0 && !positions) || (array_count > 0 && !arrays))
+        return 0;
+    for (int i = 0; i < array_count; ++i) {
+        const bdl_vtk_array *a = &arrays[i];
+        if (!a->name || a->components < 1 || (n > 0 && !a->data))
+            return 0;
+        if (a->type != BDL_VTK_FLOAT64 && a->type != BDL_VTK_INT32)
+            return 0;
+    }
+    return 1;
+}
+
+static block block_for_array(const bdl_vtk_array *a, uint64_t n)
+{
+    int is_double = a->type == BDL_VTK_FLOAT64;
+    return (block){a->name, is_double ? "Float64" : "Int32", a->components,
+                   is_double ? sizeof(double) : sizeof(int32_t), n * (uint64_t)a->components};
+}
+
+/// The XML part, up to and including the '_' that starts the appended data. Block order here
+/// must match write_payload: point arrays, points, connectivity, offsets.
+static void write_xml_header(FILE *file, uint64_t n, const bdl_vtk_array *arrays, int array_count)
+{
+    uint64_t offset = 0;
+    fputs("<?xml version=\"1.0\"?>\n"
+          "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          "  <PolyData>\n",
+          file);
+    fprintf(file,
+            "    <Piece NumberOfPoints=\"%llu\" NumberOfVerts=\"%llu\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+            "NumberOfPolys=\"0\">\n",
+            (unsigned long long)n, (unsigned long long)n);
+    fputs("      <PointData>\n", file);
+    for (int i = 0; i < array_count; ++i) {
+        block b = block_for_array(&arrays[i], n);
+        write_data_array_tag(file, &b, &offset);
+    }
+    fputs("      </PointData>\n      <Points>\n", file);
+    block points = {"Points", "Float64", 3, sizeof(double), 3 * n};
+    write_data_array_tag(file, &points, &offset);
+    fputs("      </Points>\n      <Verts>\n", file);
+    block connectivity = {"connectivity", "Int64", 1, sizeof(int64_t), n};
+    block offsets = {"offsets", "Int64", 1, sizeof(int64_t), n};
+    write_data_array_tag(file, &connectivity, &offset);
+    write_data_array_tag(file, &offsets, &offset);
+    fputs("      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _", file);
+}
+
+static int write_array_block(FILE *file, const void *data, size_t element_size, uint64_t count)
+{
+    return write_block_header(file, count * element_size) && write_little_endian(file, data, element_size, count);
+}
+
+static int write_payload(FILE *file, uint64_t n, const bdl_vec3 *positions, const bdl_vtk_array *arrays,
+                         int array_count)
+{
+    for (int i = 0; i < array_count; ++i) {
+        block b = block_for_array(&arrays[i], n);
+        if (!write_array_block(file, arrays[i].data, b.element_size, b.count))
+            return 0;
+    }
+    if (!write_array_block(file, positions, sizeof(double), 3 * n))
+        return 0;
+    // Vertex cell i holds point i; VTK XML offsets are the end of each cell's connectivity.
+    return write_int64_sequence(file, 0, n) && write_int64_sequence(file, 1, n);
+}
+
+bdl_result bdl_vtp_write(const char *path, long n, const bdl_vec3 *positions, const bdl_vtk_array *arrays,
+                         int array_count)
+{
+    if (!arrays_are_valid(n, positions, arrays, array_count))
+        return BDL_ERR_IO;
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    write_xml_header(af.file, (uint64_t)n, arrays, array_count);
+    int ok = write_payload(af.file, (uint64_t)n, positions, arrays, array_count);
+    ok = ok && fputs("\n  </AppendedData>\n</VTKFile>\n", af.file) >= 0;
+    if (!ok) {
+        bdl_atomic_abort(&af);
+        return BDL_ERR_IO;
+    }
+    return bdl_atomic_commit(&af);
+}
+
+/// One DataSet line of a collection.
+typedef struct pvd_entry {
+    double time;
+    char *file;
+} pvd_entry;
+
+struct bdl_pvd {
+    char *path;
+    pvd_entry *entries;
+    long count;
+    long capacity;
+};
+
+static char *copy_string(const char *text)
+{
+    size_t length = strlen(text) + 1;
+    char *copy = malloc(length);
+    if (copy)
+        memcpy(copy, text, length);
+    return copy;
+}
+
+static bdl_result pvd_write(const bdl_pvd *pvd)
+{
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, pvd->path);
+    if (r != BDL_OK)
+        return r;
+    FILE *file = af.file;
+    fputs("<?xml version=\"1.0\"?>\n"
+          "<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+          "  <Collection>\n",
+          file);
+    for (long i = 0; i < pvd->count; ++i) {
+        fprintf(file, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"", pvd->entries[i].time);
+        write_xml_escaped(file, pvd->entries[i].file);
+        fputs("\"/>\n", file);
+    }
+    fputs("  </Collection>\n</VTKFile>\n", file);
+    // Write errors stick in the stream; bdl_atomic_commit checks them.
+    return bdl_atomic_commit(&af);
+}
+
+bdl_pvd *bdl_pvd_create(const char *pvd_path)
+{
+    bdl_pvd *pvd = calloc(1, sizeof *pvd);
+    if (!pvd)
+        return NULL;
+    pvd->path = copy_string(pvd_path);
+    if (!pvd->path || pvd_write(pvd) != BDL_OK) {
+        bdl_pvd_destroy(pvd);
+        return NULL;
+    }
+    return pvd;
+}
+
+static bdl_result pvd_reserve(bdl_pvd *pvd)
+{
+    if (pvd->count < pvd->capacity)
+        return BDL_OK;
+    long capacity = pvd->capacity > 0 ? 2 * pvd->capacity : 64;
+    pvd_entry *entries = realloc(pvd->entries, (size_t)capacity * sizeof *entries);
+    if (!entries)
+        return BDL_ERR_NOMEM;
+    pvd->entries = entries;
+    pvd->capacity = capacity;
+    return BDL_OK;
+}
+
+bdl_result bdl_pvd_add(bdl_pvd *pvd, double time, const char *relative_file)
+{
+    if (!pvd || !relative_file)
+        return BDL_ERR_IO;
+    if (pvd_reserve(pvd) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    char *file = copy_string(relative_file);
+    if (!file)
+        return BDL_ERR_NOMEM;
+    pvd->entries[pvd->count++] = (pvd_entry){time, file};
+    return pvd_write(pvd);
+}
+
+void bdl_pvd_destroy(bdl_pvd *pvd)
+{
+    if (!pvd)
+        return;
+    for (long i = 0; i < pvd->count; ++i)
+        free(pvd->entries[i].file);
+    free(pvd->entries);
+    free(pvd->path);
+    free(pvd);
+}

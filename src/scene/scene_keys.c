@@ -1,0 +1,568 @@
+// bedlam — the table of every scene key, and the helpers that read it.
+//
+// This table is the single source of truth for the scene format: the parser looks keys up here,
+// writes values through the offsets, checks ranges and requirements from it, builds "did you
+// mean" hints from it, and tests/test_scene.c checks docs/scene-format.md against it.
+#include <ctype.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene/scene_internal.h"
+
+// The enum keys are written through an int pointer: the C enums must have int's size.
+_Static_assert(sizeof(bdl_normal_law) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_damping_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_rolling_model) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_size_dist) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_wall_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_motion_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
+
+const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
+    [BDL_SECTION_RUN] = {"run", "run", 0, 1},
+    [BDL_SECTION_DOMAIN] = {"domain", "domain", 0, 1},
+    [BDL_SECTION_CONTACT] = {"contact", "contact", 0, 1},
+    [BDL_SECTION_OUTPUT] = {"output", "output", 0, 1},
+    [BDL_SECTION_GUARDS] = {"guards", "guards", 0, 1},
+    [BDL_SECTION_SPECIES] = {"species", "species NAME", 1, BDL_MAX_SPECIES},
+    [BDL_SECTION_PAIR] = {"pair", "pair A B", 2, BDL_MAX_PAIRS},
+    [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
+    [BDL_SECTION_CREATE] = {"create", "create NAME", 1, BDL_MAX_CREATES},
+};
+
+// Names in the order of the C enums of scene.h (the parser stores the index).
+static const char *const law_names[] = {"linear", "hertz", NULL};
+static const char *const damping_names[] = {"exact", "closed_form", NULL};
+static const char *const rolling_names[] = {"none", "constant", NULL};
+static const char *const distribution_names[] = {"single", "uniform", "normal", NULL};
+static const char *const wall_type_names[] = {"plane", "box", "cylinder", NULL};
+static const char *const motion_names[] = {"none", "vibrate", NULL};
+static const char *const create_type_names[] = {"random", "lattice", "pour", "file", NULL};
+
+#define IN_SCENE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
+#define IN_SPECIES(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_species_def, field)
+#define IN_PAIR(field)                                                                             \
+    .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_pair_def, field), .has_flag = 1,           \
+    .flag_offset = offsetof(bdl_pair_def, has_##field)
+#define IN_WALL(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
+#define IN_CREATE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_create_def, field)
+#define IN_RECORD(field) .target = BDL_TARGET_RECORD, .offset = offsetof(bdl_scene_section, field)
+#define GT(x) .lo_kind = BDL_BOUND_OPEN, .lo = (x)
+#define GE(x) .lo_kind = BDL_BOUND_CLOSED, .lo = (x)
+#define LT(x) .hi_kind = BDL_BOUND_OPEN, .hi = (x)
+#define LE(x) .hi_kind = BDL_BOUND_CLOSED, .hi = (x)
+#define BIT(v) (1u << (v))
+#define REQUIRED .required = BDL_REQUIRED_ALWAYS
+#define WHEN(key, mask) .selector = key, .applies = (mask)
+
+#define S(kind) .section = BDL_SECTION_##kind
+#define NUM .type = BDL_KEY_NUMBER
+#define VEC .type = BDL_KEY_VECTOR
+
+const bdl_scene_key bdl_scene_keys[] = {
+    // [run]
+    {S(RUN), "dt", NUM, "s", IN_SCENE(dt), .default_text = "0 (auto)", GE(0),
+     .doc = "time step; 0 = dt_fraction times the smallest contact time, chosen by the solver"},
+    {S(RUN), "dt_fraction", NUM, "-", IN_SCENE(dt_fraction), .def = {0.02}, GT(0), LE(0.2),
+     .doc = "fraction of the smallest contact time used as the step when dt is 0"},
+    {S(RUN), "end_time", NUM, "s", IN_SCENE(end_time), REQUIRED, GT(0),
+     .doc = "simulated time at which the run stops"},
+    {S(RUN), "gravity", VEC, "m/s^2", IN_SCENE(gravity), .def = {0, 0, -9.81},
+     .doc = "gravitational acceleration vector"},
+    {S(RUN), "seed", .type = BDL_KEY_U64, "-", IN_SCENE(seed), .def = {1}, GE(0),
+     .doc = "seed of the random number generator (creation, velocity jitter)"},
+    {S(RUN), "threads", .type = BDL_KEY_INT, "-", IN_SCENE(threads), .def = {0},
+     .default_text = "0 (all cores)", GE(0), LE(256), .doc = "worker threads; 0 = all cores"},
+
+    // [domain]
+    {S(DOMAIN), "min", VEC, "m", IN_SCENE(domain_min), REQUIRED,
+     .doc = "lower corner of the simulation box"},
+    {S(DOMAIN), "max", VEC, "m", IN_SCENE(domain_max), REQUIRED,
+     .doc = "upper corner of the simulation box; larger than min on every axis"},
+    {S(DOMAIN), "periodic", .type = BDL_KEY_AXES, "-", IN_SCENE(periodic),
+     .doc = "periodic axes: none, or letters among x y z (e.g. \"x y\")"},
+
+    // [contact]
+    {S(CONTACT), "law", .type = BDL_KEY_ENUM, "-", IN_SCENE(law), .def = {BDL_LAW_HERTZ},
+     .enum_names = law_names, .doc = "normal contact law: linear spring-dashpot or Hertz-Mindlin"},
+    {S(CONTACT), "damping", .type = BDL_KEY_ENUM, "-", IN_SCENE(damping),
+     .def = {BDL_DAMPING_EXACT}, .enum_names = damping_names,
+     .doc = "Hertz damping from restitution: exact (solved per pair) or closed_form"},
+    {S(CONTACT), "rolling", .type = BDL_KEY_ENUM, "-", IN_SCENE(rolling),
+     .def = {BDL_ROLLING_NONE}, .enum_names = rolling_names,
+     .doc = "rolling resistance: none, or a constant torque mu_r R* F_n against rolling"},
+    {S(CONTACT), "skin", NUM, "-", IN_SCENE(skin), .def = {0.1}, GT(0), LE(1),
+     .doc = "Verlet neighbour-list skin as a fraction of the largest diameter"},
+
+    // [species NAME]
+    {S(SPECIES), "diameter", NUM, "m", IN_SPECIES(diameter), REQUIRED, GT(0),
+     .doc = "particle diameter (the mean for uniform and normal distributions)"},
+    {S(SPECIES), "distribution", .type = BDL_KEY_ENUM, "-", IN_SPECIES(size_dist),
+     .def = {BDL_SIZE_SINGLE}, .enum_names = distribution_names,
+     .doc = "diameter distribution"},
+    {S(SPECIES), "diameter_min", NUM, "m", IN_SPECIES(diameter_min),
+     WHEN("distribution", BIT(BDL_SIZE_UNIFORM) | BIT(BDL_SIZE_NORMAL)),
+     .required = BIT(BDL_SIZE_UNIFORM), GT(0),
+     .default_text = "required for uniform; diameter - 3 diameter_std for normal",
+     .doc = "smallest diameter (uniform, normal)"},
+    {S(SPECIES), "diameter_max", NUM, "m", IN_SPECIES(diameter_max),
+     WHEN("distribution", BIT(BDL_SIZE_UNIFORM) | BIT(BDL_SIZE_NORMAL)),
+     .required = BIT(BDL_SIZE_UNIFORM), GT(0),
+     .default_text = "required for uniform; diameter + 3 diameter_std for normal",
+     .doc = "largest diameter (uniform, normal)"},
+    {S(SPECIES), "diameter_std", NUM, "m", IN_SPECIES(diameter_std),
+     WHEN("distribution", BIT(BDL_SIZE_NORMAL)), .required = BIT(BDL_SIZE_NORMAL), GT(0),
+     .default_text = "required for normal", .doc = "standard deviation of the diameter (normal)"},
+    {S(SPECIES), "density", NUM, "kg/m^3", IN_SPECIES(density), REQUIRED, GT(0),
+     .doc = "solid density"},
+    {S(SPECIES), "youngs_modulus", NUM, "Pa", IN_SPECIES(material.youngs_modulus), .def = {-1},
+     .default_text = "required if law = hertz", GT(0), .doc = "Young's modulus E (Hertz law)"},
+    {S(SPECIES), "poisson_ratio", NUM, "-", IN_SPECIES(material.poisson_ratio), .def = {0.25},
+     GT(-1), LT(0.5), .doc = "Poisson's ratio (Hertz law)"},
+    {S(SPECIES), "stiffness", NUM, "N/m", IN_SPECIES(material.stiffness), .def = {-1},
+     .default_text = "required if law = linear", GT(0),
+     .doc = "normal spring stiffness k_n (linear law)"},
+    {S(SPECIES), "tangential_stiffness", NUM, "N/m", IN_SPECIES(material.tangential_stiffness),
+     .def = {-1}, .default_text = "2/7 * stiffness", GT(0),
+     .doc = "tangential spring stiffness k_t (linear law)"},
+    {S(SPECIES), "restitution", NUM, "-", IN_SPECIES(material.restitution), REQUIRED, GT(0),
+     LE(1), .doc = "normal coefficient of restitution"},
+    {S(SPECIES), "tangential_damping_ratio", NUM, "-",
+     IN_SPECIES(material.tangential_damping_ratio), .def = {0}, GE(0), LE(1),
+     .doc = "tangential to normal damping ratio (0: no tangential dashpot)"},
+    {S(SPECIES), "friction", NUM, "-", IN_SPECIES(material.friction), .def = {0}, GE(0),
+     .doc = "sliding friction coefficient mu"},
+    {S(SPECIES), "rolling_friction", NUM, "-", IN_SPECIES(material.rolling_friction), .def = {0},
+     GE(0), .doc = "rolling friction coefficient mu_r (used when rolling = constant)"},
+    {S(SPECIES), "background_damping", NUM, "1/s", IN_SPECIES(background_damping), .def = {0},
+     GE(0), .doc = "force -b m v on every particle of the species"},
+
+    // [pair A B]: each given key replaces the value mixed from the two species.
+    {S(PAIR), "restitution", NUM, "-", IN_PAIR(restitution), .default_text = "from the species",
+     GT(0), LE(1), .doc = "normal coefficient of restitution of the pair"},
+    {S(PAIR), "friction", NUM, "-", IN_PAIR(friction), .default_text = "from the species", GE(0),
+     .doc = "sliding friction coefficient of the pair"},
+    {S(PAIR), "rolling_friction", NUM, "-", IN_PAIR(rolling_friction),
+     .default_text = "from the species", GE(0), .doc = "rolling friction coefficient of the pair"},
+    {S(PAIR), "stiffness", NUM, "N/m", IN_PAIR(stiffness), .default_text = "from the species",
+     GT(0), .doc = "normal stiffness of the pair (linear law)"},
+
+    // [wall NAME]
+    {S(WALL), "type", .type = BDL_KEY_ENUM, "-", IN_WALL(kind), REQUIRED,
+     .enum_names = wall_type_names, .doc = "wall geometry"},
+    {S(WALL), "point", VEC, "m", IN_WALL(point),
+     WHEN("type", BIT(BDL_WALL_PLANE) | BIT(BDL_WALL_CYLINDER)),
+     .required = BIT(BDL_WALL_PLANE) | BIT(BDL_WALL_CYLINDER),
+     .default_text = "required for plane, cylinder",
+     .doc = "plane: a point on the plane; cylinder: a point on the axis"},
+    {S(WALL), "normal", VEC, "-", .normalise = 1, IN_WALL(normal),
+     WHEN("type", BIT(BDL_WALL_PLANE)),
+     .required = BIT(BDL_WALL_PLANE), .default_text = "required for plane",
+     .doc = "plane normal pointing to the particle side (normalised)"},
+    {S(WALL), "min", VEC, "m", IN_WALL(box_min), WHEN("type", BIT(BDL_WALL_BOX)),
+     .required = BIT(BDL_WALL_BOX), .default_text = "required for box",
+     .doc = "box: lower corner (particles stay inside)"},
+    {S(WALL), "max", VEC, "m", IN_WALL(box_max), WHEN("type", BIT(BDL_WALL_BOX)),
+     .required = BIT(BDL_WALL_BOX), .default_text = "required for box",
+     .doc = "box: upper corner, larger than min on every axis"},
+    {S(WALL), "axis", VEC, "-", .normalise = 1, IN_WALL(normal),
+     WHEN("type", BIT(BDL_WALL_CYLINDER)),
+     .required = BIT(BDL_WALL_CYLINDER), .default_text = "required for cylinder",
+     .doc = "cylinder: axis direction (normalised)"},
+    {S(WALL), "radius", NUM, "m", IN_WALL(radius), WHEN("type", BIT(BDL_WALL_CYLINDER)),
+     .required = BIT(BDL_WALL_CYLINDER), .default_text = "required for cylinder", GT(0),
+     .doc = "cylinder: radius (particles stay inside)"},
+    {S(WALL), "motion", .type = BDL_KEY_ENUM, "-", IN_WALL(motion), .def = {BDL_MOTION_NONE},
+     .enum_names = motion_names, .doc = "wall motion"},
+    {S(WALL), "direction", VEC, "-", .normalise = 1, IN_WALL(direction), .def = {0, 0, 1},
+     WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .doc = "vibrate: direction of the displacement (normalised)"},
+    {S(WALL), "frequency", NUM, "Hz", IN_WALL(frequency), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .required = BIT(BDL_MOTION_VIBRATE), .default_text = "required for vibrate", GT(0),
+     .doc = "vibrate: frequency f"},
+    {S(WALL), "amplitude", NUM, "m", IN_WALL(amplitude), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .default_text = "give amplitude or gamma", GT(0),
+     .doc = "vibrate: displacement amplitude A (exclusive with gamma)"},
+    {S(WALL), "gamma", NUM, "-", IN_RECORD(gamma), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .default_text = "give amplitude or gamma", GT(0),
+     .doc = "vibrate: peak acceleration A (2 pi f)^2 / g in units of g = length of gravity "
+            "(exclusive with amplitude)"},
+    {S(WALL), "phase", NUM, "rad", IN_WALL(phase), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .def = {0}, .doc = "vibrate: phase of A sin(2 pi f t + phase)"},
+    {S(WALL), "youngs_modulus", NUM, "Pa", IN_WALL(material.youngs_modulus), .def = {-1},
+     .default_text = "species value", GT(0), .doc = "wall Young's modulus (Hertz law)"},
+    // >= 0 rather than > -1: a negative value would read as "not given" (-1) to the solver.
+    {S(WALL), "poisson_ratio", NUM, "-", IN_WALL(material.poisson_ratio), .def = {-1},
+     .default_text = "species value", GE(0), LT(0.5), .doc = "wall Poisson's ratio"},
+    {S(WALL), "stiffness", NUM, "N/m", IN_WALL(material.stiffness), .def = {-1},
+     .default_text = "species value", GT(0), .doc = "wall-particle normal stiffness (linear law)"},
+    {S(WALL), "tangential_stiffness", NUM, "N/m", IN_WALL(material.tangential_stiffness),
+     .def = {-1}, .default_text = "species value", GT(0),
+     .doc = "wall-particle tangential stiffness (linear law)"},
+    {S(WALL), "restitution", NUM, "-", IN_WALL(material.restitution), .def = {-1},
+     .default_text = "species value", GT(0), LE(1),
+     .doc = "wall-particle coefficient of restitution"},
+    {S(WALL), "friction", NUM, "-", IN_WALL(material.friction), .def = {-1},
+     .default_text = "species value", GE(0), .doc = "wall-particle sliding friction coefficient"},
+    {S(WALL), "rolling_friction", NUM, "-", IN_WALL(material.rolling_friction), .def = {-1},
+     .default_text = "species value", GE(0), .doc = "wall-particle rolling friction coefficient"},
+    {S(WALL), "tangential_damping_ratio", NUM, "-", IN_WALL(material.tangential_damping_ratio),
+     .def = {-1}, .default_text = "species value", GE(0), LE(1),
+     .doc = "wall-particle tangential to normal damping ratio"},
+
+    // [create NAME]
+    {S(CREATE), "type", .type = BDL_KEY_ENUM, "-", IN_CREATE(kind), REQUIRED,
+     .enum_names = create_type_names, .doc = "how particles are created"},
+    {S(CREATE), "species", .type = BDL_KEY_NAME, "-", IN_RECORD(species_ref),
+     .default_text = "the only species (required if there are several)",
+     .doc = "name of the [species NAME] section of the created particles"},
+    {S(CREATE), "region_min", VEC, "m", IN_CREATE(region_min),
+     WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR)),
+     .required = BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR),
+     .default_text = "required for random, lattice, pour",
+     .doc = "lower corner of the region (inside the domain)"},
+    {S(CREATE), "region_max", VEC, "m", IN_CREATE(region_max),
+     WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR)),
+     .required = BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR),
+     .default_text = "required for random, lattice, pour",
+     .doc = "upper corner of the region (inside the domain)"},
+    {S(CREATE), "count", .type = BDL_KEY_LONG, "-", IN_CREATE(count),
+     WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR)),
+     .required = BIT(BDL_CREATE_POUR), .def = {-1},
+     .default_text = "required for pour; random: count or volume_fraction; lattice: fill",
+     GT(0), .doc = "number of particles"},
+    {S(CREATE), "volume_fraction", NUM, "-", IN_CREATE(volume_fraction),
+     WHEN("type", BIT(BDL_CREATE_RANDOM)), .def = {-1},
+     .default_text = "random: count or volume_fraction", GT(0), LE(0.64),
+     .doc = "random: solids fraction of the region to fill"},
+    {S(CREATE), "spacing", NUM, "m", IN_CREATE(spacing), WHEN("type", BIT(BDL_CREATE_LATTICE)),
+     .def = {-1}, .default_text = "1.0001 * largest diameter", GT(0),
+     .doc = "lattice: distance between neighbouring lattice sites"},
+    {S(CREATE), "rate", NUM, "particles/s", IN_CREATE(rate), WHEN("type", BIT(BDL_CREATE_POUR)),
+     .required = BIT(BDL_CREATE_POUR), .default_text = "required for pour", GT(0),
+     .doc = "pour: insertion rate"},
+    {S(CREATE), "start_time", NUM, "s", IN_CREATE(start_time), WHEN("type", BIT(BDL_CREATE_POUR)),
+     .def = {0}, GE(0), .doc = "pour: simulated time of the first insertion"},
+    {S(CREATE), "velocity", VEC, "m/s", IN_CREATE(velocity), .def = {0, 0, 0},
+     .doc = "initial velocity of the created particles"},
+    {S(CREATE), "velocity_jitter", NUM, "m/s", IN_CREATE(velocity_jitter), .def = {0}, GE(0),
+     .doc = "magnitude of a random velocity added to each particle"},
+    {S(CREATE), "file", .type = BDL_KEY_PATH, "-", IN_CREATE(file),
+     WHEN("type", BIT(BDL_CREATE_FILE)),
+     .required = BIT(BDL_CREATE_FILE), .default_text = "required for file",
+     .doc = "file: CSV file of positions (optionally diameters, velocities), relative to the "
+            "scene folder"},
+
+    // [output]
+    {S(OUTPUT), "diagnostics_interval", NUM, "s", IN_SCENE(output.diagnostics_interval),
+     .def = {1e-3}, GT(0), .doc = "simulated time between rows of diagnostics.csv"},
+    {S(OUTPUT), "vtk_interval", NUM, "s", IN_SCENE(output.vtk_interval), .def = {0},
+     .default_text = "0 (none)", GE(0),
+     .doc = "simulated time between particle VTK files; 0 = none"},
+    {S(OUTPUT), "checkpoint_interval", NUM, "s", IN_SCENE(output.checkpoint_interval),
+     .def = {0}, .default_text = "0 (end only)", GE(0),
+     .doc = "simulated time between checkpoints; 0 = only at the end or on failure"},
+    {S(OUTPUT), "progress_interval", NUM, "s", IN_SCENE(output.progress_interval), .def = {1},
+     GT(0), .doc = "wall-clock time between progress lines"},
+
+    // [guards]
+    {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0),
+     LE(1), .doc = "stop when an overlap exceeds this fraction of the smaller radius"},
+    {S(GUARDS), "dt_refuse", NUM, "-", IN_SCENE(guards.dt_refuse), .def = {0.2}, GT(0), LE(1),
+     .doc = "refuse a dt above this fraction of the smallest contact time"},
+    {S(GUARDS), "dt_warn", NUM, "-", IN_SCENE(guards.dt_warn), .def = {0.05}, GT(0), LE(1),
+     .doc = "warn for a dt above this fraction of the contact time; at most dt_refuse"},
+    {S(GUARDS), "energy_growth", NUM, "-", IN_SCENE(guards.energy_growth), .def = {0.05}, GT(0),
+     .doc = "stop when the energy grows by this fraction more than the work supplied"},
+    {S(GUARDS), "check_interval", .type = BDL_KEY_INT, "steps", IN_SCENE(guards.check_interval),
+     .def = {100}, GE(1), .doc = "steps between the in-run checks"},
+};
+
+const int bdl_scene_key_count = (int)(sizeof bdl_scene_keys / sizeof bdl_scene_keys[0]);
+_Static_assert(sizeof bdl_scene_keys / sizeof bdl_scene_keys[0] <= BDL_SCENE_KEY_CAPACITY,
+               "raise BDL_SCENE_KEY_CAPACITY");
+
+const bdl_scene_key *bdl_scene_key_find(bdl_section_kind kind, const char *name)
+{
+    for (int i = 0; i < bdl_scene_key_count; ++i)
+        if (bdl_scene_keys[i].section == kind && strcmp(bdl_scene_keys[i].name, name) == 0)
+            return &bdl_scene_keys[i];
+    return NULL;
+}
+
+int bdl_scene_key_index(const bdl_scene_key *key)
+{
+    return (int)(key - bdl_scene_keys);
+}
+
+const char *bdl_scene_key_type_name(bdl_key_type type)
+{
+    static const char *const names[] = {"number", "vector", "integer", "integer", "integer",
+                                        "boolean", "choice", "axes", "name", "path"};
+    return names[type];
+}
+
+// Appends to buf (always terminated, silently truncated).
+#if defined(__GNUC__)
+__attribute__((format(printf, 3, 4)))
+#endif
+static void append(char *buf, size_t size, const char *format, ...)
+{
+    size_t used = strlen(buf);
+    if (used + 1 >= size)
+        return;
+    va_list args;
+    va_start(args, format);
+    vsnprintf(buf + used, size - used, format, args);
+    va_end(args);
+}
+
+static int is_integer_type(bdl_key_type type)
+{
+    return type == BDL_KEY_INT || type == BDL_KEY_LONG || type == BDL_KEY_U64;
+}
+
+void bdl_scene_key_range_text(const bdl_scene_key *key, char *buf, size_t size)
+{
+    buf[0] = '\0';
+    switch (key->type) {
+    case BDL_KEY_VECTOR:
+        append(buf, size, "%s",
+               key->normalise ? "3 numbers, not all 0" : "3 numbers separated by spaces");
+        return;
+    case BDL_KEY_BOOL:
+        append(buf, size, "true, false, yes, no, on, off, 1, 0");
+        return;
+    case BDL_KEY_ENUM:
+        for (int i = 0; key->enum_names[i]; ++i)
+            append(buf, size, "%s%s", i ? ", " : "", key->enum_names[i]);
+        return;
+    case BDL_KEY_AXES:
+        append(buf, size, "none, or any of x y z");
+        return;
+    case BDL_KEY_NAME:
+        append(buf, size, "name of a [species NAME] section");
+        return;
+    case BDL_KEY_PATH:
+        append(buf, size, "readable file, relative to the scene folder");
+        return;
+    default:
+        break;
+    }
+    const char *kind = is_integer_type(key->type) ? "integer " : "";
+    if (key->lo_kind != BDL_BOUND_NONE && key->hi_kind != BDL_BOUND_NONE)
+        append(buf, size, "%s%s%g, %g%s", *kind ? "integer in " : "",
+               key->lo_kind == BDL_BOUND_OPEN ? "(" : "[", key->lo, key->hi,
+               key->hi_kind == BDL_BOUND_OPEN ? ")" : "]");
+    else if (key->lo_kind != BDL_BOUND_NONE)
+        append(buf, size, "%s%s %g", kind, key->lo_kind == BDL_BOUND_OPEN ? ">" : ">=", key->lo);
+    else if (key->hi_kind != BDL_BOUND_NONE)
+        append(buf, size, "%s%s %g", kind, key->hi_kind == BDL_BOUND_OPEN ? "<" : "<=", key->hi);
+    else
+        append(buf, size, "any %s", *kind ? "integer" : "number");
+}
+
+void bdl_scene_key_default_text(const bdl_scene_key *key, char *buf, size_t size)
+{
+    buf[0] = '\0';
+    if (key->default_text) {
+        append(buf, size, "%s", key->default_text);
+        return;
+    }
+    if (key->required == BDL_REQUIRED_ALWAYS) {
+        append(buf, size, "required");
+        return;
+    }
+    switch (key->type) {
+    case BDL_KEY_VECTOR:
+        append(buf, size, "%g %g %g", key->def[0], key->def[1], key->def[2]);
+        break;
+    case BDL_KEY_BOOL:
+        append(buf, size, "%s", key->def[0] != 0 ? "true" : "false");
+        break;
+    case BDL_KEY_ENUM:
+        append(buf, size, "%s", key->enum_names[(int)key->def[0]]);
+        break;
+    case BDL_KEY_AXES:
+        append(buf, size, "none");
+        break;
+    case BDL_KEY_NAME:
+    case BDL_KEY_PATH:
+        append(buf, size, "none");
+        break;
+    default:
+        append(buf, size, "%g", key->def[0]);
+        break;
+    }
+}
+
+void *bdl_scene_key_field(const bdl_scene_key *key, bdl_scene *scene, bdl_scene_section *section)
+{
+    char *base = (char *)scene;
+    if (key->target == BDL_TARGET_RECORD)
+        base = (char *)section;
+    else if (key->section == BDL_SECTION_SPECIES)
+        base = (char *)&scene->species[section->index];
+    else if (key->section == BDL_SECTION_PAIR)
+        base = (char *)&scene->pairs[section->index];
+    else if (key->section == BDL_SECTION_WALL)
+        base = (char *)&scene->walls[section->index];
+    else if (key->section == BDL_SECTION_CREATE)
+        base = (char *)&scene->creates[section->index];
+    return base + key->offset;
+}
+
+void bdl_scene_key_value_text(const bdl_scene_key *key, bdl_scene *scene,
+                              bdl_scene_section *section, char *buf, size_t size)
+{
+    const void *field = bdl_scene_key_field(key, scene, section);
+    buf[0] = '\0';
+    switch (key->type) {
+    case BDL_KEY_NUMBER:
+        append(buf, size, "%.10g", *(const double *)field);
+        break;
+    case BDL_KEY_VECTOR: {
+        const bdl_vec3 *v = field;
+        append(buf, size, "%.10g %.10g %.10g", v->x, v->y, v->z);
+        break;
+    }
+    case BDL_KEY_INT:
+    case BDL_KEY_BOOL:
+        append(buf, size, "%d", *(const int *)field);
+        break;
+    case BDL_KEY_LONG:
+        append(buf, size, "%ld", *(const long *)field);
+        break;
+    case BDL_KEY_U64:
+        append(buf, size, "%llu", (unsigned long long)*(const uint64_t *)field);
+        break;
+    case BDL_KEY_ENUM:
+        append(buf, size, "%s", key->enum_names[*(const int *)field]);
+        break;
+    case BDL_KEY_AXES: {
+        const int *axes = field;
+        for (int a = 0; a < 3; ++a)
+            if (axes[a])
+                append(buf, size, "%s%c", buf[0] ? " " : "", "xyz"[a]);
+        if (!buf[0])
+            append(buf, size, "none");
+        break;
+    }
+    case BDL_KEY_NAME:
+    case BDL_KEY_PATH:
+        append(buf, size, "%s", (const char *)field);
+        break;
+    }
+}
+
+static void write_default(const bdl_scene_key *key, void *field)
+{
+    switch (key->type) {
+    case BDL_KEY_NUMBER:
+        *(double *)field = key->def[0];
+        break;
+    case BDL_KEY_VECTOR:
+        *(bdl_vec3 *)field = bdl_v3(key->def[0], key->def[1], key->def[2]);
+        break;
+    case BDL_KEY_INT:
+    case BDL_KEY_BOOL:
+    case BDL_KEY_ENUM:
+        *(int *)field = (int)key->def[0];
+        break;
+    case BDL_KEY_LONG:
+        *(long *)field = (long)key->def[0];
+        break;
+    case BDL_KEY_U64:
+        *(uint64_t *)field = (uint64_t)key->def[0];
+        break;
+    case BDL_KEY_AXES:
+        memset(field, 0, 3 * sizeof(int));
+        break;
+    case BDL_KEY_NAME:
+    case BDL_KEY_PATH:
+        *(char *)field = '\0';
+        break;
+    }
+}
+
+void bdl_scene_apply_defaults(bdl_scene *scene, bdl_scene_section *section)
+{
+    for (int i = 0; i < bdl_scene_key_count; ++i)
+        if (bdl_scene_keys[i].section == section->kind)
+            write_default(&bdl_scene_keys[i],
+                          bdl_scene_key_field(&bdl_scene_keys[i], scene, section));
+}
+
+void bdl_scene_defaults(bdl_scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    snprintf(scene->dir, sizeof scene->dir, ".");
+    // Only the singleton sections have their fields in bdl_scene itself.
+    for (int i = 0; i < bdl_scene_key_count; ++i)
+        if (bdl_section_infos[bdl_scene_keys[i].section].name_count == 0)
+            write_default(&bdl_scene_keys[i], bdl_scene_key_field(&bdl_scene_keys[i], scene, NULL));
+}
+
+// Optimal-string-alignment distance (a transposition counts as one edit), ignoring case.
+static int edit_distance(const char *a, const char *b)
+{
+    enum { MAX = 64 };
+    size_t n = strlen(a), m = strlen(b);
+    if (n >= MAX || m >= MAX)
+        return MAX;
+    int d[MAX][MAX];
+    for (size_t i = 0; i <= n; ++i)
+        d[i][0] = (int)i;
+    for (size_t j = 0; j <= m; ++j)
+        d[0][j] = (int)j;
+    for (size_t i = 1; i <= n; ++i) {
+        for (size_t j = 1; j <= m; ++j) {
+            int same = tolower((unsigned char)a[i - 1]) == tolower((unsigned char)b[j - 1]);
+            int best = d[i - 1][j - 1] + !same;
+            if (d[i - 1][j] + 1 < best)
+                best = d[i - 1][j] + 1;
+            if (d[i][j - 1] + 1 < best)
+                best = d[i][j - 1] + 1;
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] &&
+                d[i - 2][j - 2] + 1 < best)
+                best = d[i - 2][j - 2] + 1;
+            d[i][j] = best;
+        }
+    }
+    return d[n][m];
+}
+
+void bdl_suggest_init(bdl_suggestion *s, const char *typed)
+{
+    s->typed = typed;
+    s->best = NULL;
+    s->best_score = 1 << 20;
+}
+
+void bdl_suggest_consider(bdl_suggestion *s, const char *candidate)
+{
+    size_t typed_len = strlen(s->typed), cand_len = strlen(candidate);
+    if (typed_len == 0)
+        return; // nothing typed: every short word would be "close"
+    int distance = edit_distance(s->typed, candidate);
+    // Short words are close to everything: allow one edit below four letters, two above.
+    int limit = typed_len <= 3 ? 1 : 2;
+    int score = distance <= limit ? distance : -1;
+    // A prefix either way ("youngs" for "youngs_modulus") ranks after every small edit.
+    size_t shorter = typed_len < cand_len ? typed_len : cand_len;
+    if (score < 0 && shorter >= 3 && strncmp(s->typed, candidate, shorter) == 0)
+        score = limit + 1;
+    if (score >= 0 && score < s->best_score) {
+        s->best = candidate;
+        s->best_score = score;
+    }
+}
+
+void bdl_suggest_text(const bdl_suggestion *s, char *buf, size_t size)
+{
+    if (s->best)
+        snprintf(buf, size, "; did you mean '%s'?", s->best);
+    else if (size > 0)
+        buf[0] = '\0';
+}

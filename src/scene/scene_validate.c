@@ -1,0 +1,362 @@
+// bedlam — cross-checks of a parsed scene, and the values derived from it.
+//
+// Runs after the file and the --set overrides, so that every rule sees the final values. The
+// per-key rules that the key table can express (required keys, keys that apply only to some
+// wall or creator types, unit vectors) are checked generically; the rest are written out below.
+// Checks that need the particles themselves (overlaps, particles outside the domain) belong to
+// the solver.
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "scene/scene_internal.h"
+
+enum { TEXT_LEN = 128 };
+
+static const double pi = 3.14159265358979323846;
+
+static const char *axis_name(int axis)
+{
+    return axis == 0 ? "x" : (axis == 1 ? "y" : "z");
+}
+
+static int given(const bdl_scene_section *s, const bdl_scene_key *key)
+{
+    return s->key_line[bdl_scene_key_index(key)] != 0;
+}
+
+static const bdl_scene_key *key_of(const bdl_scene_section *s, const char *name)
+{
+    return bdl_scene_key_find(s->kind, name); // only called with names of the table
+}
+
+static bdl_vec3 *vector_of(bdl_scene_parser *p, bdl_scene_section *s, const char *name)
+{
+    return bdl_scene_key_field(key_of(s, name), p->scene, s);
+}
+
+/// Fails at a given key's line, showing its current value; `with_allowed` adds the range.
+static void fail_at_key(bdl_scene_parser *p, bdl_scene_section *s, const char *name,
+                        int with_allowed, const char *what)
+{
+    const bdl_scene_key *key = key_of(s, name);
+    char value[TEXT_LEN];
+    bdl_scene_key_value_text(key, p->scene, s, value, sizeof value);
+    int line = s->key_line[bdl_scene_key_index(key)];
+    bdl_scene_fail(p,
+                   &(bdl_scene_where){.line = line ? line : s->line, .title = s->title,
+                                      .key = name, .value = line ? value : NULL,
+                                      .allowed = with_allowed ? key : NULL},
+                   "%s", what);
+}
+
+/// Fails at the section header for a key that is missing; `why` says why it is needed.
+static void fail_missing(bdl_scene_parser *p, bdl_scene_section *s, const char *name,
+                         const char *why)
+{
+    char what[TEXT_LEN * 2];
+    snprintf(what, sizeof what, "missing required key%s%s", why,
+             s->line == 0 ? " (the section is not in the file)" : "");
+    bdl_scene_fail(p,
+                   &(bdl_scene_where){.line = s->line, .title = s->title, .key = name,
+                                      .allowed = key_of(s, name)},
+                   "%s", what);
+}
+
+/// Value names of the selector enum for the bits of `mask`: "plane, cylinder".
+static void mask_text(const bdl_scene_key *selector, unsigned mask, char *buf, size_t size)
+{
+    buf[0] = '\0';
+    for (int i = 0; selector->enum_names[i]; ++i)
+        if (mask & (1u << i))
+            snprintf(buf + strlen(buf), size - strlen(buf), "%s%s", buf[0] ? ", " : "",
+                     selector->enum_names[i]);
+}
+
+/// Required keys, keys that do not apply to the chosen type, and unit vectors.
+static void check_table_rules(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    for (int i = 0; i < bdl_scene_key_count && !p->failed; ++i) {
+        const bdl_scene_key *key = &bdl_scene_keys[i];
+        if (key->section != s->kind)
+            continue;
+        const bdl_scene_key *selector = key->selector ? key_of(s, key->selector) : NULL;
+        int choice = selector ? *(int *)bdl_scene_key_field(selector, p->scene, s) : 0;
+        unsigned bit = 1u << choice;
+        char why[TEXT_LEN] = "";
+        if (selector)
+            snprintf(why, sizeof why, " for %s = %s", selector->name,
+                     selector->enum_names[choice]);
+        int required = key->required == BDL_REQUIRED_ALWAYS || (selector && (key->required & bit));
+        if (!given(s, key)) {
+            if (required)
+                fail_missing(p, s, key->name, key->required == BDL_REQUIRED_ALWAYS ? "" : why);
+            continue;
+        }
+        if (selector && !(key->applies & bit)) {
+            char only[TEXT_LEN], what[TEXT_LEN * 3];
+            mask_text(selector, key->applies, only, sizeof only);
+            snprintf(what, sizeof what, "does not apply%s; only for %s = %s", why,
+                     selector->name, only);
+            fail_at_key(p, s, key->name, 0, what);
+            continue;
+        }
+        if (key->normalise) {
+            bdl_vec3 *v = bdl_scene_key_field(key, p->scene, s);
+            if (bdl_v3_len(*v) == 0.0)
+                fail_at_key(p, s, key->name, 1, "zero vector has no direction");
+            else
+                *v = bdl_v3_normalize(*v);
+        }
+    }
+}
+
+/// min < max on every axis; fails at `max_name`.
+static void check_box(bdl_scene_parser *p, bdl_scene_section *s, const char *min_name,
+                      const char *max_name)
+{
+    bdl_vec3 lo = *vector_of(p, s, min_name), hi = *vector_of(p, s, max_name);
+    for (int axis = 0; axis < 3 && !p->failed; ++axis) {
+        if (!(bdl_v3_comp(hi, axis) > bdl_v3_comp(lo, axis))) {
+            char what[TEXT_LEN];
+            snprintf(what, sizeof what, "not larger than %s on the %s axis", min_name,
+                     axis_name(axis));
+            fail_at_key(p, s, max_name, 0, what);
+        }
+    }
+}
+
+/// Index of a species by name, or -1 with the "did you mean" and the list in `hint`.
+static int find_species(const bdl_scene *scene, const char *name, char *hint, size_t size)
+{
+    bdl_suggestion suggestion;
+    bdl_suggest_init(&suggestion, name);
+    for (int i = 0; i < scene->species_count; ++i) {
+        if (strcmp(scene->species[i].name, name) == 0)
+            return i;
+        bdl_suggest_consider(&suggestion, scene->species[i].name);
+    }
+    bdl_suggest_text(&suggestion, hint, size);
+    snprintf(hint + strlen(hint), size - strlen(hint), "; allowed:");
+    for (int i = 0; i < scene->species_count; ++i)
+        snprintf(hint + strlen(hint), size - strlen(hint), "%s %s", i ? "," : "",
+                 scene->species[i].name);
+    return -1;
+}
+
+static void check_species(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    bdl_species_def *sp = &p->scene->species[s->index];
+    if (p->scene->law == BDL_LAW_HERTZ && !given(s, key_of(s, "youngs_modulus")))
+        fail_missing(p, s, "youngs_modulus", " for [contact] law = hertz");
+    if (p->scene->law == BDL_LAW_LINEAR && !given(s, key_of(s, "stiffness")))
+        fail_missing(p, s, "stiffness", " for [contact] law = linear");
+    if (p->failed)
+        return;
+    if (sp->size_dist == BDL_SIZE_SINGLE) {
+        sp->diameter_min = sp->diameter_max = sp->diameter;
+        return;
+    }
+    if (sp->size_dist == BDL_SIZE_NORMAL) {
+        if (!given(s, key_of(s, "diameter_min")))
+            sp->diameter_min = sp->diameter - 3.0 * sp->diameter_std;
+        if (!given(s, key_of(s, "diameter_max")))
+            sp->diameter_max = sp->diameter + 3.0 * sp->diameter_std;
+        if (!(sp->diameter_min > 0.0)) {
+            fail_at_key(p, s, "diameter_std", 0,
+                        "diameter - 3 diameter_std is not > 0; give diameter_min explicitly");
+            return;
+        }
+    }
+    if (sp->diameter_min > sp->diameter)
+        fail_at_key(p, s, "diameter_min", 0, "larger than diameter");
+    else if (sp->diameter_max < sp->diameter)
+        fail_at_key(p, s, "diameter_max", 0, "smaller than diameter");
+}
+
+static void check_pair(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    bdl_pair_def *pair = &p->scene->pairs[s->index];
+    int *indices[2] = {&pair->species_a, &pair->species_b};
+    for (int i = 0; i < 2 && !p->failed; ++i) {
+        char hint[512] = "";
+        *indices[i] = find_species(p->scene, s->names[i], hint, sizeof hint);
+        if (*indices[i] < 0)
+            bdl_scene_fail(p, &(bdl_scene_where){.line = s->line, .title = s->title},
+                           "unknown species '%s'%s", s->names[i], hint);
+    }
+}
+
+static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    bdl_wall_def *wall = &p->scene->walls[s->index];
+    if (wall->kind == BDL_WALL_BOX)
+        check_box(p, s, "min", "max");
+    if (p->failed || wall->motion != BDL_MOTION_VIBRATE)
+        return;
+    int has_amplitude = given(s, key_of(s, "amplitude")), has_gamma = given(s, key_of(s, "gamma"));
+    if (has_amplitude && has_gamma) {
+        fail_at_key(p, s, "gamma", 0, "amplitude and gamma are exclusive; give one of them");
+    } else if (!has_amplitude && !has_gamma) {
+        fail_missing(p, s, "amplitude", " (or gamma) for motion = vibrate");
+    } else if (has_gamma) {
+        // Gamma = A w^2 / g  ->  A = Gamma g / w^2 with w = 2 pi f.
+        double g = bdl_v3_len(p->scene->gravity);
+        double omega = 2.0 * pi * wall->frequency;
+        if (g == 0.0)
+            fail_at_key(p, s, "gamma", 0, "needs a nonzero [run] gravity; give amplitude instead");
+        else
+            wall->amplitude = s->gamma * g / (omega * omega);
+    }
+}
+
+/// Largest diameter of a species [m] (diameter_max is set for every distribution by now).
+static double largest_diameter(const bdl_scene *scene, int species)
+{
+    return scene->species[species].diameter_max;
+}
+
+static void check_region(bdl_scene_parser *p, bdl_scene_section *s, double diameter)
+{
+    const bdl_scene *scene = p->scene;
+    check_box(p, s, "region_min", "region_max");
+    bdl_vec3 lo = *vector_of(p, s, "region_min"), hi = *vector_of(p, s, "region_max");
+    for (int axis = 0; axis < 3 && !p->failed; ++axis) {
+        double dlo = bdl_v3_comp(scene->domain_min, axis);
+        double dhi = bdl_v3_comp(scene->domain_max, axis);
+        double tolerance = 1e-12 * fmax(fabs(dlo), fmax(fabs(dhi), dhi - dlo));
+        char what[TEXT_LEN * 2];
+        if (bdl_v3_comp(lo, axis) < dlo - tolerance) {
+            snprintf(what, sizeof what, "outside the domain on the %s axis ([domain] min = %g)",
+                     axis_name(axis), dlo);
+            fail_at_key(p, s, "region_min", 0, what);
+        } else if (bdl_v3_comp(hi, axis) > dhi + tolerance) {
+            snprintf(what, sizeof what, "outside the domain on the %s axis ([domain] max = %g)",
+                     axis_name(axis), dhi);
+            fail_at_key(p, s, "region_max", 0, what);
+        } else if (bdl_v3_comp(hi, axis) - bdl_v3_comp(lo, axis) < diameter) {
+            snprintf(what, sizeof what,
+                     "region narrower than the largest particle diameter (%g m) on the %s axis",
+                     diameter, axis_name(axis));
+            fail_at_key(p, s, "region_max", 0, what);
+        }
+    }
+}
+
+/// Exactly one of two keys; `first` is named when both are missing.
+static void check_one_of(bdl_scene_parser *p, bdl_scene_section *s, const char *first,
+                         const char *second, const char *why)
+{
+    int has_first = given(s, key_of(s, first)), has_second = given(s, key_of(s, second));
+    char what[TEXT_LEN];
+    if (has_first && has_second) {
+        snprintf(what, sizeof what, "%s and %s are exclusive; give one of them", first, second);
+        fail_at_key(p, s, second, 0, what);
+    } else if (!has_first && !has_second) {
+        snprintf(what, sizeof what, " (or %s)%s", second, why);
+        fail_missing(p, s, first, what);
+    }
+}
+
+static void resolve_create_species(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    bdl_create_def *create = &p->scene->creates[s->index];
+    char hint[512] = "";
+    if (given(s, key_of(s, "species"))) {
+        create->species = find_species(p->scene, s->species_ref, hint, sizeof hint);
+        if (create->species < 0) {
+            char what[600];
+            snprintf(what, sizeof what, "unknown species%s", hint);
+            fail_at_key(p, s, "species", 0, what);
+        }
+    } else if (p->scene->species_count == 1) {
+        create->species = 0;
+    } else {
+        find_species(p->scene, "", hint, sizeof hint);
+        bdl_scene_fail(p,
+                       &(bdl_scene_where){.line = s->line, .title = s->title, .key = "species"},
+                       "missing required key: the scene has %d species%s",
+                       p->scene->species_count, hint);
+    }
+}
+
+static void check_create(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    bdl_create_def *create = &p->scene->creates[s->index];
+    resolve_create_species(p, s);
+    if (p->failed)
+        return;
+    double diameter = largest_diameter(p->scene, create->species);
+    if (create->kind == BDL_CREATE_FILE) {
+        FILE *file = fopen(create->file, "r");
+        if (!file) {
+            char what[TEXT_LEN + BDL_PATH_LEN];
+            snprintf(what, sizeof what, "cannot open '%s': %s", create->file, strerror(errno));
+            fail_at_key(p, s, "file", 1, what);
+        } else {
+            fclose(file);
+        }
+        return;
+    }
+    if (create->kind == BDL_CREATE_RANDOM)
+        check_one_of(p, s, "count", "volume_fraction", " for type = random");
+    if (create->kind == BDL_CREATE_LATTICE && given(s, key_of(s, "spacing")) &&
+        create->spacing < diameter)
+        fail_at_key(p, s, "spacing", 0,
+                    "smaller than the largest diameter: particles would overlap");
+    if (!p->failed)
+        check_region(p, s, diameter);
+}
+
+static void check_singletons(bdl_scene_parser *p)
+{
+    bdl_scene_section *domain = NULL, *guards = NULL;
+    for (int i = 0; i < p->section_count && !p->failed; ++i) {
+        bdl_scene_section *s = &p->sections[i];
+        if (bdl_section_infos[s->kind].name_count != 0)
+            continue;
+        check_table_rules(p, s);
+        if (s->kind == BDL_SECTION_DOMAIN)
+            domain = s;
+        if (s->kind == BDL_SECTION_GUARDS)
+            guards = s;
+    }
+    if (!p->failed)
+        check_box(p, domain, "min", "max");
+    if (!p->failed && p->scene->guards.dt_warn > p->scene->guards.dt_refuse) {
+        int warn_given = given(guards, key_of(guards, "dt_warn"));
+        fail_at_key(p, guards, warn_given ? "dt_warn" : "dt_refuse", 0,
+                    warn_given ? "larger than dt_refuse" : "smaller than dt_warn");
+    }
+}
+
+int bdl_scene_validate(bdl_scene_parser *p)
+{
+    check_singletons(p);
+    if (!p->failed && p->scene->species_count == 0)
+        bdl_scene_fail(p, &(bdl_scene_where){.line = 0},
+                       "no [species NAME] section: at least one species is required");
+    // Species first: pairs and creators refer to them and to their diameters.
+    static const bdl_section_kind order[] = {BDL_SECTION_SPECIES, BDL_SECTION_PAIR,
+                                             BDL_SECTION_WALL, BDL_SECTION_CREATE};
+    for (int k = 0; k < 4; ++k) {
+        for (int i = 0; i < p->section_count && !p->failed; ++i) {
+            bdl_scene_section *s = &p->sections[i];
+            if (s->kind != order[k])
+                continue;
+            check_table_rules(p, s);
+            if (p->failed)
+                break;
+            if (s->kind == BDL_SECTION_SPECIES)
+                check_species(p, s);
+            else if (s->kind == BDL_SECTION_PAIR)
+                check_pair(p, s);
+            else if (s->kind == BDL_SECTION_WALL)
+                check_wall(p, s);
+            else
+                check_create(p, s);
+        }
+    }
+    return !p->failed;
+}
