@@ -72,7 +72,7 @@ static void test_atomic_write(const scratch *s)
     char folder[256], path[256];
     path_in(s, "atomic", folder, sizeof folder);
     CHECK(bdl_mkdir_p(folder) == BDL_OK);
-    snprintf(path, sizeof path, "%s/data.bin", folder);
+    path_in(s, "atomic/data.bin", path, sizeof path);
     const char text[] = "hello, atomic world\n";
     CHECK(bdl_write_file_atomic(path, text, sizeof text - 1) == BDL_OK);
     size_t size = 0;
@@ -93,7 +93,7 @@ static void test_atomic_abort(const scratch *s)
     char folder[256], path[256];
     path_in(s, "abort", folder, sizeof folder);
     CHECK(bdl_mkdir_p(folder) == BDL_OK);
-    snprintf(path, sizeof path, "%s/never.bin", folder);
+    path_in(s, "abort/never.bin", path, sizeof path);
     bdl_atomic_file af;
     CHECK(bdl_atomic_open(&af, path) == BDL_OK);
     CHECK(af.file != NULL && file_exists(af.temp_path));
@@ -119,7 +119,7 @@ static void test_atomic_failures(const scratch *s)
     char folder[256];
     path_in(s, "commit_fails", folder, sizeof folder);
     CHECK(bdl_mkdir_p(folder) == BDL_OK);
-    snprintf(path, sizeof path, "%s/target", folder);
+    path_in(s, "commit_fails/target", path, sizeof path);
     CHECK(bdl_mkdir_p(path) == BDL_OK);
     CHECK(bdl_atomic_open(&af, path) == BDL_OK);
     fputs("data", af.file);
@@ -143,7 +143,7 @@ static void test_folders(const scratch *s)
 
     path_in(s, "plain_file", file, sizeof file);
     CHECK(bdl_write_file_atomic(file, "x", 1) == BDL_OK);
-    snprintf(path, sizeof path, "%s/sub", file);
+    path_in(s, "plain_file/sub", path, sizeof path);
     errno = 0;
     CHECK(bdl_mkdir_p(path) == BDL_ERR_IO);
     CHECK(errno == ENOTDIR);
@@ -172,8 +172,8 @@ static long long attribute_after(const char *xml, const char *anchor, const char
 }
 
 /// Start of the data of the appended block whose DataArray has Name="name"; sets its byte count.
-static const unsigned char *appended_block(const char *xml, const unsigned char *payload, const char *name,
-                                           uint64_t *bytes)
+static const unsigned char *appended_block(const char *xml, const unsigned char *payload,
+                                           const char *name, uint64_t *bytes)
 {
     char anchor[96];
     snprintf(anchor, sizeof anchor, "Name=\"%s\"", name);
@@ -280,7 +280,8 @@ static int xml_is_balanced(const char *xml)
         if (length == 0 || length >= sizeof stack[0])
             return 0;
         if (closing) {
-            if (depth == 0 || strncmp(stack[depth - 1], name, length) != 0 || stack[depth - 1][length])
+            if (depth == 0 || strncmp(stack[depth - 1], name, length) != 0 ||
+                stack[depth - 1][length])
                 return 0;
             --depth;
         } else if (end[-1] != '/') {

@@ -24,12 +24,14 @@ static inline bdl_contact_geom pair_geom(const bdl_particles *p, long i, long j,
 
 static void clear_pair(bdl_neighbor *nb, int32_t k)
 {
+    int32_t s = nb->jslot[k];
     nb->touching[k] = 0;
-    nb->force[k] = bdl_v3_zero();
+    nb->slot_touching[s] = 0;
+    nb->force[s] = bdl_v3_zero();
     if (nb->history)
         nb->history[k] = bdl_v3_zero();
     if (nb->torque_j)
-        nb->torque_j[k] = bdl_v3_zero();
+        nb->torque_j[s] = bdl_v3_zero();
 }
 
 void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def)
@@ -59,8 +61,10 @@ void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def
             const bdl_contact_params *cp = row + p->species[j];
             bdl_contact_result res =
                 bdl_contact_eval(cp, def->hertz, &g, def->friction ? &nb->history[k] : NULL, def->dt);
+            int32_t slot = nb->jslot[k];
             nb->touching[k] = 1;
-            nb->force[k] = res.force;
+            nb->slot_touching[slot] = 1;
+            nb->force[slot] = res.force;
             fi = bdl_v3_add(fi, res.force);
             if (!nb->torque_j)
                 continue;
@@ -73,7 +77,7 @@ void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def
                 tj = bdl_v3_sub(tj, roll);
                 tq = bdl_v3_add(tq, roll);
             }
-            nb->torque_j[k] = tj;
+            nb->torque_j[slot] = tj;
             ti = bdl_v3_add(ti, tq);
         }
         p->force[i] = fi;
@@ -131,39 +135,37 @@ void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
             contacts += nb->touching[k];
         for (int32_t m = nb->jstart[i]; m < nb->jstart[i + 1]; ++m) {
-            int32_t k = nb->jlist[m];
-            if (!nb->touching[k])
+            if (!nb->slot_touching[m])
                 continue;
             ++contacts;
-            f = bdl_v3_sub(f, nb->force[k]);
+            f = bdl_v3_sub(f, nb->force[m]);
             if (nb->torque_j)
-                t = bdl_v3_add(t, nb->torque_j[k]);
+                t = bdl_v3_add(t, nb->torque_j[m]);
         }
         wall_contacts(p, nb, walls, def, i, &f, &t);
-        double m = 1.0 / p->inv_mass[i];
-        f = bdl_v3_madd(f, def->gravity, m);
         double b = def->background_damping[p->species[i]];
         if (b > 0.0)
-            f = bdl_v3_madd(f, p->vel[i], -b * m);
+            f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
         p->force[i] = f;
         p->torque[i] = t;
         if (coordination)
             coordination[i] = (uint8_t)(contacts < 255 ? contacts : 255);
         if (kick > 0.0) {
-            p->vel[i] = bdl_v3_madd(p->vel[i], f, kick * p->inv_mass[i]);
+            bdl_vec3 v = bdl_v3_madd(p->vel[i], def->gravity, kick);
+            p->vel[i] = bdl_v3_madd(v, f, kick * p->inv_mass[i]);
             p->omega[i] = bdl_v3_madd(p->omega[i], t, kick * bdl_particle_inv_inertia(p, i));
         }
     }
 }
 
-double bdl_dem_kick_drift(bdl_particles *p, double h, double dt)
+double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double dt)
 {
     long n = p->count;
     double max2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max2)
     for (long i = 0; i < n; ++i) {
         double im = p->inv_mass[i];
-        bdl_vec3 v = bdl_v3_madd(p->vel[i], p->force[i], h * im);
+        bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], gravity, h), p->force[i], h * im);
         p->vel[i] = v;
         p->omega[i] = bdl_v3_madd(p->omega[i], p->torque[i], h * bdl_particle_inv_inertia(p, i));
         bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);

@@ -101,7 +101,7 @@ void bdl_neighbor_free(bdl_neighbor *nb)
 {
     void *arrays[] = {nb->cell_rank,  nb->cell_start, nb->cell_cursor,    nb->start,        nb->partner,
                       nb->history,    nb->force,         nb->torque_j,
-                      nb->touching,   nb->jstart,        nb->jlist,        nb->wall_start,
+                      nb->touching,   nb->jstart,        nb->jslot, nb->slot_touching,        nb->wall_start,
                       nb->wall_prim,  nb->wall_history,  nb->wall_force,   nb->wall_touching,
                       nb->old_wall_start, nb->old_wall_prim, nb->old_wall_history, nb->perm,
                       nb->pcell,      nb->scratch};
@@ -199,7 +199,8 @@ static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
     int ok = grow_array((void **)&nb->partner, cap, sizeof(int32_t)) &&
              grow_array((void **)&nb->force, cap, sizeof(bdl_vec3)) &&
              grow_array((void **)&nb->touching, cap, 1) &&
-             grow_array((void **)&nb->jlist, cap, sizeof(int32_t));
+             grow_array((void **)&nb->slot_touching, cap, 1) &&
+             grow_array((void **)&nb->jslot, cap, sizeof(int32_t));
     if (ok && nb->friction)
         ok = grow_array((void **)&nb->history, cap, sizeof(bdl_vec3));
     if (ok && (nb->friction || nb->rolling))
@@ -211,7 +212,7 @@ static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
 }
 
 /// Packs the history of pairs that were touching, grouped by their (old) first particle, into
-/// arrays the rebuild does not need until the end: force[] holds the displacement, jlist[] the
+/// arrays the rebuild does not need until the end: force[] holds the displacement, jslot[] the
 /// old partner, jstart[] the offsets.
 static void stash_history(bdl_neighbor *nb)
 {
@@ -222,7 +223,7 @@ static void stash_history(bdl_neighbor *nb)
             if (!nb->touching[k])
                 continue;
             nb->force[c] = nb->history[k];
-            nb->jlist[c] = nb->partner[k];
+            nb->jslot[c] = nb->partner[k];
             ++c;
         }
         nb->jstart[i + 1] = (int32_t)c;
@@ -236,7 +237,7 @@ static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi,
         return bdl_v3_zero();
     int32_t a = oi < oj ? oi : oj, b = oi < oj ? oj : oi;
     for (int32_t k = nb->jstart[a]; k < nb->jstart[a + 1]; ++k)
-        if (nb->jlist[k] == b) {
+        if (nb->jslot[k] == b) {
             *found = 1;
             return oi < oj ? nb->force[k] : bdl_v3_neg(nb->force[k]);
         }
@@ -313,7 +314,7 @@ static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old
                 nb->touching[k] = (uint8_t)found;
             }
     }
-    // Incidence lists for the gather: for each particle, the pairs where it is j, by pair index.
+    // Slots for the gather: each particle owns one per pair where it is j, in pair order.
     memset(nb->jstart, 0, (size_t)(n + 1) * sizeof(int32_t));
     for (long k = 0; k < pairs; ++k)
         nb->jstart[nb->partner[k] + 1]++;
@@ -322,9 +323,14 @@ static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old
     // Fill with a cursor kept in pcell (free scratch by now).
     for (long i = 0; i < n; ++i)
         nb->pcell[i] = nb->jstart[i];
-    for (long i = 0; i < n; ++i)
-        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
-            nb->jlist[nb->pcell[nb->partner[k]]++] = k;
+    for (long k = 0; k < pairs; ++k)
+        nb->jslot[k] = nb->pcell[nb->partner[k]]++;
+    // Slot data of pairs that carried history over is set by the first force pass; the rest
+    // starts at zero.
+    memset(nb->slot_touching, 0, (size_t)pairs);
+    memset(nb->force, 0, (size_t)pairs * sizeof(bdl_vec3));
+    if (nb->torque_j)
+        memset(nb->torque_j, 0, (size_t)pairs * sizeof(bdl_vec3));
     return BDL_OK;
 }
 
@@ -442,7 +448,7 @@ int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, con
 
 long bdl_neighbor_bytes(const bdl_neighbor *nb)
 {
-    long per_pair = (long)(sizeof(int32_t) * 2 + sizeof(bdl_vec3) + 1);
+    long per_pair = (long)(sizeof(int32_t) * 2 + sizeof(bdl_vec3) + 2);
     if (nb->friction)
         per_pair += (long)sizeof(bdl_vec3);
     if (nb->friction || nb->rolling)

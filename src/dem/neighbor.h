@@ -37,13 +37,14 @@ typedef struct bdl_neighbor {
     int32_t *start;      ///< pairs of i are [start[i], start[i+1])
     int32_t *partner;    ///< j of each pair
     bdl_vec3 *history;   ///< tangential displacement [m] (NULL without friction)
-    bdl_vec3 *force;     ///< force on i [N]
-    bdl_vec3 *torque_j;  ///< torque on j [N m] (NULL without friction and rolling); the torque
-                         ///< on i follows from angular momentum: -torque_j - (x_i - x_j) x force
-    uint8_t *touching;   ///< 1 if the pair overlapped this step
-    int32_t *jstart;     ///< pairs where p is j: jlist[jstart[p] .. jstart[p+1])
-    int32_t *jlist;
-
+    uint8_t *touching;   ///< 1 if the pair overlapped this step (by pair)
+    // Pair results are stored in the second particle's slots, so the gather reads them in order:
+    // the pairs where p is j own slots jstart[p] .. jstart[p+1], pair k writes slot jslot[k].
+    int32_t *jstart;
+    int32_t *jslot;
+    bdl_vec3 *force;       ///< by slot: force on the pair's first particle i [N] (j gets -force)
+    bdl_vec3 *torque_j;    ///< by slot: torque on j [N m] (NULL without friction and rolling)
+    uint8_t *slot_touching; ///< by slot: the pair overlapped this step
     // wall contacts (grouped by particle)
     long wall_pair_count, wall_pair_capacity;
     int32_t *wall_start; ///< (count + 1)

@@ -17,7 +17,7 @@ typedef struct bdl_particles {
     bdl_vec3 *pos;        ///< centre position [m]
     bdl_vec3 *vel;        ///< velocity [m/s]
     bdl_vec3 *omega;      ///< angular velocity [rad/s]
-    bdl_vec3 *force;      ///< total force of this step [N]
+    bdl_vec3 *force;      ///< contact, wall and damping force of this step, gravity excluded [N]
     bdl_vec3 *torque;     ///< total torque of this step [N m]
     bdl_vec3 *pos_at_build; ///< position when the neighbour list was built [m]
     double *radius;       ///< [m]

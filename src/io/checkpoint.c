@@ -88,8 +88,9 @@ bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
     put(&out, nb->partner, np * sizeof(int32_t));
     put(&out, nb->force, np * sizeof(bdl_vec3));
     put(&out, nb->touching, np);
+    put(&out, nb->slot_touching, np);
     put(&out, nb->jstart, (n + 1) * sizeof(int32_t));
-    put(&out, nb->jlist, np * sizeof(int32_t));
+    put(&out, nb->jslot, np * sizeof(int32_t));
     if (nb->history)
         put(&out, nb->history, np * sizeof(bdl_vec3));
     if (nb->torque_j)
@@ -178,8 +179,9 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
     get(&in, nb->partner, np * sizeof(int32_t));
     get(&in, nb->force, np * sizeof(bdl_vec3));
     get(&in, nb->touching, np);
+    get(&in, nb->slot_touching, np);
     get(&in, nb->jstart, (n + 1) * sizeof(int32_t));
-    get(&in, nb->jlist, np * sizeof(int32_t));
+    get(&in, nb->jslot, np * sizeof(int32_t));
     if (nb->history)
         get(&in, nb->history, np * sizeof(bdl_vec3));
     if (nb->torque_j)

@@ -147,7 +147,8 @@ bdl_result bdl_csv_row(bdl_csv *csv, const double *values)
     char text[64];
     for (int i = 0; i < csv->column_count; ++i) {
         format_number(text, sizeof text, values[i]);
-        if (fputs(text, csv->file) < 0 || fputc(i + 1 < csv->column_count ? ',' : '\n', csv->file) == EOF)
+        if (fputs(text, csv->file) < 0 ||
+            fputc(i + 1 < csv->column_count ? ',' : '\n', csv->file) == EOF)
             csv->failed = 1;
     }
     return csv->failed ? BDL_ERR_IO : BDL_OK;
@@ -236,12 +237,12 @@ static double field_value(const char *line, int index)
     for (int i = 0; i < index; ++i) {
         line = strchr(line, ',');
         if (!line)
-            return NAN;
+            return (double)NAN;
         ++line;
     }
     char *end;
     double value = strtod(line, &end);
-    return end != line && (*end == ',' || *end == '\0') ? value : NAN;
+    return end != line && (*end == ',' || *end == '\0') ? value : (double)NAN;
 }
 
 long bdl_csv_read_column(const char *path, const char *column, double *out, long max)
@@ -258,7 +259,8 @@ long bdl_csv_read_column(const char *path, const char *column, double *out, long
         index = find_column(line, column);
     }
     long count = 0;
-    while (index >= 0 && (out == NULL || count < max) && (length = read_line(file, &line, &capacity)) >= 0) {
+    while (index >= 0 && (out == NULL || count < max) &&
+           (length = read_line(file, &line, &capacity)) >= 0) {
         if (chomp(line, length) == 0)
             continue; // blank lines, e.g. at the end of a hand-edited file
         if (out)

@@ -81,12 +81,24 @@ static void write_xml_escaped(FILE *file, const char *text)
 {
     for (; *text; ++text) {
         switch (*text) {
-        case '&': fputs("&amp;", file); break;
-        case '<': fputs("&lt;", file); break;
-        case '>': fputs("&gt;", file); break;
-        case '"': fputs("&quot;", file); break;
-        case '\'': fputs("&apos;", file); break;
-        default: fputc(*text, file); break;
+        case '&':
+            fputs("&amp;", file);
+            break;
+        case '<':
+            fputs("&lt;", file);
+            break;
+        case '>':
+            fputs("&gt;", file);
+            break;
+        case '"':
+            fputs("&quot;", file);
+            break;
+        case '\'':
+            fputs("&apos;", file);
+            break;
+        default:
+            fputc(*text, file);
+            break;
         }
     }
 }
@@ -96,12 +108,13 @@ static void write_data_array_tag(FILE *file, const block *b, uint64_t *offset)
 {
     fprintf(file, "        <DataArray type=\"%s\" Name=\"", b->type_name);
     write_xml_escaped(file, b->name);
-    fprintf(file, "\" NumberOfComponents=\"%d\" format=\"appended\" offset=\"%llu\"/>\n", b->components,
-            (unsigned long long)*offset);
+    fprintf(file, "\" NumberOfComponents=\"%d\" format=\"appended\" offset=\"%llu\"/>\n",
+            b->components, (unsigned long long)*offset);
     *offset += sizeof(uint64_t) + b->count * b->element_size;
 }
 
-static int arrays_are_valid(long n, const bdl_vec3 *positions, const bdl_vtk_array *arrays, int array_count)
+static int arrays_are_valid(long n, const bdl_vec3 *positions, const bdl_vtk_array *arrays,
+                            int array_count)
 {
     if (n < 0 || array_count < 0 || (n > 0 && !positions) || (array_count > 0 && !arrays))
         return 0;
@@ -128,11 +141,13 @@ static void write_xml_header(FILE *file, uint64_t n, const bdl_vtk_array *arrays
 {
     uint64_t offset = 0;
     fputs("<?xml version=\"1.0\"?>\n"
-          "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
+          "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+          "header_type=\"UInt64\">\n"
           "  <PolyData>\n",
           file);
     fprintf(file,
-            "    <Piece NumberOfPoints=\"%llu\" NumberOfVerts=\"%llu\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+            "    <Piece NumberOfPoints=\"%llu\" NumberOfVerts=\"%llu\" NumberOfLines=\"0\" "
+            "NumberOfStrips=\"0\" "
             "NumberOfPolys=\"0\">\n",
             (unsigned long long)n, (unsigned long long)n);
     fputs("      <PointData>\n", file);
@@ -148,16 +163,18 @@ static void write_xml_header(FILE *file, uint64_t n, const bdl_vtk_array *arrays
     block offsets = {"offsets", "Int64", 1, sizeof(int64_t), n};
     write_data_array_tag(file, &connectivity, &offset);
     write_data_array_tag(file, &offsets, &offset);
-    fputs("      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _", file);
+    fputs("      </Verts>\n    </Piece>\n  </PolyData>\n  <AppendedData encoding=\"raw\">\n   _",
+          file);
 }
 
 static int write_array_block(FILE *file, const void *data, size_t element_size, uint64_t count)
 {
-    return write_block_header(file, count * element_size) && write_little_endian(file, data, element_size, count);
+    return write_block_header(file, count * element_size) &&
+           write_little_endian(file, data, element_size, count);
 }
 
-static int write_payload(FILE *file, uint64_t n, const bdl_vec3 *positions, const bdl_vtk_array *arrays,
-                         int array_count)
+static int write_payload(FILE *file, uint64_t n, const bdl_vec3 *positions,
+                         const bdl_vtk_array *arrays, int array_count)
 {
     for (int i = 0; i < array_count; ++i) {
         block b = block_for_array(&arrays[i], n);
@@ -170,8 +187,8 @@ static int write_payload(FILE *file, uint64_t n, const bdl_vec3 *positions, cons
     return write_int64_sequence(file, 0, n) && write_int64_sequence(file, 1, n);
 }
 
-bdl_result bdl_vtp_write(const char *path, long n, const bdl_vec3 *positions, const bdl_vtk_array *arrays,
-                         int array_count)
+bdl_result bdl_vtp_write(const char *path, long n, const bdl_vec3 *positions,
+                         const bdl_vtk_array *arrays, int array_count)
 {
     if (!arrays_are_valid(n, positions, arrays, array_count))
         return BDL_ERR_IO;
@@ -223,7 +240,8 @@ static bdl_result pvd_write(const bdl_pvd *pvd)
           "  <Collection>\n",
           file);
     for (long i = 0; i < pvd->count; ++i) {
-        fprintf(file, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"", pvd->entries[i].time);
+        fprintf(file, "    <DataSet timestep=\"%.17g\" group=\"\" part=\"0\" file=\"",
+                pvd->entries[i].time);
         write_xml_escaped(file, pvd->entries[i].file);
         fputs("\"/>\n", file);
     }

@@ -20,15 +20,15 @@ typedef enum bdl_vtk_type {
 typedef struct bdl_vtk_array {
     const char *name;
     bdl_vtk_type type;
-    int components; ///< >= 1; 1 for scalars, 3 for vectors
+    int components;   ///< >= 1; 1 for scalars, 3 for vectors
     const void *data; ///< n * components elements; may be NULL when n == 0
 } bdl_vtk_array;
 
 /// Writes `n` particles at `positions` [m] with `array_count` per-point arrays to `path`
 /// atomically. Returns BDL_ERR_IO on a write failure or invalid arguments (n < 0, missing data,
 /// components < 1), BDL_ERR_NOMEM if a scratch buffer cannot be allocated.
-bdl_result bdl_vtp_write(const char *path, long n, const bdl_vec3 *positions, const bdl_vtk_array *arrays,
-                         int array_count);
+bdl_result bdl_vtp_write(const char *path, long n, const bdl_vec3 *positions,
+                         const bdl_vtk_array *arrays, int array_count);
 
 /// A ParaView collection (.pvd) listing snapshot files with their times.
 typedef struct bdl_pvd bdl_pvd;

@@ -140,6 +140,7 @@ typedef struct bdl_output_def {
 
 typedef struct bdl_guard_def {
     double max_overlap;     ///< stop when any overlap exceeds this fraction of the smaller radius
+    double initial_overlap; ///< refuse initial overlaps above this fraction of the smaller radius
     double dt_refuse;       ///< refuse dt above this fraction of the smallest contact time
     double dt_warn;         ///< warn for dt above this fraction
     double energy_growth;   ///< stop when energy grows by this fraction over work supplied

@@ -269,6 +269,9 @@ const bdl_scene_key bdl_scene_keys[] = {
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0),
      LE(1), .doc = "stop when an overlap exceeds this fraction of the smaller radius"},
+    {S(GUARDS), "initial_overlap", NUM, "-", IN_SCENE(guards.initial_overlap), .def = {0.01},
+     GE(0), LE(1),
+     .doc = "refuse initial particles overlapping by more than this fraction of the smaller radius"},
     {S(GUARDS), "dt_refuse", NUM, "-", IN_SCENE(guards.dt_refuse), .def = {0.2}, GT(0), LE(1),
      .doc = "refuse a dt above this fraction of the smallest contact time"},
     {S(GUARDS), "dt_warn", NUM, "-", IN_SCENE(guards.dt_warn), .def = {0.05}, GT(0), LE(1),

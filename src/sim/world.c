@@ -153,8 +153,7 @@ static bdl_result pour(bdl_world *w)
             return BDL_ERR_NOMEM;
         for (long i = before; i < w->particles.count; ++i) {
             w->inserted_energy += particle_energy(&w->particles, i, w->scene.gravity);
-            w->particles.force[i] = bdl_v3_madd(bdl_v3_zero(), w->scene.gravity,
-                                                1.0 / w->particles.inv_mass[i]);
+            w->particles.force[i] = bdl_v3_zero();
         }
     }
     return BDL_OK;
@@ -164,7 +163,7 @@ bdl_result bdl_world_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
     double h = 0.5 * w->dt;
-    double max_move2 = bdl_dem_kick_drift(p, h, w->dt);
+    double max_move2 = bdl_dem_kick_drift(p, w->scene.gravity, h, w->dt);
     w->step++;
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
@@ -254,13 +253,14 @@ static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_er
             double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
             double overlap = p->radius[i] + p->radius[j] - dist;
             double rmin = fmin(p->radius[i], p->radius[j]);
-            if (overlap > 1e-6 * rmin) {
+            if (overlap > s->guards.initial_overlap * rmin + 1e-12 * rmin) {
                 const bdl_create_def *c = creator_of(w, p->id[i], first_id);
                 snprintf(err->message, sizeof err->message,
                          "%s:%d: [create %s]: initial particles %u and %u overlap by %.3g%% of the "
-                         "smaller radius (allowed: none); move them apart or use a random or lattice fill",
+                         "smaller radius (allowed: [guards] initial_overlap = %g); move them apart or use a "
+                         "random or lattice fill",
                          s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->id[j],
-                         100.0 * overlap / rmin);
+                         100.0 * overlap / rmin, s->guards.initial_overlap);
                 return BDL_ERR_SCENE;
             }
         }
@@ -268,7 +268,7 @@ static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_er
             bdl_vec3 n;
             int prim = nb->wall_prim[k];
             double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
-            if (gap < -1e-6 * p->radius[i]) {
+            if (gap < -(s->guards.initial_overlap + 1e-12) * p->radius[i]) {
                 const bdl_create_def *c = creator_of(w, p->id[i], first_id);
                 snprintf(err->message, sizeof err->message,
                          "%s:%d: [create %s]: initial particle %u overlaps wall '%s' by %.3g%% of its radius",
