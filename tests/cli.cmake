@@ -38,3 +38,7 @@ add_test(NAME cli_resume COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/vibrated_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
 set_tests_properties(cli_resume PROPERTIES LABELS cli TIMEOUT 600)
+
+add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.sh $<TARGET_FILE:bedlam>
+  ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)
+set_tests_properties(cli_sigint PROPERTIES LABELS cli TIMEOUT 120)
