@@ -26,7 +26,7 @@ typedef enum bdl_normal_law {
     BDL_LAW_HERTZ = 1,  ///< Hertz-Mindlin with delta^(1/4)-scaled (restitution-based) damping
 } bdl_normal_law;
 
-/// How the Hertz damping coefficient is obtained from the restitution ([contact] damping).
+/// How the damping coefficient is obtained from the restitution ([contact] damping).
 typedef enum bdl_damping_mode {
     BDL_DAMPING_EXACT = 0,       ///< solved numerically once per pair so the realised e matches
     BDL_DAMPING_CLOSED_FORM = 1, ///< the closed form of LIGGGHTS/EDEM (approximate at low e)

@@ -88,7 +88,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .enum_names = law_names, .doc = "normal contact law: linear spring-dashpot or Hertz-Mindlin"},
     {S(CONTACT), "damping", .type = BDL_KEY_ENUM, "-", IN_SCENE(damping),
      .def = {BDL_DAMPING_EXACT}, .enum_names = damping_names,
-     .doc = "Hertz damping from restitution: exact (solved per pair) or closed_form"},
+     .doc = "damping from restitution: exact (solved with the no-pull clamp) or closed_form (textbook formula)"},
     {S(CONTACT), "rolling", .type = BDL_KEY_ENUM, "-", IN_SCENE(rolling),
      .def = {BDL_ROLLING_NONE}, .enum_names = rolling_names,
      .doc = "rolling resistance: none, or a constant torque mu_r R* F_n against rolling"},
