@@ -166,11 +166,26 @@ static int grid_for_region(placement_grid *g, const bdl_particles *p, bdl_vec3 l
     return 1;
 }
 
+/// Draws a centre uniformly in the creator's region (a whole sphere inside it); true when the
+/// sphere overlaps no wall and no particle.
+static int try_place(const bdl_create_def *c, const bdl_walls *walls, const placement_grid *g,
+                     const bdl_particles *p, double r, double r_max, bdl_rng *rng, bdl_vec3 *x)
+{
+    // One draw per statement: argument evaluation order is unspecified in C.
+    x->x = bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r);
+    x->y = bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r);
+    x->z = bdl_rng_range(rng, c->region_min.z + r, c->region_max.z - r);
+    return inside_walls(walls, *x, r) && !grid_overlaps(g, p, *x, r, r_max);
+}
+
 static bdl_vec3 draw_velocity(const bdl_create_def *c, bdl_rng *rng)
 {
     if (c->velocity_jitter <= 0.0)
         return c->velocity;
-    bdl_vec3 d = bdl_v3(bdl_rng_normal(rng), bdl_rng_normal(rng), bdl_rng_normal(rng));
+    bdl_vec3 d;
+    d.x = bdl_rng_normal(rng);
+    d.y = bdl_rng_normal(rng);
+    d.z = bdl_rng_normal(rng);
     return bdl_v3_madd(c->velocity, bdl_v3_normalize(d), c->velocity_jitter * bdl_rng_uniform(rng));
 }
 
@@ -221,10 +236,8 @@ static bdl_result create_random(const bdl_scene *scene, const bdl_create_def *c,
     while (placed < target && attempts < max_attempts) {
         ++attempts;
         double r = 0.5 * d;
-        bdl_vec3 x = bdl_v3(bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r),
-                            bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r),
-                            bdl_rng_range(rng, c->region_min.z + r, c->region_max.z - r));
-        if (!inside_walls(walls, x, r) || grid_overlaps(&g, p, x, r, r_max))
+        bdl_vec3 x;
+        if (!try_place(c, walls, &g, p, r, r_max, rng, &x))
             continue;
         if (add_checked(p, &g, x, draw_velocity(c, rng), r, scene, c->species) < 0) {
             grid_free(&g);
@@ -404,10 +417,8 @@ long bdl_create_pour(const bdl_scene *scene, int c, double t, long *poured, bdl_
         double r = 0.5 * bdl_species_draw_diameter(s, rng);
         int placed = 0;
         for (int attempt = 0; attempt < 50 && !placed; ++attempt) {
-            bdl_vec3 x = bdl_v3(bdl_rng_range(rng, def->region_min.x + r, def->region_max.x - r),
-                                bdl_rng_range(rng, def->region_min.y + r, def->region_max.y - r),
-                                bdl_rng_range(rng, def->region_min.z + r, def->region_max.z - r));
-            if (!inside_walls(walls, x, r) || grid_overlaps(&g, p, x, r, r_max))
+            bdl_vec3 x;
+            if (!try_place(def, walls, &g, p, r, r_max, rng, &x))
                 continue;
             if (add_checked(p, &g, x, draw_velocity(def, rng), r, scene, def->species) < 0) {
                 grid_free(&g);
