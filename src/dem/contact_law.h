@@ -13,8 +13,10 @@
 // tangential sub-model (spring with history, Cundall & Strack; Luding; LIGGGHTS "history"):
 //   the stored displacement u is rotated into the current contact plane (keeping its length),
 //   u += v_t dt,  F_t = -k_t u - eta_t v_t,   k_t = k_t (linear) or 8 G* sqrt(R* delta) (Mindlin),
-//   and if |F_t| > mu F_n the force is scaled back to the Coulomb cone and u reset so that
-//   -k_t u - eta_t v_t equals the capped force (sliding).
+//   and if |F_t| > mu F_n the force is scaled back to the Coulomb cone and u reset so that the
+//   spring alone, -k_t u, equals the capped force (sliding).
+// onset (linear law): in the step where a contact begins, both dashpots act for the fraction of
+//   the step spent in contact, delta / (-v_n dt).
 // rolling sub-model (constant directional torque): M_r = -mu_r R* F_n w_rel/|w_rel|, limited so it
 //   never reverses the relative spin within one step.
 // The torque of F_t on body i is -a_i n x F_t and on body j -a_j n x F_t, with the lever arms
@@ -64,6 +66,11 @@ static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_pa
         kt = cp->kt;
     }
     double eta = hertz ? cp->damping * sqrt(g->m_eff * k) : 2.0 * cp->damping * sqrt(g->m_eff * k);
+    // A linear contact that began during this step has spent only delta / (-v_n dt) of it in
+    // contact: the dashpots act for that fraction, which resolves the jump of the linear damping
+    // force at first touch. (Hertz damping grows from zero with delta^(1/4): no jump to resolve.)
+    if (!hertz && vn < 0.0 && g->overlap < -vn * dt)
+        eta *= g->overlap / (-vn * dt);
     double fn = k * g->overlap - eta * vn;
     if (fn < 0.0)
         fn = 0.0; // no attraction: a damped contact releases when its force reaches zero
@@ -90,7 +97,10 @@ static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_pa
     if (ft2 > limit * limit) {
         double ftl = sqrt(ft2);
         ft = ftl > 0.0 ? bdl_v3_scale(ft, limit / ftl) : ft;
-        u = kt > 0.0 ? bdl_v3_scale(bdl_v3_madd(ft, vt, eta_t), -1.0 / kt) : bdl_v3_zero();
+        // The spring alone carries the capped force. (Leaving the dashpot's share in it would
+        // make the spring point against the slip, and with the Mindlin stiffness growing as the
+        // overlap does it would push along the slip on the next step.)
+        u = kt > 0.0 ? bdl_v3_scale(ft, -1.0 / kt) : bdl_v3_zero();
     }
     *history = u;
     res.force = bdl_v3_add(res.force, ft);

@@ -36,7 +36,9 @@ static double impact_accel(int hertz, double c, double x, double v)
     return f > 0.0 ? -f : 0.0;
 }
 
-static double restitution_with_step(int hertz, double c, double h)
+/// Integrates the dimensionless impact; returns e and, in *duration, the contact time in the
+/// impact's own time unit.
+static double impact(int hertz, double c, double h, double *duration)
 {
     double x = 0.0, v = 1.0;
     for (long step = 0; step < 50000000L; ++step) {
@@ -48,15 +50,30 @@ static double restitution_with_step(int hertz, double c, double h)
         double vn = v + h / 6.0 * (k1v + 2.0 * k2v + 2.0 * k3v + k4v);
         // Contact ends when the overlap closes or the clamped force has released the body
         // (moving apart with zero force: the speed no longer changes).
-        if (step > 0 && (xn <= 0.0 || (vn < 0.0 && impact_accel(hertz, c, xn, vn) == 0.0)))
+        if (step > 0 && (xn <= 0.0 || (vn < 0.0 && impact_accel(hertz, c, xn, vn) == 0.0))) {
+            *duration = (double)(step + 1) * h;
             return vn < 0.0 ? -vn : 0.0;
+        }
         x = xn;
         v = vn;
     }
+    *duration = INFINITY;
     return 0.0;
 }
 
-double bdl_restitution_of(int hertz, double c) { return restitution_with_step(hertz, c, 2.0e-4); }
+double bdl_restitution_of(int hertz, double c)
+{
+    double duration;
+    return impact(hertz, c, 2.0e-4, &duration);
+}
+
+double bdl_contact_duration_ratio(int hertz, double c)
+{
+    double damped, elastic;
+    impact(hertz, c, 2.0e-4, &damped);
+    impact(hertz, 0.0, 2.0e-4, &elastic);
+    return damped / elastic;
+}
 
 double bdl_hertz_restitution_of(double c) { return bdl_restitution_of(1, c); }
 
@@ -215,6 +232,7 @@ void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_pa
                     apply_override(o, &cp);
             }
             cp.damping = damping_for(scene, &cache, cp.restitution);
+            cp.duration_ratio = bdl_contact_duration_ratio(scene->law == BDL_LAW_HERTZ, cp.damping);
             pair_params[a * ns + b] = cp;
         }
     for (int w = 0; w < scene->wall_count; ++w)
@@ -222,6 +240,7 @@ void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_pa
             bdl_contact_params cp = zero;
             mix_wall(&scene->walls[w].material, &scene->species[s].material, &cp);
             cp.damping = damping_for(scene, &cache, cp.restitution);
+            cp.duration_ratio = bdl_contact_duration_ratio(scene->law == BDL_LAW_HERTZ, cp.damping);
             wall_params[w * ns + s] = cp;
         }
 }
@@ -229,11 +248,9 @@ void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_pa
 double bdl_contact_time(const bdl_contact_params *cp, bdl_normal_law law, double m_eff, double r_eff,
                         double impact_speed)
 {
-    if (law == BDL_LAW_LINEAR) {
-        double w0 = sqrt(cp->kn / m_eff);
-        double z = cp->damping;
-        return PI / (w0 * sqrt(1.0 - z * z));
-    }
+    double ratio = cp->duration_ratio > 0.0 ? cp->duration_ratio : 1.0;
+    if (law == BDL_LAW_LINEAR)
+        return ratio * PI * sqrt(m_eff / cp->kn);
     double v = impact_speed > 1e-12 ? impact_speed : 1e-12;
-    return 2.87 * pow(m_eff * m_eff / (r_eff * cp->e_star * cp->e_star * v), 0.2);
+    return ratio * 2.87 * pow(m_eff * m_eff / (r_eff * cp->e_star * cp->e_star * v), 0.2);
 }

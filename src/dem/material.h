@@ -26,6 +26,7 @@ typedef struct bdl_contact_params {
     double friction;         ///< Coulomb coefficient mu [-]
     double rolling_friction; ///< mu_r [-]
     double restitution;      ///< configured e [-]
+    double duration_ratio;   ///< damped (clamped) contact duration / elastic duration [-]
 } bdl_contact_params;
 
 /// Closed-form damping ratio of a linear spring-dashpot whose force may turn attractive:
@@ -41,6 +42,8 @@ double bdl_hertz_damping_exact(double restitution);
 
 /// Restitution realised by a contact with damping coefficient c (zeta for linear) and the clamp.
 double bdl_restitution_of(int hertz, double c);
+/// Duration of the damped, clamped impact relative to the elastic one.
+double bdl_contact_duration_ratio(int hertz, double c);
 double bdl_hertz_restitution_of(double c);
 
 /// Fills params for every species pair (species_count^2, symmetric) and every wall-species pair
@@ -48,8 +51,9 @@ double bdl_hertz_restitution_of(double c);
 void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_params,
                              bdl_contact_params *wall_params);
 
-/// Duration of a contact [s]. Linear: t_c = pi / (omega_0 sqrt(1 - zeta^2)), independent of speed.
-/// Hertz (elastic): t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5) at impact speed v.
+/// Duration of a contact [s]: the elastic one, linear pi sqrt(m*/k_n) or Hertz
+/// 2.87 (m*^2 / (R* E*^2 v))^(1/5) at impact speed v, times the duration ratio of the damped,
+/// clamped impact (which ends sooner the stronger the damping).
 double bdl_contact_time(const bdl_contact_params *cp, bdl_normal_law law, double m_eff, double r_eff,
                         double impact_speed);
 

@@ -334,6 +334,14 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     }
 
     w->contact_time = bdl_world_min_contact_time(w, bdl_world_reference_speed(w), NULL, 0);
+    if (!(w->contact_time > 0.0) || !isfinite(w->contact_time)) {
+        snprintf(err->message, sizeof err->message,
+                 "%s: the contact time is %g s, so no time step can be derived; check the species' "
+                 "stiffness, youngs_modulus and restitution",
+                 scene->path, w->contact_time);
+        bdl_world_destroy(w);
+        return BDL_ERR_SCENE;
+    }
     w->dt = scene->dt > 0.0 ? scene->dt : scene->dt_fraction * w->contact_time;
     w->contact_time_dt_ratio = w->dt / w->contact_time;
 

@@ -1,0 +1,13 @@
+# Physics verification of the DEM solver (docs/verification-dem.md): restitution and its
+# convergence with dt, Hertz contact duration, sliding to rolling, conservation in collisions,
+# and static overlaps of a column. Each prints its table to stdout.
+bdl_add_test(test_bounce SOURCES test_bounce.c LABELS dem verification TIMEOUT 600)
+target_link_libraries(test_bounce PRIVATE OpenMP::OpenMP_C)
+bdl_add_test(test_hertz_duration SOURCES test_hertz_duration.c LABELS dem verification TIMEOUT 300)
+target_link_libraries(test_hertz_duration PRIVATE OpenMP::OpenMP_C)
+bdl_add_test(test_slide_roll SOURCES test_slide_roll.c LABELS dem verification TIMEOUT 300)
+target_link_libraries(test_slide_roll PRIVATE OpenMP::OpenMP_C)
+bdl_add_test(test_collision SOURCES test_collision.c LABELS dem verification TIMEOUT 900)
+target_link_libraries(test_collision PRIVATE OpenMP::OpenMP_C)
+bdl_add_test(test_column SOURCES test_column.c LABELS dem verification TIMEOUT 300)
+target_link_libraries(test_column PRIVATE OpenMP::OpenMP_C)

@@ -1,0 +1,63 @@
+// bedlam tests — build a world from a printf-formatted scene string.
+//
+// bdl_test_world("[run]\nend_time = %g\n...", 1.0) formats the text, reads it with
+// bdl_scene_load_string and builds the world; any error prints the scene's message (and the text)
+// and aborts, so a test never runs on a half-built world. Particles are re-sorted at neighbour
+// rebuilds: find them with bdl_test_find (by id), never by a fixed index.
+#ifndef BDL_TEST_SCENE_UTIL_H
+#define BDL_TEST_SCENE_UTIL_H
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "sim/world.h"
+
+#if defined(__GNUC__)
+#define BDL_TEST_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define BDL_TEST_PRINTF(a, b)
+#endif
+
+static inline bdl_world *bdl_test_world(const char *format, ...) BDL_TEST_PRINTF(1, 2);
+
+static inline bdl_world *bdl_test_world(const char *format, ...)
+{
+    char text[16384];
+    va_list ap;
+    va_start(ap, format);
+    int n = vsnprintf(text, sizeof text, format, ap);
+    va_end(ap);
+    if (n < 0 || n >= (int)sizeof text) {
+        fprintf(stderr, "bdl_test_world: scene text too long (%d characters)\n", n);
+        abort();
+    }
+    bdl_scene *scene = calloc(1, sizeof *scene); // large: keep it off the stack
+    bdl_scene_error err;
+    err.message[0] = '\0';
+    bdl_world *w = NULL;
+    if (!scene) {
+        fprintf(stderr, "bdl_test_world: out of memory\n");
+        abort();
+    }
+    if (bdl_scene_load_string(text, "test-scene", NULL, 0, scene, &err) != BDL_OK ||
+        bdl_world_create(scene, &w, &err) != BDL_OK || !w) {
+        fprintf(stderr, "bdl_test_world: %s\n--- scene ---\n%s\n-------------\n", err.message, text);
+        abort();
+    }
+    free(scene);
+    return w;
+}
+
+/// Index of the particle with stable id `id` (particles are re-sorted at rebuilds); aborts if
+/// there is none.
+static inline long bdl_test_find(const bdl_world *w, uint32_t id)
+{
+    for (long i = 0; i < w->particles.count; ++i)
+        if (w->particles.id[i] == id)
+            return i;
+    fprintf(stderr, "bdl_test_find: no particle with id %u\n", (unsigned)id);
+    abort();
+}
+
+#endif
