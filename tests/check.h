@@ -34,12 +34,13 @@ static int bdl_test_checks = 0;
 /// |actual - expected| <= rel * |expected| (or <= rel when expected is 0).
 #define CHECK_CLOSE(actual, expected, rel)                                                         \
     do {                                                                                           \
-        double a_ = (actual), e_ = (expected), r_ = (rel);                                        \
+        double a_ = (actual), e_ = (expected), r_ = (rel);                                         \
         double tol_ = e_ != 0.0 ? r_ * fabs(e_) : r_;                                              \
         ++bdl_test_checks;                                                                         \
         if (!(fabs(a_ - e_) <= tol_)) {                                                            \
             ++bdl_test_failures;                                                                   \
-            fprintf(stderr, "%s:%d: CHECK_CLOSE failed: %s = %.10g, expected %.10g (rel tol %g)\n", \
+            fprintf(stderr,                                                                        \
+                    "%s:%d: CHECK_CLOSE failed: %s = %.10g, expected %.10g (rel tol %g)\n",        \
                     __FILE__, __LINE__, #actual, a_, e_, r_);                                      \
         }                                                                                          \
     } while (0)

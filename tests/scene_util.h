@@ -42,7 +42,8 @@ static inline bdl_world *bdl_test_world(const char *format, ...)
     }
     if (bdl_scene_load_string(text, "test-scene", NULL, 0, scene, &err) != BDL_OK ||
         bdl_world_create(scene, &w, &err) != BDL_OK || !w) {
-        fprintf(stderr, "bdl_test_world: %s\n--- scene ---\n%s\n-------------\n", err.message, text);
+        fprintf(stderr, "bdl_test_world: %s\n--- scene ---\n%s\n-------------\n", err.message,
+                text);
         abort();
     }
     free(scene);

@@ -17,7 +17,7 @@
 
 #define PI 3.14159265358979323846
 
-static const double diameter = 0.01; // m
+static const double diameter = 0.01;   // m
 static const double density = 2500.0;  // kg/m^3
 static const double stiffness = 2.0e6; // N/m (linear law): overlap ~1 % of r at 2 m/s
 static const double youngs = 1.0e9;    // Pa (Hertz law): overlap ~2 % of r at 2 m/s
@@ -85,7 +85,7 @@ static double measure_restitution(int hertz, const char *damping, double e, doub
 }
 
 #define NPHASE 8
-#define NDT 5
+#define NDT    5
 static const double dt_div[NDT] = {25, 50, 100, 200, 400};
 
 /// Worst relative restitution error over the contact phases.
@@ -105,8 +105,9 @@ static void restitution_vs_dt(void)
 {
     static const double es[3] = {0.3, 0.6, 0.9};
     static const double vs[2] = {0.5, 2.0};
-    printf("\nRestitution error vs dt (gravity off; worst |e_meas - e|/e over %d contact phases)\n\n",
-           NPHASE);
+    printf(
+        "\nRestitution error vs dt (gravity off; worst |e_meas - e|/e over %d contact phases)\n\n",
+        NPHASE);
     printf("| law | e | v (m/s) |");
     for (int d = 0; d < NDT; ++d)
         printf(" t_c/%g |", dt_div[d]);
@@ -187,8 +188,10 @@ static void drop_heights(void)
     const double g = 9.81, h0 = 0.1, r = 0.5 * diameter;
     const double dt_fraction = 400.0;
     printf("\nDrop from h0 = %g m under gravity: rebound heights h_n/h0 vs e^(2n) (contacts at "
-           "dt = t_c/%g)\n\n", h0, dt_fraction);
-    printf("| law | e | n | h_n/h0 | e^(2n) | rel. error | g t_c / v_n |\n|---|---|---|---|---|---|---|\n");
+           "dt = t_c/%g)\n\n",
+           h0, dt_fraction);
+    printf("| law | e | n | h_n/h0 | e^(2n) | rel. error | g t_c / v_n "
+           "|\n|---|---|---|---|---|---|---|\n");
     for (int hertz = 0; hertz <= 1; ++hertz)
         for (int ie = 0; ie < 2; ++ie) {
             double e = ie == 0 ? 0.6 : 0.9;
@@ -204,7 +207,8 @@ static void drop_heights(void)
                 double z = w->particles.pos[0].z, vz = w->particles.vel[0].z;
                 // Lowest point of the next coarse step (Verlet is exact in free flight).
                 double z_next = z + vz * dt_flight - 0.5 * g * dt_flight * dt_flight;
-                int flight = !in_contact && z > r && z_next - r > 2.0 * fabs(vz) * dt + 2.0 * g * dt * dt;
+                int flight =
+                    !in_contact && z > r && z_next - r > 2.0 * fabs(vz) * dt + 2.0 * g * dt * dt;
                 w->dt = flight ? dt_flight : dt;
                 flight ? ++flight_steps : ++fine_steps;
                 bdl_world_step(w);
@@ -220,8 +224,9 @@ static void drop_heights(void)
                     double ref = pow(e, 2.0 * n);
                     double vn = v0 * pow(e, n - 1);
                     double gt = g * contact_time(hertz, e, vn) / vn;
-                    printf("| %s | %.1f | %d | %.5f | %.5f | %.2e | %.1e |\n", hertz ? "hertz" : "linear",
-                           e, n, hn / h0, ref, fabs(hn / h0 - ref) / ref, gt);
+                    printf("| %s | %.1f | %d | %.5f | %.5f | %.2e | %.1e |\n",
+                           hertz ? "hertz" : "linear", e, n, hn / h0, ref,
+                           fabs(hn / h0 - ref) / ref, gt);
                     CHECK_CLOSE(hn / h0, ref, 0.02);
                     CHECK(gt < 0.005); // the premise: gravity negligible during contact
                 }

@@ -9,7 +9,8 @@
 //     each half kick changes L by h (x_i × F + x_j × (-F) + T_i + T_j) = h (d × F - d × F) = 0.
 //     What remains is rounding: each step adds a few roundings of terms no larger than the
 //     magnitudes sum |m v| and sum (|m x × v| + |I w|), i.e. ~1e-16 of them per step; over the
-//     few thousand steps of a run, if they all added up, a few 1e-13. We require 1e-12 of those initial magnitudes (10x margin).
+//     few thousand steps of a run, if they all added up, a few 1e-13. We require 1e-12 of those
+//     initial magnitudes (10x margin).
 // (b) e = 1, frictionless, head-on: the relative kinetic-energy error after one collision falls at
 //     second order with dt (velocity Verlet is second order for conservative forces; the onset of
 //     contact only kinks the linear force and leaves the Hertz force C^1). Worst over 8 contact
@@ -29,7 +30,10 @@
 
 #define PI 3.14159265358979323846
 
-static double inertia(const bdl_particles *p, long i) { return 1.0 / bdl_particle_inv_inertia(p, i); }
+static double inertia(const bdl_particles *p, long i)
+{
+    return 1.0 / bdl_particle_inv_inertia(p, i);
+}
 
 /// Total linear and angular momentum (about the origin), and the magnitudes they are made of.
 static void momenta(const bdl_world *w, bdl_vec3 *P, bdl_vec3 *L, double *p_scale, double *l_scale)
@@ -51,8 +55,10 @@ static void momenta(const bdl_world *w, bdl_vec3 *P, bdl_vec3 *L, double *p_scal
 
 static void conservation(void)
 {
-    printf("(a) Oblique frictional collisions: momentum conservation (max deviation over all steps)\n\n");
-    printf("| law | steps | contact steps | |dP|max / sum|m v| | |dL|max / sum(|m x×v|+|I w|) | |dw_A| (rad/s) |\n");
+    printf("(a) Oblique frictional collisions: momentum conservation (max deviation over all "
+           "steps)\n\n");
+    printf("| law | steps | contact steps | |dP|max / sum|m v| | |dL|max / sum(|m x×v|+|I w|) | "
+           "|dw_A| (rad/s) |\n");
     printf("|---|---|---|---|---|---|\n");
     for (int hertz = 0; hertz <= 1; ++hertz) {
         // Sphere A: d = 10 mm, glass; sphere B: d = 6 mm, steel. B approaches A obliquely (impact
@@ -61,9 +67,11 @@ static void conservation(void)
             "[run]\nend_time = 1\ndt_fraction = 0.02\ngravity = 0 0 0\n"
             "[domain]\nmin = -0.05 -0.05 -0.05\nmax = 0.05 0.05 0.05\n"
             "[contact]\nlaw = %s\nrolling = %s\n"
-            "[species glass]\ndiameter = 0.01\ndensity = 2500\n%s\nrestitution = 0.7\nfriction = 0.4\n"
+            "[species glass]\ndiameter = 0.01\ndensity = 2500\n%s\nrestitution = 0.7\nfriction = "
+            "0.4\n"
             "tangential_damping_ratio = 0.3\nrolling_friction = 0.05\n"
-            "[species steel]\ndiameter = 0.006\ndensity = 7800\n%s\nrestitution = 0.8\nfriction = 0.6\n"
+            "[species steel]\ndiameter = 0.006\ndensity = 7800\n%s\nrestitution = 0.8\nfriction = "
+            "0.6\n"
             "tangential_damping_ratio = 0.3\nrolling_friction = 0.02\n"
             "[create a]\ntype = lattice\nspecies = glass\ncount = 1\nvelocity = 0.3 0.1 -0.05\n"
             "region_min = -0.011 0.001 0.002\nregion_max = 0.004 0.016 0.017\n"
@@ -99,9 +107,10 @@ static void conservation(void)
                 break;
         }
         double dw = bdl_v3_len(bdl_v3_sub(p->omega[bdl_test_find(w, 0)], w_a0));
-        printf("| %s | %d | %d | %.2e | %.2e | %.3g |\n", hertz ? "hertz + rolling" : "linear", steps,
-               contact_steps, dp / p_scale, dl / l_scale, dw);
-        CHECK_MSG(contact_steps >= 10, "the spheres must collide (%d contact steps)", contact_steps);
+        printf("| %s | %d | %d | %.2e | %.2e | %.3g |\n", hertz ? "hertz + rolling" : "linear",
+               steps, contact_steps, dp / p_scale, dl / l_scale, dw);
+        CHECK_MSG(contact_steps >= 10, "the spheres must collide (%d contact steps)",
+                  contact_steps);
         CHECK(dw > 1.0); // friction acted: the spin of A changed
         CHECK_MSG(dp <= 1e-12 * p_scale, "linear momentum drift %.3g of %.3g", dp, p_scale);
         CHECK_MSG(dl <= 1e-12 * l_scale, "angular momentum drift %.3g of %.3g", dl, l_scale);
@@ -123,8 +132,9 @@ static double energy_error(int hertz, double v, double dt, double phi)
         "region_min = %.17g -0.005 -0.005\nregion_max = %.17g 0.01 0.01\n"
         "[create right]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
         "region_min = %.17g -0.005 -0.005\nregion_max = %.17g 0.01 0.01\n",
-        dt, hertz ? "hertz" : "linear", hertz ? "youngs_modulus = 1e9\npoisson_ratio = 0.3" : "stiffness = 1e6",
-        0.5 * v, -x0 - r, -x0 + 2.0 * r, -0.5 * v, x0 - r, x0 + 2.0 * r);
+        dt, hertz ? "hertz" : "linear",
+        hertz ? "youngs_modulus = 1e9\npoisson_ratio = 0.3" : "stiffness = 1e6", 0.5 * v, -x0 - r,
+        -x0 + 2.0 * r, -0.5 * v, x0 - r, x0 + 2.0 * r);
     bdl_diagnostics d;
     bdl_diagnostics_compute(w, 0.0, &d);
     double e0 = d.kinetic_energy;
@@ -148,8 +158,10 @@ static void energy_order(void)
     static const double div[5] = {25, 50, 100, 200, 400};
     const double v = 1.0, r = 0.005, m = 2500.0 * PI / 6.0 * 1e-6;
     printf("\n(b) Elastic head-on collision, v_rel = %g m/s: worst relative kinetic-energy error "
-           "after the collision over 8 contact phases\n\n", v);
-    printf("| law | t_c/25 | t_c/50 | t_c/100 | t_c/200 | t_c/400 | order 25-50 | 50-100 | 100-200 | 200-400 |\n");
+           "after the collision over 8 contact phases\n\n",
+           v);
+    printf("| law | t_c/25 | t_c/50 | t_c/100 | t_c/200 | t_c/400 | order 25-50 | 50-100 | 100-200 "
+           "| 200-400 |\n");
     printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (int hertz = 0; hertz <= 1; ++hertz) {
         double m_eff = 0.5 * m, tc;
@@ -193,14 +205,16 @@ static void gas_energy(void)
     const int n = 1000;
     const double d = 1e-3, phi = 0.15;
     double side = cbrt(n * PI / 6.0 * d * d * d / phi);
-    bdl_world *w = bdl_test_world(
-        "[run]\nend_time = 1\ndt_fraction = 0.02\ngravity = 0 0 0\nseed = 11\n"
-        "[domain]\nmin = 0 0 0\nmax = %.17g %.17g %.17g\nperiodic = x y z\n"
-        "[contact]\nlaw = linear\n"
-        "[species glass]\ndiameter = %.17g\ndensity = 2500\nstiffness = 1.5e4\nrestitution = 1\nfriction = 0\n"
-        "[create gas]\ntype = random\ncount = %d\nregion_min = 0 0 0\nregion_max = %.17g %.17g %.17g\n"
-        "velocity_jitter = 1\n",
-        side, side, side, d, n, side, side, side);
+    bdl_world *w =
+        bdl_test_world("[run]\nend_time = 1\ndt_fraction = 0.02\ngravity = 0 0 0\nseed = 11\n"
+                       "[domain]\nmin = 0 0 0\nmax = %.17g %.17g %.17g\nperiodic = x y z\n"
+                       "[contact]\nlaw = linear\n"
+                       "[species glass]\ndiameter = %.17g\ndensity = 2500\nstiffness = "
+                       "1.5e4\nrestitution = 1\nfriction = 0\n"
+                       "[create gas]\ntype = random\ncount = %d\nregion_min = 0 0 0\nregion_max = "
+                       "%.17g %.17g %.17g\n"
+                       "velocity_jitter = 1\n",
+                       side, side, side, d, n, side, side, side);
     CHECK(w->particles.count == n);
     const long steps = 100000, every = 1000;
     bdl_diagnostics diag;
@@ -208,8 +222,9 @@ static void gas_energy(void)
     double e0 = bdl_diagnostics_total_energy(&diag), worst = 0.0, last = 0.0;
     long collisions_seen = 0;
     double t0 = wall_seconds();
-    printf("\n(c) %d elastic spheres, periodic box, volume fraction %.2f, dt = t_c/%.0f, %ld steps\n\n", n,
-           phi, 1.0 / w->contact_time_dt_ratio, steps);
+    printf("\n(c) %d elastic spheres, periodic box, volume fraction %.2f, dt = t_c/%.0f, %ld "
+           "steps\n\n",
+           n, phi, 1.0 / w->contact_time_dt_ratio, steps);
     printf("| step | (E - E0)/E0 | mean coordination |\n|---|---|---|\n");
     for (long s = 1; s <= steps; ++s) {
         bdl_world_step(w);
@@ -223,8 +238,9 @@ static void gas_energy(void)
         if (s % (10 * every) == 0)
             printf("| %ld | %+.2e | %.4f |\n", s, rel, diag.mean_coordination);
     }
-    printf("\nmax |E - E0|/E0 = %.2e, final %+.2e (E0 = %.4g J); %.1f s wall, %ld neighbour builds\n",
-           worst, last, e0, wall_seconds() - t0, w->neighbor.builds);
+    printf(
+        "\nmax |E - E0|/E0 = %.2e, final %+.2e (E0 = %.4g J); %.1f s wall, %ld neighbour builds\n",
+        worst, last, e0, wall_seconds() - t0, w->neighbor.builds);
     CHECK(collisions_seen > 10); // contacts were present at the samples: the gas does collide
     CHECK_MSG(worst <= 1e-3, "energy drift %.3g", worst);
     bdl_world_destroy(w);

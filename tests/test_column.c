@@ -20,7 +20,7 @@
 #include "scene_util.h"
 
 #define PI 3.14159265358979323846
-#define N 5
+#define N  5
 
 static const double diameter = 0.01, density = 2500.0, g = 9.81;
 static const double stiffness = 1.0e4, youngs = 1.0e8, poisson = 0.3;
@@ -88,8 +88,8 @@ static void column(int hertz)
         CHECK_CLOSE(overlap, theory, 1e-3);
         lateral = fmax(lateral, fmax(fabs(x[c].x - x[0].x), fabs(x[c].y - x[0].y)));
     }
-    printf("\nsettled after %.3f s (%ld steps, dt = t_c/%.0f); largest lateral offset %.1e m\n\n", w->time,
-           steps, 1.0 / w->contact_time_dt_ratio, lateral);
+    printf("\nsettled after %.3f s (%ld steps, dt = t_c/%.0f); largest lateral offset %.1e m\n\n",
+           w->time, steps, 1.0 / w->contact_time_dt_ratio, lateral);
     CHECK(lateral < 1e-12);
     bdl_world_destroy(w);
 }

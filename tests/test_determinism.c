@@ -18,7 +18,8 @@ static const char *const scene_text =
     "[species small]\ndiameter = 0.003\ndistribution = uniform\ndiameter_min = 0.0025\n"
     "diameter_max = 0.0035\ndensity = 2500\nyoungs_modulus = 5e6\nrestitution = 0.6\n"
     "friction = 0.4\nrolling_friction = 0.05\n"
-    "[species big]\ndiameter = 0.006\ndensity = 1200\nyoungs_modulus = 5e6\nrestitution = 0.8\nfriction = 0.3\n"
+    "[species big]\ndiameter = 0.006\ndensity = 1200\nyoungs_modulus = 5e6\nrestitution = "
+    "0.8\nfriction = 0.3\n"
     "[wall tube]\ntype = cylinder\npoint = 0 0 0\naxis = 0 0 1\nradius = 0.025\n"
     "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\nmotion = vibrate\n"
     "frequency = 20\namplitude = 0.002\n"
@@ -64,7 +65,8 @@ int main(void)
         bdl_world_destroy(w);
     }
     CHECK(hashes[0] != 0);
-    CHECK_MSG(hashes[0] == hashes[1], "state after %d steps differs between 1 and 2 threads", steps);
+    CHECK_MSG(hashes[0] == hashes[1], "state after %d steps differs between 1 and 2 threads",
+              steps);
     CHECK(counts[0] > 300); // pouring happened
 
     // Resume: checkpoint half-way, continue in a new world, compare with the uninterrupted run.

@@ -94,7 +94,8 @@ int main(void)
     double m = density * PI / 6.0 * diameter * diameter * diameter;
     double e_star = youngs / (2.0 * (1.0 - poisson * poisson));
     printf("Hertz contact duration, e = 1 (dt = t_c/1000, start and end interpolated)\n\n");
-    printf("| contact | v (m/s) | t_c theory (s) | t_c measured (s) | rel. error | rebound/impact speed |\n");
+    printf("| contact | v (m/s) | t_c theory (s) | t_c measured (s) | rel. error | rebound/impact "
+           "speed |\n");
     printf("|---|---|---|---|---|---|\n");
     for (int pair = 0; pair <= 1; ++pair)
         for (int iv = 0; iv < 2; ++iv) {
@@ -103,8 +104,9 @@ int main(void)
             double ref = hertz_time(m_eff, r_eff, e_star, v);
             double rebound = 0.0;
             double tc = measure(pair, v, ref, &rebound);
-            printf("| %s | %.1f | %.5e | %.5e | %.2e | %.6f |\n", pair ? "sphere-sphere" : "sphere-wall",
-                   v, ref, tc, fabs(tc - ref) / ref, rebound);
+            printf("| %s | %.1f | %.5e | %.5e | %.2e | %.6f |\n",
+                   pair ? "sphere-sphere" : "sphere-wall", v, ref, tc, fabs(tc - ref) / ref,
+                   rebound);
             CHECK_CLOSE(tc, ref, 0.02);
             CHECK_CLOSE(rebound, 1.0, 1e-3);
         }

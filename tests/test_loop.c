@@ -17,7 +17,8 @@ static const char *const scene_text =
     "[species s]\ndiameter = 0.002\ndensity = 2500\nstiffness = 1000\nrestitution = 0.5\n"
     "[wall base]\ntype = box\nmin = 0 0 0\nmax = 0.02 0.02 0.05\nmotion = vibrate\n"
     "frequency = 20\namplitude = 0.001\n"
-    "[create bed]\ntype = lattice\ncount = 50\nregion_min = 0 0 0.002\nregion_max = 0.02 0.02 0.02\n";
+    "[create bed]\ntype = lattice\ncount = 50\nregion_min = 0 0 0.002\nregion_max = 0.02 0.02 "
+    "0.02\n";
 
 static void pause_ms(long ms)
 {

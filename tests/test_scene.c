@@ -325,10 +325,14 @@ static void test_overrides_and_syntax(void)
                        "min = -1 -1 -1\r\nmax = 1 1 1 # box\r\n[species glass] # beads\r\n"
                        "diameter = 1e-2\r\ndensity = 2.5e3\r\nyoungs_modulus = 1E7\r\n"
                        "restitution = 0.5\r\n[pair glass glass]\r\nfriction = 0.2\r\n";
-    const char *overrides[] = {"run.end_time=3", "species.glass.density = 1000",
-                               "contact.law=linear", "species.glass.stiffness=1e4",
-                               "pair.glass.glass.stiffness=2e4", "domain.periodic=z",
-                               "run.seed=18446744073709551615", "guards.check_interval=1e3"};
+    const char *overrides[] = {"run.end_time=3",
+                               "species.glass.density = 1000",
+                               "contact.law=linear",
+                               "species.glass.stiffness=1e4",
+                               "pair.glass.glass.stiffness=2e4",
+                               "domain.periodic=z",
+                               "run.seed=18446744073709551615",
+                               "guards.check_interval=1e3"};
     bdl_result r = bdl_scene_load_string(text, "crlf.ini", overrides, 8, &scene, &err);
     CHECK_MSG(r == BDL_OK, "%s", err.message);
     if (r != BDL_OK)
@@ -404,7 +408,8 @@ typedef struct bad_scene {
 } bad_scene;
 
 #define SPECIES_B(extra)                                                                           \
-    "[species b]\ndiameter = 0.01\ndensity = 1000\nyoungs_modulus = 1e7\nrestitution = 0.5\n" extra
+    "[species b]\ndiameter = 0.01\ndensity = 1000\nyoungs_modulus = 1e7\nrestitution = "           \
+    "0.5\n" extra
 #define PLANE "[wall w]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
 
 static const bad_scene bad_scenes[] = {
@@ -433,8 +438,8 @@ static const bad_scene bad_scenes[] = {
     {"[run]\nend_time = 1\ngravity = 0 -9.81\n", "bad.ini:3:", "gravity", "got 2", NULL},
     {"[run]\nend_time = 1\ngravity = 0 0 -9.81 1\n", "bad.ini:3:", "gravity", "got 4", NULL},
     {MINIMAL "[specie x]\n", "bad.ini:11:", "specie", "did you mean 'species'?", NULL},
-    {"[run]\nend_time = 1\n[domain]\nmin = 0 0 0\nmax = 1 1 1\nperiodic = x w\n", "bad.ini:6:",
-     "periodic", "'w'", NULL},
+    {"[run]\nend_time = 1\n[domain]\nmin = 0 0 0\nmax = 1 1 1\nperiodic = x w\n",
+     "bad.ini:6:", "periodic", "'w'", NULL},
     {MINIMAL "[create c]\ntype = file\nfile = no_such_file.csv\n", "bad.ini:13:", "file",
      "no_such_file.csv", NULL},
     {MINIMAL "[create c]\ntype = random\ncount = 10\nregion_min = 0 0 0\nregion_max = 1 1 2\n",
@@ -469,8 +474,8 @@ static const bad_scene bad_scenes[] = {
      "bad.ini:14:", "diameter_min", "larger than diameter", NULL},
     {MINIMAL "[species s2]\ndiameter = 0.01\ndistribution = uniform\ndensity = 1\n",
      "bad.ini:11:", "diameter_min", "for distribution = uniform", NULL},
-    {MINIMAL "[species s2]\ndiameter = 0.01\ndiameter_std = 0.001\n", "bad.ini:13:",
-     "diameter_std", "does not apply", NULL},
+    {MINIMAL "[species s2]\ndiameter = 0.01\ndiameter_std = 0.001\n", "bad.ini:13:", "diameter_std",
+     "does not apply", NULL},
     {"[run]\nend_time = 1\ngravity = 0 0 0\n[domain]\nmin = 0 0 0\nmax = 1 1 1\n"
      "[species a]\ndiameter = 1\ndensity = 1\nyoungs_modulus = 1\nrestitution = 1\n" PLANE
      "motion = vibrate\nfrequency = 10\ngamma = 1\n",
@@ -492,18 +497,18 @@ static const bad_scene bad_scenes[] = {
     {MINIMAL "[wall w\n", "bad.ini:11:", "]", "section header", NULL},
     {MINIMAL "[wall]\n", "bad.ini:11:", "wall", "wall NAME", NULL},
     {MINIMAL "[run now]\n", "bad.ini:11:", "run now", "takes no name", NULL},
-    {MINIMAL "[species this_name_is_far_too_long_for_a_species]\n", "bad.ini:11:",
-     "this_name_is_far_too_long", "longer than 31", NULL},
+    {MINIMAL "[species this_name_is_far_too_long_for_a_species]\n",
+     "bad.ini:11:", "this_name_is_far_too_long", "longer than 31", NULL},
     {MINIMAL "[wall w]\ntype = plain\n", "bad.ini:12:", "type", "did you mean 'plane'?", NULL},
-    {MINIMAL "[wall w]\ntype = plane\npoint = 0 0 0\n", "bad.ini:11:", "normal",
-     "for type = plane", NULL},
+    {MINIMAL "[wall w]\ntype = plane\npoint = 0 0 0\n", "bad.ini:11:", "normal", "for type = plane",
+     NULL},
     {MINIMAL "[create c]\ntype = lattice\nregion_min = 0 0 0\nregion_max = 1 1 1\n"
              "spacing = 0.005\n",
      "bad.ini:15:", "spacing", "overlap", NULL},
     {MINIMAL "[create c]\ntype = random\nregion_min = 0 0 0\nregion_max = 1 1 1\n",
      "bad.ini:11:", "count", "volume_fraction", NULL},
-    {MINIMAL "[create c]\ntype = random\nvolume_fraction = 0.7\n", "bad.ini:13:",
-     "volume_fraction", "(0, 0.64]", NULL},
+    {MINIMAL "[create c]\ntype = random\nvolume_fraction = 0.7\n", "bad.ini:13:", "volume_fraction",
+     "(0, 0.64]", NULL},
     {MINIMAL "[create c]\ntype = random\ncount = 10\nregion_min = 0 0 0\nregion_max = 1 1 0.005\n",
      "bad.ini:15:", "region_max", "narrower", NULL},
     {MINIMAL "[output]\nvtk_interval = -1\n", "bad.ini:12:", "vtk_interval", ">= 0 (s)", NULL},
@@ -523,8 +528,8 @@ static void test_bad_scenes(void)
         const bad_scene *b = &bad_scenes[i];
         bdl_scene_error err = {{0}};
         const char *overrides[1] = {b->override};
-        bdl_result r = bdl_scene_load_string(b->text, "bad.ini", overrides, b->override ? 1 : 0,
-                                             &scene, &err);
+        bdl_result r =
+            bdl_scene_load_string(b->text, "bad.ini", overrides, b->override ? 1 : 0, &scene, &err);
         printf("  case %2d: %s\n", i, err.message);
         CHECK_MSG(r == BDL_ERR_SCENE, "case %d accepted", i);
         CHECK_MSG(strncmp(err.message, b->where, strlen(b->where)) == 0,

@@ -27,11 +27,11 @@
 static const double diameter = 0.01, density = 2500.0, g = 9.81;
 
 typedef struct slide_result {
-    double t_fit;      ///< zero of the fitted sliding-phase slip line [s]
-    long forward;      ///< sliding steps where the friction force points along the slip
+    double t_fit;       ///< zero of the fitted sliding-phase slip line [s]
+    long forward;       ///< sliding steps where the friction force points along the slip
     double max_forward; ///< largest such force over mu F_n [-]
-    double v_roll;     ///< v_x at 2 t_s [s]
-    double slip_end;   ///< |slip| at 2 t_s [m/s]
+    double v_roll;      ///< v_x at 2 t_s [s]
+    double slip_end;    ///< |slip| at 2 t_s [m/s]
 } slide_result;
 
 static slide_result slide(int hertz, double mu, double v0)
@@ -41,18 +41,18 @@ static slide_result slide(int hertz, double mu, double v0)
     // Linear: k_n = 1e5 N/m, t_c ~ 5e-4 s; Hertz: E = 1e8 Pa, resting contact period ~ 2e-3 s.
     // Both with dt = 1e-5 s (t_c/50 or finer). e = 0.2 (zeta = 0.73, exact damping).
     double dt = 1.0e-5;
-    bdl_world *w = bdl_test_world(
-        "[run]\nend_time = 10\ndt = %.17g\ngravity = 0 0 %.17g\n"
-        "[domain]\nmin = -0.02 -0.02 -0.01\nmax = 1.5 0.02 0.05\n"
-        "[contact]\nlaw = %s\n"
-        "[species ball]\ndiameter = %.17g\ndensity = %.17g\n%s\nrestitution = 0.2\n"
-        "friction = %.17g\ntangential_damping_ratio = 0.5\n"
-        "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
-        "[create ball]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
-        "region_min = %.17g %.17g 0\nregion_max = %.17g %.17g %.17g\n",
-        dt, -g, hertz ? "hertz" : "linear", diameter, density,
-        hertz ? "youngs_modulus = 1e8\npoisson_ratio = 0.3" : "stiffness = 1e5", mu, v0, -r, -r,
-        r + diameter, r + diameter, 3.0 * diameter);
+    bdl_world *w =
+        bdl_test_world("[run]\nend_time = 10\ndt = %.17g\ngravity = 0 0 %.17g\n"
+                       "[domain]\nmin = -0.02 -0.02 -0.01\nmax = 1.5 0.02 0.05\n"
+                       "[contact]\nlaw = %s\n"
+                       "[species ball]\ndiameter = %.17g\ndensity = %.17g\n%s\nrestitution = 0.2\n"
+                       "friction = %.17g\ntangential_damping_ratio = 0.5\n"
+                       "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
+                       "[create ball]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
+                       "region_min = %.17g %.17g 0\nregion_max = %.17g %.17g %.17g\n",
+                       dt, -g, hertz ? "hertz" : "linear", diameter, density,
+                       hertz ? "youngs_modulus = 1e8\npoisson_ratio = 0.3" : "stiffness = 1e5", mu,
+                       v0, -r, -r, r + diameter, r + diameter, 3.0 * diameter);
     // Least-squares sums of s(t) over the sliding window.
     double n = 0, st = 0, ss = 0, stt = 0, sts = 0;
     slide_result res = {-1.0, 0, 0.0, 0.0, 0.0};
@@ -96,8 +96,9 @@ int main(void)
 {
     omp_set_num_threads(1);
     printf("Sliding to rolling: slip stop time t_s = 2 v0/(7 mu g) and rolling speed 5 v0/7\n\n");
-    printf("| law | mu | v0 (m/s) | t_s theory (s) | t_s fit (s) | err | v_roll/v0 | err | "
-           "|slip|/v0 at 2 t_s | sliding steps with friction along the slip (max F_t/(mu F_n)) |\n");
+    printf(
+        "| law | mu | v0 (m/s) | t_s theory (s) | t_s fit (s) | err | v_roll/v0 | err | "
+        "|slip|/v0 at 2 t_s | sliding steps with friction along the slip (max F_t/(mu F_n)) |\n");
     printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (int hertz = 0; hertz <= 1; ++hertz)
         for (int im = 0; im < 2; ++im)
@@ -105,15 +106,16 @@ int main(void)
                 double mu = im == 0 ? 0.3 : 0.6, v0 = iv == 0 ? 0.5 : 1.0;
                 double ts = 2.0 * v0 / (7.0 * mu * g), vr = 5.0 / 7.0;
                 slide_result s = slide(hertz, mu, v0);
-                printf("| %s | %.1f | %.1f | %.5f | %.5f | %.1e | %.5f | %.1e | %.1e | %ld (%.2f) |\n",
-                       hertz ? "hertz" : "linear", mu, v0, ts, s.t_fit, fabs(s.t_fit - ts) / ts,
-                       s.v_roll / v0, fabs(s.v_roll / v0 - vr) / vr, s.slip_end / v0, s.forward,
-                       s.max_forward);
+                printf(
+                    "| %s | %.1f | %.1f | %.5f | %.5f | %.1e | %.5f | %.1e | %.1e | %ld (%.2f) |\n",
+                    hertz ? "hertz" : "linear", mu, v0, ts, s.t_fit, fabs(s.t_fit - ts) / ts,
+                    s.v_roll / v0, fabs(s.v_roll / v0 - vr) / vr, s.slip_end / v0, s.forward,
+                    s.max_forward);
                 CHECK_CLOSE(s.t_fit, ts, 0.01);
                 CHECK_MSG(s.forward == 0,
                           "%s mu=%.1f v0=%.1f: friction pushed along the slip in %ld sliding steps "
-                          "(up to %.2f mu F_n)", hertz ? "hertz" : "linear", mu, v0, s.forward,
-                          s.max_forward);
+                          "(up to %.2f mu F_n)",
+                          hertz ? "hertz" : "linear", mu, v0, s.forward, s.max_forward);
                 CHECK_CLOSE(s.v_roll / v0, vr, 0.01);
                 CHECK(s.slip_end < 0.01 * v0); // rolling without slip
             }

@@ -32,17 +32,20 @@ static void print_contacts(const bdl_world *w, double v_ref)
             double db = sb->size_dist == BDL_SIZE_SINGLE ? sb->diameter : sb->diameter_min;
             double mb = sb->density * 3.14159265358979323846 / 6.0 * db * db * db;
             const bdl_contact_params *cp = &w->pair_params[a * ns + b];
-            double tc = bdl_contact_time(cp, s->law, ma * mb / (ma + mb), 0.5 * da * db / (da + db), v_ref);
-            printf("  %-12s - %-12s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = %.4g\n",
-                   sa->name, sb->name, tc, cp->restitution, cp->friction, cp->rolling_friction,
-                   w->hertz ? "c" : "zeta", cp->damping);
+            double tc =
+                bdl_contact_time(cp, s->law, ma * mb / (ma + mb), 0.5 * da * db / (da + db), v_ref);
+            printf(
+                "  %-12s - %-12s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = %.4g\n",
+                sa->name, sb->name, tc, cp->restitution, cp->friction, cp->rolling_friction,
+                w->hertz ? "c" : "zeta", cp->damping);
         }
         for (int k = 0; k < s->wall_count; ++k) {
             const bdl_contact_params *cp = &w->wall_params[k * ns + a];
             double tc = bdl_contact_time(cp, s->law, ma, 0.5 * da, v_ref);
-            printf("  %-12s - wall %-7s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = %.4g\n",
-                   sa->name, s->walls[k].name, tc, cp->restitution, cp->friction, cp->rolling_friction,
-                   w->hertz ? "c" : "zeta", cp->damping);
+            printf("  %-12s - wall %-7s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = "
+                   "%.4g\n",
+                   sa->name, s->walls[k].name, tc, cp->restitution, cp->friction,
+                   cp->rolling_friction, w->hertz ? "c" : "zeta", cp->damping);
         }
     }
 }
@@ -76,7 +79,7 @@ int bdl_cmd_check(int argc, char **argv)
     printf("modules:\n");
     printf("  dem: %s normal law%s; %s%s\n", w->hertz ? "Hertz-Mindlin" : "linear spring-dashpot",
            w->hertz ? (s->damping == BDL_DAMPING_EXACT ? " with exact restitution damping"
-                                                      : " with closed-form damping")
+                                                       : " with closed-form damping")
                     : "",
            w->friction ? "tangential spring with history, Coulomb friction"
                        : "frictionless (no tangential history)",
@@ -85,7 +88,8 @@ int bdl_cmd_check(int argc, char **argv)
            bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
     printf("  gas: none (no [gas] section: no grid is allocated)\n");
     printf("  periodic axes: %s%s%s%s\n", s->periodic[0] ? "x " : "", s->periodic[1] ? "y " : "",
-           s->periodic[2] ? "z " : "", s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
+           s->periodic[2] ? "z " : "",
+           s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
     printf("particles at start: %ld (species: %d)\n", w->particles.count, s->species_count);
     double v_ref = bdl_world_reference_speed(w);
     print_contacts(w, v_ref);
@@ -123,7 +127,8 @@ int bdl_cmd_check(int argc, char **argv)
     double wall = (double)total / rate * (double)steps_total;
     printf("cost: %ld steps to t = %g s; measured %.3g particle-steps/s on %d threads (%ld "
            "particles) -> about %.3g s wall time for %ld particles (%.3gx real time)\n",
-           steps_total, s->end_time, rate, omp_get_max_threads(), n, wall, total, s->end_time / wall);
+           steps_total, s->end_time, rate, omp_get_max_threads(), n, wall, total,
+           s->end_time / wall);
     bdl_world_destroy(w);
     return 0;
 }

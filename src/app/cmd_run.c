@@ -64,7 +64,8 @@ int bdl_parse_scene_opts(int argc, char **argv, const char *usage, bdl_scene_opt
         } else if (strcmp(a, "--threads") == 0) {
             double t;
             if (!parse_number(a, next, 1, &t) || t > 256 || t != (int)t) {
-                fprintf(stderr, "error: --threads %s: expected a whole number from 1 to 256\n", next);
+                fprintf(stderr, "error: --threads %s: expected a whole number from 1 to 256\n",
+                        next);
                 return 2;
             }
             opts->threads = (int)t;
@@ -95,7 +96,8 @@ static const char run_usage[] =
     "  run.log, diagnostics.csv, particles.pvd + vtk/*.vtp, checkpoint/state.bdlckpt\n"
     "\n"
     "options:\n"
-    "  --set SECTION.KEY=VALUE   override a scene key (named sections: species.glass.density=2500)\n"
+    "  --set SECTION.KEY=VALUE   override a scene key (named sections: "
+    "species.glass.density=2500)\n"
     "  --out DIR                 output folder (default runs/<scene name>)\n"
     "  --until T                 stop at simulated time T [s] instead of end_time\n"
     "  --steps N                 stop after N steps (smoke tests)\n"

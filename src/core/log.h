@@ -4,7 +4,12 @@
 
 #include <stdio.h>
 
-typedef enum bdl_log_level { BDL_LOG_ERROR, BDL_LOG_WARN, BDL_LOG_INFO, BDL_LOG_DEBUG } bdl_log_level;
+typedef enum bdl_log_level {
+    BDL_LOG_ERROR,
+    BDL_LOG_WARN,
+    BDL_LOG_INFO,
+    BDL_LOG_DEBUG
+} bdl_log_level;
 
 /// Messages at or below `level` go to stderr; everything up to INFO also goes to `file` if set.
 void bdl_log_set_level(bdl_log_level level);
@@ -17,7 +22,7 @@ __attribute__((format(printf, 2, 3)))
 void bdl_log(bdl_log_level level, const char *fmt, ...);
 
 #define bdl_error(...) bdl_log(BDL_LOG_ERROR, __VA_ARGS__)
-#define bdl_warn(...) bdl_log(BDL_LOG_WARN, __VA_ARGS__)
-#define bdl_info(...) bdl_log(BDL_LOG_INFO, __VA_ARGS__)
+#define bdl_warn(...)  bdl_log(BDL_LOG_WARN, __VA_ARGS__)
+#define bdl_info(...)  bdl_log(BDL_LOG_INFO, __VA_ARGS__)
 
 #endif

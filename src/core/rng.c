@@ -35,7 +35,10 @@ uint64_t bdl_rng_next(bdl_rng *rng)
 
 double bdl_rng_uniform(bdl_rng *rng) { return (double)(bdl_rng_next(rng) >> 11) * 0x1.0p-53; }
 
-double bdl_rng_range(bdl_rng *rng, double lo, double hi) { return lo + (hi - lo) * bdl_rng_uniform(rng); }
+double bdl_rng_range(bdl_rng *rng, double lo, double hi)
+{
+    return lo + (hi - lo) * bdl_rng_uniform(rng);
+}
 
 double bdl_rng_normal(bdl_rng *rng)
 {

@@ -13,11 +13,23 @@ typedef struct bdl_vec3 {
 
 static inline bdl_vec3 bdl_v3(double x, double y, double z) { return (bdl_vec3){x, y, z}; }
 static inline bdl_vec3 bdl_v3_zero(void) { return (bdl_vec3){0.0, 0.0, 0.0}; }
-static inline bdl_vec3 bdl_v3_add(bdl_vec3 a, bdl_vec3 b) { return (bdl_vec3){a.x + b.x, a.y + b.y, a.z + b.z}; }
-static inline bdl_vec3 bdl_v3_sub(bdl_vec3 a, bdl_vec3 b) { return (bdl_vec3){a.x - b.x, a.y - b.y, a.z - b.z}; }
-static inline bdl_vec3 bdl_v3_scale(bdl_vec3 a, double s) { return (bdl_vec3){a.x * s, a.y * s, a.z * s}; }
+static inline bdl_vec3 bdl_v3_add(bdl_vec3 a, bdl_vec3 b)
+{
+    return (bdl_vec3){a.x + b.x, a.y + b.y, a.z + b.z};
+}
+static inline bdl_vec3 bdl_v3_sub(bdl_vec3 a, bdl_vec3 b)
+{
+    return (bdl_vec3){a.x - b.x, a.y - b.y, a.z - b.z};
+}
+static inline bdl_vec3 bdl_v3_scale(bdl_vec3 a, double s)
+{
+    return (bdl_vec3){a.x * s, a.y * s, a.z * s};
+}
 static inline bdl_vec3 bdl_v3_neg(bdl_vec3 a) { return (bdl_vec3){-a.x, -a.y, -a.z}; }
-static inline double bdl_v3_dot(bdl_vec3 a, bdl_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline double bdl_v3_dot(bdl_vec3 a, bdl_vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 static inline double bdl_v3_len2(bdl_vec3 a) { return bdl_v3_dot(a, a); }
 static inline double bdl_v3_len(bdl_vec3 a) { return sqrt(bdl_v3_dot(a, a)); }
 
@@ -39,9 +51,15 @@ static inline bdl_vec3 bdl_v3_normalize(bdl_vec3 a)
     return l > 0.0 ? bdl_v3_scale(a, 1.0 / l) : a;
 }
 
-static inline int bdl_v3_isfinite(bdl_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+static inline int bdl_v3_isfinite(bdl_vec3 a)
+{
+    return isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
+}
 
-static inline double bdl_v3_comp(bdl_vec3 a, int axis) { return axis == 0 ? a.x : (axis == 1 ? a.y : a.z); }
+static inline double bdl_v3_comp(bdl_vec3 a, int axis)
+{
+    return axis == 0 ? a.x : (axis == 1 ? a.y : a.z);
+}
 
 static inline void bdl_v3_set_comp(bdl_vec3 *a, int axis, double v)
 {

@@ -297,7 +297,8 @@ static bdl_result create_lattice(const bdl_scene *scene, const bdl_create_def *c
         return fail(err, scene, c, what);
     }
     if (placed == 0)
-        return fail(err, scene, c, "lattice region holds no particle (region smaller than a diameter?)");
+        return fail(err, scene, c,
+                    "lattice region holds no particle (region smaller than a diameter?)");
     return BDL_OK;
 }
 
@@ -321,7 +322,8 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
     int ncols = 0;
     if (!fgets(line, sizeof line, f)) {
         fclose(f);
-        return fail(err, scene, c, "particle file is empty (expected a header such as x,y,z,diameter)");
+        return fail(err, scene, c,
+                    "particle file is empty (expected a header such as x,y,z,diameter)");
     }
     for (char *tok = strtok(line, ",\r\n"); tok; tok = strtok(NULL, ",\r\n"), ++ncols) {
         while (*tok == ' ')
@@ -356,11 +358,13 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
             ++s;
         }
         if (n < ncols) {
-            snprintf(what, sizeof what, "%s:%ld: expected %d numbers, found %d", c->file, row, ncols, n);
+            snprintf(what, sizeof what, "%s:%ld: expected %d numbers, found %d", c->file, row,
+                     ncols, n);
             result = fail(err, scene, c, what);
             break;
         }
-        double d = col[COL_D] >= 0 ? v[col[COL_D]] : bdl_species_draw_diameter(&scene->species[c->species], rng);
+        double d = col[COL_D] >= 0 ? v[col[COL_D]]
+                                   : bdl_species_draw_diameter(&scene->species[c->species], rng);
         if (!(d > 0.0) || !isfinite(d)) {
             snprintf(what, sizeof what, "%s:%ld: diameter %g must be > 0", c->file, row, d);
             result = fail(err, scene, c, what);
@@ -370,7 +374,8 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
         if (col[COL_VX] >= 0 && col[COL_VY] >= 0 && col[COL_VZ] >= 0)
             vel = bdl_v3(v[col[COL_VX]], v[col[COL_VY]], v[col[COL_VZ]]);
         bdl_vec3 x = bdl_v3(v[col[COL_X]], v[col[COL_Y]], v[col[COL_Z]]);
-        if (bdl_particles_add(p, x, vel, 0.5 * d, scene->species[c->species].density, c->species) < 0) {
+        if (bdl_particles_add(p, x, vel, 0.5 * d, scene->species[c->species].density, c->species) <
+            0) {
             result = BDL_ERR_NOMEM;
             break;
         }

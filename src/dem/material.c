@@ -84,8 +84,8 @@ static double damping_exact(int hertz, double restitution)
 {
     if (restitution >= 1.0)
         return 0.0;
-    double guess = hertz ? bdl_hertz_damping_closed_form(restitution)
-                         : bdl_linear_damping_ratio(restitution);
+    double guess =
+        hertz ? bdl_hertz_damping_closed_form(restitution) : bdl_linear_damping_ratio(restitution);
     double lo = 0.0, hi = 2.0 * guess + 0.1;
     double flo = 1.0 - restitution, fhi = bdl_restitution_of(hertz, hi) - restitution;
     while (fhi > 0.0 && hi < 1e6) {
@@ -164,8 +164,9 @@ static void mix_pair(const bdl_material *a, const bdl_material *b, bdl_contact_p
     cp->kt = kta + ktb > 0.0 ? 2.0 * kta * ktb / (kta + ktb) : 0.0;
     cp->e_star = 1.0 / ((1.0 - a->poisson_ratio * a->poisson_ratio) / a->youngs_modulus +
                         (1.0 - b->poisson_ratio * b->poisson_ratio) / b->youngs_modulus);
-    cp->g_star = 1.0 / ((2.0 - a->poisson_ratio) / shear_modulus(a->youngs_modulus, a->poisson_ratio) +
-                        (2.0 - b->poisson_ratio) / shear_modulus(b->youngs_modulus, b->poisson_ratio));
+    cp->g_star =
+        1.0 / ((2.0 - a->poisson_ratio) / shear_modulus(a->youngs_modulus, a->poisson_ratio) +
+               (2.0 - b->poisson_ratio) / shear_modulus(b->youngs_modulus, b->poisson_ratio));
     cp->restitution = mean2(a->restitution, b->restitution);
     cp->friction = mean2(a->friction, b->friction);
     cp->rolling_friction = mean2(a->rolling_friction, b->rolling_friction);
@@ -180,8 +181,8 @@ static bdl_material wall_material(const bdl_material *w, const bdl_material *p)
     m.poisson_ratio = pick(w->poisson_ratio, p->poisson_ratio);
     m.stiffness = pick(w->stiffness, p->stiffness);
     m.tangential_stiffness = w->tangential_stiffness >= 0.0 ? w->tangential_stiffness
-                             : w->stiffness >= 0.0           ? -1.0
-                                                             : p->tangential_stiffness;
+                             : w->stiffness >= 0.0          ? -1.0
+                                                            : p->tangential_stiffness;
     m.restitution = pick(w->restitution, p->restitution);
     m.tangential_damping_ratio = pick(w->tangential_damping_ratio, p->tangential_damping_ratio);
     m.friction = pick(w->friction, p->friction);
@@ -228,7 +229,8 @@ void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_pa
             mix_pair(&scene->species[a].material, &scene->species[b].material, &cp);
             for (int k = 0; k < scene->pair_count; ++k) {
                 const bdl_pair_def *o = &scene->pairs[k];
-                if ((o->species_a == a && o->species_b == b) || (o->species_a == b && o->species_b == a))
+                if ((o->species_a == a && o->species_b == b) ||
+                    (o->species_a == b && o->species_b == a))
                     apply_override(o, &cp);
             }
             cp.damping = damping_for(scene, &cache, cp.restitution);
@@ -245,8 +247,8 @@ void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_pa
         }
 }
 
-double bdl_contact_time(const bdl_contact_params *cp, bdl_normal_law law, double m_eff, double r_eff,
-                        double impact_speed)
+double bdl_contact_time(const bdl_contact_params *cp, bdl_normal_law law, double m_eff,
+                        double r_eff, double impact_speed)
 {
     double ratio = cp->duration_ratio > 0.0 ? cp->duration_ratio : 1.0;
     if (law == BDL_LAW_LINEAR)

@@ -17,16 +17,17 @@
 #include "scene/scene.h"
 
 typedef struct bdl_contact_params {
-    double kn;          ///< linear law: normal stiffness [N/m]
-    double kt;          ///< linear law: tangential stiffness [N/m]
-    double e_star;      ///< Hertz law: effective Young's modulus E* [Pa]
-    double g_star;      ///< Hertz law: effective shear modulus G* [Pa]
-    double damping;     ///< linear: damping ratio zeta [-]; Hertz: coefficient c [-] (see contact_law.h)
+    double kn;     ///< linear law: normal stiffness [N/m]
+    double kt;     ///< linear law: tangential stiffness [N/m]
+    double e_star; ///< Hertz law: effective Young's modulus E* [Pa]
+    double g_star; ///< Hertz law: effective shear modulus G* [Pa]
+    double
+        damping; ///< linear: damping ratio zeta [-]; Hertz: coefficient c [-] (see contact_law.h)
     double tangential_damping_ratio; ///< eta_t / eta_n [-]
-    double friction;         ///< Coulomb coefficient mu [-]
-    double rolling_friction; ///< mu_r [-]
-    double restitution;      ///< configured e [-]
-    double duration_ratio;   ///< damped (clamped) contact duration / elastic duration [-]
+    double friction;                 ///< Coulomb coefficient mu [-]
+    double rolling_friction;         ///< mu_r [-]
+    double restitution;              ///< configured e [-]
+    double duration_ratio;           ///< damped (clamped) contact duration / elastic duration [-]
 } bdl_contact_params;
 
 /// Closed-form damping ratio of a linear spring-dashpot whose force may turn attractive:
@@ -54,7 +55,7 @@ void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_pa
 /// Duration of a contact [s]: the elastic one, linear pi sqrt(m*/k_n) or Hertz
 /// 2.87 (m*^2 / (R* E*^2 v))^(1/5) at impact speed v, times the duration ratio of the damped,
 /// clamped impact (which ends sooner the stronger the damping).
-double bdl_contact_time(const bdl_contact_params *cp, bdl_normal_law law, double m_eff, double r_eff,
-                        double impact_speed);
+double bdl_contact_time(const bdl_contact_params *cp, bdl_normal_law law, double m_eff,
+                        double r_eff, double impact_speed);
 
 #endif

@@ -14,11 +14,11 @@
 #include "core/vec3.h"
 
 #define BDL_MAX_SPECIES 16
-#define BDL_MAX_PAIRS 64
-#define BDL_MAX_WALLS 16
+#define BDL_MAX_PAIRS   64
+#define BDL_MAX_WALLS   16
 #define BDL_MAX_CREATES 16
-#define BDL_NAME_LEN 32
-#define BDL_PATH_LEN 512
+#define BDL_NAME_LEN    32
+#define BDL_PATH_LEN    512
 
 /// Normal contact law, chosen per scene ([contact] law).
 typedef enum bdl_normal_law {
@@ -35,37 +35,39 @@ typedef enum bdl_damping_mode {
 /// Rolling resistance model ([contact] rolling).
 typedef enum bdl_rolling_model {
     BDL_ROLLING_NONE = 0,
-    BDL_ROLLING_CONSTANT = 1, ///< constant directional torque mu_r R* |F_n| against relative rolling
+    BDL_ROLLING_CONSTANT =
+        1, ///< constant directional torque mu_r R* |F_n| against relative rolling
 } bdl_rolling_model;
 
 /// Diameter distribution of a species.
 typedef enum bdl_size_dist {
     BDL_SIZE_SINGLE = 0,  ///< all particles have `diameter`
     BDL_SIZE_UNIFORM = 1, ///< uniform in [diameter_min, diameter_max]
-    BDL_SIZE_NORMAL = 2,  ///< normal(diameter, diameter_std) truncated to [diameter_min, diameter_max]
+    BDL_SIZE_NORMAL =
+        2, ///< normal(diameter, diameter_std) truncated to [diameter_min, diameter_max]
 } bdl_size_dist;
 
 /// Material and contact parameters shared by species, pair overrides and walls.
 /// A value < 0 means "not given" where a default is derived (documented per key).
 typedef struct bdl_material {
-    double youngs_modulus;       ///< E [Pa] (Hertz law); < 0 if not given
-    double poisson_ratio;        ///< nu [-]
-    double stiffness;            ///< k_n [N/m] (linear law); < 0 if not given
-    double tangential_stiffness; ///< k_t [N/m] (linear law); < 0 -> 2/7 k_n
-    double restitution;          ///< normal coefficient of restitution e in (0, 1]
+    double youngs_modulus;           ///< E [Pa] (Hertz law); < 0 if not given
+    double poisson_ratio;            ///< nu [-]
+    double stiffness;                ///< k_n [N/m] (linear law); < 0 if not given
+    double tangential_stiffness;     ///< k_t [N/m] (linear law); < 0 -> 2/7 k_n
+    double restitution;              ///< normal coefficient of restitution e in (0, 1]
     double tangential_damping_ratio; ///< gamma_t / gamma_n [-] (default 0: no tangential dashpot)
-    double friction;             ///< sliding friction coefficient mu [-]
-    double rolling_friction;     ///< rolling friction coefficient mu_r [-]
+    double friction;                 ///< sliding friction coefficient mu [-]
+    double rolling_friction;         ///< rolling friction coefficient mu_r [-]
 } bdl_material;
 
 typedef struct bdl_species_def {
     char name[BDL_NAME_LEN];
     bdl_size_dist size_dist;
-    double diameter;     ///< [m] (mean for distributions)
-    double diameter_min; ///< [m]
-    double diameter_max; ///< [m]
-    double diameter_std; ///< [m] (normal distribution)
-    double density;      ///< [kg/m^3]
+    double diameter;           ///< [m] (mean for distributions)
+    double diameter_min;       ///< [m]
+    double diameter_max;       ///< [m]
+    double diameter_std;       ///< [m] (normal distribution)
+    double density;            ///< [kg/m^3]
     double background_damping; ///< b [1/s]: force -b m v on every particle of the species
     bdl_material material;
     int line; ///< line of the section header in the scene file (for messages)
@@ -94,15 +96,15 @@ typedef enum bdl_motion_kind {
 typedef struct bdl_wall_def {
     char name[BDL_NAME_LEN];
     bdl_wall_kind kind;
-    bdl_vec3 point;  ///< plane: a point on it; cylinder: a point on the axis [m]
-    bdl_vec3 normal; ///< plane: unit normal into the particle side; cylinder: unit axis
+    bdl_vec3 point;            ///< plane: a point on it; cylinder: a point on the axis [m]
+    bdl_vec3 normal;           ///< plane: unit normal into the particle side; cylinder: unit axis
     bdl_vec3 box_min, box_max; ///< box corners [m]
-    double radius;   ///< cylinder radius [m]
+    double radius;             ///< cylinder radius [m]
     bdl_motion_kind motion;
-    bdl_vec3 direction; ///< vibration direction (unit)
-    double amplitude;   ///< A [m]
-    double frequency;   ///< f [Hz]
-    double phase;       ///< [rad]
+    bdl_vec3 direction;    ///< vibration direction (unit)
+    double amplitude;      ///< A [m]
+    double frequency;      ///< f [Hz]
+    double phase;          ///< [rad]
     bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
     int line;
 } bdl_wall_def;
@@ -117,17 +119,17 @@ typedef enum bdl_create_kind {
 typedef struct bdl_create_def {
     char name[BDL_NAME_LEN];
     bdl_create_kind kind;
-    int species;               ///< index into bdl_scene.species
-    bdl_vec3 region_min;       ///< [m]
-    bdl_vec3 region_max;       ///< [m]
-    long count;                ///< number of particles (random, lattice, pour); -1 if not given
-    double volume_fraction;    ///< target solids fraction of the region (random); < 0 if not given
-    double spacing;            ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
-    double rate;               ///< pour rate [particles/s]
-    double start_time;         ///< pour start [s]
-    bdl_vec3 velocity;         ///< initial velocity [m/s]
-    double velocity_jitter;    ///< random velocity magnitude added [m/s]
-    char file[BDL_PATH_LEN];   ///< CSV path (relative to the scene file's folder)
+    int species;             ///< index into bdl_scene.species
+    bdl_vec3 region_min;     ///< [m]
+    bdl_vec3 region_max;     ///< [m]
+    long count;              ///< number of particles (random, lattice, pour); -1 if not given
+    double volume_fraction;  ///< target solids fraction of the region (random); < 0 if not given
+    double spacing;          ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
+    double rate;             ///< pour rate [particles/s]
+    double start_time;       ///< pour start [s]
+    bdl_vec3 velocity;       ///< initial velocity [m/s]
+    double velocity_jitter;  ///< random velocity magnitude added [m/s]
+    char file[BDL_PATH_LEN]; ///< CSV path (relative to the scene file's folder)
     int line;
 } bdl_create_def;
 
@@ -152,12 +154,12 @@ typedef struct bdl_scene {
     char dir[BDL_PATH_LEN];  ///< folder of the scene file (for relative paths)
 
     // [run]
-    double dt;            ///< time step [s]; <= 0 -> dt_fraction * smallest contact time
-    double dt_fraction;   ///< used when dt is not given
-    double end_time;      ///< [s]
-    bdl_vec3 gravity;     ///< [m/s^2]
-    uint64_t seed;        ///< random seed
-    int threads;          ///< 0 = all cores
+    double dt;          ///< time step [s]; <= 0 -> dt_fraction * smallest contact time
+    double dt_fraction; ///< used when dt is not given
+    double end_time;    ///< [s]
+    bdl_vec3 gravity;   ///< [m/s^2]
+    uint64_t seed;      ///< random seed
+    int threads;        ///< 0 = all cores
 
     // [domain]
     bdl_vec3 domain_min, domain_max; ///< [m]

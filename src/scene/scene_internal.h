@@ -69,10 +69,10 @@ typedef struct bdl_scene_key {
     const char *unit; ///< SI unit, "-" for dimensionless
     bdl_key_target target;
     size_t offset;
-    int has_flag;       ///< 1: an int flag at flag_offset is set to 1 when the key is given
+    int has_flag; ///< 1: an int flag at flag_offset is set to 1 when the key is given
     size_t flag_offset;
-    int normalise;      ///< vector keys: a direction, must be nonzero, stored as a unit vector
-    double def[3];      ///< default: numbers use def[0], enums the index; names/paths are ""
+    int normalise; ///< vector keys: a direction, must be nonzero, stored as a unit vector
+    double def[3]; ///< default: numbers use def[0], enums the index; names/paths are ""
     const char *default_text; ///< overrides the text generated from def (docs and messages)
     bdl_bound lo_kind, hi_kind;
     double lo, hi;
@@ -90,7 +90,7 @@ extern const int bdl_scene_key_count;
 extern const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT];
 
 #define BDL_SCENE_KEY_CAPACITY 128
-#define BDL_SCENE_MAX_SECTIONS                                                                    \
+#define BDL_SCENE_MAX_SECTIONS                                                                     \
     (5 + BDL_MAX_SPECIES + BDL_MAX_PAIRS + BDL_MAX_WALLS + BDL_MAX_CREATES)
 /// Line number recorded for a value that came from a --set override.
 #define BDL_LINE_SET (-1)
@@ -100,22 +100,22 @@ extern const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT];
 /// Parse-time record of one section: where it was written and which keys were given.
 typedef struct bdl_scene_section {
     bdl_section_kind kind;
-    int index;          ///< into scene->species / pairs / walls / creates (0 for singletons)
-    int line;           ///< header line; 0 if the section is not in the file (singletons)
-    char title[2 * BDL_NAME_LEN + 16]; ///< "species glass", for messages
-    char names[2][BDL_NAME_LEN];       ///< the names after the section word
+    int index; ///< into scene->species / pairs / walls / creates (0 for singletons)
+    int line;  ///< header line; 0 if the section is not in the file (singletons)
+    char title[2 * BDL_NAME_LEN + 16];    ///< "species glass", for messages
+    char names[2][BDL_NAME_LEN];          ///< the names after the section word
     int key_line[BDL_SCENE_KEY_CAPACITY]; ///< per key (table index): 0 not given, line, or --set
     // Values held here rather than in bdl_scene (BDL_TARGET_RECORD keys):
-    double gamma;                  ///< [wall] dimensionless peak acceleration A w^2 / g
+    double gamma;                   ///< [wall] dimensionless peak acceleration A w^2 / g
     char species_ref[BDL_NAME_LEN]; ///< [create] species name, resolved while validating
 } bdl_scene_section;
 
 typedef struct bdl_scene_parser {
     bdl_scene *scene;
     bdl_scene_error *err;
-    const char *file; ///< name used in messages
-    const char *cursor; ///< next unread character of the text
-    int line;           ///< lines handed to libinih so far
+    const char *file;                       ///< name used in messages
+    const char *cursor;                     ///< next unread character of the text
+    int line;                               ///< lines handed to libinih so far
     char line_text[BDL_SCENE_MAX_LINE + 4]; ///< the last line handed over (for messages)
     int failed;
     bdl_scene_section *current; ///< section the following keys belong to
@@ -125,8 +125,8 @@ typedef struct bdl_scene_parser {
 
 /// Location and context of a message; every field may be left 0/NULL.
 typedef struct bdl_scene_where {
-    int line;               ///< > 0 file line, BDL_LINE_SET, or 0 = end of file
-    const char *title;      ///< section title without brackets
+    int line;          ///< > 0 file line, BDL_LINE_SET, or 0 = end of file
+    const char *title; ///< section title without brackets
     const char *key;
     const char *value;
     const bdl_scene_key *allowed; ///< appends "; allowed: RANGE (UNIT)"

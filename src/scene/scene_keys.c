@@ -40,25 +40,25 @@ static const char *const wall_type_names[] = {"plane", "box", "cylinder", NULL};
 static const char *const motion_names[] = {"none", "vibrate", NULL};
 static const char *const create_type_names[] = {"random", "lattice", "pour", "file", NULL};
 
-#define IN_SCENE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
+#define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
 #define IN_SPECIES(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_species_def, field)
 #define IN_PAIR(field)                                                                             \
     .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_pair_def, field), .has_flag = 1,           \
     .flag_offset = offsetof(bdl_pair_def, has_##field)
-#define IN_WALL(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
+#define IN_WALL(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
 #define IN_CREATE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_create_def, field)
 #define IN_RECORD(field) .target = BDL_TARGET_RECORD, .offset = offsetof(bdl_scene_section, field)
-#define GT(x) .lo_kind = BDL_BOUND_OPEN, .lo = (x)
-#define GE(x) .lo_kind = BDL_BOUND_CLOSED, .lo = (x)
-#define LT(x) .hi_kind = BDL_BOUND_OPEN, .hi = (x)
-#define LE(x) .hi_kind = BDL_BOUND_CLOSED, .hi = (x)
-#define BIT(v) (1u << (v))
-#define REQUIRED .required = BDL_REQUIRED_ALWAYS
-#define WHEN(key, mask) .selector = key, .applies = (mask)
+#define GT(x)            .lo_kind = BDL_BOUND_OPEN, .lo = (x)
+#define GE(x)            .lo_kind = BDL_BOUND_CLOSED, .lo = (x)
+#define LT(x)            .hi_kind = BDL_BOUND_OPEN, .hi = (x)
+#define LE(x)            .hi_kind = BDL_BOUND_CLOSED, .hi = (x)
+#define BIT(v)           (1u << (v))
+#define REQUIRED         .required = BDL_REQUIRED_ALWAYS
+#define WHEN(key, mask)  .selector = key, .applies = (mask)
 
 #define S(kind) .section = BDL_SECTION_##kind
-#define NUM .type = BDL_KEY_NUMBER
-#define VEC .type = BDL_KEY_VECTOR
+#define NUM     .type = BDL_KEY_NUMBER
+#define VEC     .type = BDL_KEY_VECTOR
 
 const bdl_scene_key bdl_scene_keys[] = {
     // [run]
@@ -88,9 +88,10 @@ const bdl_scene_key bdl_scene_keys[] = {
      .enum_names = law_names, .doc = "normal contact law: linear spring-dashpot or Hertz-Mindlin"},
     {S(CONTACT), "damping", .type = BDL_KEY_ENUM, "-", IN_SCENE(damping),
      .def = {BDL_DAMPING_EXACT}, .enum_names = damping_names,
-     .doc = "damping from restitution: exact (solved with the no-pull clamp) or closed_form (textbook formula)"},
-    {S(CONTACT), "rolling", .type = BDL_KEY_ENUM, "-", IN_SCENE(rolling),
-     .def = {BDL_ROLLING_NONE}, .enum_names = rolling_names,
+     .doc = "damping from restitution: exact (solved with the no-pull clamp) or closed_form "
+            "(textbook formula)"},
+    {S(CONTACT), "rolling", .type = BDL_KEY_ENUM, "-", IN_SCENE(rolling), .def = {BDL_ROLLING_NONE},
+     .enum_names = rolling_names,
      .doc = "rolling resistance: none, or a constant torque mu_r R* F_n against rolling"},
     {S(CONTACT), "skin", NUM, "-", IN_SCENE(skin), .def = {0.1}, GT(0), LE(1),
      .doc = "Verlet neighbour-list skin as a fraction of the largest diameter"},
@@ -99,8 +100,7 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(SPECIES), "diameter", NUM, "m", IN_SPECIES(diameter), REQUIRED, GT(0),
      .doc = "particle diameter (the mean for uniform and normal distributions)"},
     {S(SPECIES), "distribution", .type = BDL_KEY_ENUM, "-", IN_SPECIES(size_dist),
-     .def = {BDL_SIZE_SINGLE}, .enum_names = distribution_names,
-     .doc = "diameter distribution"},
+     .def = {BDL_SIZE_SINGLE}, .enum_names = distribution_names, .doc = "diameter distribution"},
     {S(SPECIES), "diameter_min", NUM, "m", IN_SPECIES(diameter_min),
      WHEN("distribution", BIT(BDL_SIZE_UNIFORM) | BIT(BDL_SIZE_NORMAL)),
      .required = BIT(BDL_SIZE_UNIFORM), GT(0),
@@ -126,8 +126,8 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(SPECIES), "tangential_stiffness", NUM, "N/m", IN_SPECIES(material.tangential_stiffness),
      .def = {-1}, .default_text = "2/7 * stiffness", GT(0),
      .doc = "tangential spring stiffness k_t (linear law)"},
-    {S(SPECIES), "restitution", NUM, "-", IN_SPECIES(material.restitution), REQUIRED, GT(0),
-     LE(1), .doc = "normal coefficient of restitution"},
+    {S(SPECIES), "restitution", NUM, "-", IN_SPECIES(material.restitution), REQUIRED, GT(0), LE(1),
+     .doc = "normal coefficient of restitution"},
     {S(SPECIES), "tangential_damping_ratio", NUM, "-",
      IN_SPECIES(material.tangential_damping_ratio), .def = {0}, GE(0), LE(1),
      .doc = "tangential to normal damping ratio (0: no tangential dashpot)"},
@@ -157,8 +157,8 @@ const bdl_scene_key bdl_scene_keys[] = {
      .default_text = "required for plane, cylinder",
      .doc = "plane: a point on the plane; cylinder: a point on the axis"},
     {S(WALL), "normal", VEC, "-", .normalise = 1, IN_WALL(normal),
-     WHEN("type", BIT(BDL_WALL_PLANE)),
-     .required = BIT(BDL_WALL_PLANE), .default_text = "required for plane",
+     WHEN("type", BIT(BDL_WALL_PLANE)), .required = BIT(BDL_WALL_PLANE),
+     .default_text = "required for plane",
      .doc = "plane normal pointing to the particle side (normalised)"},
     {S(WALL), "min", VEC, "m", IN_WALL(box_min), WHEN("type", BIT(BDL_WALL_BOX)),
      .required = BIT(BDL_WALL_BOX), .default_text = "required for box",
@@ -167,9 +167,8 @@ const bdl_scene_key bdl_scene_keys[] = {
      .required = BIT(BDL_WALL_BOX), .default_text = "required for box",
      .doc = "box: upper corner, larger than min on every axis"},
     {S(WALL), "axis", VEC, "-", .normalise = 1, IN_WALL(normal),
-     WHEN("type", BIT(BDL_WALL_CYLINDER)),
-     .required = BIT(BDL_WALL_CYLINDER), .default_text = "required for cylinder",
-     .doc = "cylinder: axis direction (normalised)"},
+     WHEN("type", BIT(BDL_WALL_CYLINDER)), .required = BIT(BDL_WALL_CYLINDER),
+     .default_text = "required for cylinder", .doc = "cylinder: axis direction (normalised)"},
     {S(WALL), "radius", NUM, "m", IN_WALL(radius), WHEN("type", BIT(BDL_WALL_CYLINDER)),
      .required = BIT(BDL_WALL_CYLINDER), .default_text = "required for cylinder", GT(0),
      .doc = "cylinder: radius (particles stay inside)"},
@@ -230,8 +229,8 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(CREATE), "count", .type = BDL_KEY_LONG, "-", IN_CREATE(count),
      WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR)),
      .required = BIT(BDL_CREATE_POUR), .def = {-1},
-     .default_text = "required for pour; random: count or volume_fraction; lattice: fill",
-     GT(0), .doc = "number of particles"},
+     .default_text = "required for pour; random: count or volume_fraction; lattice: fill", GT(0),
+     .doc = "number of particles"},
     {S(CREATE), "volume_fraction", NUM, "-", IN_CREATE(volume_fraction),
      WHEN("type", BIT(BDL_CREATE_RANDOM)), .def = {-1},
      .default_text = "random: count or volume_fraction", GT(0), LE(0.64),
@@ -249,8 +248,8 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(CREATE), "velocity_jitter", NUM, "m/s", IN_CREATE(velocity_jitter), .def = {0}, GE(0),
      .doc = "magnitude of a random velocity added to each particle"},
     {S(CREATE), "file", .type = BDL_KEY_PATH, "-", IN_CREATE(file),
-     WHEN("type", BIT(BDL_CREATE_FILE)),
-     .required = BIT(BDL_CREATE_FILE), .default_text = "required for file",
+     WHEN("type", BIT(BDL_CREATE_FILE)), .required = BIT(BDL_CREATE_FILE),
+     .default_text = "required for file",
      .doc = "file: CSV file of positions (optionally diameters, velocities), relative to the "
             "scene folder"},
 
@@ -260,18 +259,19 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(OUTPUT), "vtk_interval", NUM, "s", IN_SCENE(output.vtk_interval), .def = {0},
      .default_text = "0 (none)", GE(0),
      .doc = "simulated time between particle VTK files; 0 = none"},
-    {S(OUTPUT), "checkpoint_interval", NUM, "s", IN_SCENE(output.checkpoint_interval),
-     .def = {0}, .default_text = "0 (end only)", GE(0),
+    {S(OUTPUT), "checkpoint_interval", NUM, "s", IN_SCENE(output.checkpoint_interval), .def = {0},
+     .default_text = "0 (end only)", GE(0),
      .doc = "simulated time between checkpoints; 0 = only at the end or on failure"},
     {S(OUTPUT), "progress_interval", NUM, "s", IN_SCENE(output.progress_interval), .def = {1},
      GT(0), .doc = "wall-clock time between progress lines"},
 
     // [guards]
-    {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0),
-     LE(1), .doc = "stop when an overlap exceeds this fraction of the smaller radius"},
-    {S(GUARDS), "initial_overlap", NUM, "-", IN_SCENE(guards.initial_overlap), .def = {0.01},
-     GE(0), LE(1),
-     .doc = "refuse initial particles overlapping by more than this fraction of the smaller radius"},
+    {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),
+     .doc = "stop when an overlap exceeds this fraction of the smaller radius"},
+    {S(GUARDS), "initial_overlap", NUM, "-", IN_SCENE(guards.initial_overlap), .def = {0.01}, GE(0),
+     LE(1),
+     .doc =
+         "refuse initial particles overlapping by more than this fraction of the smaller radius"},
     {S(GUARDS), "dt_refuse", NUM, "-", IN_SCENE(guards.dt_refuse), .def = {0.2}, GT(0), LE(1),
      .doc = "refuse a dt above this fraction of the smallest contact time"},
     {S(GUARDS), "dt_warn", NUM, "-", IN_SCENE(guards.dt_warn), .def = {0.05}, GT(0), LE(1),
@@ -294,15 +294,12 @@ const bdl_scene_key *bdl_scene_key_find(bdl_section_kind kind, const char *name)
     return NULL;
 }
 
-int bdl_scene_key_index(const bdl_scene_key *key)
-{
-    return (int)(key - bdl_scene_keys);
-}
+int bdl_scene_key_index(const bdl_scene_key *key) { return (int)(key - bdl_scene_keys); }
 
 const char *bdl_scene_key_type_name(bdl_key_type type)
 {
-    static const char *const names[] = {"number", "vector", "integer", "integer", "integer",
-                                        "boolean", "choice", "axes", "name", "path"};
+    static const char *const names[] = {"number",  "vector", "integer", "integer", "integer",
+                                        "boolean", "choice", "axes",    "name",    "path"};
     return names[type];
 }
 
@@ -310,7 +307,8 @@ const char *bdl_scene_key_type_name(bdl_key_type type)
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static void append(char *buf, size_t size, const char *format, ...)
+static void
+append(char *buf, size_t size, const char *format, ...)
 {
     size_t used = strlen(buf);
     if (used + 1 >= size)

@@ -22,7 +22,8 @@ enum { VALUE_SHOWN = 80, WHY_LEN = 256 };
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 0)))
 #endif
-static void append_va(char *buf, size_t size, const char *format, va_list args)
+static void
+append_va(char *buf, size_t size, const char *format, va_list args)
 {
     size_t used = strlen(buf);
     if (used + 1 < size)
@@ -32,7 +33,8 @@ static void append_va(char *buf, size_t size, const char *format, va_list args)
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static void append(char *buf, size_t size, const char *format, ...)
+static void
+append(char *buf, size_t size, const char *format, ...)
 {
     va_list args;
     va_start(args, format);
@@ -370,8 +372,8 @@ static void apply_key(bdl_scene_parser *p, bdl_scene_section *section, const cha
                 bdl_suggest_consider(&suggestion, bdl_scene_keys[i].name);
         char hint[96];
         bdl_suggest_text(&suggestion, hint, sizeof hint);
-        bdl_scene_fail(p, &where, "unknown key in [%s]%s",
-                       bdl_section_infos[section->kind].usage, hint);
+        bdl_scene_fail(p, &where, "unknown key in [%s]%s", bdl_section_infos[section->kind].usage,
+                       hint);
         return;
     }
     int index = bdl_scene_key_index(key);
@@ -665,10 +667,9 @@ static void fail_no_such_section(bdl_scene_parser *p, bdl_section_kind kind, con
             bdl_suggest_consider(&suggestion, p->sections[i].names[0]);
     char hint[96];
     bdl_suggest_text(&suggestion, hint, sizeof hint);
-    bdl_scene_fail(p,
-                   &(bdl_scene_where){.line = BDL_LINE_SET, .title = title, .key = key,
-                                      .value = value},
-                   "no such section in the scene (--set cannot create sections)%s", hint);
+    bdl_scene_fail(
+        p, &(bdl_scene_where){.line = BDL_LINE_SET, .title = title, .key = key, .value = value},
+        "no such section in the scene (--set cannot create sections)%s", hint);
 }
 
 static void apply_override(bdl_scene_parser *p, const char *text)
@@ -723,8 +724,7 @@ static void apply_override(bdl_scene_parser *p, const char *text)
         char title[2 * BDL_NAME_LEN + 16];
         snprintf(title, sizeof title, "%s %s%s%s", info->name, names[0],
                  info->name_count == 2 ? " " : "", names[1]);
-        fail_no_such_section(p, (bdl_section_kind)kind, title, words[count - 1], value,
-                             names[0]);
+        fail_no_such_section(p, (bdl_section_kind)kind, title, words[count - 1], value, names[0]);
         return;
     }
     apply_key(p, section, words[count - 1], value, BDL_LINE_SET);

@@ -16,10 +16,7 @@ enum { TEXT_LEN = 128 };
 
 static const double pi = 3.14159265358979323846;
 
-static const char *axis_name(int axis)
-{
-    return axis == 0 ? "x" : (axis == 1 ? "y" : "z");
-}
+static const char *axis_name(int axis) { return axis == 0 ? "x" : (axis == 1 ? "y" : "z"); }
 
 static int given(const bdl_scene_section *s, const bdl_scene_key *key)
 {
@@ -45,8 +42,10 @@ static void fail_at_key(bdl_scene_parser *p, bdl_scene_section *s, const char *n
     bdl_scene_key_value_text(key, p->scene, s, value, sizeof value);
     int line = s->key_line[bdl_scene_key_index(key)];
     bdl_scene_fail(p,
-                   &(bdl_scene_where){.line = line ? line : s->line, .title = s->title,
-                                      .key = name, .value = line ? value : NULL,
+                   &(bdl_scene_where){.line = line ? line : s->line,
+                                      .title = s->title,
+                                      .key = name,
+                                      .value = line ? value : NULL,
                                       .allowed = with_allowed ? key : NULL},
                    "%s", what);
 }
@@ -59,8 +58,8 @@ static void fail_missing(bdl_scene_parser *p, bdl_scene_section *s, const char *
     snprintf(what, sizeof what, "missing required key%s%s", why,
              s->line == 0 ? " (the section is not in the file)" : "");
     bdl_scene_fail(p,
-                   &(bdl_scene_where){.line = s->line, .title = s->title, .key = name,
-                                      .allowed = key_of(s, name)},
+                   &(bdl_scene_where){
+                       .line = s->line, .title = s->title, .key = name, .allowed = key_of(s, name)},
                    "%s", what);
 }
 
@@ -86,8 +85,7 @@ static void check_table_rules(bdl_scene_parser *p, bdl_scene_section *s)
         unsigned bit = 1u << choice;
         char why[TEXT_LEN] = "";
         if (selector)
-            snprintf(why, sizeof why, " for %s = %s", selector->name,
-                     selector->enum_names[choice]);
+            snprintf(why, sizeof why, " for %s = %s", selector->name, selector->enum_names[choice]);
         int required = key->required == BDL_REQUIRED_ALWAYS || (selector && (key->required & bit));
         if (!given(s, key)) {
             if (required)
@@ -97,8 +95,8 @@ static void check_table_rules(bdl_scene_parser *p, bdl_scene_section *s)
         if (selector && !(key->applies & bit)) {
             char only[TEXT_LEN], what[TEXT_LEN * 3];
             mask_text(selector, key->applies, only, sizeof only);
-            snprintf(what, sizeof what, "does not apply%s; only for %s = %s", why,
-                     selector->name, only);
+            snprintf(what, sizeof what, "does not apply%s; only for %s = %s", why, selector->name,
+                     only);
             fail_at_key(p, s, key->name, 0, what);
             continue;
         }
@@ -274,10 +272,9 @@ static void resolve_create_species(bdl_scene_parser *p, bdl_scene_section *s)
         create->species = 0;
     } else {
         find_species(p->scene, "", hint, sizeof hint);
-        bdl_scene_fail(p,
-                       &(bdl_scene_where){.line = s->line, .title = s->title, .key = "species"},
-                       "missing required key: the scene has %d species%s",
-                       p->scene->species_count, hint);
+        bdl_scene_fail(p, &(bdl_scene_where){.line = s->line, .title = s->title, .key = "species"},
+                       "missing required key: the scene has %d species%s", p->scene->species_count,
+                       hint);
     }
 }
 

@@ -6,9 +6,18 @@
 #include "dem/integrate.h"
 
 const char *const bdl_diagnostics_columns[] = {
-    "time",           "step",           "wall_seconds",     "particles",
-    "kinetic_energy", "rotational_energy", "potential_energy", "elastic_energy",
-    "mean_coordination", "max_overlap_ratio", "wall_work",    "energy_balance",
+    "time",
+    "step",
+    "wall_seconds",
+    "particles",
+    "kinetic_energy",
+    "rotational_energy",
+    "potential_energy",
+    "elastic_energy",
+    "mean_coordination",
+    "max_overlap_ratio",
+    "wall_work",
+    "energy_balance",
     "max_speed",
 };
 const int bdl_diagnostics_column_count =
@@ -57,7 +66,8 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         double ratio = -gap / p->radius[i];
         if (ratio > s->overlap)
             s->overlap = ratio;
-        const bdl_contact_params *cp = &w->wall_params[w->walls.prims[prim].wall * ns + p->species[i]];
+        const bdl_contact_params *cp =
+            &w->wall_params[w->walls.prims[prim].wall * ns + p->species[i]];
         double r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
         s->elastic += w->hertz ? (8.0 / 15.0) * cp->e_star * sqrt(r_eff) * pow(-gap, 2.5)
                                : 0.5 * cp->kn * gap * gap;
@@ -101,7 +111,8 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->max_overlap_ratio = s.overlap;
     d->max_speed = s.speed;
     d->wall_work = w->wall_work;
-    d->energy_balance = bdl_diagnostics_total_energy(d) - energy0 - w->wall_work - w->inserted_energy;
+    d->energy_balance =
+        bdl_diagnostics_total_energy(d) - energy0 - w->wall_work - w->inserted_energy;
 }
 
 double bdl_diagnostics_total_energy(const bdl_diagnostics *d)

@@ -8,9 +8,9 @@
 #include "sim/world.h"
 
 typedef struct bdl_diagnostics {
-    double time;              ///< [s]
+    double time; ///< [s]
     long step;
-    double wall_seconds;      ///< wall-clock time since the run started [s]
+    double wall_seconds; ///< wall-clock time since the run started [s]
     long particle_count;
     double kinetic_energy;    ///< translational [J]
     double rotational_energy; ///< [J]

@@ -42,13 +42,15 @@ static bdl_result check_finite(const bdl_world *w, char *message, size_t len)
 {
     const bdl_particles *p = &w->particles;
     for (long i = 0; i < p->count; ++i) {
-        if (bdl_v3_isfinite(p->pos[i]) && bdl_v3_isfinite(p->vel[i]) && bdl_v3_isfinite(p->omega[i]))
+        if (bdl_v3_isfinite(p->pos[i]) && bdl_v3_isfinite(p->vel[i]) &&
+            bdl_v3_isfinite(p->omega[i]))
             continue;
-        snprintf(message, len,
-                 "particle %u has a non-finite position, velocity or spin at t = %.6g s (step %ld), "
-                 "last position (%g, %g, %g) m. Likely fix: a smaller dt (now %.3g of the contact time)",
-                 p->id[i], w->time, w->step, p->pos[i].x, p->pos[i].y, p->pos[i].z,
-                 w->contact_time_dt_ratio);
+        snprintf(
+            message, len,
+            "particle %u has a non-finite position, velocity or spin at t = %.6g s (step %ld), "
+            "last position (%g, %g, %g) m. Likely fix: a smaller dt (now %.3g of the contact time)",
+            p->id[i], w->time, w->step, p->pos[i].x, p->pos[i].y, p->pos[i].z,
+            w->contact_time_dt_ratio);
         return BDL_ERR_UNSTABLE;
     }
     return BDL_OK;
@@ -66,12 +68,14 @@ static bdl_result check_domain(const bdl_world *w, char *message, size_t len)
             double lo = bdl_v3_comp(s->domain_min, a), hi = bdl_v3_comp(s->domain_max, a);
             if (x >= lo && x <= hi)
                 continue;
-            snprintf(message, len,
-                     "particle %u left the domain through the %s %s face at t = %.6g s (step %ld), "
-                     "position (%g, %g, %g) m, speed %g m/s. Likely fix: close the container with a "
-                     "wall on that side, enlarge [domain], or lower dt if particles tunnel through walls",
-                     p->id[i], axis_names[a], x < lo ? "min" : "max", w->time, w->step, p->pos[i].x,
-                     p->pos[i].y, p->pos[i].z, bdl_v3_len(p->vel[i]));
+            snprintf(
+                message, len,
+                "particle %u left the domain through the %s %s face at t = %.6g s (step %ld), "
+                "position (%g, %g, %g) m, speed %g m/s. Likely fix: close the container with a "
+                "wall on that side, enlarge [domain], or lower dt if particles tunnel through "
+                "walls",
+                p->id[i], axis_names[a], x < lo ? "min" : "max", w->time, w->step, p->pos[i].x,
+                p->pos[i].y, p->pos[i].z, bdl_v3_len(p->vel[i]));
             return BDL_ERR_UNSTABLE;
         }
     return BDL_OK;
@@ -87,11 +91,12 @@ bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_di
         return r;
     const bdl_guard_def *gd = &w->scene.guards;
     if (d->max_overlap_ratio > gd->max_overlap) {
-        snprintf(message, len,
-                 "an overlap reached %.3g of the smaller particle radius at t = %.6g s (step %ld); "
-                 "allowed: [guards] max_overlap = %g. Likely fix: stiffer contacts (the springs are "
-                 "too soft for the loads), or a smaller dt (now %.3g of the contact time)",
-                 d->max_overlap_ratio, w->time, w->step, gd->max_overlap, w->contact_time_dt_ratio);
+        snprintf(
+            message, len,
+            "an overlap reached %.3g of the smaller particle radius at t = %.6g s (step %ld); "
+            "allowed: [guards] max_overlap = %g. Likely fix: stiffer contacts (the springs are "
+            "too soft for the loads), or a smaller dt (now %.3g of the contact time)",
+            d->max_overlap_ratio, w->time, w->step, gd->max_overlap, w->contact_time_dt_ratio);
         return BDL_ERR_UNSTABLE;
     }
     double active = d->kinetic_energy + d->rotational_energy + d->elastic_energy;
@@ -100,12 +105,13 @@ bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_di
     double scale = g->active_max + fabs(w->wall_work) + fabs(w->inserted_energy);
     double growth = d->energy_balance;
     if (growth > gd->energy_growth * scale && growth > 1e-12 * fabs(g->energy0)) {
-        snprintf(message, len,
-                 "mechanical energy grew by %.3g J (%.3g of the active energy %.3g J) without a "
-                 "source at t = %.6g s (step %ld); allowed: [guards] energy_growth = %g. Likely fix: "
-                 "a smaller dt (now %.3g of the contact time)",
-                 growth, growth / scale, scale, w->time, w->step, gd->energy_growth,
-                 w->contact_time_dt_ratio);
+        snprintf(
+            message, len,
+            "mechanical energy grew by %.3g J (%.3g of the active energy %.3g J) without a "
+            "source at t = %.6g s (step %ld); allowed: [guards] energy_growth = %g. Likely fix: "
+            "a smaller dt (now %.3g of the contact time)",
+            growth, growth / scale, scale, w->time, w->step, gd->energy_growth,
+            w->contact_time_dt_ratio);
         return BDL_ERR_UNSTABLE;
     }
     return BDL_OK;

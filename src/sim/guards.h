@@ -15,8 +15,8 @@
 #include "sim/world.h"
 
 typedef struct bdl_guard_state {
-    double energy0;       ///< total energy at the start [J]
-    double active_max;    ///< largest kinetic + rotational + elastic energy seen [J]
+    double energy0;    ///< total energy at the start [J]
+    double active_max; ///< largest kinetic + rotational + elastic energy seen [J]
 } bdl_guard_state;
 
 /// Checks dt against the contact time. Returns BDL_ERR_SCENE (refuse) with a message, or BDL_OK;

@@ -10,7 +10,7 @@
 #include "core/timer.h"
 
 #define QUEUE_SIZE 64
-#define DIRTY 4
+#define DIRTY      4
 
 struct bdl_loop {
     bdl_loop_def def;

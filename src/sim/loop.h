@@ -16,9 +16,9 @@
 typedef enum bdl_command_kind {
     BDL_CMD_PAUSE,
     BDL_CMD_RESUME,
-    BDL_CMD_STEP,  ///< one step while paused
-    BDL_CMD_SET,   ///< set a live parameter: key "wall.NAME.amplitude_scale" / ".frequency_scale"
-    BDL_CMD_STOP,  ///< finish after the current step
+    BDL_CMD_STEP, ///< one step while paused
+    BDL_CMD_SET,  ///< set a live parameter: key "wall.NAME.amplitude_scale" / ".frequency_scale"
+    BDL_CMD_STOP, ///< finish after the current step
 } bdl_command_kind;
 
 typedef struct bdl_command {
@@ -30,13 +30,13 @@ typedef struct bdl_command {
 /// Particle data for drawing, in float (the drawing boundary). Valid until the next acquire.
 typedef struct bdl_snapshot {
     long count, capacity;
-    float *pos;          ///< xyz per particle [m]
-    float *vel;          ///< xyz per particle [m/s]
-    float *radius;       ///< [m]
+    float *pos;    ///< xyz per particle [m]
+    float *vel;    ///< xyz per particle [m/s]
+    float *radius; ///< [m]
     uint8_t *coordination;
     int32_t *species;
     uint32_t *id;
-    double time;         ///< [s]
+    double time; ///< [s]
     long step;
 } bdl_snapshot;
 
@@ -46,11 +46,11 @@ typedef bdl_result (*bdl_step_callback)(void *user, bdl_world *world);
 
 typedef struct bdl_loop_def {
     bdl_world *world;
-    double end_time;        ///< stop when simulated time reaches this [s]
-    long max_steps;         ///< stop after this many steps of this loop (0: no limit)
+    double end_time; ///< stop when simulated time reaches this [s]
+    long max_steps;  ///< stop after this many steps of this loop (0: no limit)
     bdl_step_callback on_step;
     void *user;
-    int publish;            ///< publish snapshots (a viewer is attached)
+    int publish;             ///< publish snapshots (a viewer is attached)
     double publish_interval; ///< wall seconds between snapshots
     int start_paused;
 } bdl_loop_def;

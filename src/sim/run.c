@@ -77,9 +77,9 @@ static bdl_result write_vtk(run_state *rs)
         coord[i] = rs->world->coordination[i];
     }
     bdl_vtk_array arrays[] = {
-        {"radius", BDL_VTK_FLOAT64, 1, radius},       {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
-        {"omega", BDL_VTK_FLOAT64, 3, p->omega},       {"id", BDL_VTK_INT32, 1, id},
-        {"species", BDL_VTK_INT32, 1, p->species},     {"coordination", BDL_VTK_INT32, 1, coord},
+        {"radius", BDL_VTK_FLOAT64, 1, radius},    {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
+        {"omega", BDL_VTK_FLOAT64, 3, p->omega},   {"id", BDL_VTK_INT32, 1, id},
+        {"species", BDL_VTK_INT32, 1, p->species}, {"coordination", BDL_VTK_INT32, 1, coord},
     };
     char rel[64], path[1200];
     snprintf(rel, sizeof rel, "vtk/particles_%06ld.vtp", rs->vtk_index);
@@ -164,24 +164,27 @@ static void log_setup(const bdl_world *w, const bdl_run_def *def, int threads, c
         bdl_info("override: %s", def->overrides[k]);
     bdl_info("output: %s", out);
     bdl_info("threads: %d", threads);
-    bdl_info("modules: dem (%s normal law%s, %s%s), walls: %d, gas: none", w->hertz ? "Hertz" : "linear",
+    bdl_info("modules: dem (%s normal law%s, %s%s), walls: %d, gas: none",
+             w->hertz ? "Hertz" : "linear",
              w->hertz ? (s->damping == BDL_DAMPING_EXACT ? ", exact restitution damping"
                                                          : ", closed-form damping")
                       : "",
-             w->friction ? "tangential history + Coulomb friction" : "frictionless, no tangential history",
+             w->friction ? "tangential history + Coulomb friction"
+                         : "frictionless, no tangential history",
              w->rolling ? ", rolling resistance" : "", s->wall_count);
     bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);
     for (int k = 0; k < s->species_count; ++k) {
         const bdl_species_def *sp = &s->species[k];
         const bdl_contact_params *cp = &w->pair_params[k * s->species_count + k];
         bdl_info("species %s: d = %g m, rho = %g kg/m^3, e = %g, mu = %g, mu_r = %g, %s = %g",
-                 sp->name, sp->diameter, sp->density, cp->restitution, cp->friction, cp->rolling_friction,
-                 w->hertz ? "damping c" : "damping ratio", cp->damping);
+                 sp->name, sp->diameter, sp->density, cp->restitution, cp->friction,
+                 cp->rolling_friction, w->hertz ? "damping c" : "damping ratio", cp->damping);
     }
     bdl_info("dt = %g s, smallest contact time = %g s (dt = t_c / %.1f), end time = %g s", w->dt,
              w->contact_time, 1.0 / w->contact_time_dt_ratio, s->end_time);
     bdl_info("limits: dt_refuse = %g t_c, dt_warn = %g t_c, max_overlap = %g r, energy_growth = %g",
-             s->guards.dt_refuse, s->guards.dt_warn, s->guards.max_overlap, s->guards.energy_growth);
+             s->guards.dt_refuse, s->guards.dt_warn, s->guards.max_overlap,
+             s->guards.energy_growth);
 }
 
 static void format_hms(double s, char *out, size_t len)
@@ -209,8 +212,11 @@ static void progress_line(bdl_loop *loop, double end_time, double start_wall, do
     char e1[16], e2[16];
     format_hms(elapsed, e1, sizeof e1);
     format_hms(eta, e2, sizeof e2);
-    fprintf(stderr, "%st = %.4g / %.4g s  step %ld  %ld particles  %.3g particle-steps/s  %.3gx real time  elapsed %s  ETA %s%s",
-            tty ? "\r" : "", t, end_time, step, particles, rate, speed, e1, e2, tty ? "\033[K" : "\n");
+    fprintf(stderr,
+            "%st = %.4g / %.4g s  step %ld  %ld particles  %.3g particle-steps/s  %.3gx real time  "
+            "elapsed %s  ETA %s%s",
+            tty ? "\r" : "", t, end_time, step, particles, rate, speed, e1, e2,
+            tty ? "\033[K" : "\n");
     fflush(stderr);
     *last_t = t;
     *last_step = step;
@@ -256,7 +262,8 @@ int bdl_run(const bdl_run_def *def)
     bdl_scene_error err;
     if (!scene)
         return 1;
-    if (bdl_scene_load(def->scene_path, def->overrides, def->override_count, scene, &err) != BDL_OK) {
+    if (bdl_scene_load(def->scene_path, def->overrides, def->override_count, scene, &err) !=
+        BDL_OK) {
         fprintf(stderr, "error: %s\n", err.message);
         free(scene);
         return 2;
@@ -336,7 +343,8 @@ int bdl_run(const bdl_run_def *def)
     path_join(sub, sizeof sub, out, "diagnostics.csv");
     if (def->resume)
         bdl_csv_truncate_after(sub, world->time);
-    rs.csv = bdl_csv_open(sub, bdl_diagnostics_columns, bdl_diagnostics_column_count, def->resume != NULL);
+    rs.csv = bdl_csv_open(sub, bdl_diagnostics_columns, bdl_diagnostics_column_count,
+                          def->resume != NULL);
     path_join(sub, sizeof sub, out, "particles.pvd");
     rs.pvd = bdl_pvd_create(sub);
     if (!rs.csv || !rs.pvd) {
@@ -405,7 +413,8 @@ int bdl_run(const bdl_run_def *def)
         nanosleep(&(struct timespec){0, 20000000L}, NULL);
         double now = bdl_wall_seconds();
         if (def->progress && now - last_print >= (tty ? interval : 10.0 * interval)) {
-            progress_line(loop, ld.end_time, rs.start_wall, t0, tty, &last_t, &last_step, &last_wall);
+            progress_line(loop, ld.end_time, rs.start_wall, t0, tty, &last_t, &last_step,
+                          &last_wall);
             last_print = now;
         }
     }
@@ -431,16 +440,18 @@ int bdl_run(const bdl_run_def *def)
         bdl_error("a checkpoint of the last state is in %s/checkpoint/", out);
         code = 1;
     } else if (r == BDL_ERR_INTERRUPTED) {
-        bdl_warn("interrupted at t = %g s (step %ld); state saved in %s/checkpoint/ — continue with "
-                 "'bedlam run %s --resume %s'",
-                 world->time, world->step, out, def->scene_path, out);
+        bdl_warn(
+            "interrupted at t = %g s (step %ld); state saved in %s/checkpoint/ — continue with "
+            "'bedlam run %s --resume %s'",
+            world->time, world->step, out, def->scene_path, out);
         code = 1;
     } else if (r != BDL_OK) {
         bdl_error("run failed: %s", bdl_result_text(r));
         code = 1;
     }
-    bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s", world->time,
-             world->step, world->particles.count, wall, cr == BDL_OK ? "written" : "FAILED");
+    bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s",
+             world->time, world->step, world->particles.count, wall,
+             cr == BDL_OK ? "written" : "FAILED");
     if (code == 0 && def->progress)
         fprintf(stderr, "done: t = %g s, %ld steps in %.2f s; outputs in %s\n", world->time,
                 world->step, wall, out);

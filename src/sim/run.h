@@ -13,12 +13,12 @@ typedef struct bdl_run_def {
     const char *scene_path;
     const char *const *overrides; ///< "section.key=value" strings
     int override_count;
-    const char *out_dir;   ///< NULL: runs/<scene name>
-    double until;          ///< end time [s]; < 0: the scene's end_time
-    long max_steps;        ///< stop after this many steps (0: no limit)
-    int threads;           ///< <= 0: the scene's [run] threads (0 = all cores)
-    const char *resume;    ///< checkpoint file or run folder to continue from; NULL for a new run
-    int progress;          ///< 1: progress line on stderr (when it is a terminal), 0: never
+    const char *out_dir; ///< NULL: runs/<scene name>
+    double until;        ///< end time [s]; < 0: the scene's end_time
+    long max_steps;      ///< stop after this many steps (0: no limit)
+    int threads;         ///< <= 0: the scene's [run] threads (0 = all cores)
+    const char *resume;  ///< checkpoint file or run folder to continue from; NULL for a new run
+    int progress;        ///< 1: progress line on stderr (when it is a terminal), 0: never
 } bdl_run_def;
 
 bdl_run_def bdl_default_run_def(void);

@@ -84,7 +84,8 @@ double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which,
             }
         }
         for (int wall = 0; wall < s->wall_count; ++wall) {
-            double tc = bdl_contact_time(&w->wall_params[wall * ns + a], s->law, ma, 0.5 * da, v_ref);
+            double tc =
+                bdl_contact_time(&w->wall_params[wall * ns + a], s->law, ma, 0.5 * da, v_ref);
             if (tc < best) {
                 best = tc;
                 if (which)
@@ -187,7 +188,8 @@ uint64_t bdl_world_hash(const bdl_world *w)
     h = bdl_hash_bytes(h, p->omega, n * sizeof(bdl_vec3));
     h = bdl_hash_bytes(h, p->id, n * sizeof(uint32_t));
     if (w->neighbor.history)
-        h = bdl_hash_bytes(h, w->neighbor.history, (size_t)w->neighbor.pair_count * sizeof(bdl_vec3));
+        h = bdl_hash_bytes(h, w->neighbor.history,
+                           (size_t)w->neighbor.pair_count * sizeof(bdl_vec3));
     h = bdl_hash_bytes(h, &w->time, sizeof w->time);
     h = bdl_hash_bytes(h, &w->step, sizeof w->step);
     return h;
@@ -237,14 +239,16 @@ static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_er
     for (long i = 0; i < p->count; ++i) {
         for (int a = 0; a < 3; ++a) {
             double x = bdl_v3_comp(p->pos[i], a);
-            if (!s->periodic[a] && (x < bdl_v3_comp(s->domain_min, a) || x > bdl_v3_comp(s->domain_max, a))) {
+            if (!s->periodic[a] &&
+                (x < bdl_v3_comp(s->domain_min, a) || x > bdl_v3_comp(s->domain_max, a))) {
                 const bdl_create_def *c = creator_of(w, p->id[i], first_id);
-                snprintf(err->message, sizeof err->message,
-                         "%s:%d: [create %s]: particle %u at (%g, %g, %g) m lies outside the domain "
-                         "[%g, %g] x [%g, %g] x [%g, %g] m",
-                         s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->pos[i].x, p->pos[i].y,
-                         p->pos[i].z, s->domain_min.x, s->domain_max.x, s->domain_min.y,
-                         s->domain_max.y, s->domain_min.z, s->domain_max.z);
+                snprintf(
+                    err->message, sizeof err->message,
+                    "%s:%d: [create %s]: particle %u at (%g, %g, %g) m lies outside the domain "
+                    "[%g, %g] x [%g, %g] x [%g, %g] m",
+                    s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->pos[i].x, p->pos[i].y,
+                    p->pos[i].z, s->domain_min.x, s->domain_max.x, s->domain_min.y, s->domain_max.y,
+                    s->domain_min.z, s->domain_max.z);
                 return BDL_ERR_SCENE;
             }
         }
@@ -257,7 +261,8 @@ static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_er
                 const bdl_create_def *c = creator_of(w, p->id[i], first_id);
                 snprintf(err->message, sizeof err->message,
                          "%s:%d: [create %s]: initial particles %u and %u overlap by %.3g%% of the "
-                         "smaller radius (allowed: [guards] initial_overlap = %g); move them apart or use a "
+                         "smaller radius (allowed: [guards] initial_overlap = %g); move them apart "
+                         "or use a "
                          "random or lattice fill",
                          s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->id[j],
                          100.0 * overlap / rmin, s->guards.initial_overlap);
@@ -271,7 +276,8 @@ static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_er
             if (gap < -(s->guards.initial_overlap + 1e-12) * p->radius[i]) {
                 const bdl_create_def *c = creator_of(w, p->id[i], first_id);
                 snprintf(err->message, sizeof err->message,
-                         "%s:%d: [create %s]: initial particle %u overlaps wall '%s' by %.3g%% of its radius",
+                         "%s:%d: [create %s]: initial particle %u overlaps wall '%s' by %.3g%% of "
+                         "its radius",
                          s->path, c ? c->line : 0, c ? c->name : "?", p->id[i],
                          s->walls[w->walls.prims[prim].wall].name, -100.0 * gap / p->radius[i]);
                 return BDL_ERR_SCENE;
@@ -320,13 +326,14 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     double skin = scene->skin * d_max;
     if (expected < w->particles.count)
         expected = w->particles.count;
-    bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,
-                                     scene->periodic, d_max + skin, skin, expected, w->friction,
-                                     w->rolling);
+    bdl_result r =
+        bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max, scene->periodic,
+                          d_max + skin, skin, expected, w->friction, w->rolling);
     if (r == BDL_ERR_SCENE) {
-        snprintf(err->message, sizeof err->message,
-                 "%s: [domain] periodic axes must be at least 3 x (largest diameter + skin) = %g m long",
-                 scene->path, 3.0 * (d_max + skin));
+        snprintf(
+            err->message, sizeof err->message,
+            "%s: [domain] periodic axes must be at least 3 x (largest diameter + skin) = %g m long",
+            scene->path, 3.0 * (d_max + skin));
     }
     if (r != BDL_OK) {
         bdl_world_destroy(w);

@@ -29,17 +29,17 @@ typedef struct bdl_world {
     bdl_contact_params pair_params[BDL_MAX_SPECIES * BDL_MAX_SPECIES];
     bdl_contact_params wall_params[BDL_MAX_WALLS * BDL_MAX_SPECIES];
     double background_damping[BDL_MAX_SPECIES]; ///< b per species [1/s]
-    uint8_t *coordination; ///< particle contacts of each particle this step
+    uint8_t *coordination;                      ///< particle contacts of each particle this step
     long coordination_capacity;
 
     int hertz;    ///< Hertz normal law (else linear)
     int friction; ///< any sliding friction: tangential history is kept
     int rolling;  ///< rolling resistance active
 
-    double dt;    ///< time step [s]
-    double time;  ///< simulated time [s]
-    long step;    ///< steps taken
-    bdl_rng rng;  ///< used by pouring
+    double dt;                    ///< time step [s]
+    double time;                  ///< simulated time [s]
+    long step;                    ///< steps taken
+    bdl_rng rng;                  ///< used by pouring
     long poured[BDL_MAX_CREATES]; ///< particles inserted so far by each pour creator
 
     bdl_live_params live;
@@ -50,7 +50,7 @@ typedef struct bdl_world {
     double damping_work;    ///< work done by background damping (negative)
     double energy0;         ///< total mechanical energy when the run started
 
-    double contact_time;    ///< smallest contact time over all pairs [s]
+    double contact_time;          ///< smallest contact time over all pairs [s]
     double contact_time_dt_ratio; ///< dt / contact_time
 } bdl_world;
 
