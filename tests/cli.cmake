@@ -42,3 +42,8 @@ set_tests_properties(cli_resume PROPERTIES LABELS cli TIMEOUT 600)
 add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.sh $<TARGET_FILE:bedlam>
   ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)
 set_tests_properties(cli_sigint PROPERTIES LABELS cli TIMEOUT 120)
+
+add_test(NAME cli_threads COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${PROJECT_SOURCE_DIR}/scenes/settling_box.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/threads
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/threads_cli.cmake)
+set_tests_properties(cli_threads PROPERTIES LABELS cli TIMEOUT 600)

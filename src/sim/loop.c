@@ -1,5 +1,6 @@
 #include "sim/loop.h"
 
+#include <omp.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -178,6 +179,9 @@ static void *solver_main(void *arg)
 {
     bdl_loop *loop = arg;
     bdl_world *w = loop->def.world;
+    // The thread count is a per-thread OpenMP setting: set it on the thread that runs the loops.
+    if (loop->def.threads > 0)
+        omp_set_num_threads(loop->def.threads);
     double last_publish = -1e30;
     loop->result = BDL_OK;
     if (loop->def.publish)

@@ -48,6 +48,7 @@ typedef struct bdl_loop_def {
     bdl_world *world;
     double end_time; ///< stop when simulated time reaches this [s]
     long max_steps;  ///< stop after this many steps of this loop (0: no limit)
+    int threads;     ///< OpenMP threads of the solver thread (0: the default)
     bdl_step_callback on_step;
     void *user;
     int publish;             ///< publish snapshots (a viewer is attached)

@@ -392,6 +392,7 @@ int bdl_run(const bdl_run_def *def)
     ld.world = world;
     ld.end_time = world->scene.end_time;
     ld.max_steps = def->max_steps;
+    ld.threads = threads;
     ld.on_step = on_step;
     ld.user = &rs;
     bdl_loop *loop = bdl_loop_start(&ld);
