@@ -111,6 +111,12 @@ static bdl_result write_diagnostics(run_state *rs, bdl_diagnostics *d)
     return bdl_csv_row(rs->csv, row);
 }
 
+/// The first multiple of `interval` after t: a resumed run keeps the first run's output times.
+static double next_multiple(double t, double interval)
+{
+    return interval > 0.0 ? (floor(t / interval + 1e-9) + 1.0) * interval : INFINITY;
+}
+
 /// Times are due when the step lands within half a step of them.
 static int due(const bdl_world *w, double t) { return w->time >= t - 0.5 * w->dt; }
 
@@ -354,10 +360,10 @@ int bdl_run(const bdl_run_def *def)
     double t0 = world->time;
     rs.next_diag = t0;
     rs.next_vtk = t0;
-    rs.next_checkpoint = t0 + o->checkpoint_interval;
+    rs.next_checkpoint = next_multiple(t0, o->checkpoint_interval);
     if (def->resume) {
         // The rows and frames at t0 were written by the first run already.
-        rs.next_diag = t0 + o->diagnostics_interval;
+        rs.next_diag = next_multiple(t0, o->diagnostics_interval);
         if (o->vtk_interval > 0.0) {
             long k = (long)floor(t0 / o->vtk_interval + 1e-9);
             for (long i = 0; i <= k; ++i) {
