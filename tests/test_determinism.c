@@ -39,6 +39,7 @@ static bdl_world *make_world(void)
         exit(1);
     }
     free(scene);
+    w->parallel_min = 1; // exercise the parallel force pass even for this small scene
     return w;
 }
 

@@ -1,6 +1,22 @@
+// DEM forces and velocity Verlet.
+//
+// Deterministic parallel forces. Particles are split into one contiguous index range per thread.
+// Each particle's force is summed in one canonical order whatever the thread count: the
+// contributions of its pairs ordered by the pair's first particle i, and within i by list
+// order. A pair (i, j) with j > i is evaluated once, when the loop over i reaches it: i keeps
+// +F in a register, j receives -F at once (its own turn comes later). Pairs whose j lies in a
+// later thread's range ("boundary pairs") are evaluated first, in a separate phase, and stored;
+// the owner of j adds them before its own loop, which preserves the canonical order because
+// every i of an earlier range is smaller than every i of its own. When the loop passes particle
+// i, every pair involving i has been evaluated, so i's walls, damping and closing half kick are
+// applied right there: one pass over the particles per step. No floating-point atomics, no
+// thread-count-dependent sums: the state after N steps is bitwise the same for any thread count.
 #include "dem/integrate.h"
 
 #include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+#include <string.h>
 
 #include "dem/contact_law.h"
 
@@ -15,74 +31,58 @@ static inline bdl_contact_geom pair_geom(const bdl_particles *p, long i, long j,
     g.overlap = ri + rj - dist;
     *arm_i = ri - 0.5 * g.overlap;
     *arm_j = rj - 0.5 * g.overlap;
-    bdl_vec3 spin = bdl_v3_add(bdl_v3_scale(p->omega[i], *arm_i), bdl_v3_scale(p->omega[j], *arm_j));
+    bdl_vec3 spin =
+        bdl_v3_add(bdl_v3_scale(p->omega[i], *arm_i), bdl_v3_scale(p->omega[j], *arm_j));
     g.v_c = bdl_v3_sub(bdl_v3_sub(p->vel[i], p->vel[j]), bdl_v3_cross(spin, g.n));
     g.m_eff = 1.0 / (p->inv_mass[i] + p->inv_mass[j]);
     g.r_eff = ri * rj / (ri + rj);
     return g;
 }
 
-static void clear_pair(bdl_neighbor *nb, int32_t k)
-{
-    int32_t s = nb->jslot[k];
-    nb->touching[k] = 0;
-    nb->slot_touching[s] = 0;
-    nb->force[s] = bdl_v3_zero();
-    if (nb->history)
-        nb->history[k] = bdl_v3_zero();
-    if (nb->torque_j)
-        nb->torque_j[s] = bdl_v3_zero();
-}
+typedef struct bdl_pair_result {
+    bdl_vec3 force;    ///< on i [N]
+    bdl_vec3 torque_i; ///< [N m]
+    bdl_vec3 torque_j; ///< [N m]
+    int touching;
+} pair_result;
 
-void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def)
+/// Evaluates pair k = (i, j); updates its history and touching flag.
+static inline pair_result eval_pair(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def,
+                                    long i, int32_t k)
 {
-    long n = p->count;
-    int ns = def->species_count;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) {
-        bdl_vec3 xi = p->pos[i];
-        double ri = p->radius[i];
-        const bdl_contact_params *row = def->pair_params + p->species[i] * ns;
-        // Particle i's own pairs are summed here, in list order; the gather adds the pairs where
-        // it is the second particle.
-        bdl_vec3 fi = bdl_v3_zero(), ti = bdl_v3_zero();
-        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-            int32_t j = nb->partner[k];
-            bdl_vec3 d = bdl_neighbor_delta(nb, xi, p->pos[j]);
-            double cut = ri + p->radius[j];
-            double dist2 = bdl_v3_len2(d);
-            if (dist2 >= cut * cut || dist2 == 0.0) {
-                if (nb->touching[k])
-                    clear_pair(nb, k);
-                continue;
-            }
-            double arm_i, arm_j;
-            bdl_contact_geom g = pair_geom(p, i, j, d, sqrt(dist2), &arm_i, &arm_j);
-            const bdl_contact_params *cp = row + p->species[j];
-            bdl_contact_result res =
-                bdl_contact_eval(cp, def->hertz, &g, def->friction ? &nb->history[k] : NULL, def->dt);
-            int32_t slot = nb->jslot[k];
-            nb->touching[k] = 1;
-            nb->slot_touching[slot] = 1;
-            nb->force[slot] = res.force;
-            fi = bdl_v3_add(fi, res.force);
-            if (!nb->torque_j)
-                continue;
-            bdl_vec3 tj = bdl_v3_scale(res.n_x_ft, -arm_j);
-            bdl_vec3 tq = bdl_v3_scale(res.n_x_ft, -arm_i);
-            if (def->rolling) {
-                double inv_i = bdl_particle_inv_inertia(p, i) + bdl_particle_inv_inertia(p, j);
-                bdl_vec3 roll = bdl_rolling_torque(cp, res.normal, g.r_eff,
-                                                   bdl_v3_sub(p->omega[i], p->omega[j]), inv_i, def->dt);
-                tj = bdl_v3_sub(tj, roll);
-                tq = bdl_v3_add(tq, roll);
-            }
-            nb->torque_j[slot] = tj;
-            ti = bdl_v3_add(ti, tq);
+    pair_result res = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0};
+    int32_t j = nb->partner[k];
+    bdl_vec3 d = bdl_neighbor_delta(nb, p->pos[i], p->pos[j]);
+    double cut = p->radius[i] + p->radius[j];
+    double dist2 = bdl_v3_len2(d);
+    if (dist2 >= cut * cut || dist2 == 0.0) {
+        res.touching = 0;
+        if (nb->touching[k]) {
+            nb->touching[k] = 0;
+            if (nb->history)
+                nb->history[k] = bdl_v3_zero();
         }
-        p->force[i] = fi;
-        p->torque[i] = ti;
+        return res;
     }
+    double arm_i, arm_j;
+    bdl_contact_geom g = pair_geom(p, i, j, d, sqrt(dist2), &arm_i, &arm_j);
+    const bdl_contact_params *cp =
+        def->pair_params + p->species[i] * def->species_count + p->species[j];
+    bdl_contact_result c =
+        bdl_contact_eval(cp, def->hertz, &g, def->friction ? &nb->history[k] : NULL, def->dt);
+    nb->touching[k] = 1;
+    res.touching = 1;
+    res.force = c.force;
+    res.torque_i = bdl_v3_scale(c.n_x_ft, -arm_i);
+    res.torque_j = bdl_v3_scale(c.n_x_ft, -arm_j);
+    if (def->rolling) {
+        double inv_i = bdl_particle_inv_inertia(p, i) + bdl_particle_inv_inertia(p, j);
+        bdl_vec3 roll = bdl_rolling_torque(cp, c.normal, g.r_eff,
+                                           bdl_v3_sub(p->omega[i], p->omega[j]), inv_i, def->dt);
+        res.torque_i = bdl_v3_add(res.torque_i, roll);
+        res.torque_j = bdl_v3_sub(res.torque_j, roll);
+    }
+    return res;
 }
 
 /// Wall contacts of particle i, added to f and t.
@@ -111,8 +111,8 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
         g.m_eff = 1.0 / p->inv_mass[i];
         g.r_eff = bdl_wall_r_eff(walls, prim, r);
         const bdl_contact_params *cp = def->wall_params + wall * ns + p->species[i];
-        bdl_contact_result res =
-            bdl_contact_eval(cp, def->hertz, &g, def->friction ? &nb->wall_history[k] : NULL, def->dt);
+        bdl_contact_result res = bdl_contact_eval(
+            cp, def->hertz, &g, def->friction ? &nb->wall_history[k] : NULL, def->dt);
         nb->wall_touching[k] = 1;
         nb->wall_force[k] = res.force;
         *f = bdl_v3_add(*f, res.force);
@@ -123,46 +123,187 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
     }
 }
 
-void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                    const bdl_force_def *def, uint8_t *coordination, double kick)
+static int grow(void **ptr, long count, size_t elem)
 {
-    long n = p->count;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) {
-        // The pair pass left the sum over i's own pairs in force[i] and torque[i].
-        bdl_vec3 f = p->force[i], t = p->torque[i];
-        int contacts = 0;
-        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
-            contacts += nb->touching[k];
-        for (int32_t m = nb->jstart[i]; m < nb->jstart[i + 1]; ++m) {
-            if (!nb->slot_touching[m])
-                continue;
-            ++contacts;
-            f = bdl_v3_sub(f, nb->force[m]);
-            if (nb->torque_j)
-                t = bdl_v3_add(t, nb->torque_j[m]);
-        }
-        wall_contacts(p, nb, walls, def, i, &f, &t);
-        double b = def->background_damping[p->species[i]];
-        if (b > 0.0)
-            f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
-        p->force[i] = f;
-        p->torque[i] = t;
-        if (coordination)
-            coordination[i] = (uint8_t)(contacts < 255 ? contacts : 255);
-        if (kick > 0.0) {
-            bdl_vec3 v = bdl_v3_madd(p->vel[i], def->gravity, kick);
-            p->vel[i] = bdl_v3_madd(v, f, kick * p->inv_mass[i]);
-            p->omega[i] = bdl_v3_madd(p->omega[i], t, kick * bdl_particle_inv_inertia(p, i));
+    void *q = realloc(*ptr, (size_t)(count > 0 ? count : 1) * elem);
+    if (!q)
+        return 0;
+    *ptr = q;
+    return 1;
+}
+
+/// Splits the particles into one range per thread and lists the boundary pairs: per source
+/// thread s the pairs (in list order) whose j lies in a later range, and per target thread the
+/// indices of those entries that point into it, by source thread and list order.
+static bdl_result partition(bdl_force_work *fw, const bdl_neighbor *nb, long n, int threads)
+{
+    if (fw->threads == threads && fw->version == nb->version && fw->count == n)
+        return BDL_OK;
+    if (threads > BDL_MAX_FORCE_THREADS)
+        threads = BDL_MAX_FORCE_THREADS;
+    fw->threads = threads;
+    fw->version = nb->version;
+    fw->count = n;
+    for (int t = 0; t <= threads; ++t)
+        fw->range[t] = (long)((double)n * t / threads);
+    long count = 0;
+    for (int t = 0; t + 1 < threads; ++t)
+        for (long i = fw->range[t]; i < fw->range[t + 1]; ++i)
+            for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
+                count += nb->partner[k] >= fw->range[t + 1];
+    if (count > fw->capacity) {
+        long cap = count + count / 4 + 64;
+        if (!grow((void **)&fw->pair, cap, sizeof(int32_t)) ||
+            !grow((void **)&fw->target, cap, sizeof(int32_t)) ||
+            !grow((void **)&fw->result, cap, sizeof *fw->result))
+            return BDL_ERR_NOMEM;
+        fw->capacity = cap;
+    }
+    long m = 0;
+    for (int t = 0; t < threads; ++t) {
+        fw->out_start[t] = m;
+        for (long i = fw->range[t]; i < fw->range[t + 1]; ++i)
+            for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
+                if (nb->partner[k] >= fw->range[t + 1])
+                    fw->pair[m++] = k;
+    }
+    fw->out_start[threads] = m;
+    // Incoming lists: entries sorted by target thread, then source thread, then list order.
+    long c = 0;
+    for (int u = 0; u < threads; ++u) {
+        fw->in_start[u] = c;
+        for (long e = 0; e < m; ++e) {
+            long j = nb->partner[fw->pair[e]];
+            if (j >= fw->range[u] && j < fw->range[u + 1])
+                fw->target[c++] = (int32_t)e;
         }
     }
+    fw->in_start[threads] = c;
+    return BDL_OK;
+}
+
+/// Adds -F and the torque of a pair to particle j (its second particle).
+static inline void add_to_j(bdl_particles *p, uint8_t *coordination, int32_t j,
+                            const pair_result *r, int torques)
+{
+    p->force[j] = bdl_v3_sub(p->force[j], r->force);
+    if (torques)
+        p->torque[j] = bdl_v3_add(p->torque[j], r->torque_j);
+    if (coordination[j] < 255)
+        coordination[j]++;
+}
+
+/// Walls, background damping, storage and the closing half kick of particle i, once all its
+/// pairs are in.
+static inline void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
+                                   const bdl_force_def *def, long i, bdl_vec3 f, bdl_vec3 t,
+                                   double kick)
+{
+    wall_contacts(p, nb, walls, def, i, &f, &t);
+    double b = def->background_damping[p->species[i]];
+    if (b > 0.0)
+        f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
+    p->force[i] = f;
+    p->torque[i] = t;
+    if (kick > 0.0) {
+        double im = p->inv_mass[i];
+        p->vel[i] = bdl_v3_madd(bdl_v3_madd(p->vel[i], def->gravity, kick), f, kick * im);
+        p->omega[i] = bdl_v3_madd(p->omega[i], t, kick * bdl_particle_inv_inertia(p, i));
+    }
+}
+
+static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
+                        const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
+                        double kick, int t)
+{
+    long lo = fw->range[t], hi = fw->range[t + 1];
+    int torques = def->friction || def->rolling;
+    for (long i = lo; i < hi; ++i) {
+        p->force[i] = bdl_v3_zero();
+        p->torque[i] = bdl_v3_zero();
+        coordination[i] = 0;
+    }
+    // Boundary pairs from earlier ranges first: their i are smaller than all of ours.
+    for (long c = fw->in_start[t]; c < fw->in_start[t + 1]; ++c) {
+        const pair_result *r = &fw->result[fw->target[c]];
+        if (r->touching)
+            add_to_j(p, coordination, nb->partner[fw->pair[fw->target[c]]], r, torques);
+    }
+    long out = fw->out_start[t], out_end = fw->out_start[t + 1];
+    for (long i = lo; i < hi; ++i) {
+        bdl_vec3 f = p->force[i], tq = p->torque[i];
+        int contacts = coordination[i];
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            pair_result r;
+            if (out < out_end && fw->pair[out] == k)
+                r = fw->result[out++];
+            else {
+                r = eval_pair(p, nb, def, i, k);
+                if (r.touching)
+                    add_to_j(p, coordination, nb->partner[k], &r, torques);
+            }
+            if (!r.touching)
+                continue;
+            ++contacts;
+            f = bdl_v3_add(f, r.force);
+            if (torques)
+                tq = bdl_v3_add(tq, r.torque_i);
+        }
+        coordination[i] = (uint8_t)(contacts < 255 ? contacts : 255);
+        finish_particle(p, nb, walls, def, i, f, tq, kick);
+    }
+}
+
+bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
+                          const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
+                          double kick)
+{
+    long n = p->count;
+    int threads = n >= def->parallel_min ? omp_get_max_threads() : 1;
+    bdl_result r = partition(fw, nb, n, threads);
+    if (r != BDL_OK)
+        return r;
+    threads = fw->threads;
+    if (threads == 1) {
+        force_range(p, nb, walls, def, fw, coordination, kick, 0);
+        return BDL_OK;
+    }
+#pragma omp parallel num_threads(threads)
+    {
+        int t = omp_get_thread_num();
+        // Phase 1: this range's boundary pairs, stored for the owners of their j.
+        long i = fw->range[t];
+        for (long e = fw->out_start[t]; e < fw->out_start[t + 1]; ++e) {
+            int32_t k = fw->pair[e];
+            while (nb->start[i + 1] <= k)
+                ++i;
+            fw->result[e] = eval_pair(p, nb, def, i, k);
+        }
+#pragma omp barrier
+        // Phase 2: everything else, in index order.
+        force_range(p, nb, walls, def, fw, coordination, kick, t);
+    }
+    return BDL_OK;
+}
+
+void bdl_force_work_free(bdl_force_work *fw)
+{
+    free(fw->pair);
+    free(fw->target);
+    free(fw->result);
+    memset(fw, 0, sizeof *fw);
+}
+
+long bdl_force_work_bytes(const bdl_force_work *fw)
+{
+    return fw->capacity * (long)(2 * sizeof(int32_t) + sizeof *fw->result);
 }
 
 double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double dt)
 {
     long n = p->count;
     double max2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(max : max2)
+#pragma omp parallel for schedule(static) reduction(max : max2) if (n >= BDL_PARALLEL_MIN)
     for (long i = 0; i < n; ++i) {
         double im = p->inv_mass[i];
         bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], gravity, h), p->force[i], h * im);
@@ -203,8 +344,8 @@ static double spring_energy(const bdl_contact_params *cp, int hertz, double over
     return 0.5 * cp->kn * overlap * overlap;
 }
 
-double bdl_dem_elastic_energy(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls,
-                              const bdl_force_def *def)
+double bdl_dem_elastic_energy(const bdl_particles *p, const bdl_neighbor *nb,
+                              const bdl_walls *walls, const bdl_force_def *def)
 {
     double e = 0.0;
     int ns = def->species_count;

@@ -20,20 +20,44 @@ typedef struct bdl_force_def {
     const bdl_contact_params *pair_params; ///< species_count^2 table
     const bdl_contact_params *wall_params; ///< wall_count * species_count table
     int species_count;
-    const double *background_damping;      ///< per species [1/s]
-    bdl_vec3 gravity;                      ///< [m/s^2]
+    const double *background_damping; ///< per species [1/s]
+    bdl_vec3 gravity;                 ///< [m/s^2]
     int hertz, friction, rolling;
-    double dt;                             ///< [s] (tangential spring increment)
+    double dt;         ///< [s] (tangential spring increment)
+    long parallel_min; ///< fewer particles than this: one thread
 } bdl_force_def;
 
-/// Evaluates every listed pair once and stores its force (parallel over particles i).
-void bdl_dem_pair_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def);
+/// Below this many particles a parallel region costs more than it saves.
+#define BDL_PARALLEL_MIN 4096
 
-/// Sums each particle's pair forces in a fixed order, adds wall contacts and background damping
-/// (gravity is applied in the kicks), and counts particle contacts into `coordination` (may be NULL). With kick h > 0 the
-/// closing half kick v += h F/m, w += h T/I follows in the same pass.
-void bdl_dem_gather(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                    const bdl_force_def *def, uint8_t *coordination, double kick);
+#define BDL_MAX_FORCE_THREADS 256
+
+/// Per-step bookkeeping of the parallel force pass (see integrate.c): the particle range of each
+/// thread and the boundary pairs between ranges. Rebuilt when the lists or the thread count
+/// change; a steady-state step allocates nothing.
+typedef struct bdl_force_work {
+    int threads;
+    long version; ///< neighbour list version it was built for
+    long count;   ///< particle count it was built for
+    long range[BDL_MAX_FORCE_THREADS + 1];
+    long out_start[BDL_MAX_FORCE_THREADS + 1]; ///< boundary pairs by source thread
+    long in_start[BDL_MAX_FORCE_THREADS + 1];  ///< entries by target thread
+    int32_t *pair;                             ///< pair index of each boundary entry
+    int32_t *target;                           ///< boundary entries ordered by target thread
+    struct bdl_pair_result *result;            ///< evaluated boundary pairs
+    long capacity;
+} bdl_force_work;
+
+void bdl_force_work_free(bdl_force_work *fw);
+long bdl_force_work_bytes(const bdl_force_work *fw);
+
+/// Evaluates all contacts in one pass over the particles: pair forces (each pair once), wall
+/// contacts and background damping (gravity is applied in the kicks), counts particle contacts
+/// into `coordination`, and with kick h > 0 applies the closing half kick v += h (F/m + g),
+/// w += h T/I. The sums do not depend on the thread count.
+bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
+                          const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
+                          double kick);
 
 /// The opening half of a step in one pass: v += h (F/m + g), w += h T/I, x += dt v. Returns the
 /// largest squared displacement since the neighbour list was built [m^2].
@@ -43,7 +67,7 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
 double bdl_dem_wall_power(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls);
 
 /// Elastic energy stored in the contacts [J] (normal springs only).
-double bdl_dem_elastic_energy(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls,
-                              const bdl_force_def *def);
+double bdl_dem_elastic_energy(const bdl_particles *p, const bdl_neighbor *nb,
+                              const bdl_walls *walls, const bdl_force_def *def);
 
 #endif

@@ -99,12 +99,13 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
 
 void bdl_neighbor_free(bdl_neighbor *nb)
 {
-    void *arrays[] = {nb->cell_rank,  nb->cell_start, nb->cell_cursor,    nb->start,        nb->partner,
-                      nb->history,    nb->force,         nb->torque_j,
-                      nb->touching,   nb->jstart,        nb->jslot, nb->slot_touching,        nb->wall_start,
-                      nb->wall_prim,  nb->wall_history,  nb->wall_force,   nb->wall_touching,
-                      nb->old_wall_start, nb->old_wall_prim, nb->old_wall_history, nb->perm,
-                      nb->pcell,      nb->scratch};
+    void *arrays[] = {nb->cell_rank,      nb->cell_start,    nb->cell_cursor,
+                      nb->start,          nb->partner,       nb->history,
+                      nb->stash_history,  nb->stash_partner, nb->stash_start,
+                      nb->touching,       nb->wall_start,    nb->wall_prim,
+                      nb->wall_history,   nb->wall_force,    nb->wall_touching,
+                      nb->old_wall_start, nb->old_wall_prim, nb->old_wall_history,
+                      nb->perm,           nb->pcell,         nb->scratch};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     memset(nb, 0, sizeof *nb);
@@ -179,7 +180,7 @@ static bdl_result reserve_particles(bdl_neighbor *nb, long n)
         return BDL_OK;
     long cap = n + n / 16 + 16;
     int ok = grow_array((void **)&nb->start, cap + 1, sizeof(int32_t)) &&
-             grow_array((void **)&nb->jstart, cap + 1, sizeof(int32_t)) &&
+             grow_array((void **)&nb->stash_start, cap + 1, sizeof(int32_t)) &&
              grow_array((void **)&nb->wall_start, cap + 1, sizeof(int32_t)) &&
              grow_array((void **)&nb->old_wall_start, cap + 1, sizeof(int32_t)) &&
              grow_array((void **)&nb->perm, cap, sizeof(int32_t)) &&
@@ -197,37 +198,42 @@ static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
         return BDL_OK;
     long cap = pairs + pairs / 16 + 64;
     int ok = grow_array((void **)&nb->partner, cap, sizeof(int32_t)) &&
-             grow_array((void **)&nb->force, cap, sizeof(bdl_vec3)) &&
-             grow_array((void **)&nb->touching, cap, 1) &&
-             grow_array((void **)&nb->slot_touching, cap, 1) &&
-             grow_array((void **)&nb->jslot, cap, sizeof(int32_t));
+             grow_array((void **)&nb->touching, cap, 1);
     if (ok && nb->friction)
         ok = grow_array((void **)&nb->history, cap, sizeof(bdl_vec3));
-    if (ok && (nb->friction || nb->rolling))
-        ok = grow_array((void **)&nb->torque_j, cap, sizeof(bdl_vec3));
     if (!ok)
         return BDL_ERR_NOMEM;
     nb->pair_capacity = cap;
     return BDL_OK;
 }
 
-/// Packs the history of pairs that were touching, grouped by their (old) first particle, into
-/// arrays the rebuild does not need until the end: force[] holds the displacement, jslot[] the
-/// old partner, jstart[] the offsets.
-static void stash_history(bdl_neighbor *nb)
+/// Packs the history of the pairs that were touching, grouped by their (old) first particle, so
+/// the rebuilt list can look it up by the particles' old indices.
+static bdl_result stash_history(bdl_neighbor *nb)
 {
+    long touching = 0;
+    for (long k = 0; k < nb->pair_count; ++k)
+        touching += nb->touching[k];
+    if (touching > nb->stash_capacity) {
+        long cap = touching + touching / 8 + 64;
+        if (!grow_array((void **)&nb->stash_history, cap, sizeof(bdl_vec3)) ||
+            !grow_array((void **)&nb->stash_partner, cap, sizeof(int32_t)))
+            return BDL_ERR_NOMEM;
+        nb->stash_capacity = cap;
+    }
     long c = 0;
-    nb->jstart[0] = 0;
+    nb->stash_start[0] = 0;
     for (long i = 0; i < nb->count; ++i) {
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
             if (!nb->touching[k])
                 continue;
-            nb->force[c] = nb->history[k];
-            nb->jslot[c] = nb->partner[k];
+            nb->stash_history[c] = nb->history[k];
+            nb->stash_partner[c] = nb->partner[k];
             ++c;
         }
-        nb->jstart[i + 1] = (int32_t)c;
+        nb->stash_start[i + 1] = (int32_t)c;
     }
+    return BDL_OK;
 }
 
 static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj,
@@ -236,10 +242,10 @@ static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi,
     if (oi >= old_count || oj >= old_count)
         return bdl_v3_zero();
     int32_t a = oi < oj ? oi : oj, b = oi < oj ? oj : oi;
-    for (int32_t k = nb->jstart[a]; k < nb->jstart[a + 1]; ++k)
-        if (nb->jslot[k] == b) {
+    for (int32_t k = nb->stash_start[a]; k < nb->stash_start[a + 1]; ++k)
+        if (nb->stash_partner[k] == b) {
             *found = 1;
-            return oi < oj ? nb->force[k] : bdl_v3_neg(nb->force[k]);
+            return oi < oj ? nb->stash_history[k] : bdl_v3_neg(nb->stash_history[k]);
         }
     return bdl_v3_zero();
 }
@@ -314,23 +320,6 @@ static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old
                 nb->touching[k] = (uint8_t)found;
             }
     }
-    // Slots for the gather: each particle owns one per pair where it is j, in pair order.
-    memset(nb->jstart, 0, (size_t)(n + 1) * sizeof(int32_t));
-    for (long k = 0; k < pairs; ++k)
-        nb->jstart[nb->partner[k] + 1]++;
-    for (long i = 0; i < n; ++i)
-        nb->jstart[i + 1] += nb->jstart[i];
-    // Fill with a cursor kept in pcell (free scratch by now).
-    for (long i = 0; i < n; ++i)
-        nb->pcell[i] = nb->jstart[i];
-    for (long k = 0; k < pairs; ++k)
-        nb->jslot[k] = nb->pcell[nb->partner[k]]++;
-    // Slot data of pairs that carried history over is set by the first force pass; the rest
-    // starts at zero.
-    memset(nb->slot_touching, 0, (size_t)pairs);
-    memset(nb->force, 0, (size_t)pairs * sizeof(bdl_vec3));
-    if (nb->torque_j)
-        memset(nb->torque_j, 0, (size_t)pairs * sizeof(bdl_vec3));
     return BDL_OK;
 }
 
@@ -406,10 +395,13 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
     bdl_result r = reserve_particles(nb, n);
     if (r != BDL_OK)
         return r;
-    if (nb->friction && old_count > 0)
-        stash_history(nb);
-    else
+    if (nb->friction && old_count > 0) {
+        r = stash_history(nb);
+        if (r != BDL_OK)
+            return r;
+    } else {
         old_count = 0;
+    }
     wrap_periodic(nb, p);
     sort_particles(nb, p);
     for (long i = 0; i < n; ++i)
@@ -422,6 +414,7 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
         return r;
     nb->count = n;
     nb->builds++;
+    nb->version++;
     return BDL_OK;
 }
 
@@ -448,14 +441,11 @@ int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, con
 
 long bdl_neighbor_bytes(const bdl_neighbor *nb)
 {
-    long per_pair = (long)(sizeof(int32_t) * 2 + sizeof(bdl_vec3) + 2);
-    if (nb->friction)
-        per_pair += (long)sizeof(bdl_vec3);
-    if (nb->friction || nb->rolling)
-        per_pair += (long)sizeof(bdl_vec3);
-    long per_particle = 4 * (long)sizeof(int32_t) + 2 * (long)sizeof(int32_t) + (long)sizeof(bdl_vec3);
+    long per_pair = (long)sizeof(int32_t) + 1 + (nb->friction ? (long)sizeof(bdl_vec3) : 0);
+    long per_particle = 6 * (long)sizeof(int32_t) + (long)sizeof(bdl_vec3);
     long per_wall = (long)(sizeof(int32_t) + 2 * sizeof(bdl_vec3) + 1);
     return nb->pair_capacity * per_pair + nb->scratch_count * per_particle +
+           nb->stash_capacity * (long)(sizeof(bdl_vec3) + sizeof(int32_t)) +
            (nb->wall_pair_capacity + nb->old_wall_capacity) * per_wall +
            nb->cell_count * 3 * (long)sizeof(int32_t);
 }

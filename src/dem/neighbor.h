@@ -5,11 +5,8 @@
 // every pair (i < j) closer than r_i + r_j + skin; it stays valid until a particle has moved
 // skin/2 (or a particle plus a wall have moved skin together), so it is rebuilt only then.
 //
-// Determinism: each pair's force is computed once and stored; each particle then gathers the
-// forces of its pairs in a fixed order (pairs where it is j, by pair index, then those where it
-// is i). No thread ever writes another's particle, so the result does not depend on the thread
-// count. Tangential history follows each pair across rebuilds and re-sorts (looked up by the
-// particles' previous indices).
+// Tangential history follows each pair across rebuilds and re-sorts (looked up by the particles'
+// previous indices). How forces are summed deterministically is described in integrate.c.
 #ifndef BDL_NEIGHBOR_H
 #define BDL_NEIGHBOR_H
 
@@ -20,31 +17,32 @@
 
 typedef struct bdl_neighbor {
     // cell grid
-    bdl_vec3 origin;   ///< lower corner of the grid [m]
-    bdl_vec3 length;   ///< domain length per axis [m]
-    double cell[3];    ///< cell size per axis [m]
-    int dims[3];       ///< cells per axis
+    bdl_vec3 origin; ///< lower corner of the grid [m]
+    bdl_vec3 length; ///< domain length per axis [m]
+    double cell[3];  ///< cell size per axis [m]
+    int dims[3];     ///< cells per axis
     int periodic[3];
     long cell_count;
-    int32_t *cell_rank;  ///< Morton rank of each cell
-    int32_t *cell_start; ///< first particle of each ranked cell (cell_count + 1)
+    int32_t *cell_rank;   ///< Morton rank of each cell
+    int32_t *cell_start;  ///< first particle of each ranked cell (cell_count + 1)
     int32_t *cell_cursor; ///< scratch for the counting sort
-    double skin;         ///< [m]
+    double skin;          ///< [m]
 
     // pairs (half list, i < j, grouped by i)
-    long count;          ///< particles the list was built for
+    long count; ///< particles the list was built for
     long pair_count, pair_capacity;
-    int32_t *start;      ///< pairs of i are [start[i], start[i+1])
-    int32_t *partner;    ///< j of each pair
-    bdl_vec3 *history;   ///< tangential displacement [m] (NULL without friction)
-    uint8_t *touching;   ///< 1 if the pair overlapped this step (by pair)
-    // Pair results are stored in the second particle's slots, so the gather reads them in order:
-    // the pairs where p is j own slots jstart[p] .. jstart[p+1], pair k writes slot jslot[k].
-    int32_t *jstart;
-    int32_t *jslot;
-    bdl_vec3 *force;       ///< by slot: force on the pair's first particle i [N] (j gets -force)
-    bdl_vec3 *torque_j;    ///< by slot: torque on j [N m] (NULL without friction and rolling)
-    uint8_t *slot_touching; ///< by slot: the pair overlapped this step
+    int32_t *start;    ///< pairs of i are [start[i], start[i+1])
+    int32_t *partner;  ///< j of each pair
+    bdl_vec3 *history; ///< tangential displacement [m] (NULL without friction)
+    uint8_t *touching; ///< 1 if the pair overlapped this step
+    long version;      ///< incremented at every rebuild (derived per-step structures follow it)
+
+    // History of the touching pairs, packed by their first particle's previous index while a
+    // rebuild renumbers the particles.
+    bdl_vec3 *stash_history;
+    int32_t *stash_partner;
+    int32_t *stash_start;
+    long stash_capacity;
     // wall contacts (grouped by particle)
     long wall_pair_count, wall_pair_capacity;
     int32_t *wall_start; ///< (count + 1)
@@ -58,12 +56,12 @@ typedef struct bdl_neighbor {
     long old_wall_capacity;
 
     bdl_vec3 wall_offset_at_build[BDL_MAX_WALLS];
-    int32_t *perm;       ///< scratch: new index -> old index
-    int32_t *pcell;      ///< scratch: ranked cell of each particle
-    void *scratch;       ///< scratch for permutations (count * 24 bytes)
+    int32_t *perm;  ///< scratch: new index -> old index
+    int32_t *pcell; ///< scratch: ranked cell of each particle
+    void *scratch;  ///< scratch for permutations (count * 24 bytes)
     long scratch_count;
     int friction, rolling;
-    long builds;         ///< rebuilds so far
+    long builds; ///< rebuilds so far
 } bdl_neighbor;
 
 /// Sets up the grid for the domain; `cutoff` = d_max + skin [m]. `max_particles` bounds the cell

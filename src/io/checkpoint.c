@@ -49,8 +49,9 @@ static void get(reader *r, void *data, size_t size)
 
 /// The fields saved and restored, in file order; `n` is the element count for arrays.
 #define SCALARS(X)                                                                                 \
-    X(time) X(step) X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy)                \
-        X(damping_work) X(energy0) X(contact_time) X(contact_time_dt_ratio)
+    X(time)                                                                                        \
+    X(step) X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work)         \
+        X(energy0) X(contact_time) X(contact_time_dt_ratio)
 
 bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
 {
@@ -68,8 +69,8 @@ bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
     SCALARS(PUT_SCALAR)
 #undef PUT_SCALAR
     size_t n = (size_t)p->count;
-    long counts[6] = {p->count, (long)p->next_id, nb->pair_count, nb->wall_pair_count, nb->builds,
-                      nb->count};
+    long counts[7] = {p->count,   (long)p->next_id, nb->pair_count, nb->wall_pair_count,
+                      nb->builds, nb->count,        nb->version};
     put(&out, counts, sizeof counts);
     put(&out, p->pos, n * sizeof(bdl_vec3));
     put(&out, p->vel, n * sizeof(bdl_vec3));
@@ -86,15 +87,9 @@ bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
     put(&out, nb->wall_offset_at_build, sizeof nb->wall_offset_at_build);
     put(&out, nb->start, (n + 1) * sizeof(int32_t));
     put(&out, nb->partner, np * sizeof(int32_t));
-    put(&out, nb->force, np * sizeof(bdl_vec3));
     put(&out, nb->touching, np);
-    put(&out, nb->slot_touching, np);
-    put(&out, nb->jstart, (n + 1) * sizeof(int32_t));
-    put(&out, nb->jslot, np * sizeof(int32_t));
     if (nb->history)
         put(&out, nb->history, np * sizeof(bdl_vec3));
-    if (nb->torque_j)
-        put(&out, nb->torque_j, np * sizeof(bdl_vec3));
     put(&out, nb->wall_start, (n + 1) * sizeof(int32_t));
     put(&out, nb->wall_prim, nw * sizeof(int32_t));
     put(&out, nb->wall_history, nw * sizeof(bdl_vec3));
@@ -130,12 +125,13 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
     }
     if (fp != bdl_checkpoint_scene_fingerprint(&w->scene)) {
         fclose(f);
-        return fail(why, why_len, path, "was written for a different scene (species, walls or law differ)");
+        return fail(why, why_len, path,
+                    "was written for a different scene (species, walls or law differ)");
     }
 #define GET_SCALAR(name) get(&in, &w->name, sizeof w->name);
     SCALARS(GET_SCALAR)
 #undef GET_SCALAR
-    long counts[6];
+    long counts[7];
     get(&in, counts, sizeof counts);
     if (!in.ok || counts[0] < 0 || counts[2] < 0 || counts[3] < 0 || counts[0] > (1L << 31)) {
         fclose(f);
@@ -161,6 +157,8 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
     nb->wall_pair_count = counts[3];
     nb->builds = counts[4];
     nb->count = counts[5];
+    nb->version = counts[6];
+    w->force_work.version = -1; // derived from the lists: rebuilt on the next step
     size_t n = (size_t)p->count;
     get(&in, p->pos, n * sizeof(bdl_vec3));
     get(&in, p->vel, n * sizeof(bdl_vec3));
@@ -177,15 +175,9 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
     get(&in, nb->wall_offset_at_build, sizeof nb->wall_offset_at_build);
     get(&in, nb->start, (n + 1) * sizeof(int32_t));
     get(&in, nb->partner, np * sizeof(int32_t));
-    get(&in, nb->force, np * sizeof(bdl_vec3));
     get(&in, nb->touching, np);
-    get(&in, nb->slot_touching, np);
-    get(&in, nb->jstart, (n + 1) * sizeof(int32_t));
-    get(&in, nb->jslot, np * sizeof(int32_t));
     if (nb->history)
         get(&in, nb->history, np * sizeof(bdl_vec3));
-    if (nb->torque_j)
-        get(&in, nb->torque_j, np * sizeof(bdl_vec3));
     get(&in, nb->wall_start, (n + 1) * sizeof(int32_t));
     get(&in, nb->wall_prim, nw * sizeof(int32_t));
     get(&in, nb->wall_history, nw * sizeof(bdl_vec3));

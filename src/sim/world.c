@@ -23,6 +23,7 @@ static bdl_force_def force_def(const bdl_world *w)
     def.friction = w->friction;
     def.rolling = w->rolling;
     def.dt = w->dt;
+    def.parallel_min = w->parallel_min;
     return def;
 }
 
@@ -127,9 +128,7 @@ static bdl_result forces(bdl_world *w, double max_move2, double kick)
             return r;
     }
     bdl_force_def def = force_def(w);
-    bdl_dem_pair_forces(p, &w->neighbor, &def);
-    bdl_dem_gather(p, &w->neighbor, &w->walls, &def, w->coordination, kick);
-    return BDL_OK;
+    return bdl_dem_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination, kick);
 }
 
 bdl_result bdl_world_compute_forces(bdl_world *w) { return forces(w, -1.0, 0.0); }
@@ -295,6 +294,7 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
         return BDL_ERR_NOMEM;
     w->scene = *scene;
     w->hertz = scene->law == BDL_LAW_HERTZ;
+    w->parallel_min = BDL_PARALLEL_MIN;
     bdl_contact_table_build(scene, w->pair_params, w->wall_params);
     w->friction = any_friction(w);
     w->rolling = any_rolling(w);
@@ -370,6 +370,7 @@ void bdl_world_destroy(bdl_world *w)
         return;
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);
+    bdl_force_work_free(&w->force_work);
     free(w->coordination);
     free(w);
 }

@@ -9,6 +9,7 @@
 #include <stdint.h>
 
 #include "core/rng.h"
+#include "dem/integrate.h"
 #include "dem/material.h"
 #include "dem/neighbor.h"
 #include "dem/particles.h"
@@ -26,6 +27,7 @@ typedef struct bdl_world {
     bdl_particles particles;
     bdl_neighbor neighbor;
     bdl_walls walls;
+    bdl_force_work force_work;
     bdl_contact_params pair_params[BDL_MAX_SPECIES * BDL_MAX_SPECIES];
     bdl_contact_params wall_params[BDL_MAX_WALLS * BDL_MAX_SPECIES];
     double background_damping[BDL_MAX_SPECIES]; ///< b per species [1/s]
@@ -36,6 +38,7 @@ typedef struct bdl_world {
     int friction; ///< any sliding friction: tangential history is kept
     int rolling;  ///< rolling resistance active
 
+    long parallel_min;            ///< force pass on one thread below this particle count
     double dt;                    ///< time step [s]
     double time;                  ///< simulated time [s]
     long step;                    ///< steps taken
