@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "check.h"
+#include "scene_util.h"
 #include "io/checkpoint.h"
 #include "sim/world.h"
 
@@ -30,15 +31,7 @@ static const char *const scene_text =
 
 static bdl_world *make_world(void)
 {
-    bdl_scene *scene = calloc(1, sizeof *scene);
-    bdl_scene_error err;
-    bdl_world *w = NULL;
-    if (bdl_scene_load_string(scene_text, "determinism", NULL, 0, scene, &err) != BDL_OK ||
-        bdl_world_create(scene, &w, &err) != BDL_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        exit(1);
-    }
-    free(scene);
+    bdl_world *w = bdl_test_world("%s", scene_text);
     w->parallel_min = 1; // exercise the parallel force pass even for this small scene
     return w;
 }

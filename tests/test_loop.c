@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "check.h"
+#include "scene_util.h"
 #include "core/log.h"
 #include "sim/loop.h"
 
@@ -52,15 +53,7 @@ static bdl_command command(bdl_command_kind kind, const char *key, double value)
 
 int main(void)
 {
-    bdl_scene *scene = calloc(1, sizeof *scene);
-    bdl_scene_error err;
-    bdl_world *w = NULL;
-    if (bdl_scene_load_string(scene_text, "loop", NULL, 0, scene, &err) != BDL_OK ||
-        bdl_world_create(scene, &w, &err) != BDL_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return 1;
-    }
-    free(scene);
+    bdl_world *w = bdl_test_world("%s", scene_text);
     FILE *log = tmpfile();
     bdl_log_set_file(log);
 

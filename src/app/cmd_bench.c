@@ -30,10 +30,10 @@ static const char bench_usage[] =
 typedef struct bench_result {
     long particles;
     int threads;
-    double rate;      ///< particle-steps/s
-    double bytes;     ///< per particle
-    double contacts;  ///< mean coordination
-    double pairs;     ///< listed pairs per particle
+    double rate;     ///< particle-steps/s
+    double bytes;    ///< per particle
+    double contacts; ///< mean coordination
+    double pairs;    ///< listed pairs per particle
 } bench_result;
 
 /// A settled, dense bed of n spheres: random fill at solids fraction 0.3 in a periodic square
@@ -178,7 +178,8 @@ int bdl_cmd_bench(int argc, char **argv)
         if (t == 0)
             base = r.rate;
         else
-            printf("  speed-up %d vs %d threads: %.2fx\n", thread_list[t], thread_list[0], r.rate / base);
+            printf("  speed-up %d vs %d threads: %.2fx\n", thread_list[t], thread_list[0],
+                   r.rate / base);
     }
     bdl_world_destroy(w);
     if (scaling) {
