@@ -20,6 +20,12 @@
 
 #include "dem/contact_law.h"
 
+#if defined(__GNUC__)
+#define BDL_PREFETCH(address) __builtin_prefetch(address)
+#else
+#define BDL_PREFETCH(address) ((void)(address))
+#endif
+
 // Lever arms run from each centre to the middle of the overlap, r - delta/2, so that the two arms
 // add up to the centre distance and a pair conserves angular momentum exactly.
 static inline bdl_contact_geom pair_geom(const bdl_particles *p, long i, long j, bdl_vec3 d,
@@ -233,6 +239,13 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
     for (long i = lo; i < hi; ++i) {
         bdl_vec3 f = p->force[i], tq = p->torque[i];
         int contacts = coordination[i];
+        if (i + 2 < hi) {
+            // The partners of the particle after next are read soon: ask for them now.
+            for (int32_t k = nb->start[i + 2]; k < nb->start[i + 3]; ++k) {
+                BDL_PREFETCH(&p->pos[nb->partner[k]]);
+                BDL_PREFETCH(&p->vel[nb->partner[k]]);
+            }
+        }
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
             pair_result r;
             if (out < out_end && fw->pair[out] == k)
