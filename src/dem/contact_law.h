@@ -37,9 +37,9 @@ typedef struct bdl_contact_geom {
 } bdl_contact_geom;
 
 typedef struct bdl_contact_result {
-    bdl_vec3 force;   ///< on body i [N]
-    bdl_vec3 n_x_ft;  ///< n x F_t: body i gets torque -a_i n x F_t, body j -a_j n x F_t [N]
-    double normal;    ///< F_n >= 0 [N]
+    bdl_vec3 force;  ///< on body i [N]
+    bdl_vec3 n_x_ft; ///< n x F_t: body i gets torque -a_i n x F_t, body j -a_j n x F_t [N]
+    double normal;   ///< F_n >= 0 [N]
 } bdl_contact_result;
 
 #if defined(__GNUC__)
@@ -51,8 +51,8 @@ typedef struct bdl_contact_result {
 /// Evaluates the contact. `history` is the tangential spring displacement [m] (updated), or NULL
 /// for frictionless contacts.
 static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_params *cp, int hertz,
-                                                  const bdl_contact_geom *g, bdl_vec3 *history,
-                                                  double dt)
+                                                            const bdl_contact_geom *g,
+                                                            bdl_vec3 *history, double dt)
 {
     bdl_contact_result res;
     double vn = bdl_v3_dot(g->v_c, g->n);

@@ -12,19 +12,19 @@
 #include "core/vec3.h"
 
 typedef struct bdl_particles {
-    long count;           ///< live particles
-    long capacity;        ///< allocated slots
-    bdl_vec3 *pos;        ///< centre position [m]
-    bdl_vec3 *vel;        ///< velocity [m/s]
-    bdl_vec3 *omega;      ///< angular velocity [rad/s]
-    bdl_vec3 *force;      ///< contact, wall and damping force of this step, gravity excluded [N]
-    bdl_vec3 *torque;     ///< total torque of this step [N m]
+    long count;             ///< live particles
+    long capacity;          ///< allocated slots
+    bdl_vec3 *pos;          ///< centre position [m]
+    bdl_vec3 *vel;          ///< velocity [m/s]
+    bdl_vec3 *omega;        ///< angular velocity [rad/s]
+    bdl_vec3 *force;        ///< contact, wall and damping force of this step, gravity excluded [N]
+    bdl_vec3 *torque;       ///< total torque of this step [N m]
     bdl_vec3 *pos_at_build; ///< position when the neighbour list was built [m]
-    double *radius;       ///< [m]
-    double *inv_mass;     ///< 1/m [1/kg]
-    int32_t *species;     ///< species index
-    uint32_t *id;         ///< stable id
-    uint32_t next_id;     ///< id of the next particle added
+    double *radius;         ///< [m]
+    double *inv_mass;       ///< 1/m [1/kg]
+    int32_t *species;       ///< species index
+    uint32_t *id;           ///< stable id
+    uint32_t next_id;       ///< id of the next particle added
 } bdl_particles;
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);

@@ -50,8 +50,9 @@ static void get(reader *r, void *data, size_t size)
 /// The fields saved and restored, in file order; `n` is the element count for arrays.
 #define SCALARS(X)                                                                                 \
     X(time)                                                                                        \
-    X(step) X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work)         \
-        X(energy0) X(contact_time) X(contact_time_dt_ratio)
+    X(step)                                                                                        \
+    X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0)      \
+        X(contact_time) X(contact_time_dt_ratio)
 
 bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
 {
