@@ -51,8 +51,51 @@ static void get(reader *r, void *data, size_t size)
 #define SCALARS(X)                                                                                 \
     X(time)                                                                                        \
     X(step)                                                                                        \
-    X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0)      \
+    X(dt)                                                                                          \
+    X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0)            \
         X(contact_time) X(contact_time_dt_ratio)
+
+/// One array of the saved state.
+typedef struct field {
+    void *data;
+    size_t bytes;
+} field;
+
+#define MAX_FIELDS 32
+
+/// The arrays of the state in file order, for the counts the world holds now. Save and load walk
+/// the same table, so the two cannot drift apart.
+static int state_fields(bdl_world *w, field *f)
+{
+    bdl_particles *p = &w->particles;
+    bdl_neighbor *nb = &w->neighbor;
+    size_t n = (size_t)p->count, np = (size_t)nb->pair_count, nw = (size_t)nb->wall_pair_count;
+    size_t v = sizeof(bdl_vec3), i32 = sizeof(int32_t);
+    int k = 0;
+    f[k++] = (field){p->pos, n * v};
+    f[k++] = (field){p->vel, n * v};
+    f[k++] = (field){p->omega, n * v};
+    f[k++] = (field){p->force, n * v};
+    f[k++] = (field){p->torque, n * v};
+    f[k++] = (field){p->pos_at_build, n * v};
+    f[k++] = (field){p->radius, n * sizeof(double)};
+    f[k++] = (field){p->inv_mass, n * sizeof(double)};
+    f[k++] = (field){p->species, n * i32};
+    f[k++] = (field){p->id, n * sizeof(uint32_t)};
+    f[k++] = (field){w->coordination, n};
+    f[k++] = (field){nb->wall_offset_at_build, sizeof nb->wall_offset_at_build};
+    f[k++] = (field){nb->start, (n + 1) * i32};
+    f[k++] = (field){nb->partner, np * i32};
+    f[k++] = (field){nb->touching, np};
+    if (nb->history)
+        f[k++] = (field){nb->history, np * v};
+    f[k++] = (field){nb->wall_start, (n + 1) * i32};
+    f[k++] = (field){nb->wall_prim, nw * i32};
+    f[k++] = (field){nb->wall_history, nw * v};
+    f[k++] = (field){nb->wall_force, nw * v};
+    f[k++] = (field){nb->wall_touching, nw};
+    return k;
+}
 
 bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
 {
@@ -69,33 +112,14 @@ bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
 #define PUT_SCALAR(name) put(&out, &w->name, sizeof w->name);
     SCALARS(PUT_SCALAR)
 #undef PUT_SCALAR
-    size_t n = (size_t)p->count;
     long counts[7] = {p->count,   (long)p->next_id, nb->pair_count, nb->wall_pair_count,
                       nb->builds, nb->count,        nb->version};
     put(&out, counts, sizeof counts);
-    put(&out, p->pos, n * sizeof(bdl_vec3));
-    put(&out, p->vel, n * sizeof(bdl_vec3));
-    put(&out, p->omega, n * sizeof(bdl_vec3));
-    put(&out, p->force, n * sizeof(bdl_vec3));
-    put(&out, p->torque, n * sizeof(bdl_vec3));
-    put(&out, p->pos_at_build, n * sizeof(bdl_vec3));
-    put(&out, p->radius, n * sizeof(double));
-    put(&out, p->inv_mass, n * sizeof(double));
-    put(&out, p->species, n * sizeof(int32_t));
-    put(&out, p->id, n * sizeof(uint32_t));
-    put(&out, w->coordination, n);
-    size_t np = (size_t)nb->pair_count, nw = (size_t)nb->wall_pair_count;
-    put(&out, nb->wall_offset_at_build, sizeof nb->wall_offset_at_build);
-    put(&out, nb->start, (n + 1) * sizeof(int32_t));
-    put(&out, nb->partner, np * sizeof(int32_t));
-    put(&out, nb->touching, np);
-    if (nb->history)
-        put(&out, nb->history, np * sizeof(bdl_vec3));
-    put(&out, nb->wall_start, (n + 1) * sizeof(int32_t));
-    put(&out, nb->wall_prim, nw * sizeof(int32_t));
-    put(&out, nb->wall_history, nw * sizeof(bdl_vec3));
-    put(&out, nb->wall_force, nw * sizeof(bdl_vec3));
-    put(&out, nb->wall_touching, nw);
+    field f[MAX_FIELDS];
+    // The table takes a mutable world; saving only reads through it.
+    int count = state_fields((bdl_world *)w, f);
+    for (int k = 0; k < count; ++k)
+        put(&out, f[k].data, f[k].bytes);
     put(&out, magic, sizeof magic);
     if (!out.ok) {
         bdl_atomic_abort(&af);
@@ -160,30 +184,10 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
     nb->count = counts[5];
     nb->version = counts[6];
     w->force_work.version = -1; // derived from the lists: rebuilt on the next step
-    size_t n = (size_t)p->count;
-    get(&in, p->pos, n * sizeof(bdl_vec3));
-    get(&in, p->vel, n * sizeof(bdl_vec3));
-    get(&in, p->omega, n * sizeof(bdl_vec3));
-    get(&in, p->force, n * sizeof(bdl_vec3));
-    get(&in, p->torque, n * sizeof(bdl_vec3));
-    get(&in, p->pos_at_build, n * sizeof(bdl_vec3));
-    get(&in, p->radius, n * sizeof(double));
-    get(&in, p->inv_mass, n * sizeof(double));
-    get(&in, p->species, n * sizeof(int32_t));
-    get(&in, p->id, n * sizeof(uint32_t));
-    get(&in, w->coordination, n);
-    size_t np = (size_t)nb->pair_count, nw = (size_t)nb->wall_pair_count;
-    get(&in, nb->wall_offset_at_build, sizeof nb->wall_offset_at_build);
-    get(&in, nb->start, (n + 1) * sizeof(int32_t));
-    get(&in, nb->partner, np * sizeof(int32_t));
-    get(&in, nb->touching, np);
-    if (nb->history)
-        get(&in, nb->history, np * sizeof(bdl_vec3));
-    get(&in, nb->wall_start, (n + 1) * sizeof(int32_t));
-    get(&in, nb->wall_prim, nw * sizeof(int32_t));
-    get(&in, nb->wall_history, nw * sizeof(bdl_vec3));
-    get(&in, nb->wall_force, nw * sizeof(bdl_vec3));
-    get(&in, nb->wall_touching, nw);
+    field fields[MAX_FIELDS];
+    int count = state_fields(w, fields);
+    for (int k = 0; k < count; ++k)
+        get(&in, fields[k].data, fields[k].bytes);
     get(&in, m, sizeof m);
     fclose(f);
     if (!in.ok || memcmp(m, magic, sizeof magic) != 0)
