@@ -150,8 +150,23 @@ static bdl_result partition(bdl_force_work *fw, const bdl_neighbor *nb, long n, 
     fw->threads = threads;
     fw->version = nb->version;
     fw->count = n;
-    for (int t = 0; t <= threads; ++t)
-        fw->range[t] = (long)((double)n * t / threads);
+    // Balance the work, not the count: a particle costs about as much as one of its pairs, and
+    // the free surface of a bed has fewer pairs than its bottom. Cost up to i: i + start[i].
+    double total = (double)n + (double)nb->start[n];
+    fw->range[0] = 0;
+    for (int t = 1; t < threads; ++t) {
+        double goal = total * t / threads;
+        long lo = fw->range[t - 1], hi = n;
+        while (lo < hi) {
+            long mid = lo + (hi - lo) / 2;
+            if ((double)mid + (double)nb->start[mid] < goal)
+                lo = mid + 1;
+            else
+                hi = mid;
+        }
+        fw->range[t] = lo;
+    }
+    fw->range[threads] = n;
     long count = 0;
     for (int t = 0; t + 1 < threads; ++t)
         for (long i = fw->range[t]; i < fw->range[t + 1]; ++i)
