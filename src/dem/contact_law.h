@@ -85,9 +85,17 @@ static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_pa
     double u2 = bdl_v3_len2(u);
     if (u2 > 0.0) {
         // Rotate the stored spring into the current tangent plane, keeping its length.
-        bdl_vec3 up = bdl_v3_madd(u, g->n, -bdl_v3_dot(u, g->n));
-        double up2 = bdl_v3_len2(up);
-        u = up2 > 0.0 ? bdl_v3_scale(up, sqrt(u2 / up2)) : bdl_v3_zero();
+        double un = bdl_v3_dot(u, g->n);
+        bdl_vec3 up = bdl_v3_madd(u, g->n, -un);
+        // The normal turns little per step: for x = (u.n)^2/|u|^2 < 1e-5 the length factor
+        // 1/sqrt(1 - x) = 1 + x/2 + 3x^2/8 + O(x^3) is exact to round-off without a square root.
+        double x = un * un / u2;
+        if (x < 1e-5) {
+            u = bdl_v3_scale(up, 1.0 + x * (0.5 + 0.375 * x));
+        } else {
+            double up2 = bdl_v3_len2(up);
+            u = up2 > 0.0 ? bdl_v3_scale(up, sqrt(u2 / up2)) : bdl_v3_zero();
+        }
     }
     u = bdl_v3_madd(u, vt, dt);
     double eta_t = cp->tangential_damping_ratio * eta;
