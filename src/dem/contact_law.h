@@ -39,7 +39,9 @@ typedef struct bdl_contact_geom {
 typedef struct bdl_contact_result {
     bdl_vec3 force;  ///< on body i [N]
     bdl_vec3 n_x_ft; ///< n x F_t: body i gets torque -a_i n x F_t, body j -a_j n x F_t [N]
+    bdl_vec3 spring; ///< tangential spring after this step [m] (friction only)
     double normal;   ///< F_n >= 0 [N]
+    int exceptional; ///< trial evaluation only: evaluate again in full
 } bdl_contact_result;
 
 #if defined(__GNUC__)
@@ -48,72 +50,111 @@ typedef struct bdl_contact_result {
 #define BDL_FORCE_INLINE inline
 #endif
 
-/// Evaluates the contact. `history` is the tangential spring displacement [m] (updated), or NULL
-/// for frictionless contacts.
-static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_params *cp, int hertz,
-                                                            const bdl_contact_geom *g,
-                                                            bdl_vec3 *history, double dt)
+/// Component-wise c ? a : b (a select, not a branch: keeps bdl_contact_eval vectorisable).
+static BDL_FORCE_INLINE bdl_vec3 bdl_v3_select(int c, bdl_vec3 a, bdl_vec3 b)
 {
+    return (bdl_vec3){c ? a.x : b.x, c ? a.y : b.y, c ? a.z : b.z};
+}
+
+/// Below this (u.n)^2 / |u|^2 the rotated spring is rescaled with a series (next comment).
+#define BDL_ROTATION_SERIES_MAX 1e-6
+
+/// Evaluates the contact. With `friction`, `spring` is the tangential spring displacement u [m]
+/// and the result holds its new value. `hertz` and `friction` should be constants at the call
+/// site: the body has no other branch (only selects), so a loop over contacts vectorises.
+///
+/// The rotated spring u_p = u - (u.n) n is rescaled to the length of u by the factor
+/// (1 - eps)^(-1/2), eps = (u.n)^2 / |u|^2: for eps < BDL_ROTATION_SERIES_MAX (a normal that
+/// turned by less than 1e-3 rad since the last step) by its series 1 + eps/2 + 3 eps^2/8, whose
+/// error (< 3e-19) is below rounding, else by sqrt(|u|^2 / |u_p|^2).
+///
+/// With `trial`, the rescale of a spring whose normal turned more than the series covers (rare:
+/// it needs a square root and a division of its own) is left out: then `res.exceptional` is set,
+/// and the caller evaluates that contact again without `trial` (which gives exactly what `trial`
+/// gives for every other contact).
+static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval_mode(const bdl_contact_params *cp,
+                                                                 int hertz, int friction,
+                                                                 bdl_contact_geom geom,
+                                                                 bdl_vec3 spring, double dt,
+                                                                 int trial)
+{
+    const bdl_contact_geom *g = &geom;
     bdl_contact_result res;
     double vn = bdl_v3_dot(g->v_c, g->n);
-    double k, kt;
+    double k, kt, eta;
     if (hertz) {
         double s = sqrt(g->r_eff * g->overlap);
         k = (4.0 / 3.0) * cp->e_star * s;
         kt = 8.0 * cp->g_star * s;
+        eta = cp->damping * sqrt(g->m_eff * k);
     } else {
         k = cp->kn;
         kt = cp->kt;
+        eta = 2.0 * cp->damping * sqrt(g->m_eff * k);
+        // A linear contact that began during this step has spent only delta / (-v_n dt) of it
+        // in contact: the dashpots act for that fraction, which resolves the jump of the linear
+        // damping force at first touch. (Hertz damping grows from zero with delta^(1/4): no jump
+        // to resolve.)
+        double onset = -vn * dt;
+        eta = (vn < 0.0) & (g->overlap < onset) ? eta * (g->overlap / onset) : eta;
     }
-    double eta = hertz ? cp->damping * sqrt(g->m_eff * k) : 2.0 * cp->damping * sqrt(g->m_eff * k);
-    // A linear contact that began during this step has spent only delta / (-v_n dt) of it in
-    // contact: the dashpots act for that fraction, which resolves the jump of the linear damping
-    // force at first touch. (Hertz damping grows from zero with delta^(1/4): no jump to resolve.)
-    if (!hertz && vn < 0.0 && g->overlap < -vn * dt)
-        eta *= g->overlap / (-vn * dt);
     double fn = k * g->overlap - eta * vn;
-    if (fn < 0.0)
-        fn = 0.0; // no attraction: a damped contact releases when its force reaches zero
+    fn = fn < 0.0 ? 0.0 : fn; // no attraction: a damped contact releases when its force is zero
     res.normal = fn;
     res.force = bdl_v3_scale(g->n, fn);
     res.n_x_ft = bdl_v3_zero();
-    if (!history)
+    res.spring = spring;
+    res.exceptional = 0;
+    if (!friction)
         return res;
 
     bdl_vec3 vt = bdl_v3_madd(g->v_c, g->n, -vn);
-    bdl_vec3 u = *history;
+    bdl_vec3 u = spring;
+    // Rotate the stored spring into the current tangent plane, keeping its length (a spring of
+    // zero length, or one along the normal, has no direction in the plane and becomes zero).
     double u2 = bdl_v3_len2(u);
-    if (u2 > 0.0) {
-        // Rotate the stored spring into the current tangent plane, keeping its length.
-        double un = bdl_v3_dot(u, g->n);
-        bdl_vec3 up = bdl_v3_madd(u, g->n, -un);
-        // The normal turns little per step: for x = (u.n)^2/|u|^2 < 1e-5 the length factor
-        // 1/sqrt(1 - x) = 1 + x/2 + 3x^2/8 + O(x^3) is exact to round-off without a square root.
-        double x = un * un / u2;
-        if (x < 1e-5) {
-            u = bdl_v3_scale(up, 1.0 + x * (0.5 + 0.375 * x));
-        } else {
-            double up2 = bdl_v3_len2(up);
-            u = up2 > 0.0 ? bdl_v3_scale(up, sqrt(u2 / up2)) : bdl_v3_zero();
-        }
-    }
+    double un = bdl_v3_dot(u, g->n);
+    bdl_vec3 up = bdl_v3_madd(u, g->n, -un);
+    double up2 = bdl_v3_len2(up);
+    double eps = un * un / u2;
+    int series = eps < BDL_ROTATION_SERIES_MAX;
+    double factor = 1.0 + eps * (0.5 + 0.375 * eps);
+    if (trial)
+        res.exceptional = (u2 > 0.0) & !series;
+    else
+        factor = series ? factor : sqrt(u2 / up2);
+    bdl_vec3 rotated = bdl_v3_select(up2 > 0.0, bdl_v3_scale(up, factor), bdl_v3_zero());
+    u = bdl_v3_select(u2 > 0.0, rotated, u);
     u = bdl_v3_madd(u, vt, dt);
     double eta_t = cp->tangential_damping_ratio * eta;
     bdl_vec3 ft = bdl_v3_add(bdl_v3_scale(u, -kt), bdl_v3_scale(vt, -eta_t));
     double ft2 = bdl_v3_len2(ft);
     double limit = cp->friction * (fn > 0.0 ? fn : 0.0);
-    if (ft2 > limit * limit) {
-        double ftl = sqrt(ft2);
-        ft = ftl > 0.0 ? bdl_v3_scale(ft, limit / ftl) : ft;
-        // The spring alone carries the capped force. (Leaving the dashpot's share in it would
-        // make the spring point against the slip, and with the Mindlin stiffness growing as the
-        // overlap does it would push along the slip on the next step.)
-        u = kt > 0.0 ? bdl_v3_scale(ft, -1.0 / kt) : bdl_v3_zero();
-    }
-    *history = u;
+    // Sliding: the force is scaled back to the Coulomb cone, and the spring alone carries the
+    // capped force. (Leaving the dashpot's share in it would make the spring point against the
+    // slip, and with the Mindlin stiffness growing as the overlap does it would push along the
+    // slip on the next step.)
+    // One reciprocal serves both: F_t limit / |F_t| and u = -F_t limit / (|F_t| k_t).
+    int slide = ft2 > limit * limit;
+    double ftl = sqrt(ft2);
+    double kt_or_1 = kt > 0.0 ? kt : 1.0;
+    double r = 1.0 / (ftl * kt_or_1);
+    bdl_vec3 capped = bdl_v3_select(ftl > 0.0, bdl_v3_scale(ft, limit * kt_or_1 * r), ft);
+    bdl_vec3 u_capped = bdl_v3_select(kt > 0.0, bdl_v3_scale(ft, -limit * r), bdl_v3_zero());
+    ft = bdl_v3_select(slide, capped, ft);
+    u = bdl_v3_select(slide, u_capped, u);
+    res.spring = u;
     res.force = bdl_v3_add(res.force, ft);
     res.n_x_ft = bdl_v3_cross(g->n, ft);
     return res;
+}
+
+/// The full contact law (see bdl_contact_eval_mode).
+static BDL_FORCE_INLINE bdl_contact_result bdl_contact_eval(const bdl_contact_params *cp, int hertz,
+                                                            int friction, bdl_contact_geom geom,
+                                                            bdl_vec3 spring, double dt)
+{
+    return bdl_contact_eval_mode(cp, hertz, friction, geom, spring, dt, 0);
 }
 
 /// Rolling resistance torque on body i (body j gets the opposite). `w_rel` = w_i - w_j,

@@ -43,9 +43,18 @@ typedef struct bdl_force_work {
     long out_start[BDL_MAX_FORCE_THREADS + 1]; ///< boundary pairs by source thread
     long in_start[BDL_MAX_FORCE_THREADS + 1];  ///< entries by target thread
     int32_t *pair;                             ///< pair index of each boundary entry
+    int32_t *pair_i;                           ///< its first particle
+    int32_t *owner;                            ///< first particle of every listed pair
+    int32_t owner_count;                       ///< listed pairs
+    long owner_capacity;
     int32_t *target;                           ///< boundary entries ordered by target thread
     struct bdl_pair_result *result;            ///< evaluated boundary pairs
     long capacity;
+    struct bdl_pair_batch *batch[BDL_MAX_FORCE_THREADS]; ///< per-thread pair batches
+    int uniform;     ///< every particle has the same species, radius and mass (these:)
+    int species;     ///< species of particle 0
+    double radius;   ///< radius of particle 0 [m]
+    double inv_mass; ///< 1/m of particle 0 [1/kg]
 } bdl_force_work;
 
 void bdl_force_work_free(bdl_force_work *fw);
