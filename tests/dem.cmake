@@ -11,3 +11,4 @@ bdl_add_test(test_collision SOURCES test_collision.c LABELS dem verification TIM
 target_link_libraries(test_collision PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_column SOURCES test_column.c LABELS dem verification TIMEOUT 300)
 target_link_libraries(test_column PRIVATE OpenMP::OpenMP_C)
+bdl_add_test(test_voidage SOURCES test_voidage.c)

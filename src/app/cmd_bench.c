@@ -20,6 +20,7 @@
 
 static const char bench_usage[] =
     "usage: bedlam bench dem [options]\n"
+    "       bedlam bench render --help\n"
     "\n"
     "Times a settled, dense bed of frictional Hertz-Mindlin spheres (periodic in x and y, on a\n"
     "floor) and reports particle-steps per second, nanoseconds per particle-step, contacts and\n"
@@ -290,6 +291,8 @@ int bdl_cmd_bench(int argc, char **argv)
 {
     bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL};
     int k = 1;
+    if (k < argc && strcmp(argv[k], "render") == 0)
+        return bdl_bench_render(argc - 1, argv + 1);
     if (k < argc && strcmp(argv[k], "dem") == 0)
         ++k;
     for (; k < argc; ++k) {

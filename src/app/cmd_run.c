@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "render/context.h"
 #include "sim/run.h"
 
 static int parse_number(const char *opt, const char *text, double lo, double *out)
@@ -31,7 +32,9 @@ int bdl_parse_scene_opts(int argc, char **argv, const char *usage, bdl_scene_opt
         }
         int takes_value = strcmp(a, "--set") == 0 || strcmp(a, "--out") == 0 ||
                           strcmp(a, "--until") == 0 || strcmp(a, "--threads") == 0 ||
-                          strcmp(a, "--resume") == 0 || strcmp(a, "--steps") == 0;
+                          strcmp(a, "--resume") == 0 || strcmp(a, "--steps") == 0 ||
+                          strcmp(a, "--gl") == 0 || strcmp(a, "--size") == 0 ||
+                          strcmp(a, "--script") == 0;
         if (takes_value && !next) {
             fprintf(stderr, "error: %s needs a value\n\n%s", a, usage);
             return 2;
@@ -70,6 +73,31 @@ int bdl_parse_scene_opts(int argc, char **argv, const char *usage, bdl_scene_opt
             }
             opts->threads = (int)t;
             ++k;
+        } else if (strcmp(a, "--gl") == 0) {
+            bdl_gl_backend b;
+            if (!bdl_gl_backend_parse(next, &b)) {
+                fprintf(stderr, "error: --gl %s: expected auto, sdl, egl or osmesa\n", next);
+                return 2;
+            }
+            opts->gl_backend = (int)b;
+            ++k;
+        } else if (strcmp(a, "--size") == 0) {
+            int w = 0, h = 0;
+            char tail;
+            if (sscanf(next, "%dx%d%c", &w, &h, &tail) != 2 || w < 16 || h < 16 || w > 8192 ||
+                h > 8192) {
+                fprintf(stderr, "error: --size %s: expected WIDTHxHEIGHT, 16 to 8192 pixels\n",
+                        next);
+                return 2;
+            }
+            opts->width = w;
+            opts->height = h;
+            ++k;
+        } else if (strcmp(a, "--script") == 0) {
+            opts->script = next;
+            ++k;
+        } else if (strcmp(a, "--paused") == 0) {
+            opts->paused = 1;
         } else if (strcmp(a, "--quiet") == 0 || strcmp(a, "-q") == 0) {
             opts->quiet = 1;
         } else if (a[0] == '-' && a[1] != '\0') {
@@ -93,7 +121,8 @@ static const char run_usage[] =
     "usage: bedlam run SCENE [options]\n"
     "\n"
     "Runs SCENE headless to its [run] end_time and writes one output folder:\n"
-    "  run.log, diagnostics.csv, particles.pvd + vtk/*.vtp, checkpoint/state.bdlckpt\n"
+    "  run.log, diagnostics.csv, particles.pvd + vtk/*.vtp, checkpoint/state.bdlckpt,\n"
+    "  and frames/frame_NNNNNN.png when [output] frame_interval asks for frames\n"
     "\n"
     "options:\n"
     "  --set SECTION.KEY=VALUE   override a scene key (named sections: "
@@ -103,6 +132,7 @@ static const char run_usage[] =
     "  --steps N                 stop after N steps (smoke tests)\n"
     "  --threads N               solver threads (default: [run] threads, 0 = all cores)\n"
     "  --resume PATH             continue bit-for-bit from a checkpoint file or a run folder\n"
+    "  --gl BACKEND              frames: auto (EGL, then OSMesa), egl or osmesa\n"
     "  --quiet                   no progress line\n"
     "\n"
     "Ctrl-C stops cleanly: the diagnostics are flushed and a checkpoint is written.\n"
@@ -124,5 +154,10 @@ int bdl_cmd_run(int argc, char **argv)
     def.threads = o.threads;
     def.resume = o.resume;
     def.progress = !o.quiet;
+    def.gl_backend = o.gl_backend;
+    if (o.gl_backend == BDL_GL_SDL) {
+        fprintf(stderr, "error: --gl sdl: frames of a run are drawn headless (egl or osmesa)\n");
+        return 2;
+    }
     return bdl_run(&def);
 }

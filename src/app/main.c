@@ -13,9 +13,10 @@ static const char usage[] =
     "commands:\n"
     "  run SCENE     run a scene headless and write its outputs (run.log, diagnostics.csv, VTK,\n"
     "                checkpoints) into one folder\n"
+    "  view SCENE    run a scene in a window: orbit, colour modes, pause, step, live parameters\n"
     "  check SCENE   validate a scene; print the active modules, contact time, stable time-step\n"
     "                limit and the estimated cost\n"
-    "  bench [CASE]  performance benchmarks (dem)\n"
+    "  bench [CASE]  performance benchmarks (dem, render)\n"
     "\n"
     "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
     "interrupted), 2 bad input (scene, options).\n"
@@ -30,6 +31,7 @@ int main(int argc, char **argv)
 {
     static const command commands[] = {
         {"run", bdl_cmd_run},
+        {"view", bdl_cmd_view},
         {"check", bdl_cmd_check},
         {"bench", bdl_cmd_bench},
     };

@@ -4,5 +4,7 @@
 
 /// Monotonic wall-clock seconds since an arbitrary origin.
 double bdl_wall_seconds(void);
+/// Sleeps for `seconds` of wall time.
+void bdl_sleep(double seconds);
 
 #endif

@@ -7,6 +7,8 @@
 
 #include <math.h>
 
+#define BDL_PI 3.14159265358979323846
+
 typedef struct bdl_vec3 {
     double x, y, z;
 } bdl_vec3;

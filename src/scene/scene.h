@@ -138,7 +138,59 @@ typedef struct bdl_output_def {
     double vtk_interval;         ///< [s] between particle VTK files; 0 = none
     double checkpoint_interval;  ///< [s] between checkpoints; 0 = only at the end / on failure
     double progress_interval;    ///< wall seconds between progress lines
+    double frame_interval;       ///< [s] between PNG frames; 0 = none
+    int frame_width, frame_height; ///< [px]
+    int frame_samples;             ///< multisample anti-aliasing samples (0 = none)
 } bdl_output_def;
+
+/// Preset camera orientations.
+typedef enum bdl_view_preset {
+    BDL_VIEW_ISO,   ///< from the front-right, above
+    BDL_VIEW_FRONT, ///< along +y: the x-z plane, as a camera sees the front wall of a pseudo-2D bed
+    BDL_VIEW_SIDE,  ///< along -x: the y-z plane
+    BDL_VIEW_TOP,   ///< along -z: the x-y plane
+} bdl_view_preset;
+
+typedef enum bdl_projection { BDL_PROJ_PERSPECTIVE, BDL_PROJ_ORTHOGRAPHIC } bdl_projection;
+
+/// What the particle colour shows.
+typedef enum bdl_color_mode {
+    BDL_COLOR_SPECIES,
+    BDL_COLOR_COORDINATION,
+    BDL_COLOR_SPEED,
+    BDL_COLOR_VX,
+    BDL_COLOR_VY,
+    BDL_COLOR_VZ,
+    BDL_COLOR_VOIDAGE,
+    BDL_COLOR_MODE_COUNT
+} bdl_color_mode;
+
+/// [camera]: how frames and the viewer look at the scene.
+/// Names of the colour modes, in enum order, NULL-terminated (the scene key `[camera] color`).
+extern const char *const bdl_color_mode_names[];
+
+typedef struct bdl_camera_def {
+    bdl_view_preset view;
+    bdl_projection projection;
+    bdl_color_mode color;
+    double color_min, color_max; ///< fixed colour range (unit of the field); else automatic
+    int has_color_min, has_color_max;
+    bdl_vec3 target; ///< point looked at [m]; default the domain centre
+    int has_target;
+    double distance; ///< eye to target [m]; 0 = fit the domain
+    double yaw;      ///< [deg] about +z, 0 = looking along +y; default from the preset
+    double pitch;    ///< [deg] above the horizontal; default from the preset
+    int has_yaw, has_pitch;
+    double fov;      ///< vertical field of view of the perspective projection [deg]
+    int clip;        ///< cut the bed open: hide particles whose centre is on the normal's side
+    bdl_vec3 clip_point;  ///< a point on the clipping plane [m]; default the target
+    int has_clip_point;
+    bdl_vec3 clip_normal; ///< unit normal; particles on this side are hidden
+    int lighting;         ///< shaded spheres (else flat colour)
+    int overlay;          ///< text and colour bar
+    int outlines;         ///< domain and wall outlines
+    bdl_vec3 background;  ///< sRGB 0..1
+} bdl_camera_def;
 
 typedef struct bdl_guard_def {
     double max_overlap;     ///< stop when any overlap exceeds this fraction of the smaller radius
@@ -182,6 +234,7 @@ typedef struct bdl_scene {
 
     bdl_output_def output;
     bdl_guard_def guards;
+    bdl_camera_def camera;
 } bdl_scene;
 
 /// A problem found while reading or validating a scene. Messages look like

@@ -18,6 +18,9 @@ _Static_assert(sizeof(bdl_size_dist) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_wall_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_motion_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_view_preset) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_projection) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_color_mode) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_RUN] = {"run", "run", 0, 1},
@@ -25,6 +28,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_CONTACT] = {"contact", "contact", 0, 1},
     [BDL_SECTION_OUTPUT] = {"output", "output", 0, 1},
     [BDL_SECTION_GUARDS] = {"guards", "guards", 0, 1},
+    [BDL_SECTION_CAMERA] = {"camera", "camera", 0, 1},
     [BDL_SECTION_SPECIES] = {"species", "species NAME", 1, BDL_MAX_SPECIES},
     [BDL_SECTION_PAIR] = {"pair", "pair A B", 2, BDL_MAX_PAIRS},
     [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
@@ -39,6 +43,10 @@ static const char *const distribution_names[] = {"single", "uniform", "normal", 
 static const char *const wall_type_names[] = {"plane", "box", "cylinder", NULL};
 static const char *const motion_names[] = {"none", "vibrate", NULL};
 static const char *const create_type_names[] = {"random", "lattice", "pour", "file", NULL};
+static const char *const view_names[] = {"iso", "front", "side", "top", NULL};
+static const char *const projection_names[] = {"perspective", "orthographic", NULL};
+const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", "vx",
+                                            "vy",      "vz",           "voidage", NULL};
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
 #define IN_SPECIES(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_species_def, field)
@@ -47,6 +55,9 @@ static const char *const create_type_names[] = {"random", "lattice", "pour", "fi
     .flag_offset = offsetof(bdl_pair_def, has_##field)
 #define IN_WALL(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
 #define IN_CREATE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_create_def, field)
+#define IN_CAMERA(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, camera.field)
+#define IN_CAMERA_FLAGGED(field)                                                                   \
+    IN_CAMERA(field), .has_flag = 1, .flag_offset = offsetof(bdl_scene, camera.has_##field)
 #define IN_RECORD(field) .target = BDL_TARGET_RECORD, .offset = offsetof(bdl_scene_section, field)
 #define GT(x)            .lo_kind = BDL_BOUND_OPEN, .lo = (x)
 #define GE(x)            .lo_kind = BDL_BOUND_CLOSED, .lo = (x)
@@ -264,6 +275,57 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "simulated time between checkpoints; 0 = only at the end or on failure"},
     {S(OUTPUT), "progress_interval", NUM, "s", IN_SCENE(output.progress_interval), .def = {1},
      GT(0), .doc = "wall-clock time between progress lines"},
+    {S(OUTPUT), "frame_interval", NUM, "s", IN_SCENE(output.frame_interval), .def = {0},
+     .default_text = "0 (none)", GE(0),
+     .doc = "simulated time between PNG frames in frames/ (drawn as [camera] says); 0 = none"},
+    {S(OUTPUT), "frame_width", .type = BDL_KEY_INT, "px", IN_SCENE(output.frame_width),
+     .def = {1280}, GE(16), LE(8192), .doc = "width of the PNG frames"},
+    {S(OUTPUT), "frame_height", .type = BDL_KEY_INT, "px", IN_SCENE(output.frame_height),
+     .def = {720}, GE(16), LE(8192), .doc = "height of the PNG frames"},
+    {S(OUTPUT), "frame_samples", .type = BDL_KEY_INT, "-", IN_SCENE(output.frame_samples),
+     .def = {4}, GE(0), LE(16), .doc = "multisample anti-aliasing samples per pixel; 0 = none"},
+
+    // [camera]
+    {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},
+     .enum_names = view_names,
+     .doc = "preset direction: iso (front-right, above), front (along +y, the x-z plane), side "
+            "(along -x), top (down -z)"},
+    {S(CAMERA), "projection", .type = BDL_KEY_ENUM, "-", IN_CAMERA(projection),
+     .def = {BDL_PROJ_PERSPECTIVE}, .enum_names = projection_names,
+     .doc = "perspective or orthographic (no foreshortening: pseudo-2D beds, DIA)"},
+    {S(CAMERA), "color", .type = BDL_KEY_ENUM, "-", IN_CAMERA(color), .def = {BDL_COLOR_SPEED},
+     .enum_names = bdl_color_mode_names,
+     .doc = "particle colour: species, coordination (contacts), speed, vx, vy, vz (velocity "
+            "component), voidage (void fraction around the particle)"},
+    {S(CAMERA), "color_min", NUM, "unit of the field", IN_CAMERA_FLAGGED(color_min),
+     .default_text = "automatic", .doc = "value at the low end of the colour map"},
+    {S(CAMERA), "color_max", NUM, "unit of the field", IN_CAMERA_FLAGGED(color_max),
+     .default_text = "automatic", .doc = "value at the high end of the colour map"},
+    {S(CAMERA), "target", VEC, "m", IN_CAMERA_FLAGGED(target), .default_text = "domain centre",
+     .doc = "point the camera looks at"},
+    {S(CAMERA), "distance", NUM, "m", IN_CAMERA(distance), .def = {0}, .default_text = "0 (fit)",
+     GE(0), .doc = "eye to target; 0 = far enough to see the whole domain"},
+    {S(CAMERA), "yaw", NUM, "deg", IN_CAMERA_FLAGGED(yaw), .default_text = "from view",
+     GE(-360), LE(360), .doc = "turn about +z; 0 looks along +y, 90 along -x"},
+    {S(CAMERA), "pitch", NUM, "deg", IN_CAMERA_FLAGGED(pitch), .default_text = "from view",
+     GE(-90), LE(90), .doc = "elevation of the eye above the target's horizontal plane"},
+    {S(CAMERA), "fov", NUM, "deg", IN_CAMERA(fov), .def = {35}, GT(1), LT(170),
+     .doc = "vertical field of view (perspective)"},
+    {S(CAMERA), "clip", .type = BDL_KEY_BOOL, "-", IN_CAMERA(clip), .def = {0},
+     .doc = "cut the bed open: hide the particles whose centres lie on the clip_normal side of "
+            "the clipping plane"},
+    {S(CAMERA), "clip_point", VEC, "m", IN_CAMERA_FLAGGED(clip_point),
+     .default_text = "the target", .doc = "a point on the clipping plane"},
+    {S(CAMERA), "clip_normal", VEC, "-", IN_CAMERA(clip_normal), .def = {0, -1, 0},
+     .normalise = 1, .doc = "normal of the clipping plane, pointing to the hidden side"},
+    {S(CAMERA), "lighting", .type = BDL_KEY_BOOL, "-", IN_CAMERA(lighting), .def = {1},
+     .doc = "shade the spheres; false draws flat colours"},
+    {S(CAMERA), "overlay", .type = BDL_KEY_BOOL, "-", IN_CAMERA(overlay), .def = {1},
+     .doc = "draw the text (time, step, field, solver speed) and the colour bar"},
+    {S(CAMERA), "outlines", .type = BDL_KEY_BOOL, "-", IN_CAMERA(outlines), .def = {1},
+     .doc = "draw the outlines of the domain and the walls"},
+    {S(CAMERA), "background", VEC, "-", IN_CAMERA(background), .def = {0.11, 0.12, 0.14},
+     GE(0), LE(1), .doc = "background colour, sRGB red green blue in 0..1"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

@@ -31,6 +31,10 @@ struct bdl_loop {
     atomic_long progress_particles;
     atomic_int finished;
     bdl_result result;
+    double speed_time;   ///< wall clock of the last speed estimate [s]
+    long speed_step;     ///< step at that time
+    double speed;        ///< steps per wall second
+    _Atomic double speed_limit; ///< simulated seconds per wall second; 0: as fast as it goes
 };
 
 bdl_loop_def bdl_default_loop_def(void)
@@ -88,13 +92,11 @@ static int snapshot_reserve(bdl_snapshot *s, long n)
     return 1;
 }
 
-static void publish(bdl_loop *loop)
+int bdl_snapshot_fill(bdl_snapshot *s, const bdl_world *w)
 {
-    const bdl_world *w = loop->def.world;
     const bdl_particles *p = &w->particles;
-    bdl_snapshot *s = &loop->slots[loop->back];
     if (!snapshot_reserve(s, p->count))
-        return;
+        return 0;
     for (long i = 0; i < p->count; ++i) {
         s->pos[3 * i] = (float)p->pos[i].x;
         s->pos[3 * i + 1] = (float)p->pos[i].y;
@@ -110,6 +112,60 @@ static void publish(bdl_loop *loop)
     s->count = p->count;
     s->time = w->time;
     s->step = w->step;
+    s->wall_count = w->walls.wall_count;
+    for (int k = 0; k < w->walls.wall_count; ++k) {
+        s->wall_offset[k][0] = (float)w->walls.offset[k].x;
+        s->wall_offset[k][1] = (float)w->walls.offset[k].y;
+        s->wall_offset[k][2] = (float)w->walls.offset[k].z;
+    }
+    return 1;
+}
+
+int bdl_snapshot_copy(bdl_snapshot *dst, const bdl_snapshot *src)
+{
+    if (!snapshot_reserve(dst, src->count))
+        return 0;
+    long n = src->count;
+    memcpy(dst->pos, src->pos, (size_t)n * 3 * sizeof(float));
+    memcpy(dst->vel, src->vel, (size_t)n * 3 * sizeof(float));
+    memcpy(dst->radius, src->radius, (size_t)n * sizeof(float));
+    memcpy(dst->coordination, src->coordination, (size_t)n);
+    memcpy(dst->species, src->species, (size_t)n * sizeof(int32_t));
+    memcpy(dst->id, src->id, (size_t)n * sizeof(uint32_t));
+    dst->count = n;
+    dst->time = src->time;
+    dst->step = src->step;
+    dst->wall_count = src->wall_count;
+    memcpy(dst->wall_offset, src->wall_offset, sizeof dst->wall_offset);
+    dst->steps_per_second = src->steps_per_second;
+    return 1;
+}
+
+void bdl_snapshot_free(bdl_snapshot *s)
+{
+    free(s->pos);
+    free(s->vel);
+    free(s->radius);
+    free(s->coordination);
+    free(s->species);
+    free(s->id);
+    memset(s, 0, sizeof *s);
+}
+
+static void publish(bdl_loop *loop)
+{
+    bdl_snapshot *s = &loop->slots[loop->back];
+    if (!bdl_snapshot_fill(s, loop->def.world))
+        return;
+    // The solver's speed over the last quarter second or more.
+    double now = bdl_wall_seconds();
+    if (now - loop->speed_time >= 0.25) {
+        if (loop->speed_time > 0.0)
+            loop->speed = (double)(s->step - loop->speed_step) / (now - loop->speed_time);
+        loop->speed_time = now;
+        loop->speed_step = s->step;
+    }
+    s->steps_per_second = loop->speed;
     int prev = atomic_exchange(&loop->middle, loop->back | DIRTY);
     loop->back = prev & 3;
 }
@@ -188,10 +244,27 @@ static void *solver_main(void *arg)
         publish(loop);
     // Stop within half a step of the end time, so rounding of t never adds a step.
     long steps = 0;
+    double limit_seen = -1.0, ref_wall = 0.0, ref_time = 0.0;
     while (w->time < loop->def.end_time - 0.5 * w->dt) {
-        if (loop->def.max_steps > 0 && steps++ >= loop->def.max_steps)
-            break;
         if (!take_commands(loop))
+            break;
+        double limit = atomic_load(&loop->speed_limit);
+        if (limit > 0.0 && !loop->paused) {
+            // Keep simulated time within limit x wall time of a reference point, which moves
+            // whenever the limit changes or the loop fell behind by more than a tenth second.
+            double now = bdl_wall_seconds();
+            double ahead = (w->time - ref_time) / limit - (now - ref_wall);
+            if (limit != limit_seen || ahead < -0.1) {
+                ref_wall = now;
+                ref_time = w->time;
+                limit_seen = limit;
+            } else if (ahead > 0.0) {
+                double pause = ahead < 0.05 ? ahead : 0.05;
+                bdl_sleep(pause);
+                continue;
+            }
+        }
+        if (loop->def.max_steps > 0 && steps++ >= loop->def.max_steps)
             break;
         bdl_result r = bdl_world_step(w);
         if (r == BDL_OK && loop->def.on_step)
@@ -253,6 +326,12 @@ void bdl_loop_command(bdl_loop *loop, const bdl_command *cmd)
     pthread_mutex_unlock(&loop->lock);
 }
 
+void bdl_loop_set_speed_limit(bdl_loop *loop, double sim_per_wall)
+{
+    atomic_store(&loop->speed_limit, sim_per_wall > 0.0 ? sim_per_wall : 0.0);
+    bdl_info("speed limit: %g simulated seconds per second", sim_per_wall);
+}
+
 void bdl_loop_progress(bdl_loop *loop, double *time, long *step, long *particles, int *finished)
 {
     *time = atomic_load(&loop->progress_time);
@@ -271,15 +350,8 @@ void bdl_loop_destroy(bdl_loop *loop)
 {
     if (!loop)
         return;
-    for (int k = 0; k < 3; ++k) {
-        bdl_snapshot *s = &loop->slots[k];
-        free(s->pos);
-        free(s->vel);
-        free(s->radius);
-        free(s->coordination);
-        free(s->species);
-        free(s->id);
-    }
+    for (int k = 0; k < 3; ++k)
+        bdl_snapshot_free(&loop->slots[k]);
     pthread_mutex_destroy(&loop->lock);
     pthread_cond_destroy(&loop->wake);
     free(loop);

@@ -38,7 +38,17 @@ typedef struct bdl_snapshot {
     uint32_t *id;
     double time; ///< [s]
     long step;
+    int wall_count;
+    float wall_offset[BDL_MAX_WALLS][3]; ///< displacement of each (vibrating) wall from rest [m]
+    double steps_per_second;             ///< the solver's recent speed (0 if unknown)
 } bdl_snapshot;
+
+/// Copies the world's particles into a snapshot (growing it as needed). Returns 0 when out of
+/// memory (the snapshot is then unchanged).
+int bdl_snapshot_fill(bdl_snapshot *s, const bdl_world *w);
+/// Copies one snapshot into another (growing it as needed). Returns 0 when out of memory.
+int bdl_snapshot_copy(bdl_snapshot *dst, const bdl_snapshot *src);
+void bdl_snapshot_free(bdl_snapshot *s);
 
 /// Called by the solver thread after every step (outputs, guards). A result other than BDL_OK
 /// stops the loop with that result.
@@ -65,6 +75,8 @@ bdl_loop *bdl_loop_start(const bdl_loop_def *def);
 void bdl_loop_command(bdl_loop *loop, const bdl_command *cmd);
 /// Newest complete snapshot, or NULL before the first one.
 const bdl_snapshot *bdl_loop_acquire(bdl_loop *loop);
+/// Limits the solver to `sim_per_wall` simulated seconds per wall-clock second (0: no limit).
+void bdl_loop_set_speed_limit(bdl_loop *loop, double sim_per_wall);
 /// Progress, readable from any thread.
 void bdl_loop_progress(bdl_loop *loop, double *time, long *step, long *particles, int *finished);
 /// Waits for the solver thread and returns its result.

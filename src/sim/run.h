@@ -3,6 +3,7 @@
 //   OUT/run.log          version, scene, resolved parameters, active modules, limits, commands
 //   OUT/diagnostics.csv  one row per [output] diagnostics_interval
 //   OUT/vtk/particles_NNNNNN.vtp + OUT/particles.pvd   every vtk_interval (ParaView)
+//   OUT/frames/frame_NNNNNN.png  every frame_interval (render/frames.h)
 //   OUT/checkpoint/state.bdlckpt  every checkpoint_interval, at the end, on Ctrl-C and on failure
 #ifndef BDL_RUN_H
 #define BDL_RUN_H
@@ -19,6 +20,7 @@ typedef struct bdl_run_def {
     int threads;         ///< <= 0: the scene's [run] threads (0 = all cores)
     const char *resume;  ///< checkpoint file or run folder to continue from; NULL for a new run
     int progress;        ///< 1: progress line on stderr (when it is a terminal), 0: never
+    int gl_backend;      ///< bdl_gl_backend for frames (0: automatic)
 } bdl_run_def;
 
 bdl_run_def bdl_default_run_def(void);

@@ -1,0 +1,18 @@
+# Writes OUTPUT, a C file holding every shader in INPUTS (a ;-list) as a NUL-terminated string,
+# and bdl_shader_source(name) to look one up by file name.
+set(text "// Generated from shaders/ by cmake/embed_shaders.cmake. Do not edit.\n#include <string.h>\n\n")
+set(table "")
+set(index 0)
+foreach(input ${INPUTS})
+  get_filename_component(name ${input} NAME)
+  file(READ ${input} hex HEX)
+  string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${hex}")
+  string(APPEND text "static const char shader_${index}[] = {${bytes}0x00};\n")
+  string(APPEND table "    {\"${name}\", shader_${index}},\n")
+  math(EXPR index "${index} + 1")
+endforeach()
+string(APPEND text "\nstatic const struct {\n    const char *name, *source;\n} shaders[] = {\n${table}};\n\n")
+string(APPEND text "const char *bdl_shader_source(const char *name);\nconst char *bdl_shader_source(const char *name)\n{\n")
+string(APPEND text "    for (size_t i = 0; i < sizeof shaders / sizeof shaders[0]; ++i)\n        if (strcmp(shaders[i].name, name) == 0)\n            return shaders[i].source;\n    return NULL;\n}\n")
+file(WRITE ${OUTPUT}.tmp "${text}")
+file(RENAME ${OUTPUT}.tmp ${OUTPUT})

@@ -1,0 +1,455 @@
+// bedlam view SCENE — the interactive window.
+//
+// The solver runs on its own thread as in `bedlam run` (no output files); this thread owns the
+// window, draws the newest snapshot at most 60 times a second and turns keys and the mouse into
+// camera moves or solver commands. A slow frame never slows the solver, and a fast solver never
+// floods the screen: the snapshot triple buffer hands over only the newest state.
+//
+// --script FILE replays key presses at given frame numbers ("FRAME KEY" per line, KEY an SDL key
+// name such as "Space", "C", "F12"), so a session can be driven without a person (the tests do).
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "app/app.h"
+#include "core/log.h"
+#include "core/timer.h"
+#include "io/atomic_file.h"
+#include "io/png.h"
+#include "render/context.h"
+#include "render/renderer.h"
+#include "sim/loop.h"
+#include "sim/world.h"
+
+static const char view_usage[] =
+    "usage: bedlam view SCENE [options]\n"
+    "\n"
+    "Runs SCENE in a window. Press H in the window for the keys.\n"
+    "\n"
+    "options:\n"
+    "  --set SECTION.KEY=VALUE   override a scene key\n"
+    "  --size WxH                window size in pixels (default 1280x720)\n"
+    "  --threads N               solver threads (default: [run] threads, 0 = all cores)\n"
+    "  --paused                  start paused\n"
+    "  --out DIR                 folder for screenshots (default runs/<scene name>/screenshots)\n"
+    "  --script FILE             replay key presses: lines 'FRAME KEY' (SDL key names), for\n"
+    "                            scripted sessions and tests\n"
+    "  --gl sdl                  the only window backend\n"
+    "\n"
+    "Needs a display (X11 or Wayland); for headless frames use 'bedlam run' with\n"
+    "[output] frame_interval.\n";
+
+static const char help_text[] =
+    "Space    pause / resume          N        one step (paused)\n"
+    "C / V    next / previous colour  1 2 3 4  iso, front, side, top view\n"
+    "O        orthographic on/off     X        cut the bed open (clip plane)\n"
+    "L        lighting on/off         T        text and colour bar on/off\n"
+    "+ / -    faster / slower         0        full speed\n"
+    "] / [    live parameter up/down  P, F12   screenshot (PNG)\n"
+    "R        reset the scene         H, F1    this help\n"
+    "mouse    left: orbit, right: pan, wheel: zoom\n"
+    "Q, Esc   quit";
+
+#ifdef BDL_WITH_SDL
+#include <SDL.h>
+
+typedef struct script_entry {
+    long frame;
+    SDL_Keycode key;
+} script_entry;
+
+typedef struct viewer {
+    const bdl_scene_opts *opts;
+    bdl_scene *scene;
+    bdl_world *world;
+    bdl_loop *loop;
+    bdl_context *context;
+    bdl_renderer *renderer;
+    bdl_view view;
+    int paused, show_help, quit;
+    int reported_drawing; ///< the first frame with particles was logged (scripted sessions)
+    double speed_limit; ///< simulated s per wall s; 0 = full speed
+    double live_scale;  ///< factor on the live parameter
+    char live_key[96];  ///< "" when the scene exposes none
+    char status[256];
+    char shot_dir[1024];
+    int shots;
+    script_entry script[256];
+    int script_count, script_next;
+} viewer;
+
+static int load_script(viewer *v, const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) {
+        fprintf(stderr, "error: --script %s: cannot open\n", path);
+        return 0;
+    }
+    char line[256];
+    int lineno = 0;
+    while (fgets(line, sizeof line, f) && v->script_count < 256) {
+        ++lineno;
+        long frame;
+        char name[64];
+        if (line[0] == '#' || sscanf(line, "%ld %63s", &frame, name) != 2)
+            continue;
+        SDL_Keycode key = SDL_GetKeyFromName(name);
+        if (key == SDLK_UNKNOWN) {
+            fprintf(stderr, "error: %s:%d: unknown key '%s'\n", path, lineno, name);
+            fclose(f);
+            return 0;
+        }
+        v->script[v->script_count++] = (script_entry){frame, key};
+    }
+    fclose(f);
+    return 1;
+}
+
+/// The first vibrating wall's amplitude is the live parameter a scene exposes (the gas inlet
+/// velocity joins it with the gas phase).
+static void find_live_parameter(viewer *v)
+{
+    v->live_key[0] = '\0';
+    for (int k = 0; k < v->scene->wall_count; ++k)
+        if (v->scene->walls[k].motion == BDL_MOTION_VIBRATE) {
+            snprintf(v->live_key, sizeof v->live_key, "wall.%s.amplitude_scale",
+                     v->scene->walls[k].name);
+            return;
+        }
+}
+
+static int start_world(viewer *v)
+{
+    bdl_scene_error err;
+    if (bdl_world_create(v->scene, &v->world, &err) != BDL_OK) {
+        fprintf(stderr, "error: %s\n", err.message);
+        return 0;
+    }
+    bdl_loop_def ld = bdl_default_loop_def();
+    ld.world = v->world;
+    ld.end_time = v->scene->end_time;
+    ld.threads = v->opts->threads > 0 ? v->opts->threads : v->scene->threads;
+    ld.publish = 1;
+    ld.start_paused = v->paused;
+    v->loop = bdl_loop_start(&ld);
+    if (!v->loop) {
+        fprintf(stderr, "error: cannot start the solver thread\n");
+        return 0;
+    }
+    if (v->speed_limit > 0.0)
+        bdl_loop_set_speed_limit(v->loop, v->speed_limit);
+    v->live_scale = 1.0;
+    return 1;
+}
+
+static void stop_world(viewer *v)
+{
+    if (v->loop) {
+        bdl_loop_command(v->loop, &(bdl_command){.kind = BDL_CMD_STOP});
+        bdl_loop_join(v->loop);
+        bdl_loop_destroy(v->loop);
+        v->loop = NULL;
+    }
+    bdl_world_destroy(v->world);
+    v->world = NULL;
+}
+
+static void command(viewer *v, bdl_command_kind kind)
+{
+    bdl_loop_command(v->loop, &(bdl_command){.kind = kind});
+}
+
+static void screenshot(viewer *v)
+{
+    int w, h;
+    bdl_context_drawable_size(v->context, &w, &h);
+    uint8_t *rgb = malloc((size_t)w * (size_t)h * 3);
+    if (!rgb)
+        return;
+    bdl_mkdir_p(v->shot_dir);
+    char path[1200];
+    snprintf(path, sizeof path, "%s/view_%04d.png", v->shot_dir, v->shots++);
+    if (bdl_renderer_read_window(v->renderer, rgb, w, h) == BDL_OK &&
+        bdl_png_write(path, rgb, w, h, 3, 0) == BDL_OK)
+        printf("view: screenshot %s\n", path);
+    free(rgb);
+}
+
+static void set_speed(viewer *v, double limit)
+{
+    v->speed_limit = limit;
+    bdl_loop_set_speed_limit(v->loop, limit);
+    if (limit > 0.0)
+        printf("view: speed %g simulated s per s\n", limit);
+    else
+        printf("view: full speed\n");
+}
+
+static void change_live(viewer *v, double factor)
+{
+    if (!v->live_key[0]) {
+        printf("view: this scene exposes no live parameter\n");
+        return;
+    }
+    v->live_scale *= factor;
+    bdl_command c = {.kind = BDL_CMD_SET, .value = v->live_scale};
+    snprintf(c.key, sizeof c.key, "%s", v->live_key);
+    bdl_loop_command(v->loop, &c);
+    printf("view: %s = %.3g\n", v->live_key, v->live_scale);
+}
+
+static void reset(viewer *v, float aspect)
+{
+    stop_world(v);
+    if (!start_world(v))
+        v->quit = 1;
+    bdl_color_mode color = v->view.color;
+    bdl_view_from_scene(v->scene, aspect, &v->view);
+    v->view.color = color;
+    printf("view: reset\n");
+}
+
+static void key(viewer *v, SDL_Keycode k, float aspect)
+{
+    bdl_view *view = &v->view;
+    switch (k) {
+    case SDLK_SPACE:
+        v->paused = !v->paused;
+        command(v, v->paused ? BDL_CMD_PAUSE : BDL_CMD_RESUME);
+        printf("view: %s\n", v->paused ? "paused" : "running");
+        break;
+    case SDLK_n:
+        command(v, BDL_CMD_STEP);
+        printf("view: step\n");
+        break;
+    case SDLK_c:
+    case SDLK_v:
+        view->color =
+            (bdl_color_mode)((view->color + (k == SDLK_c ? 1 : BDL_COLOR_MODE_COUNT - 1)) %
+                             BDL_COLOR_MODE_COUNT);
+        view->range_fixed = 0;
+        printf("view: colour %s\n", bdl_color_mode_names[view->color]);
+        break;
+    case SDLK_1:
+    case SDLK_2:
+    case SDLK_3:
+    case SDLK_4:
+        bdl_camera_preset((bdl_view_preset)(k - SDLK_1), &view->camera);
+        printf("view: preset %d\n", (int)(k - SDLK_1) + 1);
+        break;
+    case SDLK_o:
+        view->camera.ortho = !view->camera.ortho;
+        printf("view: %s\n", view->camera.ortho ? "orthographic" : "perspective");
+        break;
+    case SDLK_x:
+        view->clip = !view->clip;
+        printf("view: clip %s\n", view->clip ? "on" : "off");
+        break;
+    case SDLK_l:
+        view->lighting = !view->lighting;
+        break;
+    case SDLK_t:
+        view->overlay = !view->overlay;
+        break;
+    case SDLK_PLUS:
+    case SDLK_EQUALS:
+    case SDLK_KP_PLUS:
+        set_speed(v, v->speed_limit > 0.0 ? 2.0 * v->speed_limit : 0.0);
+        break;
+    case SDLK_MINUS:
+    case SDLK_KP_MINUS: {
+        // From full speed, the first step down is the speed the solver has now, halved.
+        double now = v->speed_limit > 0.0 ? v->speed_limit : 0.0;
+        if (now == 0.0) {
+            const bdl_snapshot *s = bdl_loop_acquire(v->loop);
+            now = s && s->steps_per_second > 0.0 ? s->steps_per_second * v->world->dt : 1.0;
+        }
+        set_speed(v, 0.5 * now);
+        break;
+    }
+    case SDLK_0:
+        set_speed(v, 0.0);
+        break;
+    case SDLK_RIGHTBRACKET:
+        change_live(v, 1.1);
+        break;
+    case SDLK_LEFTBRACKET:
+        change_live(v, 1.0 / 1.1);
+        break;
+    case SDLK_p:
+    case SDLK_F12:
+        screenshot(v);
+        break;
+    case SDLK_r:
+        reset(v, aspect);
+        break;
+    case SDLK_h:
+    case SDLK_F1:
+        v->show_help = !v->show_help;
+        printf("view: help %s\n", v->show_help ? "on" : "off");
+        break;
+    case SDLK_q:
+    case SDLK_ESCAPE:
+        v->quit = 1;
+        printf("view: quit\n");
+        break;
+    default:
+        break;
+    }
+    fflush(stdout);
+}
+
+static void mouse(viewer *v, const SDL_Event *e, int height)
+{
+    bdl_camera *cam = &v->view.camera;
+    if (e->type == SDL_MOUSEMOTION) {
+        if (e->motion.state & SDL_BUTTON_LMASK)
+            bdl_camera_orbit(cam, -0.3f * (float)e->motion.xrel, 0.3f * (float)e->motion.yrel);
+        else if (e->motion.state & (SDL_BUTTON_RMASK | SDL_BUTTON_MMASK))
+            bdl_camera_pan(cam, -(float)e->motion.xrel / (float)height,
+                           (float)e->motion.yrel / (float)height);
+    } else if (e->type == SDL_MOUSEWHEEL) {
+        bdl_camera_zoom(cam, powf(0.9f, (float)e->wheel.y));
+    }
+}
+
+static void status_line(viewer *v, const bdl_snapshot *s)
+{
+    double sps = s ? s->steps_per_second : 0.0;
+    char speed[64] = "full speed";
+    if (v->speed_limit > 0.0)
+        snprintf(speed, sizeof speed, "limit %.3g sim s/s", v->speed_limit);
+    snprintf(v->status, sizeof v->status,
+             "%s   solver %.3g steps/s (%.3g sim s/s, %s)   "
+             "colour: %s   H: help",
+             v->paused ? "PAUSED" : "running", sps, sps * (v->world ? v->world->dt : 0.0), speed,
+             bdl_color_mode_names[v->view.color]);
+}
+
+static void run_viewer(viewer *v)
+{
+    long frame = 0;
+    double last = 0.0;
+    while (!v->quit) {
+        int w, h;
+        bdl_context_drawable_size(v->context, &w, &h);
+        float aspect = (float)w / (float)(h > 0 ? h : 1);
+        SDL_Event e;
+        while (SDL_PollEvent(&e)) {
+            if (e.type == SDL_QUIT)
+                v->quit = 1;
+            else if (e.type == SDL_KEYDOWN)
+                key(v, e.key.keysym.sym, aspect);
+            else
+                mouse(v, &e, h);
+        }
+        while (v->script_next < v->script_count && v->script[v->script_next].frame <= frame) {
+            SDL_Event k = {.type = SDL_KEYDOWN};
+            k.key.keysym.sym = v->script[v->script_next++].key;
+            SDL_PushEvent(&k);
+        }
+        const bdl_snapshot *s = bdl_loop_acquire(v->loop);
+        status_line(v, s);
+        v->view.status = v->status;
+        v->view.help = v->show_help ? help_text : NULL;
+        bdl_renderer_draw(v->renderer, s, &v->view, w, h);
+        if (v->script_count > 0 && !v->reported_drawing && s && s->count > 0) {
+            printf("view: drawing %ld particles (%ld visible) at %dx%d\n", s->count,
+                   bdl_renderer_drawn(v->renderer), w, h);
+            v->reported_drawing = 1;
+        }
+        bdl_context_present(v->context);
+        ++frame;
+        // At most 60 frames a second, whatever the swap interval does.
+        double now = bdl_wall_seconds(), wait = 1.0 / 60.0 - (now - last);
+        if (wait > 0.0)
+            SDL_Delay((Uint32)(wait * 1000.0));
+        last = bdl_wall_seconds();
+    }
+}
+
+int bdl_cmd_view(int argc, char **argv)
+{
+    bdl_scene_opts o;
+    int rc = bdl_parse_scene_opts(argc, argv, view_usage, &o);
+    if (rc != 0)
+        return rc < 0 ? 0 : rc;
+    if (o.gl_backend != BDL_GL_AUTO && o.gl_backend != BDL_GL_SDL) {
+        fprintf(stderr, "error: --gl %s: the window needs sdl\n",
+                bdl_gl_backend_name((bdl_gl_backend)o.gl_backend));
+        return 2;
+    }
+    viewer *v = calloc(1, sizeof *v);
+    bdl_scene *scene = calloc(1, sizeof *scene);
+    if (!v || !scene) {
+        free(v);
+        free(scene);
+        return 1;
+    }
+    v->opts = &o;
+    v->scene = scene;
+    v->paused = o.paused;
+    bdl_scene_error err;
+    rc = 2;
+    if (bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err) != BDL_OK) {
+        fprintf(stderr, "error: %s\n", err.message);
+        goto done;
+    }
+    if (o.script && !load_script(v, o.script))
+        goto done;
+    const char *stem = strrchr(o.scene, '/') ? strrchr(o.scene, '/') + 1 : o.scene;
+    if (o.out)
+        snprintf(v->shot_dir, sizeof v->shot_dir, "%s", o.out);
+    else
+        snprintf(v->shot_dir, sizeof v->shot_dir, "runs/%.*s/screenshots",
+                 (int)(strcspn(stem, ".")), stem);
+    find_live_parameter(v);
+    rc = 1;
+    char why[1024];
+    bdl_context_def cd = {.backend = BDL_GL_SDL,
+                          .window = 1,
+                          .width = o.width ? o.width : 1280,
+                          .height = o.height ? o.height : 720,
+                          .title = o.scene};
+    if (bdl_context_create(&cd, &v->context, why, sizeof why) != BDL_OK) {
+        fprintf(stderr, "error: cannot open a window: %s\n", why);
+        goto done;
+    }
+    bdl_renderer_def rd = {.scene = scene};
+    if (bdl_renderer_create(&rd, &v->renderer, why, sizeof why) != BDL_OK) {
+        fprintf(stderr, "error: %s\n", why);
+        goto done;
+    }
+    int w, h;
+    bdl_context_drawable_size(v->context, &w, &h);
+    bdl_view_from_scene(scene, (float)w / (float)h, &v->view);
+    if (!start_world(v)) {
+        rc = 2;
+        goto done;
+    }
+    run_viewer(v);
+    rc = 0;
+done:
+    stop_world(v);
+    bdl_renderer_destroy(v->renderer);
+    bdl_context_destroy(v->context);
+    free(scene);
+    free(v);
+    return rc;
+}
+
+#else
+
+int bdl_cmd_view(int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    (void)help_text;
+    (void)view_usage;
+    fprintf(stderr, "error: this bedlam was built without SDL2 (BDL_WITH_SDL=OFF): no window; "
+                    "headless frames work with 'bedlam run' and [output] frame_interval\n");
+    return 1;
+}
+
+#endif

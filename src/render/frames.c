@@ -1,0 +1,216 @@
+#define _POSIX_C_SOURCE 200809L
+#include "render/frames.h"
+
+#include <errno.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/log.h"
+#include "io/png.h"
+#include "render/renderer.h"
+#include "sim/loop.h"
+
+#define SLOTS  3 ///< snapshots waiting to be drawn
+#define IMAGES 3 ///< images waiting to be encoded
+
+typedef struct image {
+    uint8_t *rgb;
+    long index;
+} image;
+
+struct bdl_frames {
+    char folder[1024];
+    bdl_context *context;
+    bdl_renderer *renderer;
+    bdl_view view;
+    int width, height;
+
+    pthread_mutex_t lock;
+    pthread_cond_t changed; ///< any queue changed
+    bdl_snapshot slots[SLOTS];
+    long slot_index[SLOTS];
+    int slot_head, slot_count; ///< queued snapshots, in order
+    image images[IMAGES];
+    int image_head, image_count; ///< queued images, in order
+    int closing;
+    bdl_result error;
+    long written;
+    pthread_t encoder;
+    int encoder_started;
+};
+
+static void fail(bdl_frames *f, bdl_result r)
+{
+    if (f->error == BDL_OK)
+        f->error = r;
+    pthread_cond_broadcast(&f->changed);
+}
+
+static void *encoder_main(void *arg)
+{
+    bdl_frames *f = arg;
+    pthread_mutex_lock(&f->lock);
+    for (;;) {
+        while (f->image_count == 0 && !f->closing)
+            pthread_cond_wait(&f->changed, &f->lock);
+        if (f->image_count == 0)
+            break;
+        image *im = &f->images[f->image_head];
+        pthread_mutex_unlock(&f->lock);
+        char path[1100];
+        snprintf(path, sizeof path, "%s/frame_%06ld.png", f->folder, im->index);
+        bdl_result r = bdl_png_write(path, im->rgb, f->width, f->height, 3, 0);
+        pthread_mutex_lock(&f->lock);
+        if (r != BDL_OK)
+            fail(f, r);
+        else
+            f->written++;
+        f->image_head = (f->image_head + 1) % IMAGES;
+        f->image_count--;
+        pthread_cond_broadcast(&f->changed);
+    }
+    pthread_mutex_unlock(&f->lock);
+    return NULL;
+}
+
+bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *why, size_t why_len)
+{
+    *out = NULL;
+    bdl_frames *f = calloc(1, sizeof *f);
+    if (!f)
+        return BDL_ERR_NOMEM;
+    const bdl_output_def *o = &def->scene->output;
+    snprintf(f->folder, sizeof f->folder, "%s", def->folder);
+    f->width = o->frame_width;
+    f->height = o->frame_height;
+    pthread_mutex_init(&f->lock, NULL);
+    pthread_cond_init(&f->changed, NULL);
+    for (int k = 0; k < IMAGES; ++k)
+        if (!(f->images[k].rgb = malloc((size_t)f->width * (size_t)f->height * 3))) {
+            bdl_frames_close(f, NULL);
+            return BDL_ERR_NOMEM;
+        }
+    bdl_context_def cd = {.backend = def->backend, .width = f->width, .height = f->height};
+    bdl_result r = bdl_context_create(&cd, &f->context, why, why_len);
+    if (r == BDL_OK) {
+        bdl_renderer_def rd = {.scene = def->scene,
+                               .headless = 1,
+                               .width = f->width,
+                               .height = f->height,
+                               .samples = o->frame_samples};
+        r = bdl_renderer_create(&rd, &f->renderer, why, why_len);
+    }
+    if (r == BDL_OK && pthread_create(&f->encoder, NULL, encoder_main, f) != 0)
+        r = BDL_ERR_NOMEM;
+    f->encoder_started = r == BDL_OK;
+    if (r != BDL_OK) {
+        bdl_frames_close(f, NULL);
+        return r;
+    }
+    bdl_view_from_scene(def->scene, (float)f->width / (float)f->height, &f->view);
+    *out = f;
+    return BDL_OK;
+}
+
+bdl_result bdl_frames_submit(bdl_frames *f, const bdl_world *w, long index)
+{
+    pthread_mutex_lock(&f->lock);
+    while (f->slot_count == SLOTS && f->error == BDL_OK)
+        pthread_cond_wait(&f->changed, &f->lock);
+    bdl_result r = f->error;
+    if (r == BDL_OK) {
+        int k = (f->slot_head + f->slot_count) % SLOTS;
+        // The copy happens under the lock: the slot is not in the queue yet, but the drawing
+        // thread must not see a half-grown one either.
+        if (bdl_snapshot_fill(&f->slots[k], w)) {
+            f->slot_index[k] = index;
+            f->slot_count++;
+            pthread_cond_broadcast(&f->changed);
+        } else {
+            r = BDL_ERR_NOMEM;
+            fail(f, r);
+        }
+    }
+    pthread_mutex_unlock(&f->lock);
+    return r;
+}
+
+static void deadline_after(struct timespec *ts, double seconds)
+{
+    clock_gettime(CLOCK_REALTIME, ts);
+    long ns = ts->tv_nsec + (long)(seconds * 1e9);
+    ts->tv_sec += ns / 1000000000L;
+    ts->tv_nsec = ns % 1000000000L;
+}
+
+/// Draws the oldest queued snapshot and queues its image. Called with the lock held.
+static void draw_one(bdl_frames *f)
+{
+    int k = f->slot_head;
+    while (f->image_count == IMAGES && f->error == BDL_OK)
+        pthread_cond_wait(&f->changed, &f->lock);
+    if (f->error != BDL_OK)
+        return;
+    image *im = &f->images[(f->image_head + f->image_count) % IMAGES];
+    pthread_mutex_unlock(&f->lock);
+    bdl_renderer_draw(f->renderer, &f->slots[k], &f->view, f->width, f->height);
+    bdl_result r = bdl_renderer_read(f->renderer, im->rgb);
+    pthread_mutex_lock(&f->lock);
+    if (r != BDL_OK) {
+        bdl_error("frame %ld: reading the pixels back failed", f->slot_index[k]);
+        fail(f, r);
+        return;
+    }
+    im->index = f->slot_index[k];
+    f->image_count++;
+    f->slot_head = (f->slot_head + 1) % SLOTS;
+    f->slot_count--;
+    pthread_cond_broadcast(&f->changed);
+}
+
+int bdl_frames_pump(bdl_frames *f, double timeout)
+{
+    struct timespec deadline;
+    deadline_after(&deadline, timeout);
+    int drawn = 0;
+    pthread_mutex_lock(&f->lock);
+    while (f->slot_count == 0 && f->error == BDL_OK)
+        if (pthread_cond_timedwait(&f->changed, &f->lock, &deadline) == ETIMEDOUT)
+            break;
+    while (f->slot_count > 0 && f->error == BDL_OK) {
+        draw_one(f);
+        drawn++;
+    }
+    pthread_mutex_unlock(&f->lock);
+    return drawn;
+}
+
+bdl_result bdl_frames_close(bdl_frames *f, long *written)
+{
+    if (!f)
+        return BDL_OK;
+    if (f->renderer)
+        bdl_frames_pump(f, 0.0);
+    pthread_mutex_lock(&f->lock);
+    f->closing = 1;
+    pthread_cond_broadcast(&f->changed);
+    pthread_mutex_unlock(&f->lock);
+    if (f->encoder_started)
+        pthread_join(f->encoder, NULL);
+    bdl_result r = f->error;
+    if (written)
+        *written = f->written;
+    bdl_renderer_destroy(f->renderer);
+    bdl_context_destroy(f->context);
+    for (int k = 0; k < SLOTS; ++k)
+        bdl_snapshot_free(&f->slots[k]);
+    for (int k = 0; k < IMAGES; ++k)
+        free(f->images[k].rgb);
+    pthread_mutex_destroy(&f->lock);
+    pthread_cond_destroy(&f->changed);
+    free(f);
+    return r;
+}

@@ -1,0 +1,39 @@
+// bedlam — headless PNG frames of a run: frames/frame_NNNNNN.png every [output] frame_interval.
+//
+// Three threads share the work, so the solver never draws or encodes:
+//   solver   copies the particles into a free snapshot slot at each frame time (and waits only
+//            when all slots are full: a dump never drops a frame);
+//   caller   (the thread that opened the frames and owns the GL context) draws each queued
+//            snapshot and reads the pixels back;
+//   encoder  compresses the pixels to PNG and writes the file atomically.
+#ifndef BDL_FRAMES_H
+#define BDL_FRAMES_H
+
+#include "render/context.h"
+#include "sim/world.h"
+
+typedef struct bdl_frames_def {
+    const bdl_scene *scene;
+    const char *folder;     ///< where frame_NNNNNN.png go (must exist)
+    bdl_gl_backend backend; ///< BDL_GL_AUTO, BDL_GL_EGL or BDL_GL_OSMESA
+} bdl_frames_def;
+
+typedef struct bdl_frames bdl_frames;
+
+/// Creates the headless context and renderer on the calling thread and starts the encoder.
+/// On failure returns BDL_ERR_GL (no context) or BDL_ERR_NOMEM with a sentence in `why`.
+bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *why, size_t why_len);
+
+/// Solver thread: queues frame number `index` of the world as it is now. Blocks while the queue
+/// is full. Returns the first error of the drawing or encoding threads, if any.
+bdl_result bdl_frames_submit(bdl_frames *f, const bdl_world *w, long index);
+
+/// Caller thread: draws every queued frame, waiting up to `timeout` seconds for the first.
+/// Returns the number drawn.
+int bdl_frames_pump(bdl_frames *f, double timeout);
+
+/// Caller thread: draws what is still queued, waits for the encoder, frees everything. Returns
+/// the first error, and the number of frames written in `written`.
+bdl_result bdl_frames_close(bdl_frames *f, long *written);
+
+#endif
