@@ -76,6 +76,23 @@ static void *encoder_main(void *arg)
     return NULL;
 }
 
+/// Draws one sphere at the domain's centre and reads it back, so that the driver compiles its
+/// shader variants now and not while the solver runs (llvmpipe compiles for a second or more,
+/// and a solver sharing the cores with the compiler would wait for it).
+static void warm_up(bdl_frames *f, const bdl_scene *scene)
+{
+    bdl_vec3 c = bdl_v3_scale(bdl_v3_add(scene->domain_min, scene->domain_max), 0.5);
+    float pos[3] = {(float)c.x, (float)c.y, (float)c.z}, vel[3] = {0, 0, 0};
+    float radius = (float)(0.5 * scene->species[0].diameter);
+    uint8_t coordination = 0;
+    int32_t species = 0;
+    uint32_t id = 0;
+    bdl_snapshot s = {.count = 1, .capacity = 1, .pos = pos, .vel = vel, .radius = &radius,
+                      .coordination = &coordination, .species = &species, .id = &id};
+    bdl_renderer_draw(f->renderer, &s, &f->view, f->width, f->height);
+    bdl_renderer_read(f->renderer, f->images[0].rgb);
+}
+
 bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *why, size_t why_len)
 {
     *out = NULL;
@@ -111,6 +128,7 @@ bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *wh
         return r;
     }
     bdl_view_from_scene(def->scene, (float)f->width / (float)f->height, &f->view);
+    warm_up(f, def->scene);
     *out = f;
     return BDL_OK;
 }
