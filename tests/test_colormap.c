@@ -68,9 +68,8 @@ static void test_sequential(void)
     printf("sequential: lightness error %.4f, perceptual step %.4f .. %.4f\n", l_err, step_min,
            step_max);
     CHECK_MSG(l_err < 0.005f, "lightness departs from the linear ramp by %g", l_err);
-    // Equal steps in the value look like near-equal steps in colour (viridis itself varies
-    // by about 1.5x along its length in OKLab).
-    CHECK_MSG(step_max < 1.6f * step_min, "steps %g .. %g", step_min, step_max);
+    // Equal steps in the value look like near-equal steps in colour (measured 1.27x).
+    CHECK_MSG(step_max < 1.35f * step_min, "steps %g .. %g", step_min, step_max);
 
     float lo[3], hi[3], lab_lo[3], lab_hi[3];
     bdl_colormap_eval(BDL_CMAP_SEQUENTIAL, 0.0, lo);

@@ -560,7 +560,7 @@ static void colour_bar(bdl_renderer *r, const bdl_view *v, int width, int height
                      r->last_range[0] + t * (r->last_range[1] - r->last_range[0]));
         float y = y1 - t * (y1 - y0);
         rect(r, x1, y - 0.5f, x1 + 4, y + 0.5f, text_color);
-        text(r, x1 + 6, y - 0.5f * lh, label, text_color);
+        text(r, x1 + 9, y - 0.5f * lh, label, text_color);
     }
     char title[64];
     const char *unit = bdl_color_mode_unit(v->color);
@@ -607,8 +607,9 @@ static void legend(bdl_renderer *r, const bdl_view *v, int width, int height)
             snprintf(label, sizeof label, "%d", (int)coordination);
         text(r, x0 + box + 4, top + 0.5f * (box - lh), label, text_color);
     }
-    text(r, x0, y - box * (float)discrete_count - 1.6f * lh, bdl_color_mode_label(v->color),
-         text_color);
+    const char *title = bdl_color_mode_label(v->color);
+    text(r, fminf(x0, (float)width - text_width(r, title) - 8.0f),
+         y - box * (float)discrete_count - 1.6f * lh, title, text_color);
 }
 
 static void help_box(bdl_renderer *r, const char *help, int width, int height)
