@@ -443,10 +443,13 @@ done:
 
 int bdl_cmd_view(int argc, char **argv)
 {
-    (void)argc;
-    (void)argv;
     (void)help_text;
-    (void)view_usage;
+    for (int k = 1; k < argc; ++k)
+        if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
+            fputs(view_usage, stdout);
+            printf("\nThis bedlam was built without SDL2 (BDL_WITH_SDL=OFF): no window.\n");
+            return 0;
+        }
     fprintf(stderr, "error: this bedlam was built without SDL2 (BDL_WITH_SDL=OFF): no window; "
                     "headless frames work with 'bedlam run' and [output] frame_interval\n");
     return 1;
