@@ -1,0 +1,493 @@
+// bedlam — gas solver: boundary ghosts, TVD convection, projection with implicit drag.
+#include "cfd/gas.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define G BDL_GRID_GHOST
+
+static int periodic_axis(const bdl_gas *g, int a)
+{
+    return g->def.side[2 * a].type == BDL_SIDE_PERIODIC;
+}
+
+bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
+{
+    *out = NULL;
+    int periodic[3];
+    for (int a = 0; a < 3; ++a) {
+        int lo = def->side[2 * a].type == BDL_SIDE_PERIODIC;
+        int hi = def->side[2 * a + 1].type == BDL_SIDE_PERIODIC;
+        if (lo != hi)
+            return BDL_ERR_ARGS;
+        periodic[a] = lo;
+    }
+    bdl_gas *g = calloc(1, sizeof *g);
+    if (!g)
+        return BDL_ERR_NOMEM;
+    g->def = *def;
+    if (!bdl_grid_init(&g->grid, def->n, def->lo, def->hi, periodic)) {
+        free(g);
+        return BDL_ERR_ARGS;
+    }
+    int dirichlet[6];
+    for (int s = 0; s < 6; ++s)
+        dirichlet[s] = def->side[s].type == BDL_SIDE_OUTLET;
+    g->poisson = bdl_poisson_create(&g->grid, dirichlet);
+    int ok = g->poisson != NULL;
+    for (int a = 0; a < 3; ++a) {
+        g->u[a] = bdl_grid_alloc(&g->grid);
+        g->vp[a] = bdl_grid_alloc(&g->grid);
+        g->source[a] = bdl_grid_alloc(&g->grid);
+        g->ustar[a] = bdl_grid_alloc(&g->grid);
+        g->coef[a] = bdl_grid_alloc(&g->grid);
+        g->d[a] = bdl_grid_alloc(&g->grid);
+        ok = ok && g->u[a] && g->vp[a] && g->source[a] && g->ustar[a] && g->coef[a] && g->d[a];
+    }
+    g->p = bdl_grid_alloc(&g->grid);
+    g->eps = bdl_grid_alloc(&g->grid);
+    g->eps_old = bdl_grid_alloc(&g->grid);
+    g->beta = bdl_grid_alloc(&g->grid);
+    g->rhs = bdl_grid_alloc(&g->grid);
+    ok = ok && g->p && g->eps && g->eps_old && g->beta && g->rhs;
+    if (!ok) {
+        bdl_gas_destroy(g);
+        return BDL_ERR_NOMEM;
+    }
+    for (long i = 0; i < g->grid.size; ++i)
+        g->eps[i] = g->eps_old[i] = 1.0;
+    if (g->def.max_iterations <= 0)
+        g->def.max_iterations = 200;
+    if (!(g->def.tolerance > 0.0))
+        g->def.tolerance = 1e-8;
+    *out = g;
+    return BDL_OK;
+}
+
+void bdl_gas_destroy(bdl_gas *g)
+{
+    if (!g)
+        return;
+    bdl_poisson_destroy(g->poisson);
+    for (int a = 0; a < 3; ++a) {
+        free(g->u[a]);
+        free(g->vp[a]);
+        free(g->source[a]);
+        free(g->ustar[a]);
+        free(g->coef[a]);
+        free(g->d[a]);
+    }
+    free(g->p);
+    free(g->eps);
+    free(g->eps_old);
+    free(g->beta);
+    free(g->rhs);
+    free(g);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ghost values.
+
+/// Calls fn(index) for every padded position whose coordinate along `axis` is `at`.
+#define FOR_PLANE(gr, axis, at, ...)                                                               \
+    do {                                                                                           \
+        const int b_ = ((axis) + 1) % 3, c_ = ((axis) + 2) % 3;                                    \
+        for (int jc_ = -G; jc_ <= (gr)->n[c_] + G; ++jc_)                                          \
+            for (int jb_ = -G; jb_ <= (gr)->n[b_] + G; ++jb_) {                                    \
+                int ix_[3];                                                                        \
+                ix_[axis] = (at);                                                                  \
+                ix_[b_] = jb_;                                                                     \
+                ix_[c_] = jc_;                                                                     \
+                const long idx = bdl_grid_index(gr, ix_[0], ix_[1], ix_[2]);                       \
+                __VA_ARGS__;                                                                       \
+            }                                                                                      \
+    } while (0)
+
+/// Cell fields (voidage, drag): periodic images, zero gradient elsewhere.
+static void cell_ghosts(const bdl_gas *g, double *f)
+{
+    const bdl_grid *gr = &g->grid;
+    for (int a = 0; a < 3; ++a) {
+        const long s = gr->stride[a];
+        const int n = gr->n[a];
+        if (gr->periodic[a])
+            continue;
+        FOR_PLANE(gr, a, 0, {
+            for (int l = 1; l <= G; ++l) {
+                f[idx - l * s] = f[idx];
+                f[idx + (n - 1 + l) * s] = f[idx + (n - 1) * s];
+            }
+        });
+    }
+    bdl_grid_wrap_cells(gr, f);
+}
+
+/// Superficial inflow through the boundary face at padded index `idx` of side `side`.
+static double inflow_at(const bdl_gas *g, int side, long idx)
+{
+    const bdl_gas_side *sd = &g->def.side[side];
+    if (!sd->jet)
+        return sd->inflow;
+    const bdl_grid *gr = &g->grid;
+    const int a = side / 2;
+    long rest = idx;
+    int ix[3];
+    for (int b = 2; b >= 0; --b) {
+        ix[b] = (int)(rest / gr->stride[b]) - G;
+        rest %= gr->stride[b];
+    }
+    for (int b = 0; b < 3; ++b) {
+        if (b == a)
+            continue;
+        double x = gr->origin[b] + (ix[b] + 0.5) * gr->h[b];
+        if (x < sd->jet_lo[b] || x > sd->jet_hi[b])
+            return sd->inflow;
+    }
+    return sd->jet_inflow;
+}
+
+static double face_eps(const bdl_gas *g, const double *eps, int a, long idx)
+{
+    return 0.5 * (eps[idx] + eps[idx - g->grid.stride[a]]);
+}
+
+/// Boundary and ghost values of velocity component a (the normal faces of a side hold the
+/// boundary condition; ghost faces and ghost rows mirror it).
+static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *eps)
+{
+    const bdl_grid *gr = &g->grid;
+    for (int b = 0; b < 3; ++b) {
+        const long s = gr->stride[b];
+        const int n = gr->n[b];
+        if (gr->periodic[b]) {
+            if (b == a) {
+                FOR_PLANE(gr, b, 0, {
+                    u[idx + n * s] = u[idx];
+                    for (int l = 1; l <= G; ++l) {
+                        u[idx - l * s] = u[idx + (n - l) * s];
+                        u[idx + (n + l) * s] = u[idx + l * s];
+                    }
+                });
+            } else {
+                FOR_PLANE(gr, b, 0, {
+                    for (int l = 1; l <= G; ++l) {
+                        u[idx - l * s] = u[idx + (n - l) * s];
+                        u[idx + (n - 1 + l) * s] = u[idx + (l - 1) * s];
+                    }
+                });
+            }
+            continue;
+        }
+        for (int side = 0; side < 2; ++side) {
+            const bdl_gas_side *sd = &g->def.side[2 * b + side];
+            const double dir = side == 0 ? 1.0 : -1.0; // into the domain
+            if (b == a) {
+                // Normal faces: the boundary face at 0 or n, ghosts beyond it.
+                FOR_PLANE(gr, b, side == 0 ? 0 : n, {
+                    if (sd->type == BDL_SIDE_WALL || sd->type == BDL_SIDE_SLIP)
+                        u[idx] = 0.0;
+                    else if (sd->type == BDL_SIDE_INLET)
+                        u[idx] = dir * inflow_at(g, 2 * b + side, idx) / face_eps(g, eps, b, idx);
+                    for (int l = 1; l <= G; ++l) {
+                        long ghost = idx - (long)dir * l * s, mirror = idx + (long)dir * l * s;
+                        int odd = sd->type == BDL_SIDE_WALL || sd->type == BDL_SIDE_SLIP;
+                        u[ghost] = odd ? -u[mirror] : u[idx];
+                    }
+                });
+            } else {
+                // Tangential rows: ghost cells beyond the side.
+                const double w = sd->type == BDL_SIDE_WALL ? sd->wall_velocity[a] : 0.0;
+                FOR_PLANE(gr, b, side == 0 ? 0 : n - 1, {
+                    for (int l = 1; l <= G; ++l) {
+                        long ghost = idx - (long)dir * l * s;
+                        long mirror = idx + (long)dir * (l - 1) * s;
+                        switch (sd->type) {
+                        case BDL_SIDE_WALL:
+                        case BDL_SIDE_INLET:
+                            u[ghost] = 2.0 * w - u[mirror];
+                            break;
+                        case BDL_SIDE_SLIP:
+                            u[ghost] = u[mirror];
+                            break;
+                        default: // outlet: zero gradient
+                            u[ghost] = u[idx];
+                            break;
+                        }
+                    }
+                });
+            }
+        }
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Convection.
+
+/// The value at the face between m1 and p1, upwinded by the sign of the flux q, with a TVD
+/// limiter on the second-order correction.
+static double face_value(bdl_convection scheme, double q, double m2, double m1, double p1,
+                         double p2)
+{
+    double up, c, down;
+    if (q >= 0.0) {
+        up = m2, c = m1, down = p1;
+    } else {
+        up = p2, c = p1, down = m1;
+    }
+    if (scheme == BDL_CONVECTION_CENTRAL)
+        return 0.5 * (m1 + p1);
+    double delta = down - c;
+    if (scheme == BDL_CONVECTION_UPWIND || delta == 0.0)
+        return c;
+    double r = (c - up) / delta, psi;
+    if (scheme == BDL_CONVECTION_SUPERBEE)
+        psi = fmax(0.0, fmax(fmin(2.0 * r, 1.0), fmin(r, 2.0)));
+    else
+        psi = (r + fabs(r)) / (1.0 + fabs(r));
+    return c + 0.5 * psi * delta;
+}
+
+/// div(eps u u_a) at the a-face `idx`, with q[b] = eps u_b on the b-faces.
+static double convection(const bdl_gas *g, int a, long idx, const double *u, double *const q[3])
+{
+    const bdl_grid *gr = &g->grid;
+    const bdl_convection sc = g->def.convection;
+    const long sa = gr->stride[a];
+    double sum = 0.0;
+    for (int b = 0; b < 3; ++b) {
+        if (gr->n[b] == 1 && gr->periodic[b])
+            continue;
+        const long s = gr->stride[b];
+        double qhi, qlo;
+        if (b == a) {
+            qhi = 0.5 * (q[a][idx] + q[a][idx + s]);
+            qlo = 0.5 * (q[a][idx - s] + q[a][idx]);
+        } else {
+            qhi = 0.5 * (q[b][idx + s] + q[b][idx + s - sa]);
+            qlo = 0.5 * (q[b][idx] + q[b][idx - sa]);
+        }
+        double fhi = qhi * face_value(sc, qhi, u[idx - s], u[idx], u[idx + s], u[idx + 2 * s]);
+        double flo = qlo * face_value(sc, qlo, u[idx - 2 * s], u[idx - s], u[idx], u[idx + s]);
+        sum += (fhi - flo) / gr->h[b];
+    }
+    return sum;
+}
+
+static double laplacian(const bdl_grid *gr, long idx, const double *u)
+{
+    double sum = 0.0;
+    for (int b = 0; b < 3; ++b) {
+        const long s = gr->stride[b];
+        sum += (u[idx + s] - 2.0 * u[idx] + u[idx - s]) / (gr->h[b] * gr->h[b]);
+    }
+    return sum;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The step.
+
+/// Range of unknown faces of component a along a: [lo, hi].
+static void unknown_faces(const bdl_gas *g, int a, int *lo, int *hi)
+{
+    const int n = g->grid.n[a];
+    if (periodic_axis(g, a)) {
+        *lo = 0;
+        *hi = n - 1;
+        return;
+    }
+    *lo = g->def.side[2 * a].type == BDL_SIDE_OUTLET ? 0 : 1;
+    *hi = g->def.side[2 * a + 1].type == BDL_SIDE_OUTLET ? n : n - 1;
+}
+
+#define FOR_FACES(gr, a, flo, fhi, ...)                                                            \
+    _Pragma("omp parallel for schedule(static)") for (int k = 0; k < (gr)->n[2] + ((a) == 2);      \
+                                                      ++k) for (int j = 0;                         \
+                                                                j < (gr)->n[1] + ((a) == 1);       \
+                                                                ++j) for (int i = 0;               \
+                                                                          i <                      \
+                                                                          (gr)->n[0] + ((a) == 0); \
+                                                                          ++i)                     \
+    {                                                                                              \
+        const int ia_ = (a) == 0 ? i : (a) == 1 ? j : k;                                           \
+        if (ia_ < (flo) || ia_ > (fhi))                                                            \
+            continue;                                                                              \
+        const long idx = bdl_grid_index(gr, i, j, k);                                              \
+        __VA_ARGS__;                                                                               \
+    }
+
+bdl_result bdl_gas_step(bdl_gas *g, double dt)
+{
+    const bdl_grid *gr = &g->grid;
+    const double rho = g->def.density, mu = g->def.viscosity;
+    cell_ghosts(g, g->eps);
+    cell_ghosts(g, g->eps_old);
+    cell_ghosts(g, g->beta);
+    for (int a = 0; a < 3; ++a) {
+        cell_ghosts(g, g->vp[a]);
+        velocity_ghosts(g, a, g->u[a], g->eps_old);
+    }
+    // Volume fluxes eps u on every face (ghosts included) for the convection.
+    double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
+    for (int a = 0; a < 3; ++a) {
+        const long s = gr->stride[a];
+#pragma omp parallel for schedule(static)
+        for (long idx = s; idx < gr->size; ++idx)
+            q[a][idx] = 0.5 * (g->eps_old[idx] + g->eps_old[idx - s]) * g->u[a][idx];
+    }
+    // Predictor.
+    for (int a = 0; a < 3; ++a) {
+        int flo, fhi;
+        unknown_faces(g, a, &flo, &fhi);
+        const double *u = g->u[a];
+        double *us = g->ustar[a], *d = g->d[a];
+        FOR_FACES(gr, a, flo, fhi, {
+            const double e0 = face_eps(g, g->eps_old, a, idx), e1 = face_eps(g, g->eps, a, idx);
+            const double beta = 0.5 * (g->beta[idx] + g->beta[idx - gr->stride[a]]);
+            const double vp = 0.5 * (g->vp[a][idx] + g->vp[a][idx - gr->stride[a]]);
+            const double A = rho * e1 / dt + beta;
+            double r = rho * e0 * u[idx] / dt - rho * convection(g, a, idx, u, q) +
+                       mu * e0 * laplacian(gr, idx, u) + e1 * rho * g->def.gravity[a] + beta * vp +
+                       g->source[a][idx];
+            us[idx] = r / A;
+            d[idx] = e1 / A;
+        });
+    }
+    // Boundary faces: prescribed, or (outlets) extrapolated.
+    for (int a = 0; a < 3; ++a) {
+        if (periodic_axis(g, a))
+            continue;
+        const long s = gr->stride[a];
+        const int n = gr->n[a];
+        for (int side = 0; side < 2; ++side) {
+            const bdl_gas_side *sd = &g->def.side[2 * a + side];
+            double *us = g->ustar[a], *d = g->d[a];
+            FOR_PLANE(gr, a, side == 0 ? 0 : n, {
+                if (sd->type == BDL_SIDE_OUTLET)
+                    us[idx] = us[idx + (side == 0 ? s : -s)];
+                else if (sd->type == BDL_SIDE_INLET)
+                    us[idx] = (side == 0 ? 1.0 : -1.0) * inflow_at(g, 2 * a + side, idx) /
+                              face_eps(g, g->eps, a, idx);
+                else
+                    us[idx] = 0.0;
+                if (sd->type == BDL_SIDE_OUTLET) {
+                    double e1 = face_eps(g, g->eps, a, idx);
+                    double beta = 0.5 * (g->beta[idx] + g->beta[idx - s]);
+                    d[idx] = e1 / (rho * e1 / dt + beta);
+                }
+            });
+        }
+    }
+    for (int a = 0; a < 3; ++a)
+        if (periodic_axis(g, a)) {
+            const long s = gr->stride[a];
+            const int n = gr->n[a];
+            FOR_PLANE(gr, a, 0, {
+                g->ustar[a][idx + n * s] = g->ustar[a][idx];
+                g->d[a][idx + n * s] = g->d[a][idx];
+            });
+        }
+    // Pressure equation: div(c grad p) = div(eps u*) + d eps / dt.
+    for (int a = 0; a < 3; ++a) {
+        const long s = gr->stride[a];
+        double *c = g->coef[a];
+#pragma omp parallel for schedule(static)
+        for (long idx = s; idx < gr->size; ++idx)
+            c[idx] = 0.5 * (g->eps[idx] + g->eps[idx - s]) * g->d[a][idx];
+    }
+    bdl_poisson_set_coefficients(g->poisson, g->coef);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < gr->n[2]; ++k)
+        for (int j = 0; j < gr->n[1]; ++j)
+            for (int i = 0; i < gr->n[0]; ++i) {
+                const long idx = bdl_grid_index(gr, i, j, k);
+                double div = (g->eps[idx] - g->eps_old[idx]) / dt;
+                for (int a = 0; a < 3; ++a) {
+                    const long s = gr->stride[a];
+                    div += (face_eps(g, g->eps, a, idx + s) * g->ustar[a][idx + s] -
+                            face_eps(g, g->eps, a, idx) * g->ustar[a][idx]) /
+                           gr->h[a];
+                }
+                g->rhs[idx] = div;
+            }
+    double p_side[6];
+    for (int s = 0; s < 6; ++s)
+        p_side[s] = g->def.side[s].pressure;
+    int converged = bdl_poisson_solve(g->poisson, g->p, g->rhs, p_side, g->def.tolerance,
+                                      g->def.max_iterations, &g->last_solve);
+    bdl_grid_wrap_cells(gr, g->p);
+    // Correction.
+    int finite = 1;
+    for (int a = 0; a < 3; ++a) {
+        int flo, fhi;
+        unknown_faces(g, a, &flo, &fhi);
+        const long s = gr->stride[a];
+        const int n = gr->n[a];
+        const double h = gr->h[a], p_lo = p_side[2 * a], p_hi = p_side[2 * a + 1];
+        const int periodic = periodic_axis(g, a);
+        double *u = g->u[a];
+        const double *us = g->ustar[a], *d = g->d[a], *p = g->p;
+        // Prescribed boundary faces take u*; unknown ones are corrected.
+        memcpy(u, us, (size_t)gr->size * sizeof(double));
+        FOR_FACES(gr, a, flo, fhi, {
+            const int ia = a == 0 ? i : a == 1 ? j : k;
+            double grad;
+            if (!periodic && ia == 0)
+                grad = 2.0 * (p[idx] - p_lo) / h;
+            else if (!periodic && ia == n)
+                grad = 2.0 * (p_hi - p[idx - s]) / h;
+            else
+                grad = (p[idx] - p[idx - s]) / h;
+            u[idx] = us[idx] - d[idx] * grad;
+        });
+        if (periodic)
+            FOR_PLANE(gr, a, 0, { u[idx + n * s] = u[idx]; });
+    }
+    // Volume balance of the gas in every cell after the step.
+    double worst = 0.0;
+    for (int k = 0; k < gr->n[2]; ++k)
+        for (int j = 0; j < gr->n[1]; ++j)
+            for (int i = 0; i < gr->n[0]; ++i) {
+                const long idx = bdl_grid_index(gr, i, j, k);
+                double div = (g->eps[idx] - g->eps_old[idx]) / dt;
+                for (int a = 0; a < 3; ++a) {
+                    const long s = gr->stride[a];
+                    div += (face_eps(g, g->eps, a, idx + s) * g->u[a][idx + s] -
+                            face_eps(g, g->eps, a, idx) * g->u[a][idx]) /
+                           gr->h[a];
+                    finite = finite && isfinite(g->u[a][idx]);
+                }
+                worst = fmax(worst, fabs(div) * dt);
+            }
+    g->mass_imbalance = worst;
+    memcpy(g->eps_old, g->eps, (size_t)gr->size * sizeof(double));
+    g->time += dt;
+    g->steps++;
+    return converged && finite ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+double bdl_gas_stable_dt(const bdl_gas *g)
+{
+    const bdl_grid *gr = &g->grid;
+    double cfl = INFINITY, inv_h2 = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        double umax = 0.0;
+        for (int k = 0; k < gr->n[2]; ++k)
+            for (int j = 0; j < gr->n[1]; ++j)
+                for (int i = 0; i < gr->n[0]; ++i)
+                    umax = fmax(umax, fabs(g->u[a][bdl_grid_index(gr, i, j, k)]));
+        if (umax > 0.0)
+            cfl = fmin(cfl, 0.5 * gr->h[a] / umax);
+        if (!(gr->n[a] == 1 && gr->periodic[a]))
+            inv_h2 += 1.0 / (gr->h[a] * gr->h[a]);
+    }
+    double nu = g->def.viscosity / g->def.density;
+    double visc = nu > 0.0 ? 1.0 / (2.0 * nu * inv_h2) : INFINITY;
+    return fmin(cfl, visc);
+}
+
+double bdl_gas_cell_velocity(const bdl_gas *g, int a, int i, int j, int k)
+{
+    long idx = bdl_grid_index(&g->grid, i, j, k);
+    return 0.5 * (g->u[a][idx] + g->u[a][idx + g->grid.stride[a]]);
+}

@@ -1,0 +1,95 @@
+// bedlam — the gas phase: incompressible, volume-averaged continuity and momentum (seed 002
+// eqs. 3-4, "model A": the gas carries -eps grad p, the particles the rest of the pressure force)
+// on the staggered grid, advanced by a projection method with the interphase drag implicit:
+//
+//   (rho eps^{n+1}/dt + beta) u* = rho eps^n u^n/dt - rho div(eps u u)^n + eps mu lap(u^n)
+//                                  + eps^{n+1} rho g + beta v_p + s
+//   div(c grad p) = div(eps^{n+1} u*) + (eps^{n+1} - eps^n)/dt,
+//       c = eps^{n+1} d,  d = eps^{n+1} / (rho eps^{n+1}/dt + beta)
+//   u^{n+1} = u* - d grad p
+//
+// so that the gas volume is conserved to the pressure solver's tolerance every step, and a drag
+// coefficient beta far above rho/dt stays stable (u follows the particles' velocity v_p).
+// Convection is conservative and TVD (upwind, van Leer or Superbee limiter on the face values;
+// central for tests), explicit; viscosity is explicit, eps mu lap(u) (the terms with grad eps are
+// left out). beta, v_p and eps come from the coupling; without particles eps = 1, beta = 0.
+#ifndef BDL_GAS_H
+#define BDL_GAS_H
+
+#include "cfd/grid.h"
+#include "cfd/poisson.h"
+#include "core/error.h"
+
+typedef enum bdl_gas_side_type {
+    BDL_SIDE_WALL,   ///< no-slip (the wall may slide: wall_velocity)
+    BDL_SIDE_SLIP,   ///< free-slip wall
+    BDL_SIDE_INLET,  ///< given superficial velocity into the domain (a jet patch optional)
+    BDL_SIDE_OUTLET, ///< given pressure, zero-gradient velocity
+    BDL_SIDE_PERIODIC,
+} bdl_gas_side_type;
+
+typedef enum bdl_convection {
+    BDL_CONVECTION_UPWIND,
+    BDL_CONVECTION_VANLEER,
+    BDL_CONVECTION_SUPERBEE,
+    BDL_CONVECTION_CENTRAL, ///< second order, not bounded: for verification at low cell Reynolds
+} bdl_convection;
+
+typedef struct bdl_gas_side {
+    bdl_gas_side_type type;
+    double wall_velocity[3];     ///< tangential velocity of a no-slip wall [m/s]
+    double inflow;               ///< inlet: superficial velocity into the domain [m/s]
+    int jet;                     ///< inlet: a rectangle with its own superficial velocity
+    double jet_lo[3], jet_hi[3]; ///< the rectangle (the normal coordinate is ignored) [m]
+    double jet_inflow;           ///< superficial velocity through the rectangle [m/s]
+    double pressure;             ///< outlet pressure [Pa]
+} bdl_gas_side;
+
+typedef struct bdl_gas_def {
+    int n[3];
+    double lo[3], hi[3];
+    double density;   ///< [kg/m^3]
+    double viscosity; ///< dynamic [Pa s]
+    double gravity[3];
+    bdl_gas_side side[6]; ///< 2a + s: side s (0 low, 1 high) of axis a
+    bdl_convection convection;
+    double tolerance; ///< relative residual of the pressure solver
+    int max_iterations;
+} bdl_gas_def;
+
+typedef struct bdl_gas {
+    bdl_gas_def def;
+    bdl_grid grid;
+    bdl_poisson *poisson;
+    double *u[3];      ///< interstitial gas velocity on the faces [m/s]
+    double *p;         ///< pressure in the cells [Pa]
+    double *eps;       ///< voidage in the cells at the new time level
+    double *eps_old;   ///< voidage at the previous time level
+    double *beta;      ///< drag coefficient in the cells [kg/(m^3 s)]
+    double *vp[3];     ///< mean particle velocity in the cells [m/s]
+    double *source[3]; ///< extra force per unit volume on the faces [N/m^3] (0 unless set)
+    double *ustar[3], *coef[3], *rhs, *d[3]; ///< work arrays
+    double time;
+    long steps;
+    bdl_poisson_stats last_solve;
+    double mass_imbalance; ///< max over cells of |d eps/dt + div(eps u)| dt after the last step
+} bdl_gas;
+
+/// Allocates the gas at rest (eps = 1, p = 0 plus the hydrostatic profile is not imposed).
+/// BDL_ERR_NOMEM or BDL_ERR_ARGS (a periodic side paired with a non-periodic one).
+bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out);
+void bdl_gas_destroy(bdl_gas *g);
+
+/// Advances the gas by dt with the eps, beta, vp and source currently set (eps_old holds the
+/// voidage of the previous step; it is updated at the end). Returns BDL_ERR_UNSTABLE if the
+/// pressure solver did not converge or a velocity is not finite.
+bdl_result bdl_gas_step(bdl_gas *g, double dt);
+
+/// The largest stable time step of the explicit terms: CFL 0.5 on the convection, and the
+/// viscous limit.
+double bdl_gas_stable_dt(const bdl_gas *g);
+
+/// Velocity component a interpolated to the cell centre (i, j, k).
+double bdl_gas_cell_velocity(const bdl_gas *g, int a, int i, int j, int k);
+
+#endif

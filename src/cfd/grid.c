@@ -1,0 +1,49 @@
+// bedlam — staggered grid layout.
+#include "cfd/grid.h"
+
+#include <stdlib.h>
+
+int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double hi[3],
+                  const int periodic[3])
+{
+    *g = (bdl_grid){0};
+    for (int a = 0; a < 3; ++a) {
+        if (n[a] < 1 || !(hi[a] > lo[a]))
+            return 0;
+        g->n[a] = n[a];
+        g->h[a] = (hi[a] - lo[a]) / n[a];
+        g->origin[a] = lo[a];
+        g->periodic[a] = periodic ? periodic[a] != 0 : 0;
+    }
+    const int G = BDL_GRID_GHOST;
+    g->stride[0] = 1;
+    g->stride[1] = g->n[0] + 2 * G + 1;
+    g->stride[2] = g->stride[1] * (g->n[1] + 2 * G + 1);
+    g->size = g->stride[2] * (g->n[2] + 2 * G + 1);
+    return 1;
+}
+
+double *bdl_grid_alloc(const bdl_grid *g) { return calloc((size_t)g->size, sizeof(double)); }
+
+void bdl_grid_wrap_cells(const bdl_grid *g, double *f)
+{
+    const int G = BDL_GRID_GHOST;
+    for (int a = 0; a < 3; ++a) {
+        if (!g->periodic[a])
+            continue;
+        const int b = (a + 1) % 3, c = (a + 2) % 3;
+        const long sa = g->stride[a];
+        for (int jc = -G; jc < g->n[c] + G; ++jc)
+            for (int jb = -G; jb < g->n[b] + G; ++jb) {
+                int idx[3];
+                idx[a] = 0;
+                idx[b] = jb;
+                idx[c] = jc;
+                long base = bdl_grid_index(g, idx[0], idx[1], idx[2]);
+                for (int l = 1; l <= G; ++l) {
+                    f[base - l * sa] = f[base + (g->n[a] - l) * sa];
+                    f[base + (g->n[a] - 1 + l) * sa] = f[base + (l - 1) * sa];
+                }
+            }
+    }
+}

@@ -1,0 +1,42 @@
+// bedlam — the uniform staggered (MAC) grid of the gas solver.
+//
+// nx x ny x nz cells of size hx x hy x hz from `origin`. Scalars (pressure, voidage) live at cell
+// centres; the velocity component along axis a lives on the faces normal to a (face i of axis a
+// is the low face of cell i, at origin_a + i h_a). Every field, scalar or face, is stored in one
+// padded layout with BDL_GRID_GHOST ghost layers on each side and one extra plane on the high
+// side, so cell (i, j, k) and the low faces of that cell share one index:
+//     index = (k + G) * sz + (j + G) * sy + (i + G),   -G <= i < nx + G + 1, ...
+#ifndef BDL_GRID_H
+#define BDL_GRID_H
+
+#include <stddef.h>
+
+#define BDL_GRID_GHOST 2
+
+typedef struct bdl_grid {
+    int n[3];         ///< cells per axis
+    double h[3];      ///< cell size per axis [m]
+    double origin[3]; ///< low corner of the domain [m]
+    int periodic[3];  ///< periodic axes
+    long stride[3];   ///< index step per axis in the padded layout (1, sy, sz)
+    long size;        ///< padded array length
+} bdl_grid;
+
+/// Sets up a grid of n cells spanning lo..hi. Returns 0 when a count is below 1.
+int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double hi[3],
+                  const int periodic[3]);
+
+/// Index of cell (i, j, k) — or of the low faces of that cell.
+static inline long bdl_grid_index(const bdl_grid *g, int i, int j, int k)
+{
+    return (long)(k + BDL_GRID_GHOST) * g->stride[2] + (long)(j + BDL_GRID_GHOST) * g->stride[1] +
+           (i + BDL_GRID_GHOST);
+}
+
+/// A zeroed padded array; NULL when out of memory.
+double *bdl_grid_alloc(const bdl_grid *g);
+
+/// Copies periodic images into the ghost layers of a cell-centred field on every periodic axis.
+void bdl_grid_wrap_cells(const bdl_grid *g, double *f);
+
+#endif

@@ -1,0 +1,478 @@
+// bedlam — multigrid-preconditioned conjugate gradients for the pressure equation.
+//
+// Internally the equation is written as M x = b with M = -div(c grad) (symmetric positive
+// semi-definite) on compact cell arrays, per unit volume: the coupling of two cells across a
+// face normal to axis a is K = c / h_a^2, and a Dirichlet side couples a boundary cell to its
+// ghost value 2 p_side - x, which adds 2K to the diagonal and 2K p_side to b.
+#include "cfd/poisson.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define MAX_LEVELS      16
+#define CHUNKS          64 ///< fixed partition for sums: the same for any thread count
+#define SMOOTH_SWEEPS   2  ///< Jacobi sweeps before and after the coarse correction
+#define COARSEST_SWEEPS 40 ///< Jacobi sweeps on the coarsest level
+#define JACOBI_WEIGHT   0.8
+
+typedef struct level {
+    int n[3];
+    int coarsen[3]; ///< how this level is coarsened into the next
+    long cells;
+    double *K[3]; ///< face couplings, compact face arrays (n[a] + 1 faces along a)
+    double *diag;
+    double *x, *b, *r, *t;
+} level;
+
+struct bdl_poisson {
+    bdl_grid grid;
+    int periodic[3];
+    int dirichlet[6];
+    int singular; ///< no Dirichlet side: the solution is defined up to a constant
+    int level_count;
+    level levels[MAX_LEVELS];
+    double *d, *q, *z; ///< CG vectors on the finest level
+};
+
+static long cell_of(const level *L, int i, int j, int k)
+{
+    return ((long)k * L->n[1] + j) * L->n[0] + i;
+}
+
+static long face_of(const level *L, int a, int i, int j, int k)
+{
+    long f0 = L->n[0] + (a == 0), f1 = L->n[1] + (a == 1);
+    return ((long)k * f1 + j) * f0 + i;
+}
+
+static long face_count(const level *L, int a)
+{
+    return (long)(L->n[0] + (a == 0)) * (L->n[1] + (a == 1)) * (L->n[2] + (a == 2));
+}
+
+static int level_alloc(level *L)
+{
+    L->cells = (long)L->n[0] * L->n[1] * L->n[2];
+    for (int a = 0; a < 3; ++a)
+        if (!(L->K[a] = calloc((size_t)face_count(L, a), sizeof(double))))
+            return 0;
+    L->diag = calloc((size_t)L->cells, sizeof(double));
+    L->x = calloc((size_t)L->cells, sizeof(double));
+    L->b = calloc((size_t)L->cells, sizeof(double));
+    L->r = calloc((size_t)L->cells, sizeof(double));
+    L->t = calloc((size_t)L->cells, sizeof(double));
+    return L->diag && L->x && L->b && L->r && L->t;
+}
+
+static void level_free(level *L)
+{
+    for (int a = 0; a < 3; ++a)
+        free(L->K[a]);
+    free(L->diag);
+    free(L->x);
+    free(L->b);
+    free(L->r);
+    free(L->t);
+}
+
+bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6])
+{
+    bdl_poisson *p = calloc(1, sizeof *p);
+    if (!p)
+        return NULL;
+    p->grid = *g;
+    p->singular = 1;
+    for (int a = 0; a < 3; ++a) {
+        p->periodic[a] = g->periodic[a];
+        for (int s = 0; s < 2; ++s) {
+            p->dirichlet[2 * a + s] = !g->periodic[a] && dirichlet && dirichlet[2 * a + s];
+            if (p->dirichlet[2 * a + s])
+                p->singular = 0;
+        }
+    }
+    // Levels: halve every even axis until none is even or the grid is tiny.
+    int n[3] = {g->n[0], g->n[1], g->n[2]};
+    for (int l = 0; l < MAX_LEVELS; ++l) {
+        level *L = &p->levels[l];
+        memcpy(L->n, n, sizeof n);
+        if (!level_alloc(L)) {
+            p->level_count = l + 1;
+            bdl_poisson_destroy(p);
+            return NULL;
+        }
+        p->level_count = l + 1;
+        int any = 0;
+        for (int a = 0; a < 3; ++a) {
+            L->coarsen[a] = n[a] % 2 == 0 && n[a] >= 2;
+            any |= L->coarsen[a];
+        }
+        if (!any || L->cells <= 8) {
+            memset(L->coarsen, 0, sizeof L->coarsen);
+            break;
+        }
+        for (int a = 0; a < 3; ++a)
+            n[a] = L->coarsen[a] ? n[a] / 2 : n[a];
+    }
+    long cells = p->levels[0].cells;
+    p->d = calloc((size_t)cells, sizeof(double));
+    p->q = calloc((size_t)cells, sizeof(double));
+    p->z = calloc((size_t)cells, sizeof(double));
+    if (!p->d || !p->q || !p->z) {
+        bdl_poisson_destroy(p);
+        return NULL;
+    }
+    return p;
+}
+
+void bdl_poisson_destroy(bdl_poisson *p)
+{
+    if (!p)
+        return;
+    for (int l = 0; l < p->level_count; ++l)
+        level_free(&p->levels[l]);
+    free(p->d);
+    free(p->q);
+    free(p->z);
+    free(p);
+}
+
+/// Diagonal of M: every coupling to a neighbour (itself excluded, across a periodic axis of one
+/// cell), and twice the coupling of a Dirichlet side.
+static void build_diagonal(const bdl_poisson *p, level *L)
+{
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i) {
+                int c[3] = {i, j, k};
+                double d = 0.0;
+                for (int a = 0; a < 3; ++a) {
+                    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+                    hi[a] += 1;
+                    double klo = L->K[a][face_of(L, a, lo[0], lo[1], lo[2])];
+                    double khi = L->K[a][face_of(L, a, hi[0], hi[1], hi[2])];
+                    if (p->periodic[a]) {
+                        if (L->n[a] > 1)
+                            d += klo + khi;
+                        continue;
+                    }
+                    d += c[a] == 0 ? 2.0 * klo : klo;
+                    d += c[a] == L->n[a] - 1 ? 2.0 * khi : khi;
+                }
+                L->diag[cell_of(L, i, j, k)] = d;
+            }
+}
+
+/// Coarse couplings: the fine faces making up each coarse face, summed, halved across a
+/// coarsened axis.
+static void restrict_couplings(const level *F, level *C)
+{
+    for (int a = 0; a < 3; ++a) {
+        double factor = F->coarsen[a] ? 0.5 : 1.0;
+        int f1[3] = {C->n[0] + (a == 0), C->n[1] + (a == 1), C->n[2] + (a == 2)};
+        for (int k = 0; k < f1[2]; ++k)
+            for (int j = 0; j < f1[1]; ++j)
+                for (int i = 0; i < f1[0]; ++i) {
+                    int base[3] = {i, j, k};
+                    int span[3];
+                    for (int b = 0; b < 3; ++b) {
+                        span[b] = b != a && F->coarsen[b] ? 2 : 1;
+                        base[b] = F->coarsen[b] ? 2 * base[b] : base[b];
+                    }
+                    double sum = 0.0;
+                    for (int dk = 0; dk < span[2]; ++dk)
+                        for (int dj = 0; dj < span[1]; ++dj)
+                            for (int di = 0; di < span[0]; ++di)
+                                sum += F->K[a][face_of(F, a, base[0] + di, base[1] + dj,
+                                                       base[2] + dk)];
+                    C->K[a][face_of(C, a, i, j, k)] = factor * sum;
+                }
+    }
+}
+
+void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
+{
+    const bdl_grid *g = &p->grid;
+    level *L = &p->levels[0];
+    for (int a = 0; a < 3; ++a) {
+        const double inv_h2 = 1.0 / (g->h[a] * g->h[a]);
+        int f1[3] = {L->n[0] + (a == 0), L->n[1] + (a == 1), L->n[2] + (a == 2)};
+#pragma omp parallel for schedule(static)
+        for (int k = 0; k < f1[2]; ++k)
+            for (int j = 0; j < f1[1]; ++j)
+                for (int i = 0; i < f1[0]; ++i) {
+                    int idx[3] = {i, j, k};
+                    double K = c[a][bdl_grid_index(g, i, j, k)] * inv_h2;
+                    if (idx[a] == 0 || idx[a] == L->n[a]) {
+                        if (p->periodic[a])
+                            K = c[a][bdl_grid_index(g, a == 0 ? 0 : i, a == 1 ? 0 : j,
+                                                    a == 2 ? 0 : k)] *
+                                inv_h2;
+                        else if (!p->dirichlet[2 * a + (idx[a] != 0)])
+                            K = 0.0;
+                    }
+                    L->K[a][face_of(L, a, i, j, k)] = K;
+                }
+    }
+    build_diagonal(p, L);
+    for (int l = 1; l < p->level_count; ++l) {
+        restrict_couplings(&p->levels[l - 1], &p->levels[l]);
+        build_diagonal(p, &p->levels[l]);
+    }
+}
+
+/// out = M x on level L.
+static void apply(const bdl_poisson *p, const level *L, const double *x, double *out)
+{
+    const int n0 = L->n[0], n1 = L->n[1], n2 = L->n[2];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < n2; ++k)
+        for (int j = 0; j < n1; ++j)
+            for (int i = 0; i < n0; ++i) {
+                const long c = cell_of(L, i, j, k);
+                double off = 0.0;
+                int idx[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a) {
+                    if (L->n[a] == 1)
+                        continue; // no neighbours along a (a Dirichlet side is in the diagonal)
+                    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+                    hi[a] += 1;
+                    int nb_lo[3] = {i, j, k}, nb_hi[3] = {i, j, k};
+                    nb_lo[a] -= 1;
+                    nb_hi[a] += 1;
+                    if (idx[a] == 0) {
+                        if (p->periodic[a])
+                            nb_lo[a] = L->n[a] - 1;
+                        else
+                            nb_lo[a] = -1;
+                    }
+                    if (idx[a] == L->n[a] - 1) {
+                        if (p->periodic[a]) {
+                            nb_hi[a] = 0;
+                            hi[a] = 0;
+                        } else
+                            nb_hi[a] = -1;
+                    }
+                    if (nb_lo[a] >= 0)
+                        off += L->K[a][face_of(L, a, lo[0], lo[1], lo[2])] *
+                               x[cell_of(L, nb_lo[0], nb_lo[1], nb_lo[2])];
+                    if (nb_hi[a] >= 0)
+                        off += L->K[a][face_of(L, a, hi[0], hi[1], hi[2])] *
+                               x[cell_of(L, nb_hi[0], nb_hi[1], nb_hi[2])];
+                }
+                out[c] = L->diag[c] * x[c] - off;
+            }
+}
+
+static double dot(const double *a, const double *b, long n)
+{
+    double partial[CHUNKS];
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < CHUNKS; ++c) {
+        long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
+        double s = 0.0;
+        for (long i = lo; i < hi; ++i)
+            s += a[i] * b[i];
+        partial[c] = s;
+    }
+    double s = 0.0;
+    for (int c = 0; c < CHUNKS; ++c)
+        s += partial[c];
+    return s;
+}
+
+static void remove_mean(double *a, long n)
+{
+    double partial[CHUNKS];
+#pragma omp parallel for schedule(static)
+    for (int c = 0; c < CHUNKS; ++c) {
+        long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
+        double s = 0.0;
+        for (long i = lo; i < hi; ++i)
+            s += a[i];
+        partial[c] = s;
+    }
+    double s = 0.0;
+    for (int c = 0; c < CHUNKS; ++c)
+        s += partial[c];
+    double mean = s / (double)n;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i)
+        a[i] -= mean;
+}
+
+static void jacobi(const bdl_poisson *p, level *L, int sweeps)
+{
+    for (int s = 0; s < sweeps; ++s) {
+        apply(p, L, L->x, L->t);
+#pragma omp parallel for schedule(static)
+        for (long c = 0; c < L->cells; ++c)
+            if (L->diag[c] > 0.0)
+                L->x[c] += JACOBI_WEIGHT * (L->b[c] - L->t[c]) / L->diag[c];
+    }
+}
+
+/// x = V-cycle(b) on level l, from x = 0: a fixed linear, symmetric operator of b.
+static void vcycle(const bdl_poisson *p, int l)
+{
+    level *L = (level *)&p->levels[l];
+    memset(L->x, 0, (size_t)L->cells * sizeof(double));
+    if (l == p->level_count - 1) {
+        jacobi(p, L, COARSEST_SWEEPS);
+        return;
+    }
+    jacobi(p, L, SMOOTH_SWEEPS);
+    apply(p, L, L->x, L->t);
+    level *C = (level *)&p->levels[l + 1];
+    memset(C->b, 0, (size_t)C->cells * sizeof(double));
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i) {
+                long c = cell_of(L, i, j, k);
+                long cc = cell_of(C, L->coarsen[0] ? i / 2 : i, L->coarsen[1] ? j / 2 : j,
+                                  L->coarsen[2] ? k / 2 : k);
+                C->b[cc] += L->b[c] - L->t[c];
+            }
+    vcycle(p, l + 1);
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i)
+                L->x[cell_of(L, i, j, k)] +=
+                    C->x[cell_of(C, L->coarsen[0] ? i / 2 : i, L->coarsen[1] ? j / 2 : j,
+                                 L->coarsen[2] ? k / 2 : k)];
+    jacobi(p, L, SMOOTH_SWEEPS);
+}
+
+/// z = V-cycle(r) on the finest level.
+static void precondition(bdl_poisson *p, const double *r, double *z)
+{
+    level *L = &p->levels[0];
+    memcpy(L->b, r, (size_t)L->cells * sizeof(double));
+    vcycle(p, 0);
+    memcpy(z, L->x, (size_t)L->cells * sizeof(double));
+    if (p->singular)
+        remove_mean(z, L->cells);
+}
+
+/// b = -f + Dirichlet terms, compact, from the padded f.
+static void right_hand_side(const bdl_poisson *p, const double *f, const double p_side[6],
+                            double *b)
+{
+    const bdl_grid *g = &p->grid;
+    const level *L = &p->levels[0];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i) {
+                double v = -f[bdl_grid_index(g, i, j, k)];
+                int idx[3] = {i, j, k};
+                for (int a = 0; a < 3; ++a) {
+                    int hi[3] = {i, j, k};
+                    hi[a] += 1;
+                    if (idx[a] == 0 && p->dirichlet[2 * a])
+                        v += 2.0 * L->K[a][face_of(L, a, i, j, k)] * p_side[2 * a];
+                    if (idx[a] == L->n[a] - 1 && p->dirichlet[2 * a + 1])
+                        v += 2.0 * L->K[a][face_of(L, a, hi[0], hi[1], hi[2])] * p_side[2 * a + 1];
+                }
+                b[cell_of(L, i, j, k)] = v;
+            }
+}
+
+static void to_compact(const bdl_poisson *p, const double *padded, double *compact)
+{
+    const level *L = &p->levels[0];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i)
+                compact[cell_of(L, i, j, k)] = padded[bdl_grid_index(&p->grid, i, j, k)];
+}
+
+static void to_padded(const bdl_poisson *p, const double *compact, double *padded)
+{
+    const level *L = &p->levels[0];
+#pragma omp parallel for schedule(static)
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i)
+                padded[bdl_grid_index(&p->grid, i, j, k)] = compact[cell_of(L, i, j, k)];
+}
+
+void bdl_poisson_residual(bdl_poisson *p, const double *x, const double *f, const double p_side[6],
+                          double *r)
+{
+    level *L = &p->levels[0];
+    double *xc = p->d, *b = p->q, *mx = p->z;
+    to_compact(p, x, xc);
+    right_hand_side(p, f, p_side, b);
+    apply(p, L, xc, mx);
+    // f - div(c grad x) = -(b - M x) in the original sign.
+    for (long c = 0; c < L->cells; ++c)
+        mx[c] = -(b[c] - mx[c]);
+    to_padded(p, mx, r);
+}
+
+int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p_side[6],
+                      double tol, int max_iter, bdl_poisson_stats *stats)
+{
+    level *L = &p->levels[0];
+    const long n = L->cells;
+    double *xc = malloc((size_t)n * sizeof(double)), *r = malloc((size_t)n * sizeof(double));
+    if (!xc || !r) {
+        free(xc);
+        free(r);
+        return 0;
+    }
+    to_compact(p, x, xc);
+    right_hand_side(p, f, p_side, r);
+    if (p->singular)
+        remove_mean(r, n);
+    const double norm_b = sqrt(dot(r, r, n));
+    apply(p, L, xc, p->q);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < n; ++i)
+        r[i] -= p->q[i];
+    double res = norm_b > 0.0 ? sqrt(dot(r, r, n)) / norm_b : 0.0;
+    bdl_poisson_stats st = {0, res, res};
+    int converged = res <= tol;
+    if (!converged) {
+        precondition(p, r, p->z);
+        memcpy(p->d, p->z, (size_t)n * sizeof(double));
+        double rz = dot(r, p->z, n);
+        for (int it = 1; it <= max_iter; ++it) {
+            apply(p, L, p->d, p->q);
+            double dq = dot(p->d, p->q, n);
+            if (!(dq > 0.0))
+                break;
+            double alpha = rz / dq;
+#pragma omp parallel for schedule(static)
+            for (long i = 0; i < n; ++i) {
+                xc[i] += alpha * p->d[i];
+                r[i] -= alpha * p->q[i];
+            }
+            st.iterations = it;
+            st.residual = sqrt(dot(r, r, n)) / norm_b;
+            if (st.residual <= tol) {
+                converged = 1;
+                break;
+            }
+            precondition(p, r, p->z);
+            double rz_new = dot(r, p->z, n);
+            double beta = rz_new / rz;
+            rz = rz_new;
+#pragma omp parallel for schedule(static)
+            for (long i = 0; i < n; ++i)
+                p->d[i] = p->z[i] + beta * p->d[i];
+        }
+    }
+    if (p->singular)
+        remove_mean(xc, n);
+    to_padded(p, xc, x);
+    if (stats)
+        *stats = st;
+    free(xc);
+    free(r);
+    return converged;
+}

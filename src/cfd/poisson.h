@@ -1,0 +1,46 @@
+// bedlam — the pressure equation: div(c grad p) = f on the cell-centred grid, solved by
+// conjugate gradients preconditioned with one symmetric multigrid V-cycle.
+//
+// c is given on the faces (c > 0). Each non-periodic side of the domain is either Neumann (the
+// flux through it is already in f, so c there is ignored) or Dirichlet (p = p_side on the side,
+// through a ghost value). Without a Dirichlet side the problem is singular: f is made
+// consistent by removing its mean, and the solution has mean zero.
+//
+// The multigrid coarsens every axis whose cell count is even, by two, with coarse coefficients
+// from aggregating the fine faces (half their sum across a coarsened axis, which is what
+// re-discretising with the mean coefficient on the coarse cell gives), piecewise-constant
+// transfers and damped Jacobi smoothing. Every loop is over a fixed partition of the cells and
+// every sum is taken in a fixed order, so the result does not depend on the thread count.
+#ifndef BDL_POISSON_H
+#define BDL_POISSON_H
+
+#include "cfd/grid.h"
+
+typedef struct bdl_poisson bdl_poisson;
+
+typedef struct bdl_poisson_stats {
+    int iterations;
+    double residual; ///< final |f - A p|_2 / |f|_2 (0 when f = 0)
+    double initial_residual;
+} bdl_poisson_stats;
+
+/// `dirichlet[2a + s]` says whether side s (0 low, 1 high) of axis a holds a fixed pressure.
+/// NULL when out of memory.
+bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6]);
+void bdl_poisson_destroy(bdl_poisson *p);
+
+/// Face coefficients c, one padded face array per axis (see grid.h), and the multigrid's coarse
+/// levels built from them.
+void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3]);
+
+/// Solves div(c grad x) = f, starting from the x given (padded cell arrays; only the cells are
+/// read and written). p_side[2a + s] is the pressure of each Dirichlet side. Stops when the
+/// relative residual is below `tol` or after `max_iter` iterations. Returns 1 when converged.
+int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p_side[6],
+                      double tol, int max_iter, bdl_poisson_stats *stats);
+
+/// r = f - div(c grad x) in the cells (padded arrays), with the same boundary treatment.
+void bdl_poisson_residual(bdl_poisson *p, const double *x, const double *f, const double p_side[6],
+                          double *r);
+
+#endif

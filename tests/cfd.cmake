@@ -1,0 +1,6 @@
+# Gas solver verification (docs/verification-gas.md): Poiseuille convergence order, hydrostatic
+# rest, plug flow, volume conservation, the pressure solver, and the lid-driven cavity against
+# Ghia et al. (1982).
+bdl_add_test(test_poisson SOURCES test_poisson.c LABELS cfd)
+bdl_add_test(test_gas SOURCES test_gas.c LABELS "cfd;verification")
+bdl_add_test(test_cavity SOURCES test_cavity.c LABELS "cfd;verification" TIMEOUT 900)

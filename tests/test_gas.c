@@ -1,0 +1,192 @@
+// Gas solver verification: plane Poiseuille flow (second-order convergence under refinement),
+// hydrostatic rest, plug flow from an inlet to an outlet, and gas volume conservation while the
+// voidage changes.
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "cfd/gas.h"
+#include "core/vec3.h"
+#include "check.h"
+
+static bdl_gas_def channel_def(int ny)
+{
+    bdl_gas_def d = {0};
+    d.n[0] = 4, d.n[1] = ny, d.n[2] = 1;
+    d.hi[0] = 0.5, d.hi[1] = 1.0, d.hi[2] = 0.1;
+    d.density = 1.0;
+    d.viscosity = 0.1;
+    d.gravity[0] = 1.0; // the driving pressure gradient, as a body force
+    for (int a = 0; a < 3; ++a)
+        d.side[2 * a].type = d.side[2 * a + 1].type = BDL_SIDE_PERIODIC;
+    d.side[2].type = d.side[3].type = BDL_SIDE_WALL;
+    d.convection = BDL_CONVECTION_VANLEER;
+    d.tolerance = 1e-10;
+    return d;
+}
+
+/// Steady plane Poiseuille flow between walls at y = 0 and 1: u = g y (1 - y) / (2 nu).
+static double poiseuille_error(int ny)
+{
+    bdl_gas_def d = channel_def(ny);
+    bdl_gas *g = NULL;
+    if (bdl_gas_create(&d, &g) != BDL_OK)
+        return INFINITY;
+    const double nu = d.viscosity / d.density, umax = d.gravity[0] / (8.0 * nu);
+    double dt = 0.9 * bdl_gas_stable_dt(g);
+    double change = INFINITY;
+    for (int step = 0; step < 200000 && change > 1e-13 * umax; ++step) {
+        long mid = bdl_grid_index(&g->grid, 0, ny / 2, 0);
+        double before = g->u[0][mid];
+        if (bdl_gas_step(g, dt) != BDL_OK)
+            break;
+        change = fabs(g->u[0][mid] - before);
+    }
+    double err = 0.0;
+    for (int j = 0; j < ny; ++j) {
+        double y = (j + 0.5) / ny;
+        double exact = d.gravity[0] * y * (1.0 - y) / (2.0 * nu);
+        for (int i = 0; i < d.n[0]; ++i)
+            err = fmax(err, fabs(g->u[0][bdl_grid_index(&g->grid, i, j, 0)] - exact));
+    }
+    // The flow stays parallel.
+    double vmax = 0.0;
+    for (int j = 0; j <= ny; ++j)
+        vmax = fmax(vmax, fabs(g->u[1][bdl_grid_index(&g->grid, 1, j, 0)]));
+    CHECK(vmax < 1e-12 * umax);
+    bdl_gas_destroy(g);
+    return err / umax;
+}
+
+static void test_poiseuille(void)
+{
+    double e[3];
+    int n[3] = {8, 16, 32};
+    printf("plane Poiseuille: cells  max error / u_max  order\n");
+    for (int k = 0; k < 3; ++k) {
+        e[k] = poiseuille_error(n[k]);
+        if (k == 0)
+            printf("                  %5d  %.3e\n", n[k], e[k]);
+        else
+            printf("                  %5d  %.3e  %.2f\n", n[k], e[k], log2(e[k - 1] / e[k]));
+    }
+    CHECK(e[0] < 0.02);
+    CHECK_MSG(log2(e[1] / e[2]) > 1.9 && log2(e[1] / e[2]) < 2.1, "order %g", log2(e[1] / e[2]));
+}
+
+/// A closed box under gravity: the gas stays at rest and the pressure is hydrostatic.
+static void test_hydrostatic(void)
+{
+    bdl_gas_def d = {0};
+    d.n[0] = 8, d.n[1] = 16, d.n[2] = 4;
+    d.hi[0] = 0.1, d.hi[1] = 0.2, d.hi[2] = 0.05;
+    d.density = 1.2;
+    d.viscosity = 1.8e-5;
+    d.gravity[1] = -9.81;
+    for (int s = 0; s < 6; ++s)
+        d.side[s].type = BDL_SIDE_WALL;
+    d.convection = BDL_CONVECTION_VANLEER;
+    d.tolerance = 1e-12;
+    bdl_gas *g = NULL;
+    CHECK(bdl_gas_create(&d, &g) == BDL_OK);
+    for (int step = 0; step < 20; ++step)
+        CHECK(bdl_gas_step(g, 1e-3) == BDL_OK);
+    double umax = 0.0, grad_err = 0.0;
+    for (int a = 0; a < 3; ++a)
+        for (long i = 0; i < g->grid.size; ++i)
+            umax = fmax(umax, fabs(g->u[a][i]));
+    const double h = g->grid.h[1];
+    for (int k = 0; k < 4; ++k)
+        for (int j = 1; j < 16; ++j)
+            for (int i = 0; i < 8; ++i) {
+                double dp = g->p[bdl_grid_index(&g->grid, i, j, k)] -
+                            g->p[bdl_grid_index(&g->grid, i, j - 1, k)];
+                grad_err = fmax(grad_err, fabs(dp / h - d.density * d.gravity[1]));
+            }
+    CHECK_MSG(umax < 1e-10, "gas at rest moves at %g m/s", umax);
+    CHECK_MSG(grad_err < 1e-8 * d.density * 9.81, "hydrostatic gradient off by %g", grad_err);
+    bdl_gas_destroy(g);
+}
+
+/// Uniform inflow at the bottom, pressure outlet at the top, free-slip sides: plug flow with
+/// interstitial velocity U / eps, here with a voidage that varies with height.
+static void test_plug_flow(void)
+{
+    bdl_gas_def d = {0};
+    d.n[0] = 6, d.n[1] = 12, d.n[2] = 1;
+    d.hi[0] = 0.06, d.hi[1] = 0.12, d.hi[2] = 0.01;
+    d.density = 1.2;
+    d.viscosity = 1.8e-5;
+    d.side[0].type = d.side[1].type = BDL_SIDE_SLIP;
+    d.side[2].type = BDL_SIDE_INLET;
+    d.side[2].inflow = 0.3;
+    d.side[3].type = BDL_SIDE_OUTLET;
+    d.side[4].type = d.side[5].type = BDL_SIDE_PERIODIC;
+    d.convection = BDL_CONVECTION_VANLEER;
+    d.tolerance = 1e-12;
+    bdl_gas *g = NULL;
+    CHECK(bdl_gas_create(&d, &g) == BDL_OK);
+    for (int j = 0; j < 12; ++j)
+        for (int i = 0; i < 6; ++i)
+            g->eps[bdl_grid_index(&g->grid, i, j, 0)] =
+                g->eps_old[bdl_grid_index(&g->grid, i, j, 0)] = j < 6 ? 0.45 : 1.0;
+    for (int step = 0; step < 200; ++step)
+        CHECK(bdl_gas_step(g, 1e-3) == BDL_OK);
+    double worst = 0.0;
+    for (int j = 1; j <= 12; ++j)
+        for (int i = 0; i < 6; ++i) {
+            long idx = bdl_grid_index(&g->grid, i, j, 0);
+            double eps_face = 0.5 * (g->eps[idx] + g->eps[idx - g->grid.stride[1]]);
+            worst = fmax(worst, fabs(eps_face * g->u[1][idx] - 0.3));
+        }
+    CHECK_MSG(worst < 1e-9, "superficial velocity off by %g m/s", worst);
+    CHECK(g->mass_imbalance < 1e-9);
+    bdl_gas_destroy(g);
+}
+
+/// The voidage changes every step (a sinusoidal wave of solids passing through a closed, periodic
+/// box): the gas volume balance holds in every cell to the solver's tolerance.
+static void test_volume_conservation(void)
+{
+    bdl_gas_def d = {0};
+    d.n[0] = 16, d.n[1] = 16, d.n[2] = 2;
+    d.hi[0] = 0.04, d.hi[1] = 0.04, d.hi[2] = 0.005;
+    d.density = 1.2;
+    d.viscosity = 1.8e-5;
+    d.side[0].type = d.side[1].type = BDL_SIDE_PERIODIC;
+    d.side[2].type = BDL_SIDE_WALL;
+    d.side[3].type = BDL_SIDE_OUTLET;
+    d.side[4].type = d.side[5].type = BDL_SIDE_PERIODIC;
+    d.convection = BDL_CONVECTION_SUPERBEE;
+    d.tolerance = 1e-10;
+    bdl_gas *g = NULL;
+    CHECK(bdl_gas_create(&d, &g) == BDL_OK);
+    double worst = 0.0;
+    const double dt = 1e-4;
+    for (int step = 0; step <= 50; ++step) {
+        double t = step * dt;
+        for (int k = 0; k < 2; ++k)
+            for (int j = 0; j < 16; ++j)
+                for (int i = 0; i < 16; ++i)
+                    g->eps[bdl_grid_index(&g->grid, i, j, k)] =
+                        0.7 + 0.2 * sin(2.0 * BDL_PI * (i / 16.0 - 10.0 * t)) * cos(BDL_PI * j / 16.0);
+        if (step == 0) { // start from the wave at t = 0
+            memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
+            continue;
+        }
+        CHECK(bdl_gas_step(g, dt) == BDL_OK);
+        worst = fmax(worst, g->mass_imbalance);
+    }
+    printf("volume balance: worst cell |d eps/dt + div(eps u)| dt = %.2e\n", worst);
+    CHECK_MSG(worst < 1e-9, "volume imbalance %g", worst);
+    bdl_gas_destroy(g);
+}
+
+int main(void)
+{
+    test_hydrostatic();
+    test_plug_flow();
+    test_volume_conservation();
+    test_poiseuille();
+    return bdl_test_summary("test_gas");
+}
