@@ -40,12 +40,12 @@ static const char bench_usage[] =
     "  --quiet           no settling progress\n";
 
 // The protocol (docs/performance.md, "The bed").
-#define BED_D           1e-3  ///< diameter [m]
-#define BED_PHI         0.6   ///< solids fraction assumed for the settled bed (sizes the box)
-#define BED_FILL_PHI    0.33  ///< solids fraction of the random fill
-#define BED_G           9.81  ///< [m/s^2]
-#define BED_COMPACT_G   5.0   ///< gravity while falling and compacting [g]
-#define BED_FALL_DAMP   50.0  ///< background damping while falling [1/s]
+#define BED_D           1e-3 ///< diameter [m]
+#define BED_PHI         0.6  ///< solids fraction assumed for the settled bed (sizes the box)
+#define BED_FILL_PHI    0.33 ///< solids fraction of the random fill
+#define BED_G           9.81 ///< [m/s^2]
+#define BED_COMPACT_G   5.0  ///< gravity while falling and compacting [g]
+#define BED_FALL_DAMP   50.0 ///< background damping while falling [1/s]
 #define BED_UNLOAD_DAMP 1000.0
 #define BED_HOLD_DAMP   200.0
 #define BED_SETTLE_DT   0.05 ///< time step while settling [contact times at 1 m/s]
@@ -114,8 +114,8 @@ static double max_overlap(const bdl_world *w)
     for (long i = 0; i < p->count; ++i)
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
             int32_t j = nb->partner[k];
-            double gap = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j])) -
-                         p->radius[i] - p->radius[j];
+            double gap = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j])) - p->radius[i] -
+                         p->radius[j];
             most = fmax(most, -gap);
         }
     return most;
@@ -136,7 +136,10 @@ static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
     double d = BED_D;
     double solid = (double)n * 3.14159265358979323846 / 6.0 * d * d * d;
     double side = sqrt(solid / BED_PHI / (o->height * d));
-    double fill = o->height * d * BED_PHI / BED_FILL_PHI;
+    // The fill region's height gives the fill solids fraction in the volume the centres can
+    // reach (the region less a radius at each side), which matters for small beds.
+    double fill =
+        o->height * d * BED_PHI / BED_FILL_PHI * (side * side) / ((side - d) * (side - d)) + d;
     char skin[64] = "";
     if (o->skin > 0.0)
         snprintf(skin, sizeof skin, "skin = %.17g\n", o->skin);
@@ -150,8 +153,8 @@ static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
              "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
              "[create bed]\ntype = random\nspecies = glass\nregion_min = 0 0 0\n"
              "region_max = %.17g %.17g %.17g\ncount = %ld\n",
-             -BED_COMPACT_G * BED_G, side, side, fill + 4.0 * d, skin, d, BED_FALL_DAMP, side,
-             side, fill, n);
+             -BED_COMPACT_G * BED_G, side, side, fill + 4.0 * d, skin, d, BED_FALL_DAMP, side, side,
+             fill, n);
     bdl_scene *scene = calloc(1, sizeof *scene);
     bdl_scene_error err;
     bdl_world *w = NULL;
@@ -262,9 +265,8 @@ static bench_result time_steps(bdl_world *w, int threads, long count, int repeat
 
 static void report_header(void)
 {
-    printf("%10s %7s %12s %12s %10s %11s %8s %8s %9s %10s\n", "particles", "threads",
-           "p-steps/s", "(median)", "ns/p-step", "ns x thr", "coord.", "pairs", "bytes/p",
-           "builds/1k");
+    printf("%10s %7s %12s %12s %10s %11s %8s %8s %9s %10s\n", "particles", "threads", "p-steps/s",
+           "(median)", "ns/p-step", "ns x thr", "coord.", "pairs", "bytes/p", "builds/1k");
 }
 
 static void report(const bench_result *r, const bed_info *bed, FILE *csv)
