@@ -316,6 +316,20 @@ static void unknown_faces(const bdl_gas *g, int a, int *lo, int *hi)
         __VA_ARGS__;                                                                               \
     }
 
+/// d eps/dt + div(eps u) in the cell at idx, for face velocities u.
+static double volume_change(const bdl_gas *g, double *const u[3], long idx, double dt)
+{
+    const bdl_grid *gr = &g->grid;
+    double div = (g->eps[idx] - g->eps_old[idx]) / dt;
+    for (int a = 0; a < 3; ++a) {
+        const long s = gr->stride[a];
+        div += (face_eps(g, g->eps, a, idx + s) * u[a][idx + s] -
+                face_eps(g, g->eps, a, idx) * u[a][idx]) /
+               gr->h[a];
+    }
+    return div;
+}
+
 bdl_result bdl_gas_step(bdl_gas *g, double dt)
 {
     const bdl_grid *gr = &g->grid;
@@ -401,14 +415,7 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
         for (int j = 0; j < gr->n[1]; ++j)
             for (int i = 0; i < gr->n[0]; ++i) {
                 const long idx = bdl_grid_index(gr, i, j, k);
-                double div = (g->eps[idx] - g->eps_old[idx]) / dt;
-                for (int a = 0; a < 3; ++a) {
-                    const long s = gr->stride[a];
-                    div += (face_eps(g, g->eps, a, idx + s) * g->ustar[a][idx + s] -
-                            face_eps(g, g->eps, a, idx) * g->ustar[a][idx]) /
-                           gr->h[a];
-                }
-                g->rhs[idx] = div;
+                g->rhs[idx] = volume_change(g, g->ustar, idx, dt);
             }
     double p_side[6];
     for (int s = 0; s < 6; ++s)
@@ -449,15 +456,9 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
         for (int j = 0; j < gr->n[1]; ++j)
             for (int i = 0; i < gr->n[0]; ++i) {
                 const long idx = bdl_grid_index(gr, i, j, k);
-                double div = (g->eps[idx] - g->eps_old[idx]) / dt;
-                for (int a = 0; a < 3; ++a) {
-                    const long s = gr->stride[a];
-                    div += (face_eps(g, g->eps, a, idx + s) * g->u[a][idx + s] -
-                            face_eps(g, g->eps, a, idx) * g->u[a][idx]) /
-                           gr->h[a];
+                for (int a = 0; a < 3; ++a)
                     finite = finite && isfinite(g->u[a][idx]);
-                }
-                worst = fmax(worst, fabs(div) * dt);
+                worst = fmax(worst, fabs(volume_change(g, g->u, idx, dt)) * dt);
             }
     g->mass_imbalance = worst;
     memcpy(g->eps_old, g->eps, (size_t)gr->size * sizeof(double));
