@@ -38,19 +38,20 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
     int ok = g->poisson != NULL;
     for (int a = 0; a < 3; ++a) {
         g->u[a] = bdl_grid_alloc(&g->grid);
-        g->vp[a] = bdl_grid_alloc(&g->grid);
+        g->bv[a] = bdl_grid_alloc(&g->grid);
+        g->beta[a] = bdl_grid_alloc(&g->grid);
         g->source[a] = bdl_grid_alloc(&g->grid);
         g->ustar[a] = bdl_grid_alloc(&g->grid);
         g->coef[a] = bdl_grid_alloc(&g->grid);
         g->d[a] = bdl_grid_alloc(&g->grid);
-        ok = ok && g->u[a] && g->vp[a] && g->source[a] && g->ustar[a] && g->coef[a] && g->d[a];
+        ok = ok && g->u[a] && g->bv[a] && g->beta[a] && g->source[a] && g->ustar[a] && g->coef[a] &&
+             g->d[a];
     }
     g->p = bdl_grid_alloc(&g->grid);
     g->eps = bdl_grid_alloc(&g->grid);
     g->eps_old = bdl_grid_alloc(&g->grid);
-    g->beta = bdl_grid_alloc(&g->grid);
     g->rhs = bdl_grid_alloc(&g->grid);
-    ok = ok && g->p && g->eps && g->eps_old && g->beta && g->rhs;
+    ok = ok && g->p && g->eps && g->eps_old && g->rhs;
     if (!ok) {
         bdl_gas_destroy(g);
         return BDL_ERR_NOMEM;
@@ -72,7 +73,8 @@ void bdl_gas_destroy(bdl_gas *g)
     bdl_poisson_destroy(g->poisson);
     for (int a = 0; a < 3; ++a) {
         free(g->u[a]);
-        free(g->vp[a]);
+        free(g->bv[a]);
+        free(g->beta[a]);
         free(g->source[a]);
         free(g->ustar[a]);
         free(g->coef[a]);
@@ -81,7 +83,6 @@ void bdl_gas_destroy(bdl_gas *g)
     free(g->p);
     free(g->eps);
     free(g->eps_old);
-    free(g->beta);
     free(g->rhs);
     free(g);
 }
@@ -104,7 +105,7 @@ void bdl_gas_destroy(bdl_gas *g)
             }                                                                                      \
     } while (0)
 
-/// Cell fields (voidage, drag): periodic images, zero gradient elsewhere.
+/// Cell fields (voidage): periodic images, zero gradient elsewhere.
 static void cell_ghosts(const bdl_gas *g, double *f)
 {
     const bdl_grid *gr = &g->grid;
@@ -336,9 +337,7 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     const double rho = g->def.density, mu = g->def.viscosity;
     cell_ghosts(g, g->eps);
     cell_ghosts(g, g->eps_old);
-    cell_ghosts(g, g->beta);
     for (int a = 0; a < 3; ++a) {
-        cell_ghosts(g, g->vp[a]);
         velocity_ghosts(g, a, g->u[a], g->eps_old);
     }
     // Volume fluxes eps u on every face (ghosts included) for the convection.
@@ -357,11 +356,10 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
         double *us = g->ustar[a], *d = g->d[a];
         FOR_FACES(gr, a, flo, fhi, {
             const double e0 = face_eps(g, g->eps_old, a, idx), e1 = face_eps(g, g->eps, a, idx);
-            const double beta = 0.5 * (g->beta[idx] + g->beta[idx - gr->stride[a]]);
-            const double vp = 0.5 * (g->vp[a][idx] + g->vp[a][idx - gr->stride[a]]);
+            const double beta = g->beta[a][idx], bv = g->bv[a][idx];
             const double A = rho * e1 / dt + beta;
             double r = rho * e0 * u[idx] / dt - rho * convection(g, a, idx, u, q) +
-                       mu * e0 * laplacian(gr, idx, u) + e1 * rho * g->def.gravity[a] + beta * vp +
+                       mu * e0 * laplacian(gr, idx, u) + e1 * rho * g->def.gravity[a] + bv +
                        g->source[a][idx];
             us[idx] = r / A;
             d[idx] = e1 / A;
@@ -386,8 +384,7 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
                     us[idx] = 0.0;
                 if (sd->type == BDL_SIDE_OUTLET) {
                     double e1 = face_eps(g, g->eps, a, idx);
-                    double beta = 0.5 * (g->beta[idx] + g->beta[idx - s]);
-                    d[idx] = e1 / (rho * e1 / dt + beta);
+                    d[idx] = e1 / (rho * e1 / dt + g->beta[a][idx]);
                 }
             });
         }

@@ -3,13 +3,16 @@
 // on the staggered grid, advanced by a projection method with the interphase drag implicit:
 //
 //   (rho eps^{n+1}/dt + beta) u* = rho eps^n u^n/dt - rho div(eps u u)^n + eps mu lap(u^n)
-//                                  + eps^{n+1} rho g + beta v_p + s
+//                                  + eps^{n+1} rho g + (beta v_p) + s
 //   div(c grad p) = div(eps^{n+1} u*) + (eps^{n+1} - eps^n)/dt,
 //       c = eps^{n+1} d,  d = eps^{n+1} / (rho eps^{n+1}/dt + beta)
 //   u^{n+1} = u* - d grad p
 //
 // so that the gas volume is conserved to the pressure solver's tolerance every step, and a drag
 // coefficient beta far above rho/dt stays stable (u follows the particles' velocity v_p).
+// beta and the product beta v_p are given on the velocity faces (deposited there by the
+// coupling with the same weights it interpolates the gas velocity with), so that the drag the gas
+// feels equals, summed, the drag the particles feel (src/couple).
 // Convection is conservative and TVD (upwind, van Leer or Superbee limiter on the face values;
 // central for tests), explicit; viscosity is explicit, eps mu lap(u) (the terms with grad eps are
 // left out). beta, v_p and eps come from the coupling; without particles eps = 1, beta = 0.
@@ -65,8 +68,8 @@ typedef struct bdl_gas {
     double *p;         ///< pressure in the cells [Pa]
     double *eps;       ///< voidage in the cells at the new time level
     double *eps_old;   ///< voidage at the previous time level
-    double *beta;      ///< drag coefficient in the cells [kg/(m^3 s)]
-    double *vp[3];     ///< mean particle velocity in the cells [m/s]
+    double *beta[3];   ///< drag coefficient on the faces of each component [kg/(m^3 s)]
+    double *bv[3];     ///< beta times the particles' velocity on those faces [kg/(m^2 s^2)]
     double *source[3]; ///< extra force per unit volume on the faces [N/m^3] (0 unless set)
     double *ustar[3], *coef[3], *rhs, *d[3]; ///< work arrays
     double time;
@@ -80,7 +83,7 @@ typedef struct bdl_gas {
 bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out);
 void bdl_gas_destroy(bdl_gas *g);
 
-/// Advances the gas by dt with the eps, beta, vp and source currently set (eps_old holds the
+/// Advances the gas by dt with the eps, beta, bv and source currently set (eps_old holds the
 /// voidage of the previous step; it is updated at the end). Returns BDL_ERR_UNSTABLE if the
 /// pressure solver did not converge or a velocity is not finite.
 bdl_result bdl_gas_step(bdl_gas *g, double dt);

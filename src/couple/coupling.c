@@ -1,0 +1,334 @@
+// bedlam — kernel deposition and interpolation, semi-implicit drag exchange.
+#include "couple/coupling.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/vec3.h"
+
+bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const bdl_gas *gas)
+{
+    *c = (bdl_coupling){0};
+    c->def = *def;
+    if (!(c->def.max_solids > 0.0))
+        c->def.max_solids = 0.7;
+    for (int a = 0; a < 3; ++a) {
+        double h = gas->grid.h[a];
+        c->width[a] = fmin(fmax(def->kernel_width, h), 4.0 * h);
+    }
+    return BDL_OK;
+}
+
+void bdl_coupling_free(bdl_coupling *c)
+{
+    free(c->first);
+    free(c->span);
+    free(c->weight);
+    free(c->factor);
+    *c = (bdl_coupling){0};
+}
+
+static bdl_result reserve(bdl_coupling *c, long n)
+{
+    if (n <= c->capacity)
+        return BDL_OK;
+    long cap = n + n / 2 + 16;
+    int *first = realloc(c->first, (size_t)cap * 6 * sizeof(int));
+    if (first)
+        c->first = first;
+    int *span = realloc(c->span, (size_t)cap * 6 * sizeof(int));
+    if (span)
+        c->span = span;
+    double *w = realloc(c->weight, (size_t)cap * 6 * BDL_KERNEL_MAX * sizeof(double));
+    if (w)
+        c->weight = w;
+    double *f = realloc(c->factor, (size_t)cap * sizeof(double));
+    if (f)
+        c->factor = f;
+    if (!first || !span || !w || !f)
+        return BDL_ERR_NOMEM;
+    c->capacity = cap;
+    return BDL_OK;
+}
+
+/// Weights of one particle along axis a over the points m = lo..hi at (m + offset) h (cell
+/// centres: offset 1/2; faces: 0) within the half-width, normalised to sum 1. On a periodic axis
+/// lo..hi is the whole period and the points wrap. `span` 0: no point at all (no weights).
+static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double offset, int lo,
+                         int hi, double x, int *first, int *span, double *w)
+{
+    const int n = g->n[a];
+    const double h = g->h[a], width = c->width[a];
+    *span = 0;
+    *first = 0;
+    if (hi < lo)
+        return;
+    if (n == 1 && g->periodic[a]) {
+        *span = 1, w[0] = 1.0;
+        return;
+    }
+    double u = (x - g->origin[a]) / h - offset; // position in point units
+    int from = (int)ceil(u - width / h), to = (int)floor(u + width / h);
+    if (!g->periodic[a]) {
+        from = from < lo ? lo : from;
+        to = to > hi ? hi : to;
+    }
+    if (to - from + 1 > BDL_KERNEL_MAX)
+        to = from + BDL_KERNEL_MAX - 1;
+    double sum = 0.0;
+    int count = 0;
+    for (int m = from; m <= to; ++m) {
+        double wm = fmax(0.0, 1.0 - fabs(m - u) * h / width);
+        w[count++] = wm;
+        sum += wm;
+    }
+    if (count == 0 || !(sum > 0.0)) { // outside the domain: the nearest point takes it all
+        int m = (int)floor(u + 0.5);
+        *first = m < lo ? lo : m > hi ? hi : m;
+        *span = 1;
+        w[0] = 1.0;
+        return;
+    }
+    for (int k = 0; k < count; ++k)
+        w[k] /= sum;
+    *first = from;
+    *span = count;
+}
+
+/// The faces normal to axis a that carry a momentum equation: all of a period, or the interior
+/// ones plus those on an outlet.
+static void momentum_faces(const bdl_gas *gas, int a, int *lo, int *hi)
+{
+    const int n = gas->grid.n[a];
+    if (gas->grid.periodic[a]) {
+        *lo = 0, *hi = n - 1;
+        return;
+    }
+    *lo = gas->def.side[2 * a].type == BDL_SIDE_OUTLET ? 0 : 1;
+    *hi = gas->def.side[2 * a + 1].type == BDL_SIDE_OUTLET ? n : n - 1;
+}
+
+bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, const double *pos)
+{
+    if (reserve(c, count) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    int flo[3], fhi[3];
+    for (int a = 0; a < 3; ++a)
+        momentum_faces(gas, a, &flo[a], &fhi[a]);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < count; ++i)
+        for (int a = 0; a < 3; ++a) {
+            // Slots 0-2: cell centres per axis; 3-5: the momentum faces of component a.
+            axis_weights(c, &gas->grid, a, 0.5, 0, gas->grid.n[a] - 1, pos[3 * i + a],
+                         &c->first[6 * i + a], &c->span[6 * i + a],
+                         &c->weight[(6 * i + a) * BDL_KERNEL_MAX]);
+            axis_weights(c, &gas->grid, a, 0.0, flo[a], fhi[a], pos[3 * i + a],
+                         &c->first[6 * i + 3 + a], &c->span[6 * i + 3 + a],
+                         &c->weight[(6 * i + 3 + a) * BDL_KERNEL_MAX]);
+        }
+    return BDL_OK;
+}
+
+static int wrap(int m, int n)
+{
+    m %= n;
+    return m < 0 ? m + n : m;
+}
+
+/// Calls body with `idx` (padded cell index) and `w` (weight) for every cell of particle i.
+#define FOR_KERNEL(c, g, i, ...)                                                                   \
+    do {                                                                                           \
+        const int *f_ = &(c)->first[6 * (i)], *s_ = &(c)->span[6 * (i)];                           \
+        const double *w_ = &(c)->weight[6 * (i)*BDL_KERNEL_MAX];                                   \
+        for (int kz_ = 0; kz_ < s_[2]; ++kz_)                                                      \
+            for (int ky_ = 0; ky_ < s_[1]; ++ky_)                                                  \
+                for (int kx_ = 0; kx_ < s_[0]; ++kx_) {                                            \
+                    const long idx = bdl_grid_index(g, wrap(f_[0] + kx_, (g)->n[0]),               \
+                                                    wrap(f_[1] + ky_, (g)->n[1]),                  \
+                                                    wrap(f_[2] + kz_, (g)->n[2]));                 \
+                    const double w =                                                               \
+                        w_[kx_] * w_[BDL_KERNEL_MAX + ky_] * w_[2 * BDL_KERNEL_MAX + kz_];         \
+                    __VA_ARGS__;                                                                   \
+                }                                                                                  \
+    } while (0)
+
+/// The same over the momentum faces of component a: face weights along a, cell weights across.
+#define FOR_FACE_KERNEL(c, g, i, a, ...)                                                           \
+    do {                                                                                           \
+        int f_[3], s_[3];                                                                          \
+        const double *w_[3];                                                                       \
+        for (int b_ = 0; b_ < 3; ++b_) {                                                           \
+            int slot_ = 6 * (i) + (b_ == (a) ? 3 : 0) + b_;                                        \
+            f_[b_] = (c)->first[slot_];                                                            \
+            s_[b_] = (c)->span[slot_];                                                             \
+            w_[b_] = &(c)->weight[slot_ * BDL_KERNEL_MAX];                                         \
+        }                                                                                          \
+        for (int kz_ = 0; kz_ < s_[2]; ++kz_)                                                      \
+            for (int ky_ = 0; ky_ < s_[1]; ++ky_)                                                  \
+                for (int kx_ = 0; kx_ < s_[0]; ++kx_) {                                            \
+                    int m_[3] = {f_[0] + kx_, f_[1] + ky_, f_[2] + kz_};                           \
+                    for (int b_ = 0; b_ < 3; ++b_)                                                 \
+                        if ((g)->periodic[b_])                                                     \
+                            m_[b_] = wrap(m_[b_], (g)->n[b_]);                                     \
+                    const long idx = bdl_grid_index(g, m_[0], m_[1], m_[2]);                       \
+                    const double w = w_[0][kx_] * w_[1][ky_] * w_[2][kz_];                         \
+                    __VA_ARGS__;                                                                   \
+                }                                                                                  \
+    } while (0)
+
+static double cell_volume(const bdl_grid *g) { return g->h[0] * g->h[1] * g->h[2]; }
+
+static double sphere_volume(double r) { return 4.0 / 3.0 * BDL_PI * r * r * r; }
+
+void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_coupling_particles *p)
+{
+    const bdl_grid *g = &gas->grid;
+    const double vc = cell_volume(g);
+    double *solid = gas->rhs; // scratch: the gas step overwrites it
+    memset(solid, 0, (size_t)g->size * sizeof(double));
+    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
+        const double v = sphere_volume(p->radius[i]);
+        FOR_KERNEL(c, g, i, solid[idx] += w * v);
+    }
+    const double lowest = 1.0 - c->def.max_solids;
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i) {
+                long idx = bdl_grid_index(g, i, j, k);
+                gas->eps[idx] = fmax(1.0 - solid[idx] / vc, lowest);
+            }
+}
+
+double bdl_coupling_interpolate(const bdl_coupling *c, const bdl_gas *gas, long i, const double *f)
+{
+    double sum = 0.0;
+    FOR_KERNEL(c, &gas->grid, i, sum += w * f[idx]);
+    return sum;
+}
+
+/// Gas velocity at particle i: each component from its momentum faces.
+static void gas_velocity_at(const bdl_coupling *c, const bdl_gas *gas, long i, double u[3])
+{
+    const bdl_grid *g = &gas->grid;
+    for (int a = 0; a < 3; ++a) {
+        double sum = 0.0;
+        FOR_FACE_KERNEL(c, g, i, a, sum += w * gas->u[a][idx]);
+        u[a] = sum;
+    }
+}
+
+void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_particles *p,
+                             double dt)
+{
+    const bdl_grid *g = &gas->grid;
+    const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < p->count; ++i) {
+        double u[3];
+        gas_velocity_at(c, gas, i, u);
+        const double *v = &p->vel[3 * i];
+        double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
+                           (u[2] - v[2]) * (u[2] - v[2]));
+        double eps = bdl_coupling_interpolate(c, gas, i, gas->eps);
+        double d = 2.0 * p->radius[i];
+        double K = bdl_drag_per_volume(c->def.drag, &c->def.drag_params, eps, d, slip, rho, mu);
+        double D = K / p->density[i], m = p->density[i] * sphere_volume(p->radius[i]);
+        c->factor[i] = m * D / (1.0 + D * dt);
+    }
+    for (int a = 0; a < 3; ++a) {
+        memset(gas->beta[a], 0, (size_t)g->size * sizeof(double));
+        memset(gas->bv[a], 0, (size_t)g->size * sizeof(double));
+    }
+    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
+        const double f = c->factor[i] / vc;
+        double target[3];
+        for (int a = 0; a < 3; ++a)
+            target[a] = p->vel[3 * i + a] + dt * (p->accel ? p->accel[3 * i + a] : 0.0);
+        for (int a = 0; a < 3; ++a)
+            FOR_FACE_KERNEL(c, g, i, a, {
+                gas->beta[a][idx] += w * f;
+                gas->bv[a][idx] += w * f * target[a];
+            });
+    }
+}
+
+/// dp/dx_a at the centre of the cell at idx (axis coordinate m): central inside, one-sided at a
+/// wall or inlet, through the ghost value 2 p_out - p at an outlet.
+static double pressure_gradient(const bdl_gas *gas, int a, int m, long idx)
+{
+    const bdl_grid *g = &gas->grid;
+    const int n = g->n[a];
+    const long s = g->stride[a];
+    const double h = g->h[a], *p = gas->p;
+    if (n == 1 && !g->periodic[a])
+        return 0.0;
+    if (g->periodic[a] || (m > 0 && m < n - 1))
+        return (p[idx + s] - p[idx - s]) / (2.0 * h);
+    const bdl_gas_side *lo = &gas->def.side[2 * a], *hi = &gas->def.side[2 * a + 1];
+    double below = p[idx], above = p[idx], span = 0.0;
+    if (m > 0)
+        below = p[idx - s], span += h;
+    else if (lo->type == BDL_SIDE_OUTLET)
+        below = 2.0 * lo->pressure - p[idx], span += h;
+    if (m < n - 1)
+        above = p[idx + s], span += h;
+    else if (hi->type == BDL_SIDE_OUTLET)
+        above = 2.0 * hi->pressure - p[idx], span += h;
+    return span > 0.0 ? (above - below) / span : 0.0;
+}
+
+void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_coupling_particles *p,
+                         double dt, double *drag, double *pressure)
+{
+    const bdl_grid *g = &gas->grid;
+#pragma omp parallel for schedule(static)
+    for (long i = 0; i < p->count; ++i) {
+        if (drag) {
+            double u[3];
+            gas_velocity_at(c, gas, i, u);
+            for (int a = 0; a < 3; ++a)
+                drag[3 * i + a] = c->factor[i] * (u[a] - p->vel[3 * i + a] -
+                                                  dt * (p->accel ? p->accel[3 * i + a] : 0.0));
+        }
+        if (pressure) {
+            double grad[3] = {0, 0, 0};
+            const int *f = &c->first[6 * i], *s = &c->span[6 * i];
+            const double *w = &c->weight[6 * i * BDL_KERNEL_MAX];
+            for (int kz = 0; kz < s[2]; ++kz)
+                for (int ky = 0; ky < s[1]; ++ky)
+                    for (int kx = 0; kx < s[0]; ++kx) {
+                        int m[3] = {wrap(f[0] + kx, g->n[0]), wrap(f[1] + ky, g->n[1]),
+                                    wrap(f[2] + kz, g->n[2])};
+                        long idx = bdl_grid_index(g, m[0], m[1], m[2]);
+                        double wt = w[kx] * w[BDL_KERNEL_MAX + ky] * w[2 * BDL_KERNEL_MAX + kz];
+                        for (int a = 0; a < 3; ++a)
+                            grad[a] += wt * pressure_gradient(gas, a, m[a], idx);
+                    }
+            const double v = sphere_volume(p->radius[i]);
+            for (int a = 0; a < 3; ++a)
+                pressure[3 * i + a] = -v * grad[a];
+        }
+    }
+}
+
+void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3])
+{
+    const bdl_grid *g = &gas->grid;
+    const double vc = cell_volume(g);
+    for (int a = 0; a < 3; ++a) {
+        int lo, hi;
+        momentum_faces(gas, a, &lo, &hi);
+        double sum = 0.0;
+        for (int k = 0; k < g->n[2] + (a == 2); ++k)
+            for (int j = 0; j < g->n[1] + (a == 1); ++j)
+                for (int i = 0; i < g->n[0] + (a == 0); ++i) {
+                    int m = a == 0 ? i : a == 1 ? j : k;
+                    if (m < lo || m > hi)
+                        continue;
+                    long idx = bdl_grid_index(g, i, j, k);
+                    sum += (gas->bv[a][idx] - gas->beta[a][idx] * gas->u[a][idx]) * vc;
+                }
+        total[a] = sum;
+    }
+}

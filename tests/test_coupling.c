@@ -1,0 +1,246 @@
+// Gas-particle coupling: deposited volume conserved, linear fields interpolated exactly, the
+// drag the gas feels equal and opposite to the drag the particles feel, and single spheres
+// settling at the terminal slip velocity their drag law implies (Re about 0.1, 10 and 500).
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "core/vec3.h"
+#include "couple/coupling.h"
+
+static double uniform(unsigned *state, double lo, double hi)
+{
+    *state = *state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (*state >> 8) / 16777216.0;
+}
+
+static bdl_gas *make_gas(int n0, int n1, int n2, double h, int periodic_x, int outlet)
+{
+    bdl_gas_def d = {0};
+    d.n[0] = n0, d.n[1] = n1, d.n[2] = n2;
+    d.hi[0] = n0 * h, d.hi[1] = n1 * h, d.hi[2] = n2 * h;
+    d.density = 1.2;
+    d.viscosity = 1.8e-5;
+    for (int s = 0; s < 6; ++s)
+        d.side[s].type = BDL_SIDE_WALL;
+    if (periodic_x)
+        d.side[0].type = d.side[1].type = BDL_SIDE_PERIODIC;
+    if (outlet)
+        d.side[5].type = BDL_SIDE_OUTLET;
+    d.convection = BDL_CONVECTION_VANLEER;
+    d.tolerance = 1e-12;
+    bdl_gas *g = NULL;
+    bdl_gas_create(&d, &g);
+    return g;
+}
+
+typedef struct cloud {
+    long n;
+    double *pos, *vel, *acc, *radius, *density;
+} cloud;
+
+static cloud make_cloud(long n, const bdl_gas *g, unsigned seed)
+{
+    cloud c = {n, malloc(24 * n), malloc(24 * n), malloc(24 * n), malloc(8 * n), malloc(8 * n)};
+    for (long i = 0; i < n; ++i) {
+        for (int a = 0; a < 3; ++a) {
+            double len = g->grid.n[a] * g->grid.h[a];
+            c.pos[3 * i + a] = uniform(&seed, 0.0, len);
+            c.vel[3 * i + a] = uniform(&seed, -0.5, 0.5);
+            c.acc[3 * i + a] = uniform(&seed, -10.0, 10.0);
+        }
+        c.radius[i] = uniform(&seed, 0.2e-3, 0.5e-3);
+        c.density[i] = 2500.0;
+    }
+    return c;
+}
+
+static void free_cloud(cloud *c)
+{
+    free(c->pos), free(c->vel), free(c->acc), free(c->radius), free(c->density);
+}
+
+static bdl_coupling_particles view(const cloud *c)
+{
+    return (bdl_coupling_particles){c->n, c->pos, c->vel, c->acc, c->radius, c->density};
+}
+
+static void test_conservation_and_balance(int periodic_x, double width_cells)
+{
+    bdl_gas *g = make_gas(8, 6, 10, 2e-3, periodic_x, 1);
+    cloud c = make_cloud(400, g, 11);
+    bdl_coupling_def def = {.drag = BDL_DRAG_GIDASPOW,
+                            .drag_params = bdl_drag_default_params(),
+                            .kernel_width = width_cells * 2e-3};
+    bdl_coupling k;
+    bdl_coupling_init(&k, &def, g);
+    bdl_coupling_particles p = view(&c);
+    CHECK(bdl_coupling_locate(&k, g, c.n, c.pos) == BDL_OK);
+    bdl_coupling_voidage(&k, g, &p);
+    double solid = 0.0, volume = 0.0, vc = 8e-9;
+    for (int kk = 0; kk < 10; ++kk)
+        for (int j = 0; j < 6; ++j)
+            for (int i = 0; i < 8; ++i)
+                solid += (1.0 - g->eps[bdl_grid_index(&g->grid, i, j, kk)]) * vc;
+    for (long i = 0; i < c.n; ++i)
+        volume += 4.0 / 3.0 * BDL_PI * pow(c.radius[i], 3);
+    CHECK_CLOSE(solid, volume, 1e-12);
+    memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
+    // A stirred gas: random face velocities, then a few steps with the particles' drag.
+    unsigned seed = 5;
+    for (int a = 0; a < 3; ++a)
+        for (long i = 0; i < g->grid.size; ++i)
+            g->u[a][i] = uniform(&seed, -0.3, 0.3);
+    double worst = 0.0;
+    const double dt = 2e-4;
+    for (int step = 0; step < 5; ++step) {
+        bdl_coupling_drag_setup(&k, g, &p, dt);
+        CHECK(bdl_gas_step(g, dt) == BDL_OK);
+        double *drag = malloc(24 * (size_t)c.n), sum[3] = {0, 0, 0}, gas[3], scale = 0.0;
+        bdl_coupling_forces(&k, g, &p, dt, drag, NULL);
+        for (long i = 0; i < c.n; ++i)
+            for (int a = 0; a < 3; ++a) {
+                sum[a] += drag[3 * i + a];
+                scale += fabs(drag[3 * i + a]);
+            }
+        bdl_coupling_gas_drag(g, gas);
+        for (int a = 0; a < 3; ++a)
+            worst = fmax(worst, fabs(sum[a] + gas[a]) / scale);
+        free(drag);
+    }
+    printf("kernel %.1f cells, periodic x %d: deposited volume exact; drag on particles + drag on "
+           "gas = %.1e of the total |drag|\n",
+           width_cells, periodic_x, worst);
+    CHECK_MSG(worst < 1e-12, "momentum exchange does not balance: %g", worst);
+    bdl_coupling_free(&k);
+    free_cloud(&c);
+    bdl_gas_destroy(g);
+}
+
+static void test_linear_interpolation(void)
+{
+    bdl_gas *g = make_gas(10, 10, 10, 1e-3, 1, 0);
+    bdl_coupling_def def = {.drag = BDL_DRAG_STOKES, .kernel_width = 1e-3};
+    bdl_coupling k;
+    bdl_coupling_init(&k, &def, g);
+    double *f = bdl_grid_alloc(&g->grid);
+    for (int kk = 0; kk < 10; ++kk)
+        for (int j = 0; j < 10; ++j)
+            for (int i = 0; i < 10; ++i)
+                f[bdl_grid_index(&g->grid, i, j, kk)] = 1.0 + 2.0 * (j + 0.5) - 0.5 * (kk + 0.5);
+    double pos[3] = {0.0044, 0.0031, 0.0067};
+    CHECK(bdl_coupling_locate(&k, g, 1, pos) == BDL_OK);
+    CHECK_CLOSE(bdl_coupling_interpolate(&k, g, 0, f), 1.0 + 2.0 * 3.1 - 0.5 * 6.7, 1e-12);
+    free(f);
+    bdl_coupling_free(&k);
+    bdl_gas_destroy(g);
+}
+
+/// Slip s with K(s) s = (rho_p - rho_g) g: the drag law's terminal slip, by bisection.
+static double implied_slip(bdl_drag_law law, double eps, double d, double rho_p, double rho,
+                           double mu)
+{
+    double lo = 0.0, hi = 100.0, target = (rho_p - rho) * 9.81;
+    for (int it = 0; it < 200; ++it) {
+        double mid = 0.5 * (lo + hi);
+        if (bdl_drag_per_volume(law, NULL, eps, d, mid, rho, mu) * mid < target)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+/// One sphere settling through gas in a periodic box (the box's weight is carried by a uniform
+/// body force on the gas equal to the total drag, as a container's base would).
+static void test_terminal(double d, double rho_p, bdl_drag_law law)
+{
+    const double rho = 1.2, mu = 1.8e-5, h = 4.0 * d;
+    bdl_gas_def gd = {0};
+    gd.n[0] = gd.n[1] = 6, gd.n[2] = 8;
+    gd.hi[0] = gd.hi[1] = 6 * h, gd.hi[2] = 8 * h;
+    gd.density = rho;
+    gd.viscosity = mu;
+    for (int s = 0; s < 6; ++s)
+        gd.side[s].type = BDL_SIDE_PERIODIC;
+    gd.convection = BDL_CONVECTION_VANLEER;
+    gd.tolerance = 1e-10;
+    bdl_gas *g = NULL;
+    CHECK(bdl_gas_create(&gd, &g) == BDL_OK);
+    bdl_coupling_def def = {.drag = law, .kernel_width = 1.5 * h};
+    bdl_coupling k;
+    bdl_coupling_init(&k, &def, g);
+    double pos[3] = {3.1 * h, 2.9 * h, 6.0 * h}, vel[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
+    double radius = 0.5 * d, density = rho_p;
+    const double m = rho_p * BDL_PI / 6.0 * d * d * d, gz = -9.81 * (1.0 - rho / rho_p);
+    const double vt = implied_slip(law, 1.0, d, rho_p, rho, mu);
+    const double tau = vt / 9.81; // time to terminal scale
+    double dt = fmin(fmin(0.5 * h / vt, 0.2 * tau), 0.9 * bdl_gas_stable_dt(g));
+    const int steps = (int)(6.0 * tau / dt) + 1;
+    bdl_coupling_particles p = {1, pos, vel, acc, &radius, &density};
+    double slip_sum = 0.0, eps_sum = 0.0;
+    int averaged = 0;
+    double *src = g->source[2];
+    for (int step = 0; step < steps; ++step) {
+        dt = fmin(dt, 0.9 * bdl_gas_stable_dt(g));
+        bdl_coupling_locate(&k, g, 1, pos);
+        bdl_coupling_voidage(&k, g, &p);
+        if (step == 0)
+            memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
+        bdl_coupling_drag_setup(&k, g, &p, dt);
+        CHECK(bdl_gas_step(g, dt) == BDL_OK);
+        double drag[3], pres[3], u[3];
+        bdl_coupling_forces(&k, g, &p, dt, drag, pres);
+        // The base's reaction: the total drag spread over the box as a body force on the gas.
+        double vbox = gd.hi[0] * gd.hi[1] * gd.hi[2];
+        for (long i = 0; i < g->grid.size; ++i)
+            src[i] = drag[2] / vbox;
+        for (int a = 0; a < 3; ++a) {
+            double a_other = (a == 2 ? gz : 0.0) + pres[a] / m;
+            vel[a] += dt * (a_other + drag[a] / m);
+            acc[a] = a_other;
+            pos[a] += dt * vel[a];
+            double len = gd.hi[a];
+            pos[a] = fmod(fmod(pos[a], len) + len, len);
+        }
+        if (step > 2 * steps / 3) {
+            for (int a = 0; a < 3; ++a) {
+                double *cell_u = g->rhs; // scratch: cell-centre velocity of component a
+                for (int kk = 0; kk < gd.n[2]; ++kk)
+                    for (int j = 0; j < gd.n[1]; ++j)
+                        for (int i = 0; i < gd.n[0]; ++i)
+                            cell_u[bdl_grid_index(&g->grid, i, j, kk)] =
+                                bdl_gas_cell_velocity(g, a, i, j, kk);
+                bdl_coupling_locate(&k, g, 1, pos);
+                u[a] = bdl_coupling_interpolate(&k, g, 0, cell_u);
+            }
+            slip_sum += u[2] - vel[2];
+            eps_sum += bdl_coupling_interpolate(&k, g, 0, g->eps);
+            averaged++;
+        }
+    }
+    double slip = slip_sum / averaged, eps = eps_sum / averaged;
+    double expected = implied_slip(law, eps, d, rho_p, rho, mu);
+    double re = rho * d * slip / mu;
+    printf("%s, d %.0f um, rho_p %.0f: Re %.3g, terminal slip %.5g m/s, drag law %.5g m/s "
+           "(%+.3f %%), gas at the particle %.3g m/s\n",
+           bdl_drag_law_names[law], d * 1e6, rho_p, re, slip, expected,
+           100.0 * (slip / expected - 1.0), slip + vel[2]);
+    CHECK_MSG(fabs(slip / expected - 1.0) < 0.01, "terminal slip %g vs %g", slip, expected);
+    bdl_coupling_free(&k);
+    bdl_gas_destroy(g);
+}
+
+int main(void)
+{
+    test_linear_interpolation();
+    test_conservation_and_balance(0, 1.0);
+    test_conservation_and_balance(1, 2.5);
+    test_terminal(40e-6, 1000.0, BDL_DRAG_SCHILLER_NAUMANN);  // Re about 0.1
+    test_terminal(200e-6, 2500.0, BDL_DRAG_SCHILLER_NAUMANN); // Re about 10
+    test_terminal(1.0e-3, 2500.0, BDL_DRAG_SCHILLER_NAUMANN); // Re about 500
+    test_terminal(200e-6, 2500.0, BDL_DRAG_WEN_YU);
+    return bdl_test_summary("test_coupling");
+}
