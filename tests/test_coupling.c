@@ -2,6 +2,7 @@
 // drag the gas feels equal and opposite to the drag the particles feel, and single spheres
 // settling at the terminal slip velocity their drag law implies (Re about 0.1, 10 and 500).
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -233,8 +234,53 @@ static void test_terminal(double d, double rho_p, bdl_drag_law law)
     bdl_gas_destroy(g);
 }
 
+/// A coupled step sequence on 1 and 2 threads: the same bits in the gas and the forces.
+static void test_threads(void)
+{
+    double *u1 = NULL, *f1 = NULL;
+    long size = 0;
+    for (int threads = 1; threads <= 2; ++threads) {
+        omp_set_num_threads(threads);
+        bdl_gas *g = make_gas(8, 6, 10, 2e-3, 1, 1);
+        cloud c = make_cloud(300, g, 3);
+        bdl_coupling_def def = {.drag = BDL_DRAG_BEETSTRA, .kernel_width = 3e-3};
+        bdl_coupling k;
+        bdl_coupling_init(&k, &def, g);
+        bdl_coupling_particles p = view(&c);
+        double *f = malloc(24 * (size_t)c.n);
+        for (int step = 0; step < 5; ++step) {
+            bdl_coupling_locate(&k, g, c.n, c.pos);
+            bdl_coupling_voidage(&k, g, &p);
+            if (step == 0)
+                memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
+            bdl_coupling_drag_setup(&k, g, &p, 1e-4);
+            CHECK(bdl_gas_step(g, 1e-4) == BDL_OK);
+            bdl_coupling_forces(&k, g, &p, 1e-4, f, NULL);
+            for (long i = 0; i < 3 * c.n; ++i)
+                c.pos[i] += 1e-4 * c.vel[i];
+        }
+        size = g->grid.size;
+        if (threads == 1) {
+            u1 = malloc((size_t)size * sizeof(double));
+            memcpy(u1, g->u[2], (size_t)size * sizeof(double));
+            f1 = f;
+        } else {
+            CHECK(memcmp(u1, g->u[2], (size_t)size * sizeof(double)) == 0);
+            CHECK(memcmp(f1, f, 24 * (size_t)c.n) == 0);
+            free(f);
+        }
+        bdl_coupling_free(&k);
+        free_cloud(&c);
+        bdl_gas_destroy(g);
+    }
+    free(u1);
+    free(f1);
+    omp_set_num_threads(1);
+}
+
 int main(void)
 {
+    test_threads();
     test_linear_interpolation();
     test_conservation_and_balance(0, 1.0);
     test_conservation_and_balance(1, 2.5);
