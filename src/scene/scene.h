@@ -168,6 +168,8 @@ typedef enum bdl_color_mode {
 /// [camera]: how frames and the viewer look at the scene.
 /// Names of the colour modes, in enum order, NULL-terminated (the scene key `[camera] color`).
 extern const char *const bdl_color_mode_names[];
+/// Scene names of the drag laws ([coupling] drag), NULL-terminated.
+extern const char *const bdl_scene_drag_names[];
 
 typedef struct bdl_camera_def {
     bdl_view_preset view;
@@ -200,6 +202,47 @@ typedef struct bdl_guard_def {
     double energy_growth;   ///< stop when energy grows by this fraction over work supplied
     int check_interval;     ///< steps between in-run checks
 } bdl_guard_def;
+
+/// Boundary of the gas on one side of the domain ([gas] xmin ... zmax).
+typedef enum bdl_gas_boundary {
+    BDL_GAS_WALL,   ///< no-slip wall
+    BDL_GAS_SLIP,   ///< free-slip wall
+    BDL_GAS_INLET,  ///< gas enters at [gas] inlet_velocity (superficial), a jet optional
+    BDL_GAS_OUTLET, ///< pressure outlet at [gas] outlet_pressure
+} bdl_gas_boundary;
+
+/// Convection scheme of the gas momentum ([gas] convection).
+typedef enum bdl_gas_convection {
+    BDL_GAS_UPWIND,
+    BDL_GAS_VANLEER,
+    BDL_GAS_SUPERBEE,
+    BDL_GAS_CENTRAL,
+} bdl_gas_convection;
+
+/// [gas]: the gas phase. Absent: no grid, no gas, no cost.
+typedef struct bdl_gas_scene {
+    int enabled;        ///< the scene has a [gas] section
+    double density;     ///< [kg/m^3]
+    double viscosity;   ///< dynamic [Pa s]
+    bdl_vec3 cells;     ///< cells per axis (whole numbers)
+    bdl_gas_convection convection;
+    double tolerance;   ///< relative residual of the pressure solver
+    bdl_gas_boundary side[6]; ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
+    double inlet_velocity;  ///< superficial velocity into the domain through inlets [m/s]
+    double outlet_pressure; ///< [Pa]
+    double jet_velocity;    ///< superficial velocity through the jet rectangle [m/s]
+    bdl_vec3 jet_min, jet_max; ///< jet rectangle on the inlet sides [m]
+    int has_jet_min, has_jet_max;
+    double dt;          ///< gas time step [s]; 0: automatic
+} bdl_gas_scene;
+
+/// [coupling]: how particles and gas exchange momentum.
+typedef struct bdl_coupling_scene {
+    int drag;            ///< drag law (index into the couple module's registry)
+    double kernel_width; ///< half-width of the deposition kernel [m]; 0: 1.5 cells
+    double max_solids;   ///< cap on the deposited solids fraction
+    double syamlal_c, syamlal_d;
+} bdl_coupling_scene;
 
 typedef struct bdl_scene {
     char path[BDL_PATH_LEN]; ///< file the scene was read from ("" for a string)
@@ -235,6 +278,8 @@ typedef struct bdl_scene {
     bdl_output_def output;
     bdl_guard_def guards;
     bdl_camera_def camera;
+    bdl_gas_scene gas;
+    bdl_coupling_scene coupling;
 } bdl_scene;
 
 /// A problem found while reading or validating a scene. Messages look like

@@ -21,6 +21,8 @@ _Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_view_preset) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_projection) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_color_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_gas_boundary) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_gas_convection) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_RUN] = {"run", "run", 0, 1},
@@ -29,6 +31,8 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_OUTPUT] = {"output", "output", 0, 1},
     [BDL_SECTION_GUARDS] = {"guards", "guards", 0, 1},
     [BDL_SECTION_CAMERA] = {"camera", "camera", 0, 1},
+    [BDL_SECTION_GAS] = {"gas", "gas", 0, 1},
+    [BDL_SECTION_COUPLING] = {"coupling", "coupling", 0, 1},
     [BDL_SECTION_SPECIES] = {"species", "species NAME", 1, BDL_MAX_SPECIES},
     [BDL_SECTION_PAIR] = {"pair", "pair A B", 2, BDL_MAX_PAIRS},
     [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
@@ -45,6 +49,12 @@ static const char *const motion_names[] = {"none", "vibrate", NULL};
 static const char *const create_type_names[] = {"random", "lattice", "pour", "file", NULL};
 static const char *const view_names[] = {"iso", "front", "side", "top", NULL};
 static const char *const projection_names[] = {"perspective", "orthographic", NULL};
+static const char *const gas_side_names[] = {"wall", "slip", "inlet", "outlet", NULL};
+static const char *const convection_names[] = {"upwind", "vanleer", "superbee", "central", NULL};
+// The drag laws of src/couple/drag.h, in the same order (test_scene checks it).
+const char *const bdl_scene_drag_names[] = {"stokes", "schiller_naumann", "wen_yu", "ergun",
+                                            "gidaspow", "syamlal_obrien", "di_felice", "beetstra",
+                                            "tenneti", NULL};
 const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", "vx",
                                             "vy",      "vz",           "voidage", NULL};
 
@@ -58,6 +68,14 @@ const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", 
 #define IN_CAMERA(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, camera.field)
 #define IN_CAMERA_FLAGGED(field)                                                                   \
     IN_CAMERA(field), .has_flag = 1, .flag_offset = offsetof(bdl_scene, camera.has_##field)
+#define IN_GAS(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, gas.field)
+#define IN_COUPLING(field)                                                                         \
+    .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, coupling.field)
+#define GAS_SIDE(name, index)                                                                      \
+    {S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_GAS_WALL},          \
+     .enum_names = gas_side_names,                                                                 \
+     .doc = "gas boundary on the " name " side of the domain: wall (no-slip), slip, inlet or "     \
+            "outlet; ignored on a periodic axis"}
 #define IN_RECORD(field) .target = BDL_TARGET_RECORD, .offset = offsetof(bdl_scene_section, field)
 #define GT(x)            .lo_kind = BDL_BOUND_OPEN, .lo = (x)
 #define GE(x)            .lo_kind = BDL_BOUND_CLOSED, .lo = (x)
@@ -326,6 +344,56 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "draw the outlines of the domain and the walls"},
     {S(CAMERA), "background", VEC, "-", IN_CAMERA(background), .def = {0.11, 0.12, 0.14},
      GE(0), LE(1), .doc = "background colour, sRGB red green blue in 0..1"},
+
+    // [gas]
+    {S(GAS), "density", NUM, "kg/m^3", IN_GAS(density), .def = {1.2}, GT(0),
+     .doc = "gas density (air at 20 C: 1.2)"},
+    {S(GAS), "viscosity", NUM, "Pa s", IN_GAS(viscosity), .def = {1.8e-5}, GT(0),
+     .doc = "dynamic viscosity (air at 20 C: 1.8e-5)"},
+    {S(GAS), "cells", VEC, "-", IN_GAS(cells), .def = {1, 1, 1}, .default_text = "required",
+     GE(1), LE(4096), .doc = "grid cells along x, y, z (whole numbers; 1 along an axis for 2D)"},
+    {S(GAS), "convection", .type = BDL_KEY_ENUM, "-", IN_GAS(convection),
+     .def = {BDL_GAS_VANLEER}, .enum_names = convection_names,
+     .doc = "momentum convection: upwind, vanleer or superbee (TVD), central (verification only)"},
+    {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
+     .doc = "relative residual at which the pressure solver stops"},
+    GAS_SIDE("xmin", 0),
+    GAS_SIDE("xmax", 1),
+    GAS_SIDE("ymin", 2),
+    GAS_SIDE("ymax", 3),
+    GAS_SIDE("zmin", 4),
+    GAS_SIDE("zmax", 5),
+    {S(GAS), "inlet_velocity", NUM, "m/s", IN_GAS(inlet_velocity), .def = {0}, GE(0),
+     .doc = "superficial gas velocity through the inlet sides"},
+    {S(GAS), "outlet_pressure", NUM, "Pa", IN_GAS(outlet_pressure), .def = {0},
+     .doc = "pressure at the outlet sides (gauge)"},
+    {S(GAS), "jet_velocity", NUM, "m/s", IN_GAS(jet_velocity), .def = {0}, GE(0),
+     .doc = "superficial velocity through the jet rectangle jet_min..jet_max of the inlets"},
+    {S(GAS), "jet_min", VEC, "m", IN_GAS(jet_min), .has_flag = 1,
+     .flag_offset = offsetof(bdl_scene, gas.has_jet_min), .default_text = "no jet",
+     .doc = "low corner of the jet rectangle (the coordinate normal to the inlet is ignored)"},
+    {S(GAS), "jet_max", VEC, "m", IN_GAS(jet_max), .has_flag = 1,
+     .flag_offset = offsetof(bdl_scene, gas.has_jet_max), .default_text = "no jet",
+     .doc = "high corner of the jet rectangle"},
+    {S(GAS), "dt", NUM, "s", IN_GAS(dt), .def = {0}, .default_text = "0 (automatic)", GE(0),
+     .doc = "gas time step, rounded down to a whole number of particle steps; 0 = the largest "
+            "stable one (CFL 0.5, viscous limit), at most 1e-4 s"},
+
+    // [coupling]
+    {S(COUPLING), "drag", .type = BDL_KEY_ENUM, "-", IN_COUPLING(drag), .def = {4},
+     .enum_names = bdl_scene_drag_names, .default_text = "gidaspow",
+     .doc = "drag law: stokes, schiller_naumann, wen_yu, ergun, gidaspow, syamlal_obrien, "
+            "di_felice, beetstra, tenneti (docs/verification-gas.md)"},
+    {S(COUPLING), "kernel_width", NUM, "m", IN_COUPLING(kernel_width), .def = {0},
+     .default_text = "0 (1.5 cells)", GE(0),
+     .doc = "half-width of the kernel that spreads particles over the grid; at least one cell, "
+            "at most four"},
+    {S(COUPLING), "max_solids", NUM, "-", IN_COUPLING(max_solids), .def = {0.7}, GT(0), LT(1),
+     .doc = "cap on the solids fraction deposited in a cell"},
+    {S(COUPLING), "syamlal_c", NUM, "-", IN_COUPLING(syamlal_c), .def = {0.8}, GT(0),
+     .doc = "Syamlal-O'Brien C (seed 000 table 4.3: 0.8, 0.7, 0.64)"},
+    {S(COUPLING), "syamlal_d", NUM, "-", IN_COUPLING(syamlal_d), .def = {2.65}, GT(0),
+     .doc = "Syamlal-O'Brien D (2.65, 3.44, 4.03 with the C above)"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

@@ -306,9 +306,56 @@ static void check_create(bdl_scene_parser *p, bdl_scene_section *s)
         check_region(p, s, diameter);
 }
 
+/// True when the section is in the file or one of its keys was set.
+static int section_used(const bdl_scene_section *s)
+{
+    if (s->line > 0)
+        return 1;
+    for (int k = 0; k < BDL_SCENE_KEY_CAPACITY; ++k)
+        if (s->key_line[k] != 0)
+            return 1;
+    return 0;
+}
+
+/// [gas] and [coupling]: present or not; whole cell counts; inlets with a velocity.
+static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_section *coupling)
+{
+    bdl_gas_scene *g = &p->scene->gas;
+    g->enabled = gas && section_used(gas);
+    if (!g->enabled) {
+        if (coupling && section_used(coupling))
+            bdl_scene_fail(p, &(bdl_scene_where){.line = coupling->line, .title = "coupling"},
+                           "[coupling] needs a [gas] section");
+        return;
+    }
+    if (!given(gas, key_of(gas, "cells"))) {
+        fail_missing(p, gas, "cells", " (the gas grid: cells along x, y, z)");
+        return;
+    }
+    for (int a = 0; a < 3; ++a) {
+        double n = bdl_v3_comp(g->cells, a);
+        if (n != floor(n) || n < 1.0 || n > 4096.0) {
+            fail_at_key(p, gas, "cells", 0, "cell counts must be whole numbers from 1 to 4096");
+            return;
+        }
+    }
+    int inlets = 0;
+    for (int side = 0; side < 6; ++side)
+        inlets += !p->scene->periodic[side / 2] && g->side[side] == BDL_GAS_INLET;
+    if (inlets > 0 && !(g->inlet_velocity > 0.0 || g->jet_velocity > 0.0)) {
+        fail_at_key(p, gas, "inlet_velocity", 0,
+                    "an inlet side needs inlet_velocity (or jet_velocity) > 0");
+        return;
+    }
+    if (g->jet_velocity > 0.0 && !(g->has_jet_min && g->has_jet_max)) {
+        fail_at_key(p, gas, "jet_velocity", 0, "a jet needs jet_min and jet_max");
+        return;
+    }
+}
+
 static void check_singletons(bdl_scene_parser *p)
 {
-    bdl_scene_section *domain = NULL, *guards = NULL;
+    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL;
     for (int i = 0; i < p->section_count && !p->failed; ++i) {
         bdl_scene_section *s = &p->sections[i];
         if (bdl_section_infos[s->kind].name_count != 0)
@@ -318,7 +365,13 @@ static void check_singletons(bdl_scene_parser *p)
             domain = s;
         if (s->kind == BDL_SECTION_GUARDS)
             guards = s;
+        if (s->kind == BDL_SECTION_GAS)
+            gas = s;
+        if (s->kind == BDL_SECTION_COUPLING)
+            coupling = s;
     }
+    if (!p->failed)
+        check_gas(p, gas, coupling);
     if (!p->failed)
         check_box(p, domain, "min", "max");
     if (!p->failed && p->scene->guards.dt_warn > p->scene->guards.dt_refuse) {
