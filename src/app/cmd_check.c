@@ -86,7 +86,9 @@ int bdl_cmd_check(int argc, char **argv)
            w->rolling ? "; rolling resistance" : "");
     printf("  walls: %d (%d surfaces)%s\n", s->wall_count, w->walls.prim_count,
            bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
-    printf("  gas: none (no [gas] section: no grid is allocated)\n");
+    char gas[256];
+    bdl_world_gas_describe(w, gas, sizeof gas);
+    printf("  gas: %s\n", gas);
     printf("  periodic axes: %s%s%s%s\n", s->periodic[0] ? "x " : "", s->periodic[1] ? "y " : "",
            s->periodic[2] ? "z " : "",
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");

@@ -302,13 +302,10 @@ static void unknown_faces(const bdl_gas *g, int a, int *lo, int *hi)
 }
 
 #define FOR_FACES(gr, a, flo, fhi, ...)                                                            \
-    _Pragma("omp parallel for schedule(static)") for (int k = 0; k < (gr)->n[2] + ((a) == 2);      \
-                                                      ++k) for (int j = 0;                         \
-                                                                j < (gr)->n[1] + ((a) == 1);       \
-                                                                ++j) for (int i = 0;               \
-                                                                          i <                      \
-                                                                          (gr)->n[0] + ((a) == 0); \
-                                                                          ++i)                     \
+    _Pragma("omp parallel for schedule(static) if ((gr)->size >= BDL_GRID_PARALLEL_MIN)") for (    \
+        int k = 0; k < (gr)->n[2] + ((a) == 2);                                                    \
+        ++k) for (int j = 0; j < (gr)->n[1] + ((a) == 1);                                          \
+                  ++j) for (int i = 0; i < (gr)->n[0] + ((a) == 0); ++i)                           \
     {                                                                                              \
         const int ia_ = (a) == 0 ? i : (a) == 1 ? j : k;                                           \
         if (ia_ < (flo) || ia_ > (fhi))                                                            \
@@ -344,7 +341,7 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (gr->size >= BDL_GRID_PARALLEL_MIN)
         for (long idx = s; idx < gr->size; ++idx)
             q[a][idx] = 0.5 * (g->eps_old[idx] + g->eps_old[idx - s]) * g->u[a][idx];
     }
@@ -402,12 +399,12 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
         double *c = g->coef[a];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (gr->size >= BDL_GRID_PARALLEL_MIN)
         for (long idx = s; idx < gr->size; ++idx)
             c[idx] = 0.5 * (g->eps[idx] + g->eps[idx - s]) * g->d[a][idx];
     }
     bdl_poisson_set_coefficients(g->poisson, g->coef);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (gr->size >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < gr->n[2]; ++k)
         for (int j = 0; j < gr->n[1]; ++j)
             for (int i = 0; i < gr->n[0]; ++i) {

@@ -13,6 +13,10 @@
 
 #define BDL_GRID_GHOST 2
 
+/// Loops over fewer cells than this run on one thread: below it, waking a team costs more than
+/// the loop (a pseudo-2D bed has a few thousand cells).
+#define BDL_GRID_PARALLEL_MIN 16384
+
 typedef struct bdl_grid {
     int n[3];         ///< cells per axis
     double h[3];      ///< cell size per axis [m]

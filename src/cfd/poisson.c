@@ -141,7 +141,7 @@ void bdl_poisson_destroy(bdl_poisson *p)
 /// cell), and twice the coupling of a Dirichlet side.
 static void build_diagonal(const bdl_poisson *p, level *L)
 {
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < L->n[2]; ++k)
         for (int j = 0; j < L->n[1]; ++j)
             for (int i = 0; i < L->n[0]; ++i) {
@@ -198,7 +198,7 @@ void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
     for (int a = 0; a < 3; ++a) {
         const double inv_h2 = 1.0 / (g->h[a] * g->h[a]);
         int f1[3] = {L->n[0] + (a == 0), L->n[1] + (a == 1), L->n[2] + (a == 2)};
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
         for (int k = 0; k < f1[2]; ++k)
             for (int j = 0; j < f1[1]; ++j)
                 for (int i = 0; i < f1[0]; ++i) {
@@ -226,7 +226,7 @@ void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
 static void apply(const bdl_poisson *p, const level *L, const double *x, double *out)
 {
     const int n0 = L->n[0], n1 = L->n[1], n2 = L->n[2];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < n2; ++k)
         for (int j = 0; j < n1; ++j)
             for (int i = 0; i < n0; ++i) {
@@ -268,7 +268,7 @@ static void apply(const bdl_poisson *p, const level *L, const double *x, double 
 static double dot(const double *a, const double *b, long n)
 {
     double partial[CHUNKS];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
     for (int c = 0; c < CHUNKS; ++c) {
         long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
         double s = 0.0;
@@ -285,7 +285,7 @@ static double dot(const double *a, const double *b, long n)
 static void remove_mean(double *a, long n)
 {
     double partial[CHUNKS];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
     for (int c = 0; c < CHUNKS; ++c) {
         long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
         double s = 0.0;
@@ -297,7 +297,7 @@ static void remove_mean(double *a, long n)
     for (int c = 0; c < CHUNKS; ++c)
         s += partial[c];
     double mean = s / (double)n;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
     for (long i = 0; i < n; ++i)
         a[i] -= mean;
 }
@@ -306,7 +306,7 @@ static void jacobi(const bdl_poisson *p, level *L, int sweeps)
 {
     for (int s = 0; s < sweeps; ++s) {
         apply(p, L, L->x, L->t);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
         for (long c = 0; c < L->cells; ++c)
             if (L->diag[c] > 0.0)
                 L->x[c] += JACOBI_WEIGHT * (L->b[c] - L->t[c]) / L->diag[c];
@@ -335,7 +335,7 @@ static void vcycle(const bdl_poisson *p, int l)
                 C->b[cc] += L->b[c] - L->t[c];
             }
     vcycle(p, l + 1);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < L->n[2]; ++k)
         for (int j = 0; j < L->n[1]; ++j)
             for (int i = 0; i < L->n[0]; ++i)
@@ -362,7 +362,7 @@ static void right_hand_side(const bdl_poisson *p, const double *f, const double 
 {
     const bdl_grid *g = &p->grid;
     const level *L = &p->levels[0];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < L->n[2]; ++k)
         for (int j = 0; j < L->n[1]; ++j)
             for (int i = 0; i < L->n[0]; ++i) {
@@ -383,7 +383,7 @@ static void right_hand_side(const bdl_poisson *p, const double *f, const double 
 static void to_compact(const bdl_poisson *p, const double *padded, double *compact)
 {
     const level *L = &p->levels[0];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < L->n[2]; ++k)
         for (int j = 0; j < L->n[1]; ++j)
             for (int i = 0; i < L->n[0]; ++i)
@@ -393,7 +393,7 @@ static void to_compact(const bdl_poisson *p, const double *padded, double *compa
 static void to_padded(const bdl_poisson *p, const double *compact, double *padded)
 {
     const level *L = &p->levels[0];
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
     for (int k = 0; k < L->n[2]; ++k)
         for (int j = 0; j < L->n[1]; ++j)
             for (int i = 0; i < L->n[0]; ++i)
@@ -431,7 +431,7 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
         remove_mean(r, n);
     const double norm_b = sqrt(dot(r, r, n));
     apply(p, L, xc, p->q);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
     for (long i = 0; i < n; ++i)
         r[i] -= p->q[i];
     double res = norm_b > 0.0 ? sqrt(dot(r, r, n)) / norm_b : 0.0;
@@ -447,7 +447,7 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
             if (!(dq > 0.0))
                 break;
             double alpha = rz / dq;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
             for (long i = 0; i < n; ++i) {
                 xc[i] += alpha * p->d[i];
                 r[i] -= alpha * p->q[i];
@@ -462,7 +462,7 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
             double rz_new = dot(r, p->z, n);
             double beta = rz_new / rz;
             rz = rz_new;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
             for (long i = 0; i < n; ++i)
                 p->d[i] = p->z[i] + beta * p->d[i];
         }

@@ -116,7 +116,7 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, 
     int flo[3], fhi[3];
     for (int a = 0; a < 3; ++a)
         momentum_faces(gas, a, &flo[a], &fhi[a]);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (count >= 4096)
     for (long i = 0; i < count; ++i)
         for (int a = 0; a < 3; ++a) {
             // Slots 0-2: cell centres per axis; 3-5: the momentum faces of component a.
@@ -223,7 +223,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_p
 {
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (p->count >= 4096)
     for (long i = 0; i < p->count; ++i) {
         double u[3];
         gas_velocity_at(c, gas, i, u);
@@ -282,7 +282,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_co
                          double dt, double *drag, double *pressure)
 {
     const bdl_grid *g = &gas->grid;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (p->count >= 4096)
     for (long i = 0; i < p->count; ++i) {
         if (drag) {
             double u[3];

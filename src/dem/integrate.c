@@ -532,7 +532,8 @@ static inline void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl
     p->torque[i] = t;
     if (kick > 0.0) {
         double im = p->inv_mass[i];
-        p->vel[i] = bdl_v3_madd(bdl_v3_madd(p->vel[i], def->gravity, kick), f, kick * im);
+        bdl_vec3 g = p->fluid_accel ? bdl_v3_add(def->gravity, p->fluid_accel[i]) : def->gravity;
+        p->vel[i] = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, kick), f, kick * im);
         p->omega[i] = bdl_v3_madd(p->omega[i], t, kick * bdl_particle_inv_inertia(p, i));
     }
 }
@@ -817,7 +818,8 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
 #pragma omp parallel for schedule(static) reduction(max : max2) if (n >= BDL_PARALLEL_MIN)
     for (long i = 0; i < n; ++i) {
         double im = p->inv_mass[i];
-        bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], gravity, h), p->force[i], h * im);
+        bdl_vec3 g = p->fluid_accel ? bdl_v3_add(gravity, p->fluid_accel[i]) : gravity;
+        bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, h), p->force[i], h * im);
         p->vel[i] = v;
         p->omega[i] = bdl_v3_madd(p->omega[i], p->torque[i], h * bdl_particle_inv_inertia(p, i));
         bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);

@@ -26,6 +26,9 @@ bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)
              grow((void **)&p->inv_mass, capacity, sizeof(double)) &&
              grow((void **)&p->species, capacity, sizeof(int32_t)) &&
              grow((void **)&p->id, capacity, sizeof(uint32_t));
+    if (ok && p->fluid)
+        ok = grow((void **)&p->fluid_accel, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->vel_mark, capacity, sizeof(bdl_vec3));
     if (!ok)
         return BDL_ERR_NOMEM;
     p->capacity = capacity;
@@ -44,6 +47,8 @@ void bdl_particles_free(bdl_particles *p)
     free(p->inv_mass);
     free(p->species);
     free(p->id);
+    free(p->fluid_accel);
+    free(p->vel_mark);
     memset(p, 0, sizeof *p);
 }
 
@@ -67,6 +72,10 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
     p->inv_mass[i] = 1.0 / mass;
     p->species[i] = species;
     p->id[i] = p->next_id++;
+    if (p->fluid) {
+        p->fluid_accel[i] = bdl_v3_zero();
+        p->vel_mark[i] = vel;
+    }
     return i;
 }
 
@@ -91,10 +100,14 @@ void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
     permute_array(p->inv_mass, sizeof(double), n, perm, scratch);
     permute_array(p->species, sizeof(int32_t), n, perm, scratch);
     permute_array(p->id, sizeof(uint32_t), n, perm, scratch);
+    if (p->fluid) {
+        permute_array(p->fluid_accel, sizeof(bdl_vec3), n, perm, scratch);
+        permute_array(p->vel_mark, sizeof(bdl_vec3), n, perm, scratch);
+    }
 }
 
 long bdl_particles_bytes(const bdl_particles *p)
 {
-    return p->capacity * (long)(6 * sizeof(bdl_vec3) + 2 * sizeof(double) + sizeof(int32_t) +
-                                sizeof(uint32_t));
+    return p->capacity * (long)((6 + (p->fluid ? 2 : 0)) * sizeof(bdl_vec3) + 2 * sizeof(double) +
+                                sizeof(int32_t) + sizeof(uint32_t));
 }

@@ -181,14 +181,16 @@ static void log_setup(const bdl_world *w, const bdl_run_def *def, int threads, c
         bdl_info("override: %s", def->overrides[k]);
     bdl_info("output: %s", out);
     bdl_info("threads: %d", threads);
-    bdl_info("modules: dem (%s normal law%s, %s%s), walls: %d, gas: none",
+    char gas[256];
+    bdl_world_gas_describe(w, gas, sizeof gas);
+    bdl_info("modules: dem (%s normal law%s, %s%s), walls: %d, gas: %s",
              w->hertz ? "Hertz" : "linear",
              w->hertz ? (s->damping == BDL_DAMPING_EXACT ? ", exact restitution damping"
                                                          : ", closed-form damping")
                       : "",
              w->friction ? "tangential history + Coulomb friction"
                          : "frictionless, no tangential history",
-             w->rolling ? ", rolling resistance" : "", s->wall_count);
+             w->rolling ? ", rolling resistance" : "", s->wall_count, gas);
     bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);
     for (int k = 0; k < s->species_count; ++k) {
         const bdl_species_def *sp = &s->species[k];
@@ -338,6 +340,12 @@ int bdl_run(const bdl_run_def *def)
     }
     if (warning[0])
         bdl_warn("%s", warning);
+    if (def->resume && world->gas) {
+        // Checkpoints hold the particles only; a resumed gas would restart from rest.
+        bdl_error("--resume: scenes with [gas] cannot be resumed yet (the checkpoint does not hold "
+                  "the gas); run the scene from its start");
+        return finish(2, world, log);
+    }
     if (def->resume) {
         if (bdl_checkpoint_load(world, ckpt, why, sizeof why) != BDL_OK) {
             bdl_error("%s", why);

@@ -1,6 +1,8 @@
 // The world: builds the modules a scene needs and advances them by one step.
 #include "sim/world.h"
 
+#include "cfd/gas.h"
+
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -162,6 +164,11 @@ static bdl_result pour(bdl_world *w)
 bdl_result bdl_world_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
+    if (w->gas && w->step % w->gas_every == 0) {
+        bdl_result r = bdl_world_gas_step(w);
+        if (r != BDL_OK)
+            return r;
+    }
     double h = 0.5 * w->dt;
     double max_move2 = bdl_dem_kick_drift(p, w->scene.gravity, h, w->dt);
     w->step++;
@@ -191,6 +198,12 @@ uint64_t bdl_world_hash(const bdl_world *w)
                            (size_t)w->neighbor.pair_count * sizeof(bdl_vec3));
     h = bdl_hash_bytes(h, &w->time, sizeof w->time);
     h = bdl_hash_bytes(h, &w->step, sizeof w->step);
+    if (w->gas) {
+        size_t cells = (size_t)w->gas->grid.size;
+        for (int a = 0; a < 3; ++a)
+            h = bdl_hash_bytes(h, w->gas->u[a], cells * sizeof(double));
+        h = bdl_hash_bytes(h, w->gas->p, cells * sizeof(double));
+    }
     return h;
 }
 
@@ -305,6 +318,7 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     bdl_walls_build(scene, &w->walls);
     bdl_rng_seed(&w->rng, scene->seed);
 
+    w->particles.fluid = scene->gas.enabled; // before the arrays exist
     // Reserve what the creators will make, so storage carries no growth slack.
     long expected = bdl_create_estimate_total(scene);
     long reserve = expected < 64 ? 64 : (expected > 10000000 ? 10000000 : expected);
@@ -351,6 +365,13 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     }
     w->dt = scene->dt > 0.0 ? scene->dt : scene->dt_fraction * w->contact_time;
     w->contact_time_dt_ratio = w->dt / w->contact_time;
+    if (scene->gas.enabled) {
+        r = bdl_world_gas_init(w, err);
+        if (r != BDL_OK) {
+            bdl_world_destroy(w);
+            return r;
+        }
+    }
 
     r = bdl_world_compute_forces(w);
     if (r == BDL_OK)
@@ -368,6 +389,7 @@ void bdl_world_destroy(bdl_world *w)
 {
     if (!w)
         return;
+    bdl_world_gas_free(w);
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);
     bdl_force_work_free(&w->force_work);

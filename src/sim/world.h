@@ -16,6 +16,9 @@
 #include "dem/walls.h"
 #include "scene/scene.h"
 
+struct bdl_gas;
+struct bdl_coupling;
+
 /// Live parameters a user may change between steps (commands); logged with their step.
 typedef struct bdl_live_params {
     double amplitude_scale[BDL_MAX_WALLS]; ///< multiplies each wall's vibration amplitude
@@ -55,6 +58,16 @@ typedef struct bdl_world {
 
     double contact_time;          ///< smallest contact time over all pairs [s]
     double contact_time_dt_ratio; ///< dt / contact_time
+
+    // The gas ([gas] in the scene; NULL otherwise): one gas step every gas_every particle steps.
+    struct bdl_gas *gas;
+    struct bdl_coupling *coupling;
+    long gas_every;          ///< particle steps per gas step
+    long gas_steps;          ///< gas steps taken
+    double *gas_buffer;      ///< particle data handed to the coupling (11 doubles per particle)
+    long gas_buffer_capacity;
+    double particle_drag[3]; ///< drag of the gas on all particles over the last gas step [N]
+    double gas_drag[3];      ///< drag of the particles on the gas over the last gas step [N]
 } bdl_world;
 
 /// Builds every module the scene needs and creates the initial particles. Bad initial
@@ -71,6 +84,17 @@ bdl_result bdl_world_compute_forces(bdl_world *world);
 
 /// Hash of the full dynamic state (positions, velocities, spins, ids, history, time).
 uint64_t bdl_world_hash(const bdl_world *world);
+
+/// Builds the gas and the coupling of a scene with [gas] (world_create calls it).
+bdl_result bdl_world_gas_init(bdl_world *world, bdl_scene_error *err);
+void bdl_world_gas_free(bdl_world *world);
+
+/// One line describing the gas module ("none (...)" without gas), for check and run.log.
+void bdl_world_gas_describe(const bdl_world *world, char *buf, size_t size);
+
+/// One gas step with its coupling, at the start of a particle step that begins one
+/// (bdl_world_step calls it). BDL_ERR_UNSTABLE when the gas cannot be advanced stably.
+bdl_result bdl_world_gas_step(bdl_world *world);
 
 /// Smallest contact time over species pairs and species-wall pairs [s], with the pair that has
 /// it described in `which` (may be NULL). Hertz uses the impact speed `v_ref`.

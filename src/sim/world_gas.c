@@ -1,0 +1,191 @@
+// bedlam — the gas in the world: built from [gas] and [coupling], advanced every gas_every
+// particle steps; between gas steps each particle carries the gas's force as a constant
+// acceleration (src/couple/coupling.h has the scheme).
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cfd/gas.h"
+#include "core/log.h"
+#include "couple/coupling.h"
+#include "sim/world.h"
+
+static bdl_gas_side_type side_type(bdl_gas_boundary b)
+{
+    switch (b) {
+    case BDL_GAS_SLIP:
+        return BDL_SIDE_SLIP;
+    case BDL_GAS_INLET:
+        return BDL_SIDE_INLET;
+    case BDL_GAS_OUTLET:
+        return BDL_SIDE_OUTLET;
+    default:
+        return BDL_SIDE_WALL;
+    }
+}
+
+bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
+{
+    const bdl_scene *s = &w->scene;
+    const bdl_gas_scene *gs = &s->gas;
+    bdl_gas_def d = {0};
+    for (int a = 0; a < 3; ++a) {
+        d.n[a] = (int)bdl_v3_comp(gs->cells, a);
+        d.lo[a] = bdl_v3_comp(s->domain_min, a);
+        d.hi[a] = bdl_v3_comp(s->domain_max, a);
+        d.gravity[a] = bdl_v3_comp(s->gravity, a);
+        for (int side = 0; side < 2; ++side) {
+            bdl_gas_side *sd = &d.side[2 * a + side];
+            sd->type = s->periodic[a] ? BDL_SIDE_PERIODIC : side_type(gs->side[2 * a + side]);
+            sd->inflow = gs->inlet_velocity;
+            sd->pressure = gs->outlet_pressure;
+            if (gs->jet_velocity > 0.0 && gs->has_jet_min && gs->has_jet_max) {
+                sd->jet = 1;
+                sd->jet_inflow = gs->jet_velocity;
+                for (int b = 0; b < 3; ++b) {
+                    sd->jet_lo[b] = bdl_v3_comp(gs->jet_min, b);
+                    sd->jet_hi[b] = bdl_v3_comp(gs->jet_max, b);
+                }
+            }
+        }
+    }
+    d.density = gs->density;
+    d.viscosity = gs->viscosity;
+    static const bdl_convection schemes[] = {BDL_CONVECTION_UPWIND, BDL_CONVECTION_VANLEER,
+                                             BDL_CONVECTION_SUPERBEE, BDL_CONVECTION_CENTRAL};
+    d.convection = schemes[gs->convection];
+    d.tolerance = gs->tolerance;
+    d.max_iterations = 200;
+    if (bdl_gas_create(&d, &w->gas) != BDL_OK) {
+        snprintf(err->message, sizeof err->message, "%s: [gas]: cannot allocate the gas grid",
+                 s->path);
+        return BDL_ERR_NOMEM;
+    }
+    w->coupling = calloc(1, sizeof *w->coupling);
+    if (!w->coupling)
+        return BDL_ERR_NOMEM;
+    double hmax = fmax(fmax(w->gas->grid.h[0], w->gas->grid.h[1]), w->gas->grid.h[2]);
+    bdl_coupling_def cd = {.drag = (bdl_drag_law)s->coupling.drag,
+                           .drag_params = {s->coupling.syamlal_c, s->coupling.syamlal_d},
+                           .kernel_width = s->coupling.kernel_width > 0.0 ? s->coupling.kernel_width
+                                                                          : 1.5 * hmax,
+                           .max_solids = s->coupling.max_solids};
+    bdl_coupling_init(w->coupling, &cd, w->gas);
+
+    // The gas step: as given, or the largest stable one for the fastest gas to expect (the
+    // inflow through the densest packing, plus a margin for bubbles), at most 1e-4 s.
+    double dt_gas = gs->dt;
+    if (!(dt_gas > 0.0)) {
+        double u = fmax(gs->inlet_velocity, gs->jet_velocity) / (1.0 - cd.max_solids) + 0.5;
+        double hmin = fmin(fmin(w->gas->grid.h[0], w->gas->grid.h[1]), w->gas->grid.h[2]);
+        dt_gas = fmin(fmin(1e-4, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
+    }
+    w->gas_every = (long)floor(dt_gas / w->dt * (1.0 + 1e-12));
+    if (w->gas_every < 1)
+        w->gas_every = 1;
+    return BDL_OK;
+}
+
+void bdl_world_gas_free(bdl_world *w)
+{
+    if (w->coupling)
+        bdl_coupling_free(w->coupling);
+    free(w->coupling);
+    bdl_gas_destroy(w->gas);
+    free(w->gas_buffer);
+    w->gas = NULL;
+    w->coupling = NULL;
+    w->gas_buffer = NULL;
+}
+
+bdl_result bdl_world_gas_step(bdl_world *w)
+{
+    bdl_particles *p = &w->particles;
+    const long n = p->count;
+    const double dt = (double)w->gas_every * w->dt;
+    if (n * 11 > w->gas_buffer_capacity) {
+        long cap = n * 11 + n * 11 / 2 + 64;
+        double *b = realloc(w->gas_buffer, (size_t)cap * sizeof(double));
+        if (!b)
+            return BDL_ERR_NOMEM;
+        w->gas_buffer = b;
+        w->gas_buffer_capacity = cap;
+    }
+    double *pos = w->gas_buffer, *vel = pos + 3 * n, *acc = vel + 3 * n, *rad = acc + 3 * n,
+           *dens = rad + n;
+    for (long i = 0; i < n; ++i) {
+        double volume = 4.0 / 3.0 * BDL_PI * p->radius[i] * p->radius[i] * p->radius[i];
+        // The particle's acceleration other than the gas's over the last gas step: contacts,
+        // walls and gravity (gravity alone before the first).
+        bdl_vec3 other =
+            w->gas_steps > 0
+                ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]), 1.0 / dt),
+                             p->fluid_accel[i])
+                : w->scene.gravity;
+        for (int a = 0; a < 3; ++a) {
+            pos[3 * i + a] = bdl_v3_comp(p->pos[i], a);
+            vel[3 * i + a] = bdl_v3_comp(p->vel[i], a);
+            acc[3 * i + a] = bdl_v3_comp(other, a);
+        }
+        rad[i] = p->radius[i];
+        dens[i] = 1.0 / (p->inv_mass[i] * volume);
+    }
+    bdl_coupling_particles cp = {n, pos, vel, acc, rad, dens};
+    if (bdl_coupling_locate(w->coupling, w->gas, n, pos) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    bdl_coupling_voidage(w->coupling, w->gas, &cp);
+    if (w->gas_steps == 0)
+        memcpy(w->gas->eps_old, w->gas->eps, (size_t)w->gas->grid.size * sizeof(double));
+    bdl_coupling_drag_setup(w->coupling, w->gas, &cp, dt);
+    bdl_result r = bdl_gas_step(w->gas, dt);
+    if (r != BDL_OK) {
+        bdl_error("gas step at t = %.6g s failed: the pressure solver did not converge (residual "
+                  "%.3g after %d iterations) or a velocity is not finite; try a smaller [gas] dt",
+                  w->time, w->gas->last_solve.residual, w->gas->last_solve.iterations);
+        return BDL_ERR_UNSTABLE;
+    }
+    double stable = bdl_gas_stable_dt(w->gas);
+    if (dt > 2.0 * stable) {
+        bdl_error("gas step at t = %.6g s: the gas step %.3g s is above twice the stable limit "
+                  "%.3g s (CFL 1 or the viscous limit); set [gas] dt to %.3g s or less",
+                  w->time, dt, stable, stable);
+        return BDL_ERR_UNSTABLE;
+    }
+    // Forces for the coming particle steps: drag, then pressure, 3 per particle each.
+    double *drag_out = malloc((size_t)n * 6 * sizeof(double));
+    if (!drag_out)
+        return BDL_ERR_NOMEM;
+    bdl_coupling_forces(w->coupling, w->gas, &cp, dt, drag_out, drag_out + 3 * n);
+    double total[3] = {0, 0, 0};
+    for (long i = 0; i < n; ++i) {
+        bdl_vec3 f = {drag_out[3 * i] + drag_out[3 * n + 3 * i],
+                      drag_out[3 * i + 1] + drag_out[3 * n + 3 * i + 1],
+                      drag_out[3 * i + 2] + drag_out[3 * n + 3 * i + 2]};
+        for (int a = 0; a < 3; ++a)
+            total[a] += drag_out[3 * i + a];
+        p->fluid_accel[i] = bdl_v3_scale(f, p->inv_mass[i]);
+        p->vel_mark[i] = p->vel[i];
+    }
+    free(drag_out);
+    memcpy(w->particle_drag, total, sizeof total);
+    bdl_coupling_gas_drag(w->gas, w->gas_drag);
+    w->gas_steps++;
+    return BDL_OK;
+}
+
+void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
+{
+    if (!w->gas) {
+        snprintf(buf, size, "none (no [gas] section: no grid is allocated)");
+        return;
+    }
+    const bdl_grid *g = &w->gas->grid;
+    static const char *const schemes[] = {"upwind", "van Leer", "Superbee", "central"};
+    snprintf(buf, size,
+             "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
+             "half-width %.3g mm; gas step %.3g s = %ld particle steps",
+             g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
+             schemes[w->gas->def.convection], bdl_drag_law_names[w->coupling->def.drag],
+             1e3 * w->coupling->width[0], (double)w->gas_every * w->dt, w->gas_every);
+}
