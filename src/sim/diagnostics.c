@@ -1,8 +1,10 @@
 #include "sim/diagnostics.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
+#include "cfd/gas.h"
 #include "dem/integrate.h"
 
 const char *const bdl_diagnostics_columns[] = {
@@ -19,6 +21,11 @@ const char *const bdl_diagnostics_columns[] = {
     "wall_work",
     "energy_balance",
     "max_speed",
+    "gas_work",
+    "pressure_drop",
+    "bed_height",
+    "gas_volume_imbalance",
+    "momentum_imbalance",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -74,6 +81,66 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
     }
 }
 
+/// The axis gravity points along (z without gravity) and the sign of "up" on it.
+static int vertical_axis(const bdl_world *w, double *up)
+{
+    int axis = 2;
+    double best = 0.0;
+    for (int a = 0; a < 3; ++a)
+        if (fabs(bdl_v3_comp(w->scene.gravity, a)) > best)
+            best = fabs(bdl_v3_comp(w->scene.gravity, a)), axis = a;
+    *up = bdl_v3_comp(w->scene.gravity, axis) > 0.0 ? -1.0 : 1.0;
+    return axis;
+}
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
+{
+    const bdl_gas *gas = w->gas;
+    const bdl_grid *g = &gas->grid;
+    double up;
+    const int a = vertical_axis(w, &up);
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    double layer[2] = {0.0, 0.0};
+    for (int side = 0; side < 2; ++side) {
+        int m = side == 0 ? 0 : g->n[a] - 1;
+        for (int jc = 0; jc < g->n[c]; ++jc)
+            for (int jb = 0; jb < g->n[b]; ++jb) {
+                int ix[3];
+                ix[a] = m, ix[b] = jb, ix[c] = jc;
+                layer[side] += gas->p[bdl_grid_index(g, ix[0], ix[1], ix[2])];
+            }
+        layer[side] /= (double)g->n[b] * g->n[c];
+    }
+    d->pressure_drop = up > 0.0 ? layer[0] - layer[1] : layer[1] - layer[0];
+    const long n = w->particles.count;
+    double *h = n > 0 ? malloc((size_t)n * sizeof(double)) : NULL;
+    if (h) {
+        double base =
+            up > 0.0 ? bdl_v3_comp(w->scene.domain_min, a) : -bdl_v3_comp(w->scene.domain_max, a);
+        for (long i = 0; i < n; ++i)
+            h[i] = up * bdl_v3_comp(w->particles.pos[i], a) - base;
+        qsort(h, (size_t)n, sizeof(double), compare_double);
+        d->bed_height = h[(long)floor(0.95 * (double)(n - 1))];
+        free(h);
+    }
+    d->gas_work = w->gas_work;
+    d->gas_volume_imbalance = gas->mass_imbalance;
+    double sum = 0.0, mag = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        if (g->n[k] == 1 && !g->periodic[k])
+            continue; // one cell between walls: the gas cannot move, the walls take that drag
+        sum += pow(w->particle_drag[k] + w->gas_drag[k], 2.0);
+        mag += pow(w->particle_drag[k], 2.0);
+    }
+    d->momentum_imbalance = mag > 0.0 ? sqrt(sum / mag) : 0.0;
+}
+
 void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics *d)
 {
     partial blocks[BLOCKS];
@@ -111,8 +178,10 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->max_overlap_ratio = s.overlap;
     d->max_speed = s.speed;
     d->wall_work = w->wall_work;
+    if (w->gas)
+        gas_terms(w, d);
     d->energy_balance =
-        bdl_diagnostics_total_energy(d) - energy0 - w->wall_work - w->inserted_energy;
+        bdl_diagnostics_total_energy(d) - energy0 - w->wall_work - w->inserted_energy - d->gas_work;
 }
 
 double bdl_diagnostics_total_energy(const bdl_diagnostics *d)
@@ -135,4 +204,9 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[10] = d->wall_work;
     v[11] = d->energy_balance;
     v[12] = d->max_speed;
+    v[13] = d->gas_work;
+    v[14] = d->pressure_drop;
+    v[15] = d->bed_height;
+    v[16] = d->gas_volume_imbalance;
+    v[17] = d->momentum_imbalance;
 }

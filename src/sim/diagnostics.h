@@ -1,4 +1,7 @@
-// bedlam — per-run diagnostics: energies, coordination, overlaps and the energy balance.
+// bedlam — per-run diagnostics: energies, coordination, overlaps, the energy balance and, with a
+// gas, pressure drop, bed height and the conservation errors of the coupling.
+//
+// "Lowest" and "height" are along gravity (along z without gravity).
 //
 // Sums over particles are taken in fixed blocks, in block order, so the numbers do not depend on
 // the thread count.
@@ -21,6 +24,13 @@ typedef struct bdl_diagnostics {
     double wall_work;         ///< work done by walls on the particles since the start [J]
     double energy_balance;    ///< E - E0 - W_walls - E_inserted [J]; <= 0 for dissipative contacts
     double max_speed;         ///< [m/s]
+    // With a gas (0 without):
+    double gas_work;             ///< work done by the gas on the particles since the start [J]
+    double pressure_drop;        ///< mean pressure of the lowest cell layer minus the highest [Pa]
+    double bed_height;           ///< height below which 95 % of the particle centres lie [m]
+    double gas_volume_imbalance; ///< largest cell |d eps/dt + div(eps u)| dt of the last gas step
+    double momentum_imbalance;   ///< |drag on particles + drag on gas| / |drag on particles| over
+                                 ///< the axes the gas can move along
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.

@@ -31,9 +31,9 @@ struct bdl_loop {
     atomic_long progress_particles;
     atomic_int finished;
     bdl_result result;
-    double speed_time;   ///< wall clock of the last speed estimate [s]
-    long speed_step;     ///< step at that time
-    double speed;        ///< steps per wall second
+    double speed_time;          ///< wall clock of the last speed estimate [s]
+    long speed_step;            ///< step at that time
+    double speed;               ///< steps per wall second
     _Atomic double speed_limit; ///< simulated seconds per wall second; 0: as fast as it goes
 };
 

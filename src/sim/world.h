@@ -62,12 +62,13 @@ typedef struct bdl_world {
     // The gas ([gas] in the scene; NULL otherwise): one gas step every gas_every particle steps.
     struct bdl_gas *gas;
     struct bdl_coupling *coupling;
-    long gas_every;          ///< particle steps per gas step
-    long gas_steps;          ///< gas steps taken
-    double *gas_buffer;      ///< particle data handed to the coupling (11 doubles per particle)
+    long gas_every;     ///< particle steps per gas step
+    long gas_steps;     ///< gas steps taken
+    double *gas_buffer; ///< particle data handed to the coupling (11 doubles per particle)
     long gas_buffer_capacity;
     double particle_drag[3]; ///< drag of the gas on all particles over the last gas step [N]
     double gas_drag[3];      ///< drag of the particles on the gas over the last gas step [N]
+    double gas_work;         ///< work of the gas's forces on the particles since the start [J]
 } bdl_world;
 
 /// Builds every module the scene needs and creates the initial particles. Bad initial

@@ -114,6 +114,15 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     }
     double *pos = w->gas_buffer, *vel = pos + 3 * n, *acc = vel + 3 * n, *rad = acc + 3 * n,
            *dens = rad + n;
+    // Work of the gas's forces over the last gas step (trapezoidal in the velocity).
+    if (w->gas_steps > 0) {
+        double work = 0.0;
+        for (long i = 0; i < n; ++i)
+            work += bdl_v3_dot(p->fluid_accel[i],
+                               bdl_v3_scale(bdl_v3_add(p->vel_mark[i], p->vel[i]), 0.5)) /
+                    p->inv_mass[i];
+        w->gas_work += work * dt;
+    }
     for (long i = 0; i < n; ++i) {
         double volume = 4.0 / 3.0 * BDL_PI * p->radius[i] * p->radius[i] * p->radius[i];
         // The particle's acceleration other than the gas's over the last gas step: contacts,
