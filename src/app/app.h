@@ -8,6 +8,7 @@ int bdl_cmd_bench(int argc, char **argv);
 int bdl_cmd_view(int argc, char **argv);
 /// `bedlam bench render` (argv[0] is "render").
 int bdl_bench_render(int argc, char **argv);
+int bdl_bench_coupled(int argc, char **argv);
 
 /// Shared option parsing for subcommands that take a scene: --set, --threads, --out, --until,
 /// --resume, --quiet. Returns 0 and fills `opts`, or prints an error and returns 2; returns -1

@@ -16,7 +16,7 @@ static const char usage[] =
     "  view SCENE    run a scene in a window: orbit, colour modes, pause, step, live parameters\n"
     "  check SCENE   validate a scene; print the active modules, contact time, stable time-step\n"
     "                limit and the estimated cost\n"
-    "  bench [CASE]  performance benchmarks (dem, render)\n"
+    "  bench [CASE]  performance benchmarks (dem, render, coupled)\n"
     "\n"
     "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
     "interrupted), 2 bad input (scene, options).\n"

@@ -69,6 +69,8 @@ typedef struct bdl_world {
     double particle_drag[3]; ///< drag of the gas on all particles over the last gas step [N]
     double gas_drag[3];      ///< drag of the particles on the gas over the last gas step [N]
     double gas_work;         ///< work of the gas's forces on the particles since the start [J]
+    double gas_seconds;      ///< wall-clock time spent in gas steps [s]
+    double coupling_seconds; ///< wall-clock time spent coupling (deposit, interpolate, forces) [s]
 } bdl_world;
 
 /// Builds every module the scene needs and creates the initial particles. Bad initial

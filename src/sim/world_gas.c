@@ -8,6 +8,7 @@
 
 #include "cfd/gas.h"
 #include "core/log.h"
+#include "core/timer.h"
 #include "couple/coupling.h"
 #include "sim/world.h"
 
@@ -104,6 +105,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     bdl_particles *p = &w->particles;
     const long n = p->count;
     const double dt = (double)w->gas_every * w->dt;
+    const double t0 = bdl_wall_seconds();
     if (n * 11 > w->gas_buffer_capacity) {
         long cap = n * 11 + n * 11 / 2 + 64;
         double *b = realloc(w->gas_buffer, (size_t)cap * sizeof(double));
@@ -147,7 +149,10 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     if (w->gas_steps == 0)
         memcpy(w->gas->eps_old, w->gas->eps, (size_t)w->gas->grid.size * sizeof(double));
     bdl_coupling_drag_setup(w->coupling, w->gas, &cp, dt);
+    const double t1 = bdl_wall_seconds();
     bdl_result r = bdl_gas_step(w->gas, dt);
+    const double t2 = bdl_wall_seconds();
+    w->gas_seconds += t2 - t1;
     if (r != BDL_OK) {
         bdl_error("gas step at t = %.6g s failed: the pressure solver did not converge (residual "
                   "%.3g after %d iterations) or a velocity is not finite; try a smaller [gas] dt",
@@ -180,6 +185,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     memcpy(w->particle_drag, total, sizeof total);
     bdl_coupling_gas_drag(w->gas, w->gas_drag);
     w->gas_steps++;
+    w->coupling_seconds += (t1 - t0) + (bdl_wall_seconds() - t2);
     return BDL_OK;
 }
 
