@@ -101,9 +101,12 @@ int main(void)
         {"periodic x, z; outlet", {1, 0, 1}, {0, 0, 0, 1, 0, 0}, 0},
         {"periodic everywhere (singular)", {1, 1, 1}, {0}, 1},
     };
-    int sizes[2][3] = {{16, 16, 8}, {64, 64, 32}};
-    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
+    // Odd counts coarsen too, the last coarse cell having a single child.
+    int all_sizes[2][2][3] = {{{16, 16, 8}, {64, 64, 32}}, {{15, 9, 5}, {61, 35, 21}}};
+    for (size_t run = 0; run < 2 * sizeof cases / sizeof cases[0]; ++run) {
         int its[2];
+        size_t c = run / 2;
+        int(*sizes)[3] = all_sizes[run % 2];
         for (int s = 0; s < 2; ++s) {
             problem pb;
             setup(&pb, sizes[s][0], sizes[s][1], sizes[s][2], cases[c].periodic,

@@ -104,7 +104,7 @@ bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6])
         p->level_count = l + 1;
         int any = 0;
         for (int a = 0; a < 3; ++a) {
-            L->coarsen[a] = n[a] % 2 == 0 && n[a] >= 2;
+            L->coarsen[a] = n[a] >= 2; // odd counts too: the last coarse cell has one child
             any |= L->coarsen[a];
         }
         if (!any || L->cells <= 8) {
@@ -112,7 +112,7 @@ bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6])
             break;
         }
         for (int a = 0; a < 3; ++a)
-            n[a] = L->coarsen[a] ? n[a] / 2 : n[a];
+            n[a] = L->coarsen[a] ? (n[a] + 1) / 2 : n[a];
     }
     long cells = p->levels[0].cells;
     p->d = calloc((size_t)cells, sizeof(double));
@@ -180,12 +180,19 @@ static void restrict_couplings(const level *F, level *C)
                         span[b] = b != a && F->coarsen[b] ? 2 : 1;
                         base[b] = F->coarsen[b] ? 2 * base[b] : base[b];
                     }
+                    // The high boundary face of an odd axis is the fine boundary face.
+                    if (base[a] > F->n[a])
+                        base[a] = F->n[a];
                     double sum = 0.0;
                     for (int dk = 0; dk < span[2]; ++dk)
                         for (int dj = 0; dj < span[1]; ++dj)
-                            for (int di = 0; di < span[0]; ++di)
-                                sum += F->K[a][face_of(F, a, base[0] + di, base[1] + dj,
-                                                       base[2] + dk)];
+                            for (int di = 0; di < span[0]; ++di) {
+                                int f[3] = {base[0] + di, base[1] + dj, base[2] + dk};
+                                if ((a != 0 && f[0] >= F->n[0]) || (a != 1 && f[1] >= F->n[1]) ||
+                                    (a != 2 && f[2] >= F->n[2]))
+                                    continue; // the missing second child of an odd axis' last cell
+                                sum += F->K[a][face_of(F, a, f[0], f[1], f[2])];
+                            }
                     C->K[a][face_of(C, a, i, j, k)] = factor * sum;
                 }
     }
