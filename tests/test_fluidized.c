@@ -4,9 +4,11 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "cfd/gas.h"
 #include "check.h"
 #include "scene_util.h"
 #include "sim/diagnostics.h"
+#include "sim/loop.h"
 
 int main(void)
 {
@@ -54,6 +56,9 @@ int main(void)
     CHECK_MSG(fabs(dp / weight - 1.0) < 0.1, "pressure drop %g vs bed weight %g", dp, weight);
     CHECK(worst_volume < 1e-8);
     CHECK(worst_momentum < 1e-12);
+    // The viewer's live parameter: a factor on the inlet velocity.
+    CHECK(bdl_world_set_parameter(w, "gas.inlet_scale", 0.5) == 1);
+    CHECK(w->gas->def.side[4].inflow == 0.8);
     bdl_world_destroy(w);
     return bdl_test_summary("test_fluidized");
 }

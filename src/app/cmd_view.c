@@ -69,9 +69,9 @@ typedef struct viewer {
     bdl_view view;
     int paused, show_help, quit;
     int reported_drawing; ///< the first frame with particles was logged (scripted sessions)
-    double speed_limit; ///< simulated s per wall s; 0 = full speed
-    double live_scale;  ///< factor on the live parameter
-    char live_key[96];  ///< "" when the scene exposes none
+    double speed_limit;   ///< simulated s per wall s; 0 = full speed
+    double live_scale;    ///< factor on the live parameter
+    char live_key[96];    ///< "" when the scene exposes none
     char status[256];
     char shot_dir[1024];
     int shots;
@@ -106,11 +106,17 @@ static int load_script(viewer *v, const char *path)
     return 1;
 }
 
-/// The first vibrating wall's amplitude is the live parameter a scene exposes (the gas inlet
-/// velocity joins it with the gas phase).
+/// The live parameter a scene exposes: the gas inlet velocity when the scene has an inlet, else
+/// the first vibrating wall's amplitude.
 static void find_live_parameter(viewer *v)
 {
     v->live_key[0] = '\0';
+    const bdl_gas_scene *g = &v->scene->gas;
+    for (int s = 0; s < 6 && g->enabled; ++s)
+        if (g->side[s] == BDL_GAS_INLET && !v->scene->periodic[s / 2]) {
+            snprintf(v->live_key, sizeof v->live_key, "gas.inlet_scale");
+            return;
+        }
     for (int k = 0; k < v->scene->wall_count; ++k)
         if (v->scene->walls[k].motion == BDL_MOTION_VIBRATE) {
             snprintf(v->live_key, sizeof v->live_key, "wall.%s.amplitude_scale",

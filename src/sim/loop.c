@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfd/gas.h"
 #include "core/log.h"
 #include "core/timer.h"
 
@@ -48,6 +49,14 @@ bdl_loop_def bdl_default_loop_def(void)
 
 int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
 {
+    if (strcmp(key, "gas.inlet_scale") == 0 && w->gas) {
+        // Inlet and jet velocities of every inlet side, as a factor on the scene's values.
+        for (int s = 0; s < 6; ++s) {
+            w->gas->def.side[s].inflow = value * w->scene.gas.inlet_velocity;
+            w->gas->def.side[s].jet_inflow = value * w->scene.gas.jet_velocity;
+        }
+        return 1;
+    }
     for (int k = 0; k < w->scene.wall_count; ++k) {
         char a[96], f[96];
         snprintf(a, sizeof a, "wall.%s.amplitude_scale", w->scene.walls[k].name);
