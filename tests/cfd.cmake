@@ -9,6 +9,7 @@ bdl_add_test(test_coupling SOURCES test_coupling.c LABELS "cfd;verification" TIM
 bdl_add_test(test_fluidized SOURCES test_fluidized.c LABELS "cfd;verification" TIMEOUT 900)
 bdl_add_test(test_packed_bed SOURCES test_packed_bed.c LABELS "cfd;verification" TIMEOUT 900)
 bdl_add_test(test_umf SOURCES test_umf.c LABELS "cfd;verification" TIMEOUT 1800)
+bdl_add_test(test_settling SOURCES test_settling.c LABELS "cfd;verification" TIMEOUT 900)
 # These check numerics, not threading (test_poisson compares 1 and 2 threads itself); one
 # thread each keeps them from fighting over the cores when ctest runs them side by side.
-set_tests_properties(test_gas test_cavity test_coupling test_fluidized test_packed_bed test_umf PROPERTIES ENVIRONMENT "OMP_NUM_THREADS=1")
+set_tests_properties(test_gas test_cavity test_coupling test_fluidized test_packed_bed test_umf test_settling PROPERTIES ENVIRONMENT "OMP_NUM_THREADS=1")

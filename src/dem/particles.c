@@ -28,7 +28,8 @@ bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)
              grow((void **)&p->id, capacity, sizeof(uint32_t));
     if (ok && p->fluid)
         ok = grow((void **)&p->fluid_accel, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->vel_mark, capacity, sizeof(bdl_vec3));
+             grow((void **)&p->vel_mark, capacity, sizeof(bdl_vec3)) &&
+             grow((void **)&p->drag_accel, capacity, sizeof(bdl_vec3));
     if (!ok)
         return BDL_ERR_NOMEM;
     p->capacity = capacity;
@@ -49,6 +50,7 @@ void bdl_particles_free(bdl_particles *p)
     free(p->id);
     free(p->fluid_accel);
     free(p->vel_mark);
+    free(p->drag_accel);
     memset(p, 0, sizeof *p);
 }
 
@@ -75,6 +77,7 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
     if (p->fluid) {
         p->fluid_accel[i] = bdl_v3_zero();
         p->vel_mark[i] = vel;
+        p->drag_accel[i] = bdl_v3_zero();
     }
     return i;
 }
@@ -103,11 +106,12 @@ void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
     if (p->fluid) {
         permute_array(p->fluid_accel, sizeof(bdl_vec3), n, perm, scratch);
         permute_array(p->vel_mark, sizeof(bdl_vec3), n, perm, scratch);
+        permute_array(p->drag_accel, sizeof(bdl_vec3), n, perm, scratch);
     }
 }
 
 long bdl_particles_bytes(const bdl_particles *p)
 {
-    return p->capacity * (long)((6 + (p->fluid ? 2 : 0)) * sizeof(bdl_vec3) + 2 * sizeof(double) +
+    return p->capacity * (long)((6 + (p->fluid ? 3 : 0)) * sizeof(bdl_vec3) + 2 * sizeof(double) +
                                 sizeof(int32_t) + sizeof(uint32_t));
 }

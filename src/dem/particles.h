@@ -29,6 +29,7 @@ typedef struct bdl_particles {
     int fluid;              ///< keep the two arrays below
     bdl_vec3 *fluid_accel;  ///< acceleration from the gas (drag + pressure), held over a gas step
     bdl_vec3 *vel_mark;     ///< velocity at the start of the current gas step [m/s]
+    bdl_vec3 *drag_accel;   ///< the drag's part of fluid_accel [m/s^2]
 } bdl_particles;
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);

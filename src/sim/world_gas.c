@@ -100,6 +100,40 @@ void bdl_world_gas_free(bdl_world *w)
     w->gas_buffer = NULL;
 }
 
+/// Along a periodic gravity axis nothing holds the suspension up: a mean pressure gradient equal
+/// to the mixture's weight, G = rho_mix g, acts on both phases instead (-eps G per unit volume on
+/// the gas, -V G on each particle), as a container's base would; the box then neither falls nor
+/// rises as a whole. Returns G (zero when the gravity axis has a boundary), and sets the gas's
+/// body force.
+static bdl_vec3 periodic_column(bdl_world *w)
+{
+    bdl_gas *gas = w->gas;
+    const bdl_grid *g = &gas->grid;
+    int axis = 2;
+    for (int a = 0; a < 3; ++a)
+        if (fabs(bdl_v3_comp(w->scene.gravity, a)) > fabs(bdl_v3_comp(w->scene.gravity, axis)))
+            axis = a;
+    if (!g->periodic[axis] || bdl_v3_comp(w->scene.gravity, axis) == 0.0)
+        return bdl_v3_zero();
+    const double vc = g->h[0] * g->h[1] * g->h[2];
+    double mass = 0.0, volume = vc * g->n[0] * g->n[1] * g->n[2];
+    for (long i = 0; i < w->particles.count; ++i)
+        mass += 1.0 / w->particles.inv_mass[i];
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i)
+                mass += gas->def.density * gas->eps[bdl_grid_index(g, i, j, k)] * vc;
+    bdl_vec3 G = bdl_v3_scale(w->scene.gravity, mass / volume);
+    bdl_grid_wrap_cells(g, gas->eps);
+    for (int a = 0; a < 3; ++a) {
+        const long s = g->stride[a];
+        const double ga = bdl_v3_comp(G, a);
+        for (long idx = s; idx < g->size; ++idx)
+            gas->source[a][idx] = -0.5 * (gas->eps[idx] + gas->eps[idx - s]) * ga;
+    }
+    return G;
+}
+
 bdl_result bdl_world_gas_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
@@ -127,12 +161,12 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     }
     for (long i = 0; i < n; ++i) {
         double volume = 4.0 / 3.0 * BDL_PI * p->radius[i] * p->radius[i] * p->radius[i];
-        // The particle's acceleration other than the gas's over the last gas step: contacts,
-        // walls and gravity (gravity alone before the first).
+        // The particle's acceleration other than the drag over the last gas step: contacts,
+        // walls, gravity and the gas pressure (gravity alone before the first).
         bdl_vec3 other =
             w->gas_steps > 0
                 ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]), 1.0 / dt),
-                             p->fluid_accel[i])
+                             p->drag_accel[i])
                 : w->scene.gravity;
         for (int a = 0; a < 3; ++a) {
             pos[3 * i + a] = bdl_v3_comp(p->pos[i], a);
@@ -148,6 +182,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     bdl_coupling_voidage(w->coupling, w->gas, &cp);
     if (w->gas_steps == 0)
         memcpy(w->gas->eps_old, w->gas->eps, (size_t)w->gas->grid.size * sizeof(double));
+    bdl_vec3 mean_gradient = periodic_column(w);
     bdl_coupling_drag_setup(w->coupling, w->gas, &cp, dt);
     const double t1 = bdl_wall_seconds();
     bdl_result r = bdl_gas_step(w->gas, dt);
@@ -178,7 +213,10 @@ bdl_result bdl_world_gas_step(bdl_world *w)
                       drag_out[3 * i + 2] + drag_out[3 * n + 3 * i + 2]};
         for (int a = 0; a < 3; ++a)
             total[a] += drag_out[3 * i + a];
-        p->fluid_accel[i] = bdl_v3_scale(f, p->inv_mass[i]);
+        p->fluid_accel[i] =
+            bdl_v3_madd(bdl_v3_scale(f, p->inv_mass[i]), mean_gradient, -1.0 / dens[i]);
+        p->drag_accel[i] = bdl_v3_scale(
+            (bdl_vec3){drag_out[3 * i], drag_out[3 * i + 1], drag_out[3 * i + 2]}, p->inv_mass[i]);
         p->vel_mark[i] = p->vel[i];
     }
     free(drag_out);
