@@ -407,6 +407,33 @@ static void test_csv(const scratch *s)
     CHECK(bdl_csv_truncate_after("/nonexistent-bedlam.csv", 1.0) == BDL_OK);
 }
 
+static void test_vti(const scratch *s)
+{
+    char path[128];
+    path_in(s, "grid.vti", path, sizeof path);
+    const int n[3] = {2, 1, 3};
+    const double origin[3] = {0.5, 0, -1}, spacing[3] = {0.25, 1, 0.5};
+    double eps[6] = {0.4, 0.5, 0.6, 0.7, 0.8, 0.9}, u[18];
+    for (int i = 0; i < 18; ++i)
+        u[i] = i * 0.125;
+    bdl_vtk_array arrays[] = {{"voidage", BDL_VTK_FLOAT64, 1, eps},
+                              {"gas_velocity", BDL_VTK_FLOAT64, 3, u}};
+    CHECK(bdl_vti_write(path, n, origin, spacing, arrays, 2) == BDL_OK);
+    char *text = read_all(path, NULL);
+    CHECK(text != NULL);
+    if (text) {
+        CHECK(strstr(text, "type=\"ImageData\"") != NULL);
+        CHECK(strstr(text, "WholeExtent=\"0 2 0 1 0 3\"") != NULL);
+        CHECK(strstr(text, "Origin=\"0.5 0 -1\"") != NULL);
+        CHECK(strstr(text, "Name=\"gas_velocity\" NumberOfComponents=\"3\"") != NULL);
+        CHECK(strstr(text, "0.4 0.5 0.6 0.7 0.8 0.9\n") != NULL);
+        CHECK(strstr(text, "2.125\n") != NULL); // the last of 18 values ends its line
+        free(text);
+    }
+    const bdl_vtk_array bad = {"x", BDL_VTK_INT32, 1, eps};
+    CHECK(bdl_vti_write(path, n, origin, spacing, &bad, 1) == BDL_ERR_IO);
+}
+
 int main(void)
 {
     scratch s;
@@ -422,6 +449,7 @@ int main(void)
     test_vtp(&s);
     test_pvd(&s);
     test_csv(&s);
+    test_vti(&s);
     char command[128];
     snprintf(command, sizeof command, "rm -rf '%s'", s.root);
     if (system(command) != 0)

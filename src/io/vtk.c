@@ -299,3 +299,37 @@ void bdl_pvd_destroy(bdl_pvd *pvd)
     free(pvd->path);
     free(pvd);
 }
+
+bdl_result bdl_vti_write(const char *path, const int n[3], const double origin[3],
+                         const double spacing[3], const bdl_vtk_array *arrays, int array_count)
+{
+    long cells = (long)n[0] * n[1] * n[2];
+    for (int k = 0; k < array_count; ++k)
+        if (arrays[k].type != BDL_VTK_FLOAT64 || arrays[k].components < 1 ||
+            (cells > 0 && !arrays[k].data))
+            return BDL_ERR_IO;
+    bdl_atomic_file af;
+    if (bdl_atomic_open(&af, path) != BDL_OK)
+        return BDL_ERR_IO;
+    FILE *f = af.file;
+    fprintf(f, "<?xml version=\"1.0\"?>\n<VTKFile type=\"ImageData\" version=\"0.1\" "
+               "byte_order=\"LittleEndian\">\n");
+    fprintf(f,
+            "  <ImageData WholeExtent=\"0 %d 0 %d 0 %d\" Origin=\"%.17g %.17g %.17g\" "
+            "Spacing=\"%.17g %.17g %.17g\">\n",
+            n[0], n[1], n[2], origin[0], origin[1], origin[2], spacing[0], spacing[1], spacing[2]);
+    fprintf(f, "    <Piece Extent=\"0 %d 0 %d 0 %d\">\n      <CellData>\n", n[0], n[1], n[2]);
+    for (int k = 0; k < array_count; ++k) {
+        const double *v = arrays[k].data;
+        fprintf(f,
+                "        <DataArray type=\"Float64\" Name=\"%s\" NumberOfComponents=\"%d\" "
+                "format=\"ascii\">\n",
+                arrays[k].name, arrays[k].components);
+        long values = cells * arrays[k].components;
+        for (long i = 0; i < values; ++i)
+            fprintf(f, "%.9g%s", v[i], (i + 1) % 9 == 0 || i + 1 == values ? "\n" : " ");
+        fprintf(f, "        </DataArray>\n");
+    }
+    fprintf(f, "      </CellData>\n    </Piece>\n  </ImageData>\n</VTKFile>\n");
+    return bdl_atomic_commit(&af);
+}

@@ -1,4 +1,5 @@
-// bedlam — particle snapshots as VTK XML PolyData (.vtp) and time series as ParaView .pvd files.
+// bedlam — particle snapshots as VTK XML PolyData (.vtp), gas fields as ImageData (.vti), and
+// time series as ParaView .pvd files.
 //
 // Snapshots use the binary "appended" raw encoding (UInt64 block headers, little-endian): compact,
 // exact, and read directly by ParaView and VTK. Every point also gets a vertex cell so ParaView
@@ -29,6 +30,12 @@ typedef struct bdl_vtk_array {
 /// components < 1), BDL_ERR_NOMEM if a scratch buffer cannot be allocated.
 bdl_result bdl_vtp_write(const char *path, long n, const bdl_vec3 *positions,
                          const bdl_vtk_array *arrays, int array_count);
+
+/// Writes a uniform grid of n[0] x n[1] x n[2] cells from `origin` with cell size `spacing` [m]
+/// as VTK XML ImageData (.vti) with per-cell arrays (FLOAT64 only; x fastest), atomically, in
+/// ASCII (grids of the gas are small; the file stays readable). BDL_ERR_IO on failure.
+bdl_result bdl_vti_write(const char *path, const int n[3], const double origin[3],
+                         const double spacing[3], const bdl_vtk_array *arrays, int array_count);
 
 /// A ParaView collection (.pvd) listing snapshot files with their times.
 typedef struct bdl_pvd bdl_pvd;

@@ -12,6 +12,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "cfd/gas.h"
 #include "core/log.h"
 #include "core/timer.h"
 #include "io/atomic_file.h"
@@ -48,6 +49,7 @@ typedef struct run_state {
     bdl_world *world;
     bdl_csv *csv;
     bdl_pvd *pvd;
+    bdl_pvd *gas_pvd; ///< gas fields, with [gas] only
     bdl_guard_state guard;
     double energy0;
     double start_wall;
@@ -62,6 +64,45 @@ typedef struct run_state {
 static void path_join(char *out, size_t len, const char *a, const char *b)
 {
     snprintf(out, len, "%s/%s", a, b);
+}
+
+/// The gas fields in the cells: voidage, pressure, velocity (face values averaged to the centre).
+static bdl_result write_gas_vtk(run_state *rs)
+{
+    const bdl_gas *gas = rs->world->gas;
+    const bdl_grid *g = &gas->grid;
+    long cells = (long)g->n[0] * g->n[1] * g->n[2];
+    double *eps = malloc((size_t)cells * sizeof(double)),
+           *p = malloc((size_t)cells * sizeof(double));
+    double *u = malloc((size_t)cells * 3 * sizeof(double));
+    bdl_result r = BDL_ERR_NOMEM;
+    if (eps && p && u) {
+        long c = 0;
+        for (int k = 0; k < g->n[2]; ++k)
+            for (int j = 0; j < g->n[1]; ++j)
+                for (int i = 0; i < g->n[0]; ++i, ++c) {
+                    long idx = bdl_grid_index(g, i, j, k);
+                    eps[c] = gas->eps[idx];
+                    p[c] = gas->p[idx];
+                    for (int a = 0; a < 3; ++a)
+                        u[3 * c + a] = bdl_gas_cell_velocity(gas, a, i, j, k);
+                }
+        bdl_vtk_array arrays[] = {{"voidage", BDL_VTK_FLOAT64, 1, eps},
+                                  {"pressure", BDL_VTK_FLOAT64, 1, p},
+                                  {"gas_velocity", BDL_VTK_FLOAT64, 3, u}};
+        char rel[64], path[1200];
+        snprintf(rel, sizeof rel, "vtk/gas_%06ld.vti", rs->vtk_index);
+        path_join(path, sizeof path, rs->out, rel);
+        double origin[3] = {g->origin[0], g->origin[1], g->origin[2]};
+        double spacing[3] = {g->h[0], g->h[1], g->h[2]};
+        r = bdl_vti_write(path, g->n, origin, spacing, arrays, 3);
+        if (r == BDL_OK && rs->gas_pvd)
+            r = bdl_pvd_add(rs->gas_pvd, rs->world->time, rel);
+    }
+    free(eps);
+    free(p);
+    free(u);
+    return r;
 }
 
 static bdl_result write_vtk(run_state *rs)
@@ -93,6 +134,8 @@ static bdl_result write_vtk(run_state *rs)
     free(coord);
     if (r == BDL_OK)
         r = bdl_pvd_add(rs->pvd, rs->world->time, rel);
+    if (r == BDL_OK && rs->world->gas)
+        r = write_gas_vtk(rs);
     rs->vtk_index++;
     return r;
 }
@@ -376,6 +419,10 @@ int bdl_run(const bdl_run_def *def)
                           def->resume != NULL);
     path_join(sub, sizeof sub, out, "particles.pvd");
     rs.pvd = bdl_pvd_create(sub);
+    if (world->gas && o->vtk_interval > 0.0) {
+        path_join(sub, sizeof sub, out, "gas.pvd");
+        rs.gas_pvd = bdl_pvd_create(sub);
+    }
     if (!rs.csv || !rs.pvd) {
         bdl_error("cannot create output files in '%s'", out);
         return finish(2, world, log);
@@ -498,6 +545,7 @@ int bdl_run(const bdl_run_def *def)
         write_diagnostics(&rs, &d);
     bdl_csv_close(rs.csv);
     bdl_pvd_destroy(rs.pvd);
+    bdl_pvd_destroy(rs.gas_pvd);
     bdl_result cr = write_checkpoint(&rs);
     double wall = bdl_wall_seconds() - rs.start_wall;
     int code = 0;
