@@ -169,7 +169,8 @@ static void test_volume_conservation(void)
             for (int j = 0; j < 16; ++j)
                 for (int i = 0; i < 16; ++i)
                     g->eps[bdl_grid_index(&g->grid, i, j, k)] =
-                        0.7 + 0.2 * sin(2.0 * BDL_PI * (i / 16.0 - 10.0 * t)) * cos(BDL_PI * j / 16.0);
+                        0.7 +
+                        0.2 * sin(2.0 * BDL_PI * (i / 16.0 - 10.0 * t)) * cos(BDL_PI * j / 16.0);
         if (step == 0) { // start from the wave at t = 0
             memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
             continue;

@@ -255,8 +255,8 @@ static void dump_cost(const render_opts *o, bdl_scene *scene, long n, double sim
     remove_frames(written);
     double base = 0.5 * (base0 + base1), wall = (double)steps * (double)n / with;
     printf("%-26s %9ld %8d %11.3e %11.3e %8ld %9.2f %7.1f %% (+-%.1f)\n",
-           sim_fps > 0.0 ? "30 frames per simulated s" : "30 frames per wall s", n, threads,
-           base, with, written, (double)written / wall, 100.0 * (1.0 - with / base),
+           sim_fps > 0.0 ? "30 frames per simulated s" : "30 frames per wall s", n, threads, base,
+           with, written, (double)written / wall, 100.0 * (1.0 - with / base),
            50.0 * fabs(base0 - base1) / base);
 }
 

@@ -16,7 +16,7 @@
     X(ERR_NOMEM, "out of memory")                                                                  \
     X(ERR_UNSTABLE, "numerical instability detected")                                              \
     X(ERR_CHECKPOINT, "checkpoint is unreadable or does not match the scene")                      \
-    X(ERR_INTERRUPTED, "run interrupted")                                                         \
+    X(ERR_INTERRUPTED, "run interrupted")                                                          \
     X(ERR_GL, "no OpenGL context (display, driver or library missing)")
 
 typedef enum bdl_result {

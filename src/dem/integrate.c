@@ -68,7 +68,7 @@ typedef struct bdl_pair_batch {
     double fn[BATCH], reff[BATCH];
     int32_t k[BATCH], i[BATCH], j[BATCH], cp[BATCH];
     int32_t exceptional[BATCH]; ///< the trial evaluation left something out
-    int32_t end[BATCH]; ///< per particle of the run: end of its slots (or a slot's entry)
+    int32_t end[BATCH];         ///< per particle of the run: end of its slots (or a slot's entry)
 } pair_batch;
 
 /// What the gather reads, copied out of the structures so that the compiler keeps it in
@@ -220,8 +220,7 @@ static kernel_consts make_consts(const bdl_force_def *def, const bdl_force_work 
 /// The contact law for slot q of a batch: geometry from the gathered state, the law, the results
 /// stored. Returns whether a trial evaluation left something out (see bdl_contact_eval_mode).
 static BDL_FORCE_INLINE int eval_slot(pair_batch *restrict b, int q, const kernel_consts *kc,
-                                      int hertz, int friction, int torques, int uniform,
-                                      int trial)
+                                      int hertz, int friction, int torques, int uniform, int trial)
 {
     const bdl_contact_params *cp = uniform ? &kc->uniform : kc->params + b->cp[q];
     double ri = uniform ? kc->r : b->ri[q], rj = uniform ? kc->r : b->rj[q];
@@ -269,7 +268,8 @@ static BDL_FORCE_INLINE int eval_slot(pair_batch *restrict b, int q, const kerne
 #if defined(__GNUC__)
 __attribute__((noinline))
 #endif
-static void eval_slot_full(pair_batch *b, int q, const kernel_consts *kc, int hertz, int uniform)
+static void
+eval_slot_full(pair_batch *b, int q, const kernel_consts *kc, int hertz, int uniform)
 {
     // With friction there are torques.
     if (hertz)
@@ -299,8 +299,9 @@ static BDL_FORCE_INLINE void kernel_loop(pair_batch *restrict b, int m, const bd
 }
 
 /// Evaluates slots [0, m) of a batch: the contact law, then rolling resistance.
-__attribute__((target_clones("avx2", "default"))) static void eval_batch(pair_batch *b, int m, const bdl_particles *p, const bdl_force_def *def,
-                       const bdl_force_work *fw, const gather_view *v)
+__attribute__((target_clones("avx2", "default"))) static void
+eval_batch(pair_batch *b, int m, const bdl_particles *p, const bdl_force_def *def,
+           const bdl_force_work *fw, const gather_view *v)
 {
     int torques = def->friction || def->rolling;
     gather_motion(b, m, v);
@@ -375,10 +376,9 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
         g.m_eff = 1.0 / p->inv_mass[i];
         g.r_eff = bdl_wall_r_eff(walls, prim, r);
         const bdl_contact_params *cp = def->wall_params + wall * ns + p->species[i];
-        bdl_contact_result res = def->hertz ? bdl_contact_eval(cp, 1, def->friction, g,
-                                                               nb->wall_history[k], def->dt)
-                                            : bdl_contact_eval(cp, 0, def->friction, g,
-                                                               nb->wall_history[k], def->dt);
+        bdl_contact_result res =
+            def->hertz ? bdl_contact_eval(cp, 1, def->friction, g, nb->wall_history[k], def->dt)
+                       : bdl_contact_eval(cp, 0, def->friction, g, nb->wall_history[k], def->dt);
         if (def->friction)
             nb->wall_history[k] = res.spring;
         nb->wall_touching[k] = 1;
@@ -561,8 +561,8 @@ static BDL_FORCE_INLINE int gather_pairs(pair_batch *b, int m, const gather_view
 /// excepted (the cursor *out skips them); b->end[i - first] is set to the slot count after the
 /// last pair of i. Returns the slot count.
 static BDL_FORCE_INLINE int gather_run(pair_batch *b, const gather_view *v,
-                                       const bdl_force_work *fw, long first, int32_t k0,
-                                       int32_t k1, long *out, long out_end, int uniform)
+                                       const bdl_force_work *fw, long first, int32_t k0, int32_t k1,
+                                       long *out, long out_end, int uniform)
 {
     const int32_t *owner = fw->owner, *boundary = fw->pair, *partner = v->partner;
     int32_t k_last = fw->owner_count;
@@ -648,9 +648,10 @@ typedef struct particle_sum {
 
 /// Adds slots [q, q_end) of one particle i and its boundary pairs listed before k_end to i (sum)
 /// and to their j, in list order; returns q_end.
-static BDL_FORCE_INLINE int accumulate(const pair_batch *b, int q, int q_end, int32_t k_end, bdl_particles *p,
-                      bdl_vec3 *history, uint8_t *coordination, const bdl_force_work *fw,
-                      long *out, long out_end, int torques, particle_sum *sum)
+static BDL_FORCE_INLINE int accumulate(const pair_batch *b, int q, int q_end, int32_t k_end,
+                                       bdl_particles *p, bdl_vec3 *history, uint8_t *coordination,
+                                       const bdl_force_work *fw, long *out, long out_end,
+                                       int torques, particle_sum *sum)
 {
     long o = *out;
     for (;;) {

@@ -26,10 +26,10 @@ typedef struct bdl_particles {
     uint32_t *id;           ///< stable id
     uint32_t next_id;       ///< id of the next particle added
     // With a gas only (NULL otherwise; set `fluid` before the first reserve):
-    int fluid;              ///< keep the two arrays below
-    bdl_vec3 *fluid_accel;  ///< acceleration from the gas (drag + pressure), held over a gas step
-    bdl_vec3 *vel_mark;     ///< velocity at the start of the current gas step [m/s]
-    bdl_vec3 *drag_accel;   ///< the drag's part of fluid_accel [m/s^2]
+    int fluid;             ///< keep the two arrays below
+    bdl_vec3 *fluid_accel; ///< acceleration from the gas (drag + pressure), held over a gas step
+    bdl_vec3 *vel_mark;    ///< velocity at the start of the current gas step [m/s]
+    bdl_vec3 *drag_accel;  ///< the drag's part of fluid_accel [m/s^2]
 } bdl_particles;
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);

@@ -87,8 +87,14 @@ static void warm_up(bdl_frames *f, const bdl_scene *scene)
     uint8_t coordination = 0;
     int32_t species = 0;
     uint32_t id = 0;
-    bdl_snapshot s = {.count = 1, .capacity = 1, .pos = pos, .vel = vel, .radius = &radius,
-                      .coordination = &coordination, .species = &species, .id = &id};
+    bdl_snapshot s = {.count = 1,
+                      .capacity = 1,
+                      .pos = pos,
+                      .vel = vel,
+                      .radius = &radius,
+                      .coordination = &coordination,
+                      .species = &species,
+                      .id = &id};
     bdl_renderer_draw(f->renderer, &s, &f->view, f->width, f->height);
     bdl_renderer_read(f->renderer, f->images[0].rgb);
 }

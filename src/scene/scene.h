@@ -134,11 +134,11 @@ typedef struct bdl_create_def {
 } bdl_create_def;
 
 typedef struct bdl_output_def {
-    double diagnostics_interval; ///< [s] between rows of diagnostics.csv
-    double vtk_interval;         ///< [s] between particle VTK files; 0 = none
-    double checkpoint_interval;  ///< [s] between checkpoints; 0 = only at the end / on failure
-    double progress_interval;    ///< wall seconds between progress lines
-    double frame_interval;       ///< [s] between PNG frames; 0 = none
+    double diagnostics_interval;   ///< [s] between rows of diagnostics.csv
+    double vtk_interval;           ///< [s] between particle VTK files; 0 = none
+    double checkpoint_interval;    ///< [s] between checkpoints; 0 = only at the end / on failure
+    double progress_interval;      ///< wall seconds between progress lines
+    double frame_interval;         ///< [s] between PNG frames; 0 = none
     int frame_width, frame_height; ///< [px]
     int frame_samples;             ///< multisample anti-aliasing samples (0 = none)
 } bdl_output_def;
@@ -183,9 +183,9 @@ typedef struct bdl_camera_def {
     double yaw;      ///< [deg] about +z, 0 = looking along +y; default from the preset
     double pitch;    ///< [deg] above the horizontal; default from the preset
     int has_yaw, has_pitch;
-    double fov;      ///< vertical field of view of the perspective projection [deg]
-    int clip;        ///< cut the bed open: hide particles whose centre is on the normal's side
-    bdl_vec3 clip_point;  ///< a point on the clipping plane [m]; default the target
+    double fov;          ///< vertical field of view of the perspective projection [deg]
+    int clip;            ///< cut the bed open: hide particles whose centre is on the normal's side
+    bdl_vec3 clip_point; ///< a point on the clipping plane [m]; default the target
     int has_clip_point;
     bdl_vec3 clip_normal; ///< unit normal; particles on this side are hidden
     int lighting;         ///< shaded spheres (else flat colour)
@@ -221,19 +221,19 @@ typedef enum bdl_gas_convection {
 
 /// [gas]: the gas phase. Absent: no grid, no gas, no cost.
 typedef struct bdl_gas_scene {
-    int enabled;        ///< the scene has a [gas] section
-    double density;     ///< [kg/m^3]
-    double viscosity;   ///< dynamic [Pa s]
-    bdl_vec3 cells;     ///< cells per axis (whole numbers)
+    int enabled;      ///< the scene has a [gas] section
+    double density;   ///< [kg/m^3]
+    double viscosity; ///< dynamic [Pa s]
+    bdl_vec3 cells;   ///< cells per axis (whole numbers)
     bdl_gas_convection convection;
-    double tolerance;   ///< relative residual of the pressure solver
-    bdl_gas_boundary side[6]; ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
-    double inlet_velocity;  ///< superficial velocity into the domain through inlets [m/s]
-    double outlet_pressure; ///< [Pa]
-    double jet_velocity;    ///< superficial velocity through the jet rectangle [m/s]
+    double tolerance;          ///< relative residual of the pressure solver
+    bdl_gas_boundary side[6];  ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
+    double inlet_velocity;     ///< superficial velocity into the domain through inlets [m/s]
+    double outlet_pressure;    ///< [Pa]
+    double jet_velocity;       ///< superficial velocity through the jet rectangle [m/s]
     bdl_vec3 jet_min, jet_max; ///< jet rectangle on the inlet sides [m]
     int has_jet_min, has_jet_max;
-    double dt;          ///< gas time step [s]; 0: automatic
+    double dt; ///< gas time step [s]; 0: automatic
 } bdl_gas_scene;
 
 /// [coupling]: how particles and gas exchange momentum.

@@ -52,10 +52,10 @@ static const char *const projection_names[] = {"perspective", "orthographic", NU
 static const char *const gas_side_names[] = {"wall", "slip", "inlet", "outlet", NULL};
 static const char *const convection_names[] = {"upwind", "vanleer", "superbee", "central", NULL};
 // The drag laws of src/couple/drag.h, in the same order (test_scene checks it).
-const char *const bdl_scene_drag_names[] = {"stokes", "schiller_naumann", "wen_yu", "ergun",
-                                            "gidaspow", "syamlal_obrien", "di_felice", "beetstra",
-                                            "tenneti", NULL};
-const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", "vx",
+const char *const bdl_scene_drag_names[] = {
+    "stokes",         "schiller_naumann", "wen_yu",   "ergun",   "gidaspow",
+    "syamlal_obrien", "di_felice",        "beetstra", "tenneti", NULL};
+const char *const bdl_color_mode_names[] = {"species", "coordination", "speed",   "vx",
                                             "vy",      "vz",           "voidage", NULL};
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
@@ -72,10 +72,13 @@ const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", 
 #define IN_COUPLING(field)                                                                         \
     .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, coupling.field)
 #define GAS_SIDE(name, index)                                                                      \
-    {S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_GAS_WALL},          \
-     .enum_names = gas_side_names,                                                                 \
-     .doc = "gas boundary on the " name " side of the domain: wall (no-slip), slip, inlet or "     \
-            "outlet; ignored on a periodic axis"}
+    {                                                                                              \
+        S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_GAS_WALL},       \
+                      .enum_names = gas_side_names,                                                \
+                      .doc = "gas boundary on the " name                                           \
+                             " side of the domain: wall (no-slip), slip, inlet or "                \
+                             "outlet; ignored on a periodic axis"                                  \
+    }
 #define IN_RECORD(field) .target = BDL_TARGET_RECORD, .offset = offsetof(bdl_scene_section, field)
 #define GT(x)            .lo_kind = BDL_BOUND_OPEN, .lo = (x)
 #define GE(x)            .lo_kind = BDL_BOUND_CLOSED, .lo = (x)
@@ -323,37 +326,37 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "point the camera looks at"},
     {S(CAMERA), "distance", NUM, "m", IN_CAMERA(distance), .def = {0}, .default_text = "0 (fit)",
      GE(0), .doc = "eye to target; 0 = far enough to see the whole domain"},
-    {S(CAMERA), "yaw", NUM, "deg", IN_CAMERA_FLAGGED(yaw), .default_text = "from view",
-     GE(-360), LE(360), .doc = "turn about +z; 0 looks along +y, 90 along -x"},
-    {S(CAMERA), "pitch", NUM, "deg", IN_CAMERA_FLAGGED(pitch), .default_text = "from view",
-     GE(-90), LE(90), .doc = "elevation of the eye above the target's horizontal plane"},
+    {S(CAMERA), "yaw", NUM, "deg", IN_CAMERA_FLAGGED(yaw), .default_text = "from view", GE(-360),
+     LE(360), .doc = "turn about +z; 0 looks along +y, 90 along -x"},
+    {S(CAMERA), "pitch", NUM, "deg", IN_CAMERA_FLAGGED(pitch), .default_text = "from view", GE(-90),
+     LE(90), .doc = "elevation of the eye above the target's horizontal plane"},
     {S(CAMERA), "fov", NUM, "deg", IN_CAMERA(fov), .def = {35}, GT(1), LT(170),
      .doc = "vertical field of view (perspective)"},
     {S(CAMERA), "clip", .type = BDL_KEY_BOOL, "-", IN_CAMERA(clip), .def = {0},
      .doc = "cut the bed open: hide the particles whose centres lie on the clip_normal side of "
             "the clipping plane"},
-    {S(CAMERA), "clip_point", VEC, "m", IN_CAMERA_FLAGGED(clip_point),
-     .default_text = "the target", .doc = "a point on the clipping plane"},
-    {S(CAMERA), "clip_normal", VEC, "-", IN_CAMERA(clip_normal), .def = {0, -1, 0},
-     .normalise = 1, .doc = "normal of the clipping plane, pointing to the hidden side"},
+    {S(CAMERA), "clip_point", VEC, "m", IN_CAMERA_FLAGGED(clip_point), .default_text = "the target",
+     .doc = "a point on the clipping plane"},
+    {S(CAMERA), "clip_normal", VEC, "-", IN_CAMERA(clip_normal), .def = {0, -1, 0}, .normalise = 1,
+     .doc = "normal of the clipping plane, pointing to the hidden side"},
     {S(CAMERA), "lighting", .type = BDL_KEY_BOOL, "-", IN_CAMERA(lighting), .def = {1},
      .doc = "shade the spheres; false draws flat colours"},
     {S(CAMERA), "overlay", .type = BDL_KEY_BOOL, "-", IN_CAMERA(overlay), .def = {1},
      .doc = "draw the text (time, step, field, solver speed) and the colour bar"},
     {S(CAMERA), "outlines", .type = BDL_KEY_BOOL, "-", IN_CAMERA(outlines), .def = {1},
      .doc = "draw the outlines of the domain and the walls"},
-    {S(CAMERA), "background", VEC, "-", IN_CAMERA(background), .def = {0.11, 0.12, 0.14},
-     GE(0), LE(1), .doc = "background colour, sRGB red green blue in 0..1"},
+    {S(CAMERA), "background", VEC, "-", IN_CAMERA(background), .def = {0.11, 0.12, 0.14}, GE(0),
+     LE(1), .doc = "background colour, sRGB red green blue in 0..1"},
 
     // [gas]
     {S(GAS), "density", NUM, "kg/m^3", IN_GAS(density), .def = {1.2}, GT(0),
      .doc = "gas density (air at 20 C: 1.2)"},
     {S(GAS), "viscosity", NUM, "Pa s", IN_GAS(viscosity), .def = {1.8e-5}, GT(0),
      .doc = "dynamic viscosity (air at 20 C: 1.8e-5)"},
-    {S(GAS), "cells", VEC, "-", IN_GAS(cells), .def = {1, 1, 1}, .default_text = "required",
-     GE(1), LE(4096), .doc = "grid cells along x, y, z (whole numbers; 1 along an axis for 2D)"},
-    {S(GAS), "convection", .type = BDL_KEY_ENUM, "-", IN_GAS(convection),
-     .def = {BDL_GAS_VANLEER}, .enum_names = convection_names,
+    {S(GAS), "cells", VEC, "-", IN_GAS(cells), .def = {1, 1, 1}, .default_text = "required", GE(1),
+     LE(4096), .doc = "grid cells along x, y, z (whole numbers; 1 along an axis for 2D)"},
+    {S(GAS), "convection", .type = BDL_KEY_ENUM, "-", IN_GAS(convection), .def = {BDL_GAS_VANLEER},
+     .enum_names = convection_names,
      .doc = "momentum convection: upwind, vanleer or superbee (TVD), central (verification only)"},
     {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
      .doc = "relative residual at which the pressure solver stops"},
