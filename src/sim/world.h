@@ -64,7 +64,7 @@ typedef struct bdl_world {
     struct bdl_coupling *coupling;
     long gas_every;     ///< particle steps per gas step
     long gas_steps;     ///< gas steps taken
-    double *gas_buffer; ///< particle data handed to the coupling (11 doubles per particle)
+    double *gas_buffer; ///< the coupling's particle data and forces (17 doubles per particle)
     long gas_buffer_capacity;
     double particle_drag[3]; ///< drag of the gas on all particles over the last gas step [N]
     double gas_drag[3];      ///< drag of the particles on the gas over the last gas step [N]

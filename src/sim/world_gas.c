@@ -140,8 +140,8 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     const long n = p->count;
     const double dt = (double)w->gas_every * w->dt;
     const double t0 = bdl_wall_seconds();
-    if (n * 11 > w->gas_buffer_capacity) {
-        long cap = n * 11 + n * 11 / 2 + 64;
+    if (n * 17 > w->gas_buffer_capacity) {
+        long cap = n * 17 + n * 17 / 2 + 64;
         double *b = realloc(w->gas_buffer, (size_t)cap * sizeof(double));
         if (!b)
             return BDL_ERR_NOMEM;
@@ -202,9 +202,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
         return BDL_ERR_UNSTABLE;
     }
     // Forces for the coming particle steps: drag, then pressure, 3 per particle each.
-    double *drag_out = malloc((size_t)n * 6 * sizeof(double));
-    if (!drag_out)
-        return BDL_ERR_NOMEM;
+    double *drag_out = dens + n; // 6 per particle, in the buffer after the particle data
     bdl_coupling_forces(w->coupling, w->gas, &cp, dt, drag_out, drag_out + 3 * n);
     double total[3] = {0, 0, 0};
     for (long i = 0; i < n; ++i) {
@@ -219,7 +217,6 @@ bdl_result bdl_world_gas_step(bdl_world *w)
             (bdl_vec3){drag_out[3 * i], drag_out[3 * i + 1], drag_out[3 * i + 2]}, p->inv_mass[i]);
         p->vel_mark[i] = p->vel[i];
     }
-    free(drag_out);
     memcpy(w->particle_drag, total, sizeof total);
     bdl_coupling_gas_drag(w->gas, w->gas_drag);
     w->gas_steps++;
