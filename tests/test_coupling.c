@@ -133,7 +133,7 @@ static void test_linear_interpolation(void)
                 f[bdl_grid_index(&g->grid, i, j, kk)] = 1.0 + 2.0 * (j + 0.5) - 0.5 * (kk + 0.5);
     double pos[3] = {0.0044, 0.0031, 0.0067};
     CHECK(bdl_coupling_locate(&k, g, 1, pos) == BDL_OK);
-    CHECK_CLOSE(bdl_coupling_interpolate(&k, g, 0, f), 1.0 + 2.0 * 3.1 - 0.5 * 6.7, 1e-12);
+    CHECK_CLOSE(bdl_coupling_interpolate(&k, 0, f), 1.0 + 2.0 * 3.1 - 0.5 * 6.7, 1e-12);
     free(f);
     bdl_coupling_free(&k);
     bdl_gas_destroy(g);
@@ -215,10 +215,10 @@ static void test_terminal(double d, double rho_p, bdl_drag_law law)
                             cell_u[bdl_grid_index(&g->grid, i, j, kk)] =
                                 bdl_gas_cell_velocity(g, a, i, j, kk);
                 bdl_coupling_locate(&k, g, 1, pos);
-                u[a] = bdl_coupling_interpolate(&k, g, 0, cell_u);
+                u[a] = bdl_coupling_interpolate(&k, 0, cell_u);
             }
             slip_sum += u[2] - vel[2];
-            eps_sum += bdl_coupling_interpolate(&k, g, 0, g->eps);
+            eps_sum += bdl_coupling_interpolate(&k, 0, g->eps);
             averaged++;
         }
     }

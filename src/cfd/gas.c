@@ -1,4 +1,5 @@
 // bedlam — gas solver: boundary ghosts, TVD convection, projection with implicit drag.
+#include "core/parallel.h"
 #include "cfd/gas.h"
 
 #include <math.h>
@@ -302,17 +303,16 @@ static void unknown_faces(const bdl_gas *g, int a, int *lo, int *hi)
 }
 
 #define FOR_FACES(gr, a, flo, fhi, ...)                                                            \
-    _Pragma("omp parallel for schedule(static) if ((gr)->size >= BDL_GRID_PARALLEL_MIN)") for (    \
-        int k = 0; k < (gr)->n[2] + ((a) == 2);                                                    \
-        ++k) for (int j = 0; j < (gr)->n[1] + ((a) == 1);                                          \
-                  ++j) for (int i = 0; i < (gr)->n[0] + ((a) == 0); ++i)                           \
-    {                                                                                              \
-        const int ia_ = (a) == 0 ? i : (a) == 1 ? j : k;                                           \
-        if (ia_ < (flo) || ia_ > (fhi))                                                            \
-            continue;                                                                              \
-        const long idx = bdl_grid_index(gr, i, j, k);                                              \
-        __VA_ARGS__;                                                                               \
-    }
+    BDL_PARALLEL_FOR((gr)->size >= BDL_GRID_PARALLEL_MIN,                                          \
+                     for (int k = 0; k < (gr)->n[2] + ((a) == 2);                                  \
+                          ++k) for (int j = 0; j < (gr)->n[1] + ((a) == 1);                        \
+                                    ++j) for (int i = 0; i < (gr)->n[0] + ((a) == 0); ++i) {       \
+                         const int ia_ = (a) == 0 ? i : (a) == 1 ? j : k;                          \
+                         if (ia_ < (flo) || ia_ > (fhi))                                           \
+                             continue;                                                             \
+                         const long idx = bdl_grid_index(gr, i, j, k);                             \
+                         __VA_ARGS__;                                                              \
+                     })
 
 /// d eps/dt + div(eps u) in the cell at idx, for face velocities u.
 static double volume_change(const bdl_gas *g, double *const u[3], long idx, double dt)
@@ -341,9 +341,9 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
-#pragma omp parallel for schedule(static) if (gr->size >= BDL_GRID_PARALLEL_MIN)
-        for (long idx = s; idx < gr->size; ++idx)
-            q[a][idx] = 0.5 * (g->eps_old[idx] + g->eps_old[idx - s]) * g->u[a][idx];
+        BDL_PARALLEL_FOR(gr->size >= BDL_GRID_PARALLEL_MIN,
+                         for (long idx = s; idx < gr->size; ++idx) q[a][idx] =
+                             0.5 * (g->eps_old[idx] + g->eps_old[idx - s]) * g->u[a][idx];);
     }
     // Predictor.
     for (int a = 0; a < 3; ++a) {
@@ -399,18 +399,18 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
         double *c = g->coef[a];
-#pragma omp parallel for schedule(static) if (gr->size >= BDL_GRID_PARALLEL_MIN)
-        for (long idx = s; idx < gr->size; ++idx)
-            c[idx] = 0.5 * (g->eps[idx] + g->eps[idx - s]) * g->d[a][idx];
+        BDL_PARALLEL_FOR(gr->size >= BDL_GRID_PARALLEL_MIN,
+                         for (long idx = s; idx < gr->size; ++idx) c[idx] =
+                             0.5 * (g->eps[idx] + g->eps[idx - s]) * g->d[a][idx];);
     }
     bdl_poisson_set_coefficients(g->poisson, g->coef);
-#pragma omp parallel for schedule(static) if (gr->size >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < gr->n[2]; ++k)
-        for (int j = 0; j < gr->n[1]; ++j)
-            for (int i = 0; i < gr->n[0]; ++i) {
-                const long idx = bdl_grid_index(gr, i, j, k);
-                g->rhs[idx] = volume_change(g, g->ustar, idx, dt);
-            }
+    BDL_PARALLEL_FOR(
+        gr->size >= BDL_GRID_PARALLEL_MIN,
+        for (int k = 0; k < gr->n[2]; ++k) for (int j = 0; j < gr->n[1];
+                                                ++j) for (int i = 0; i < gr->n[0]; ++i) {
+            const long idx = bdl_grid_index(gr, i, j, k);
+            g->rhs[idx] = volume_change(g, g->ustar, idx, dt);
+        });
     double p_side[6];
     for (int s = 0; s < 6; ++s)
         p_side[s] = g->def.side[s].pressure;

@@ -4,6 +4,7 @@
 // semi-definite) on compact cell arrays, per unit volume: the coupling of two cells across a
 // face normal to axis a is K = c / h_a^2, and a Dirichlet side couples a boundary cell to its
 // ghost value 2 p_side - x, which adds 2K to the diagonal and 2K p_side to b.
+#include "core/parallel.h"
 #include "cfd/poisson.h"
 
 #include <math.h>
@@ -33,6 +34,8 @@ struct bdl_poisson {
     int level_count;
     level levels[MAX_LEVELS];
     double *d, *q, *z; ///< CG vectors on the finest level
+    double *xc, *r;    ///< solution and residual on the finest level
+    double *zeros;     ///< a row of zero couplings (n[0] + 1)
 };
 
 static long cell_of(const level *L, int i, int j, int k)
@@ -118,7 +121,10 @@ bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6])
     p->d = calloc((size_t)cells, sizeof(double));
     p->q = calloc((size_t)cells, sizeof(double));
     p->z = calloc((size_t)cells, sizeof(double));
-    if (!p->d || !p->q || !p->z) {
+    p->xc = calloc((size_t)cells, sizeof(double));
+    p->r = calloc((size_t)cells, sizeof(double));
+    p->zeros = calloc((size_t)g->n[0] + 1, sizeof(double));
+    if (!p->d || !p->q || !p->z || !p->xc || !p->r || !p->zeros) {
         bdl_poisson_destroy(p);
         return NULL;
     }
@@ -134,6 +140,9 @@ void bdl_poisson_destroy(bdl_poisson *p)
     free(p->d);
     free(p->q);
     free(p->z);
+    free(p->xc);
+    free(p->r);
+    free(p->zeros);
     free(p);
 }
 
@@ -141,27 +150,27 @@ void bdl_poisson_destroy(bdl_poisson *p)
 /// cell), and twice the coupling of a Dirichlet side.
 static void build_diagonal(const bdl_poisson *p, level *L)
 {
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < L->n[2]; ++k)
-        for (int j = 0; j < L->n[1]; ++j)
-            for (int i = 0; i < L->n[0]; ++i) {
-                int c[3] = {i, j, k};
-                double d = 0.0;
-                for (int a = 0; a < 3; ++a) {
-                    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-                    hi[a] += 1;
-                    double klo = L->K[a][face_of(L, a, lo[0], lo[1], lo[2])];
-                    double khi = L->K[a][face_of(L, a, hi[0], hi[1], hi[2])];
-                    if (p->periodic[a]) {
-                        if (L->n[a] > 1)
-                            d += klo + khi;
-                        continue;
-                    }
-                    d += c[a] == 0 ? 2.0 * klo : klo;
-                    d += c[a] == L->n[a] - 1 ? 2.0 * khi : khi;
+    BDL_PARALLEL_FOR(
+        L->cells >= BDL_GRID_PARALLEL_MIN,
+        for (int k = 0; k < L->n[2]; ++k) for (int j = 0; j < L->n[1]; ++j) for (int i = 0;
+                                                                                 i < L->n[0]; ++i) {
+            int c[3] = {i, j, k};
+            double d = 0.0;
+            for (int a = 0; a < 3; ++a) {
+                int lo[3] = {i, j, k}, hi[3] = {i, j, k};
+                hi[a] += 1;
+                double klo = L->K[a][face_of(L, a, lo[0], lo[1], lo[2])];
+                double khi = L->K[a][face_of(L, a, hi[0], hi[1], hi[2])];
+                if (p->periodic[a]) {
+                    if (L->n[a] > 1)
+                        d += klo + khi;
+                    continue;
                 }
-                L->diag[cell_of(L, i, j, k)] = d;
+                d += c[a] == 0 ? 2.0 * klo : klo;
+                d += c[a] == L->n[a] - 1 ? 2.0 * khi : khi;
             }
+            L->diag[cell_of(L, i, j, k)] = d;
+        });
 }
 
 /// Coarse couplings: the fine faces making up each coarse face, summed, halved across a
@@ -205,22 +214,22 @@ void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
     for (int a = 0; a < 3; ++a) {
         const double inv_h2 = 1.0 / (g->h[a] * g->h[a]);
         int f1[3] = {L->n[0] + (a == 0), L->n[1] + (a == 1), L->n[2] + (a == 2)};
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-        for (int k = 0; k < f1[2]; ++k)
-            for (int j = 0; j < f1[1]; ++j)
-                for (int i = 0; i < f1[0]; ++i) {
-                    int idx[3] = {i, j, k};
-                    double K = c[a][bdl_grid_index(g, i, j, k)] * inv_h2;
-                    if (idx[a] == 0 || idx[a] == L->n[a]) {
-                        if (p->periodic[a])
-                            K = c[a][bdl_grid_index(g, a == 0 ? 0 : i, a == 1 ? 0 : j,
-                                                    a == 2 ? 0 : k)] *
-                                inv_h2;
-                        else if (!p->dirichlet[2 * a + (idx[a] != 0)])
-                            K = 0.0;
-                    }
-                    L->K[a][face_of(L, a, i, j, k)] = K;
+        BDL_PARALLEL_FOR(
+            L->cells >= BDL_GRID_PARALLEL_MIN,
+            for (int k = 0; k < f1[2]; ++k) for (int j = 0; j < f1[1]; ++j) for (int i = 0;
+                                                                                 i < f1[0]; ++i) {
+                int idx[3] = {i, j, k};
+                double K = c[a][bdl_grid_index(g, i, j, k)] * inv_h2;
+                if (idx[a] == 0 || idx[a] == L->n[a]) {
+                    if (p->periodic[a])
+                        K = c[a]
+                             [bdl_grid_index(g, a == 0 ? 0 : i, a == 1 ? 0 : j, a == 2 ? 0 : k)] *
+                            inv_h2;
+                    else if (!p->dirichlet[2 * a + (idx[a] != 0)])
+                        K = 0.0;
                 }
+                L->K[a][face_of(L, a, i, j, k)] = K;
+            });
     }
     build_diagonal(p, L);
     for (int l = 1; l < p->level_count; ++l) {
@@ -229,60 +238,76 @@ void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
     }
 }
 
+/// The neighbours of row m (of n) along axis a: coupling rows and value rows, low then high.
+/// A side without a neighbour couples through a row of zeros (a Dirichlet side is in the
+/// diagonal), so the stencil below needs no branches.
+typedef struct row_link {
+    const double *K_lo, *x_lo, *K_hi, *x_hi;
+} row_link;
+
+static row_link link_rows(const bdl_poisson *p, const level *L, int a, int j, int k,
+                          const double *x)
+{
+    const double *row = x + cell_of(L, 0, j, k);
+    row_link r = {p->zeros, row, p->zeros, row};
+    const int n = L->n[a], m = a == 1 ? j : k;
+    if (n == 1)
+        return r;
+    const long stride = a == 1 ? L->n[0] : (long)L->n[0] * L->n[1];
+    const double *K = L->K[a];
+    const long f_lo = face_of(L, a, 0, j, k),
+               f_hi = a == 1 ? face_of(L, a, 0, j + 1, k) : face_of(L, a, 0, j, k + 1);
+    if (m > 0)
+        r.K_lo = K + f_lo, r.x_lo = row - stride;
+    else if (p->periodic[a])
+        r.K_lo = K + f_lo, r.x_lo = row + (n - 1) * stride;
+    if (m < n - 1)
+        r.K_hi = K + f_hi, r.x_hi = row + stride;
+    else if (p->periodic[a]) // the wrapping face is stored as face 0
+        r.K_hi = K + (a == 1 ? face_of(L, a, 0, 0, k) : face_of(L, a, 0, j, 0)),
+        r.x_hi = row - (n - 1) * stride;
+    return r;
+}
+
 /// out = M x on level L.
 static void apply(const bdl_poisson *p, const level *L, const double *x, double *out)
 {
     const int n0 = L->n[0], n1 = L->n[1], n2 = L->n[2];
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < n2; ++k)
-        for (int j = 0; j < n1; ++j)
-            for (int i = 0; i < n0; ++i) {
-                const long c = cell_of(L, i, j, k);
-                double off = 0.0;
-                int idx[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a) {
-                    if (L->n[a] == 1)
-                        continue; // no neighbours along a (a Dirichlet side is in the diagonal)
-                    int lo[3] = {i, j, k}, hi[3] = {i, j, k};
-                    hi[a] += 1;
-                    int nb_lo[3] = {i, j, k}, nb_hi[3] = {i, j, k};
-                    nb_lo[a] -= 1;
-                    nb_hi[a] += 1;
-                    if (idx[a] == 0) {
-                        if (p->periodic[a])
-                            nb_lo[a] = L->n[a] - 1;
-                        else
-                            nb_lo[a] = -1;
-                    }
-                    if (idx[a] == L->n[a] - 1) {
-                        if (p->periodic[a]) {
-                            nb_hi[a] = 0;
-                            hi[a] = 0;
-                        } else
-                            nb_hi[a] = -1;
-                    }
-                    if (nb_lo[a] >= 0)
-                        off += L->K[a][face_of(L, a, lo[0], lo[1], lo[2])] *
-                               x[cell_of(L, nb_lo[0], nb_lo[1], nb_lo[2])];
-                    if (nb_hi[a] >= 0)
-                        off += L->K[a][face_of(L, a, hi[0], hi[1], hi[2])] *
-                               x[cell_of(L, nb_hi[0], nb_hi[1], nb_hi[2])];
-                }
-                out[c] = L->diag[c] * x[c] - off;
+    BDL_PARALLEL_FOR(
+        L->cells >= BDL_GRID_PARALLEL_MIN,
+        for (int k = 0; k < n2; ++k) for (int j = 0; j < n1; ++j) {
+            const long c0 = cell_of(L, 0, j, k);
+            const double *xr = x + c0, *dg = L->diag + c0;
+            double *o = out + c0;
+            const row_link y = link_rows(p, L, 1, j, k, x), z = link_rows(p, L, 2, j, k, x);
+            for (int i = 0; i < n0; ++i)
+                o[i] = dg[i] * xr[i] - (y.K_lo[i] * y.x_lo[i] + y.K_hi[i] * y.x_hi[i] +
+                                        z.K_lo[i] * z.x_lo[i] + z.K_hi[i] * z.x_hi[i]);
+            if (n0 == 1)
+                continue;
+            const double *Kx = L->K[0] + face_of(L, 0, 0, j, k);
+            for (int i = 1; i < n0; ++i)
+                o[i] -= Kx[i] * xr[i - 1];
+            for (int i = 0; i < n0 - 1; ++i)
+                o[i] -= Kx[i + 1] * xr[i + 1];
+            if (p->periodic[0]) {
+                o[0] -= Kx[0] * xr[n0 - 1];
+                o[n0 - 1] -= Kx[0] * xr[0];
             }
+        });
 }
 
 static double dot(const double *a, const double *b, long n)
 {
     double partial[CHUNKS];
-#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
-    for (int c = 0; c < CHUNKS; ++c) {
-        long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
-        double s = 0.0;
-        for (long i = lo; i < hi; ++i)
-            s += a[i] * b[i];
-        partial[c] = s;
-    }
+    BDL_PARALLEL_FOR(
+        n >= BDL_GRID_PARALLEL_MIN, for (int c = 0; c < CHUNKS; ++c) {
+            long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
+            double s = 0.0;
+            for (long i = lo; i < hi; ++i)
+                s += a[i] * b[i];
+            partial[c] = s;
+        });
     double s = 0.0;
     for (int c = 0; c < CHUNKS; ++c)
         s += partial[c];
@@ -292,31 +317,28 @@ static double dot(const double *a, const double *b, long n)
 static void remove_mean(double *a, long n)
 {
     double partial[CHUNKS];
-#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
-    for (int c = 0; c < CHUNKS; ++c) {
-        long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
-        double s = 0.0;
-        for (long i = lo; i < hi; ++i)
-            s += a[i];
-        partial[c] = s;
-    }
+    BDL_PARALLEL_FOR(
+        n >= BDL_GRID_PARALLEL_MIN, for (int c = 0; c < CHUNKS; ++c) {
+            long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
+            double s = 0.0;
+            for (long i = lo; i < hi; ++i)
+                s += a[i];
+            partial[c] = s;
+        });
     double s = 0.0;
     for (int c = 0; c < CHUNKS; ++c)
         s += partial[c];
     double mean = s / (double)n;
-#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
-    for (long i = 0; i < n; ++i)
-        a[i] -= mean;
+    BDL_PARALLEL_FOR(n >= BDL_GRID_PARALLEL_MIN, for (long i = 0; i < n; ++i) a[i] -= mean;);
 }
 
 static void jacobi(const bdl_poisson *p, level *L, int sweeps)
 {
     for (int s = 0; s < sweeps; ++s) {
         apply(p, L, L->x, L->t);
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-        for (long c = 0; c < L->cells; ++c)
-            if (L->diag[c] > 0.0)
-                L->x[c] += JACOBI_WEIGHT * (L->b[c] - L->t[c]) / L->diag[c];
+        BDL_PARALLEL_FOR(L->cells >= BDL_GRID_PARALLEL_MIN,
+                         for (long c = 0; c < L->cells; ++c) if (L->diag[c] > 0.0) L->x[c] +=
+                         JACOBI_WEIGHT * (L->b[c] - L->t[c]) / L->diag[c];);
     }
 }
 
@@ -342,13 +364,12 @@ static void vcycle(const bdl_poisson *p, int l)
                 C->b[cc] += L->b[c] - L->t[c];
             }
     vcycle(p, l + 1);
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < L->n[2]; ++k)
-        for (int j = 0; j < L->n[1]; ++j)
-            for (int i = 0; i < L->n[0]; ++i)
-                L->x[cell_of(L, i, j, k)] +=
-                    C->x[cell_of(C, L->coarsen[0] ? i / 2 : i, L->coarsen[1] ? j / 2 : j,
-                                 L->coarsen[2] ? k / 2 : k)];
+    BDL_PARALLEL_FOR(L->cells >= BDL_GRID_PARALLEL_MIN,
+                     for (int k = 0; k < L->n[2]; ++k) for (int j = 0; j < L->n[1];
+                                                            ++j) for (int i = 0; i < L->n[0]; ++i)
+                         L->x[cell_of(L, i, j, k)] +=
+                     C->x[cell_of(C, L->coarsen[0] ? i / 2 : i, L->coarsen[1] ? j / 2 : j,
+                                  L->coarsen[2] ? k / 2 : k)];);
     jacobi(p, L, SMOOTH_SWEEPS);
 }
 
@@ -369,42 +390,40 @@ static void right_hand_side(const bdl_poisson *p, const double *f, const double 
 {
     const bdl_grid *g = &p->grid;
     const level *L = &p->levels[0];
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < L->n[2]; ++k)
-        for (int j = 0; j < L->n[1]; ++j)
-            for (int i = 0; i < L->n[0]; ++i) {
-                double v = -f[bdl_grid_index(g, i, j, k)];
-                int idx[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a) {
-                    int hi[3] = {i, j, k};
-                    hi[a] += 1;
-                    if (idx[a] == 0 && p->dirichlet[2 * a])
-                        v += 2.0 * L->K[a][face_of(L, a, i, j, k)] * p_side[2 * a];
-                    if (idx[a] == L->n[a] - 1 && p->dirichlet[2 * a + 1])
-                        v += 2.0 * L->K[a][face_of(L, a, hi[0], hi[1], hi[2])] * p_side[2 * a + 1];
-                }
-                b[cell_of(L, i, j, k)] = v;
+    BDL_PARALLEL_FOR(
+        L->cells >= BDL_GRID_PARALLEL_MIN,
+        for (int k = 0; k < L->n[2]; ++k) for (int j = 0; j < L->n[1]; ++j) for (int i = 0;
+                                                                                 i < L->n[0]; ++i) {
+            double v = -f[bdl_grid_index(g, i, j, k)];
+            int idx[3] = {i, j, k};
+            for (int a = 0; a < 3; ++a) {
+                int hi[3] = {i, j, k};
+                hi[a] += 1;
+                if (idx[a] == 0 && p->dirichlet[2 * a])
+                    v += 2.0 * L->K[a][face_of(L, a, i, j, k)] * p_side[2 * a];
+                if (idx[a] == L->n[a] - 1 && p->dirichlet[2 * a + 1])
+                    v += 2.0 * L->K[a][face_of(L, a, hi[0], hi[1], hi[2])] * p_side[2 * a + 1];
             }
+            b[cell_of(L, i, j, k)] = v;
+        });
 }
 
 static void to_compact(const bdl_poisson *p, const double *padded, double *compact)
 {
     const level *L = &p->levels[0];
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < L->n[2]; ++k)
-        for (int j = 0; j < L->n[1]; ++j)
-            for (int i = 0; i < L->n[0]; ++i)
-                compact[cell_of(L, i, j, k)] = padded[bdl_grid_index(&p->grid, i, j, k)];
+    BDL_PARALLEL_FOR(L->cells >= BDL_GRID_PARALLEL_MIN,
+                     for (int k = 0; k < L->n[2]; ++k) for (int j = 0; j < L->n[1];
+                                                            ++j) for (int i = 0; i < L->n[0]; ++i)
+                         compact[cell_of(L, i, j, k)] = padded[bdl_grid_index(&p->grid, i, j, k)];);
 }
 
 static void to_padded(const bdl_poisson *p, const double *compact, double *padded)
 {
     const level *L = &p->levels[0];
-#pragma omp parallel for schedule(static) if (L->cells >= BDL_GRID_PARALLEL_MIN)
-    for (int k = 0; k < L->n[2]; ++k)
-        for (int j = 0; j < L->n[1]; ++j)
-            for (int i = 0; i < L->n[0]; ++i)
-                padded[bdl_grid_index(&p->grid, i, j, k)] = compact[cell_of(L, i, j, k)];
+    BDL_PARALLEL_FOR(L->cells >= BDL_GRID_PARALLEL_MIN,
+                     for (int k = 0; k < L->n[2]; ++k) for (int j = 0; j < L->n[1];
+                                                            ++j) for (int i = 0; i < L->n[0]; ++i)
+                         padded[bdl_grid_index(&p->grid, i, j, k)] = compact[cell_of(L, i, j, k)];);
 }
 
 void bdl_poisson_residual(bdl_poisson *p, const double *x, const double *f, const double p_side[6],
@@ -426,21 +445,14 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
 {
     level *L = &p->levels[0];
     const long n = L->cells;
-    double *xc = malloc((size_t)n * sizeof(double)), *r = malloc((size_t)n * sizeof(double));
-    if (!xc || !r) {
-        free(xc);
-        free(r);
-        return 0;
-    }
+    double *xc = p->xc, *r = p->r;
     to_compact(p, x, xc);
     right_hand_side(p, f, p_side, r);
     if (p->singular)
         remove_mean(r, n);
     const double norm_b = sqrt(dot(r, r, n));
     apply(p, L, xc, p->q);
-#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
-    for (long i = 0; i < n; ++i)
-        r[i] -= p->q[i];
+    BDL_PARALLEL_FOR(n >= BDL_GRID_PARALLEL_MIN, for (long i = 0; i < n; ++i) r[i] -= p->q[i];);
     double res = norm_b > 0.0 ? sqrt(dot(r, r, n)) / norm_b : 0.0;
     bdl_poisson_stats st = {0, res, res};
     int converged = res <= tol;
@@ -454,11 +466,11 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
             if (!(dq > 0.0))
                 break;
             double alpha = rz / dq;
-#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
-            for (long i = 0; i < n; ++i) {
-                xc[i] += alpha * p->d[i];
-                r[i] -= alpha * p->q[i];
-            }
+            BDL_PARALLEL_FOR(
+                n >= BDL_GRID_PARALLEL_MIN, for (long i = 0; i < n; ++i) {
+                    xc[i] += alpha * p->d[i];
+                    r[i] -= alpha * p->q[i];
+                });
             st.iterations = it;
             st.residual = sqrt(dot(r, r, n)) / norm_b;
             if (st.residual <= tol) {
@@ -469,9 +481,8 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
             double rz_new = dot(r, p->z, n);
             double beta = rz_new / rz;
             rz = rz_new;
-#pragma omp parallel for schedule(static) if (n >= BDL_GRID_PARALLEL_MIN)
-            for (long i = 0; i < n; ++i)
-                p->d[i] = p->z[i] + beta * p->d[i];
+            BDL_PARALLEL_FOR(n >= BDL_GRID_PARALLEL_MIN,
+                             for (long i = 0; i < n; ++i) p->d[i] = p->z[i] + beta * p->d[i];);
         }
     }
     if (p->singular)
@@ -479,7 +490,5 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
     to_padded(p, xc, x);
     if (stats)
         *stats = st;
-    free(xc);
-    free(r);
     return converged;
 }

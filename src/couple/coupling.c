@@ -1,4 +1,5 @@
 // bedlam — kernel deposition and interpolation, semi-implicit drag exchange.
+#include "core/parallel.h"
 #include "couple/coupling.h"
 
 #include <math.h>
@@ -16,14 +17,20 @@ bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const
     for (int a = 0; a < 3; ++a) {
         double h = gas->grid.h[a];
         c->width[a] = fmin(fmax(def->kernel_width, h), 4.0 * h);
+        if (!(c->grad[a] = bdl_grid_alloc(&gas->grid))) {
+            bdl_coupling_free(c);
+            return BDL_ERR_NOMEM;
+        }
     }
     return BDL_OK;
 }
 
 void bdl_coupling_free(bdl_coupling *c)
 {
-    free(c->first);
+    free(c->offset);
     free(c->span);
+    for (int a = 0; a < 3; ++a)
+        free(c->grad[a]);
     free(c->weight);
     free(c->factor);
     *c = (bdl_coupling){0};
@@ -34,9 +41,9 @@ static bdl_result reserve(bdl_coupling *c, long n)
     if (n <= c->capacity)
         return BDL_OK;
     long cap = n + n / 2 + 16;
-    int *first = realloc(c->first, (size_t)cap * 6 * sizeof(int));
-    if (first)
-        c->first = first;
+    int *offset = realloc(c->offset, (size_t)cap * 6 * BDL_KERNEL_MAX * sizeof(int));
+    if (offset)
+        c->offset = offset;
     int *span = realloc(c->span, (size_t)cap * 6 * sizeof(int));
     if (span)
         c->span = span;
@@ -46,7 +53,7 @@ static bdl_result reserve(bdl_coupling *c, long n)
     double *f = realloc(c->factor, (size_t)cap * sizeof(double));
     if (f)
         c->factor = f;
-    if (!first || !span || !w || !f)
+    if (!offset || !span || !w || !f)
         return BDL_ERR_NOMEM;
     c->capacity = cap;
     return BDL_OK;
@@ -109,6 +116,12 @@ static void momentum_faces(const bdl_gas *gas, int a, int *lo, int *hi)
     *hi = gas->def.side[2 * a + 1].type == BDL_SIDE_OUTLET ? n : n - 1;
 }
 
+static int wrap(int m, int n)
+{
+    m %= n;
+    return m < 0 ? m + n : m;
+}
+
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, const double *pos)
 {
     if (reserve(c, count) != BDL_OK)
@@ -116,66 +129,62 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, 
     int flo[3], fhi[3];
     for (int a = 0; a < 3; ++a)
         momentum_faces(gas, a, &flo[a], &fhi[a]);
-#pragma omp parallel for schedule(static) if (count >= 4096)
-    for (long i = 0; i < count; ++i)
-        for (int a = 0; a < 3; ++a) {
+    const bdl_grid *g = &gas->grid;
+    BDL_PARALLEL_FOR(
+        count >= 4096, for (long i = 0; i < count; ++i) for (int a = 0; a < 3; ++a) {
             // Slots 0-2: cell centres per axis; 3-5: the momentum faces of component a.
-            axis_weights(c, &gas->grid, a, 0.5, 0, gas->grid.n[a] - 1, pos[3 * i + a],
-                         &c->first[6 * i + a], &c->span[6 * i + a],
-                         &c->weight[(6 * i + a) * BDL_KERNEL_MAX]);
-            axis_weights(c, &gas->grid, a, 0.0, flo[a], fhi[a], pos[3 * i + a],
-                         &c->first[6 * i + 3 + a], &c->span[6 * i + 3 + a],
-                         &c->weight[(6 * i + 3 + a) * BDL_KERNEL_MAX]);
-        }
+            for (int slot = a; slot < 6; slot += 3) {
+                const long at = 6 * i + slot;
+                int first;
+                if (slot < 3)
+                    axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, pos[3 * i + a], &first, &c->span[at],
+                                 &c->weight[at * BDL_KERNEL_MAX]);
+                else
+                    axis_weights(c, g, a, 0.0, flo[a], fhi[a], pos[3 * i + a], &first, &c->span[at],
+                                 &c->weight[at * BDL_KERNEL_MAX]);
+                int *off = &c->offset[at * BDL_KERNEL_MAX];
+                for (int m = 0; m < c->span[at]; ++m) {
+                    int pt = first + m;
+                    if (g->periodic[a])
+                        pt = wrap(pt, g->n[a]);
+                    off[m] = (pt + BDL_GRID_GHOST) * (int)g->stride[a];
+                }
+            }
+        });
     return BDL_OK;
 }
 
-static int wrap(int m, int n)
-{
-    m %= n;
-    return m < 0 ? m + n : m;
-}
-
-/// Calls body with `idx` (padded cell index) and `w` (weight) for every cell of particle i.
-#define FOR_KERNEL(c, g, i, ...)                                                                   \
+/// Calls body with `idx` (padded index) and `w` (weight) for every point of the separable
+/// kernel made of slots sx, sy, sz of particle i.
+#define FOR_SLOTS(c, i, sx, sy, sz, ...)                                                           \
     do {                                                                                           \
-        const int *f_ = &(c)->first[6 * (i)], *s_ = &(c)->span[6 * (i)];                           \
-        const double *w_ = &(c)->weight[6 * (i)*BDL_KERNEL_MAX];                                   \
-        for (int kz_ = 0; kz_ < s_[2]; ++kz_)                                                      \
-            for (int ky_ = 0; ky_ < s_[1]; ++ky_)                                                  \
-                for (int kx_ = 0; kx_ < s_[0]; ++kx_) {                                            \
-                    const long idx = bdl_grid_index(g, wrap(f_[0] + kx_, (g)->n[0]),               \
-                                                    wrap(f_[1] + ky_, (g)->n[1]),                  \
-                                                    wrap(f_[2] + kz_, (g)->n[2]));                 \
-                    const double w =                                                               \
-                        w_[kx_] * w_[BDL_KERNEL_MAX + ky_] * w_[2 * BDL_KERNEL_MAX + kz_];         \
+        const long at_ = 6 * (i);                                                                  \
+        const int nx_ = (c)->span[at_ + (sx)], ny_ = (c)->span[at_ + (sy)],                        \
+                  nz_ = (c)->span[at_ + (sz)];                                                     \
+        const int *ox_ = &(c)->offset[(at_ + (sx)) * BDL_KERNEL_MAX],                              \
+                  *oy_ = &(c)->offset[(at_ + (sy)) * BDL_KERNEL_MAX],                              \
+                  *oz_ = &(c)->offset[(at_ + (sz)) * BDL_KERNEL_MAX];                              \
+        const double *wx_ = &(c)->weight[(at_ + (sx)) * BDL_KERNEL_MAX],                           \
+                     *wy_ = &(c)->weight[(at_ + (sy)) * BDL_KERNEL_MAX],                           \
+                     *wz_ = &(c)->weight[(at_ + (sz)) * BDL_KERNEL_MAX];                           \
+        for (int kz_ = 0; kz_ < nz_; ++kz_)                                                        \
+            for (int ky_ = 0; ky_ < ny_; ++ky_) {                                                  \
+                const long oyz_ = (long)oz_[kz_] + oy_[ky_];                                       \
+                const double wyz_ = wz_[kz_] * wy_[ky_];                                           \
+                for (int kx_ = 0; kx_ < nx_; ++kx_) {                                              \
+                    const long idx = oyz_ + ox_[kx_];                                              \
+                    const double w = wyz_ * wx_[kx_];                                              \
                     __VA_ARGS__;                                                                   \
                 }                                                                                  \
+            }                                                                                      \
     } while (0)
 
-/// The same over the momentum faces of component a: face weights along a, cell weights across.
-#define FOR_FACE_KERNEL(c, g, i, a, ...)                                                           \
-    do {                                                                                           \
-        int f_[3], s_[3];                                                                          \
-        const double *w_[3];                                                                       \
-        for (int b_ = 0; b_ < 3; ++b_) {                                                           \
-            int slot_ = 6 * (i) + (b_ == (a) ? 3 : 0) + b_;                                        \
-            f_[b_] = (c)->first[slot_];                                                            \
-            s_[b_] = (c)->span[slot_];                                                             \
-            w_[b_] = &(c)->weight[slot_ * BDL_KERNEL_MAX];                                         \
-        }                                                                                          \
-        for (int kz_ = 0; kz_ < s_[2]; ++kz_)                                                      \
-            for (int ky_ = 0; ky_ < s_[1]; ++ky_)                                                  \
-                for (int kx_ = 0; kx_ < s_[0]; ++kx_) {                                            \
-                    int m_[3] = {f_[0] + kx_, f_[1] + ky_, f_[2] + kz_};                           \
-                    for (int b_ = 0; b_ < 3; ++b_)                                                 \
-                        if ((g)->periodic[b_])                                                     \
-                            m_[b_] = wrap(m_[b_], (g)->n[b_]);                                     \
-                    const long idx = bdl_grid_index(g, m_[0], m_[1], m_[2]);                       \
-                    const double w = w_[0][kx_] * w_[1][ky_] * w_[2][kz_];                         \
-                    __VA_ARGS__;                                                                   \
-                }                                                                                  \
-    } while (0)
+/// Over the cell centres of particle i.
+#define FOR_KERNEL(c, i, ...) FOR_SLOTS(c, i, 0, 1, 2, __VA_ARGS__)
+
+/// Over the momentum faces of component a: face weights along a, cell weights across.
+#define FOR_FACE_KERNEL(c, i, a, ...)                                                              \
+    FOR_SLOTS(c, i, (a) == 0 ? 3 : 0, (a) == 1 ? 4 : 1, (a) == 2 ? 5 : 2, __VA_ARGS__)
 
 static double cell_volume(const bdl_grid *g) { return g->h[0] * g->h[1] * g->h[2]; }
 
@@ -189,7 +198,7 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_couplin
     memset(solid, 0, (size_t)g->size * sizeof(double));
     for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
         const double v = sphere_volume(p->radius[i]);
-        FOR_KERNEL(c, g, i, solid[idx] += w * v);
+        FOR_KERNEL(c, i, solid[idx] += w * v);
     }
     const double lowest = 1.0 - c->def.max_solids;
     for (int k = 0; k < g->n[2]; ++k)
@@ -200,20 +209,19 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_couplin
             }
 }
 
-double bdl_coupling_interpolate(const bdl_coupling *c, const bdl_gas *gas, long i, const double *f)
+double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f)
 {
     double sum = 0.0;
-    FOR_KERNEL(c, &gas->grid, i, sum += w * f[idx]);
+    FOR_KERNEL(c, i, sum += w * f[idx]);
     return sum;
 }
 
 /// Gas velocity at particle i: each component from its momentum faces.
 static void gas_velocity_at(const bdl_coupling *c, const bdl_gas *gas, long i, double u[3])
 {
-    const bdl_grid *g = &gas->grid;
     for (int a = 0; a < 3; ++a) {
         double sum = 0.0;
-        FOR_FACE_KERNEL(c, g, i, a, sum += w * gas->u[a][idx]);
+        FOR_FACE_KERNEL(c, i, a, sum += w * gas->u[a][idx]);
         u[a] = sum;
     }
 }
@@ -223,19 +231,19 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_p
 {
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
-#pragma omp parallel for schedule(static) if (p->count >= 4096)
-    for (long i = 0; i < p->count; ++i) {
-        double u[3];
-        gas_velocity_at(c, gas, i, u);
-        const double *v = &p->vel[3 * i];
-        double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
-                           (u[2] - v[2]) * (u[2] - v[2]));
-        double eps = bdl_coupling_interpolate(c, gas, i, gas->eps);
-        double d = 2.0 * p->radius[i];
-        double K = bdl_drag_per_volume(c->def.drag, &c->def.drag_params, eps, d, slip, rho, mu);
-        double D = K / p->density[i], m = p->density[i] * sphere_volume(p->radius[i]);
-        c->factor[i] = m * D / (1.0 + D * dt);
-    }
+    BDL_PARALLEL_FOR(
+        p->count >= 4096, for (long i = 0; i < p->count; ++i) {
+            double u[3];
+            gas_velocity_at(c, gas, i, u);
+            const double *v = &p->vel[3 * i];
+            double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
+                               (u[2] - v[2]) * (u[2] - v[2]));
+            double eps = bdl_coupling_interpolate(c, i, gas->eps);
+            double d = 2.0 * p->radius[i];
+            double K = bdl_drag_per_volume(c->def.drag, &c->def.drag_params, eps, d, slip, rho, mu);
+            double D = K / p->density[i], m = p->density[i] * sphere_volume(p->radius[i]);
+            c->factor[i] = m * D / (1.0 + D * dt);
+        });
     for (int a = 0; a < 3; ++a) {
         memset(gas->beta[a], 0, (size_t)g->size * sizeof(double));
         memset(gas->bv[a], 0, (size_t)g->size * sizeof(double));
@@ -246,7 +254,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_p
         for (int a = 0; a < 3; ++a)
             target[a] = p->vel[3 * i + a] + dt * (p->accel ? p->accel[3 * i + a] : 0.0);
         for (int a = 0; a < 3; ++a)
-            FOR_FACE_KERNEL(c, g, i, a, {
+            FOR_FACE_KERNEL(c, i, a, {
                 gas->beta[a][idx] += w * f;
                 gas->bv[a][idx] += w * f * target[a];
             });
@@ -282,34 +290,36 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_co
                          double dt, double *drag, double *pressure)
 {
     const bdl_grid *g = &gas->grid;
-#pragma omp parallel for schedule(static) if (p->count >= 4096)
-    for (long i = 0; i < p->count; ++i) {
-        if (drag) {
-            double u[3];
-            gas_velocity_at(c, gas, i, u);
-            for (int a = 0; a < 3; ++a)
-                drag[3 * i + a] = c->factor[i] * (u[a] - p->vel[3 * i + a] -
-                                                  dt * (p->accel ? p->accel[3 * i + a] : 0.0));
-        }
-        if (pressure) {
-            double grad[3] = {0, 0, 0};
-            const int *f = &c->first[6 * i], *s = &c->span[6 * i];
-            const double *w = &c->weight[6 * i * BDL_KERNEL_MAX];
-            for (int kz = 0; kz < s[2]; ++kz)
-                for (int ky = 0; ky < s[1]; ++ky)
-                    for (int kx = 0; kx < s[0]; ++kx) {
-                        int m[3] = {wrap(f[0] + kx, g->n[0]), wrap(f[1] + ky, g->n[1]),
-                                    wrap(f[2] + kz, g->n[2])};
-                        long idx = bdl_grid_index(g, m[0], m[1], m[2]);
-                        double wt = w[kx] * w[BDL_KERNEL_MAX + ky] * w[2 * BDL_KERNEL_MAX + kz];
-                        for (int a = 0; a < 3; ++a)
-                            grad[a] += wt * pressure_gradient(gas, a, m[a], idx);
-                    }
-            const double v = sphere_volume(p->radius[i]);
-            for (int a = 0; a < 3; ++a)
-                pressure[3 * i + a] = -v * grad[a];
-        }
-    }
+    if (pressure) // the cell-centred pressure gradient, into the coupling's scratch fields
+        for (int k = 0; k < g->n[2]; ++k)
+            for (int j = 0; j < g->n[1]; ++j)
+                for (int i = 0; i < g->n[0]; ++i) {
+                    const long idx = bdl_grid_index(g, i, j, k);
+                    const int m[3] = {i, j, k};
+                    for (int a = 0; a < 3; ++a)
+                        c->grad[a][idx] = pressure_gradient(gas, a, m[a], idx);
+                }
+    BDL_PARALLEL_FOR(
+        p->count >= 4096, for (long i = 0; i < p->count; ++i) {
+            if (drag) {
+                double u[3];
+                gas_velocity_at(c, gas, i, u);
+                for (int a = 0; a < 3; ++a)
+                    drag[3 * i + a] = c->factor[i] * (u[a] - p->vel[3 * i + a] -
+                                                      dt * (p->accel ? p->accel[3 * i + a] : 0.0));
+            }
+            if (pressure) {
+                double grad[3] = {0, 0, 0};
+                FOR_KERNEL(c, i, {
+                    grad[0] += w * c->grad[0][idx];
+                    grad[1] += w * c->grad[1][idx];
+                    grad[2] += w * c->grad[2][idx];
+                });
+                const double v = sphere_volume(p->radius[i]);
+                for (int a = 0; a < 3; ++a)
+                    pressure[3 * i + a] = -v * grad[a];
+            }
+        });
 }
 
 void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3])

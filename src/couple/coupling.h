@@ -42,11 +42,12 @@ typedef struct bdl_coupling {
     long capacity;
     // Per particle, six separable kernels: slots 0-2 over the cell centres along x, y, z;
     // slots 3-5 over the momentum faces of component x, y, z along its own axis.
-    int *first;      ///< first point of each slot (may lie outside a periodic axis)
+    int *offset;     ///< BDL_KERNEL_MAX padded-index offsets per slot (periodic axes wrapped)
     int *span;       ///< points touched in each slot
     double *weight;  ///< BDL_KERNEL_MAX normalised weights per slot
     double *factor;  ///< per particle: a_i = m D / (1 + D dt) [kg/s]
     double width[3]; ///< kernel half-width per axis [m]
+    double *grad[3]; ///< scratch: cell-centred pressure gradient (padded grid fields)
 } bdl_coupling;
 
 typedef struct bdl_coupling_particles {
@@ -81,6 +82,6 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_co
 void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3]);
 
 /// A gas quantity at a particle: the kernel average of cell values f (padded cell array).
-double bdl_coupling_interpolate(const bdl_coupling *c, const bdl_gas *gas, long i, const double *f);
+double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f);
 
 #endif
