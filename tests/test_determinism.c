@@ -58,7 +58,7 @@ static void test_coupled(void)
         if (!w)
             return;
         w->parallel_min = 1;
-        hashes[t - 1] = run_steps(w, 300);
+        hashes[t - 1] = run_steps(w, 1200);
         printf("coupled, threads %d: %ld gas steps, hash %016llx\n", t, w->gas_steps,
                (unsigned long long)hashes[t - 1]);
         CHECK(w->gas_steps > 10);

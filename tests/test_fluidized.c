@@ -33,12 +33,14 @@ int main(void)
     const double weight = mass * 9.81 / (0.04 * 0.006); // per unit base area [Pa]
     double dp = 0.0, worst_volume = 0.0, worst_momentum = 0.0;
     int samples = 0;
+    long seen = -1;
     while (w->time < 0.4) {
         if (bdl_world_step(w) != BDL_OK) {
             CHECK_MSG(0, "step failed at t = %g", w->time);
             break;
         }
-        if (w->time > 0.2 && w->step % w->gas_every == 1) {
+        if (w->time > 0.2 && w->gas_steps != seen) { // just after a gas step
+            seen = w->gas_steps;
             bdl_diagnostics d;
             bdl_diagnostics_compute(w, 0.0, &d);
             dp += d.pressure_drop;

@@ -87,9 +87,9 @@ int bdl_bench_coupled(int argc, char **argv)
     const bdl_grid *g = &w->gas->grid;
     printf("bedlam bench coupled: %s, %ld particles, %d x %d x %d cells, %d threads\n", path,
            w->particles.count, g->n[0], g->n[1], g->n[2], omp_get_max_threads());
-    printf("timed %.3g s of simulated time: %ld particle steps, %ld gas steps (%ld particle "
+    printf("timed %.3g s of simulated time: %ld particle steps, %ld gas steps (%.1f particle "
            "steps each), %.3g s wall = %.3g x real time, %.3g particle-steps/s\n",
-           sim, steps, gas_steps, w->gas_every, wall, sim / wall,
+           sim, steps, gas_steps, (double)steps / (double)gas_steps, wall, sim / wall,
            (double)steps * (double)w->particles.count / wall);
     printf("per gas step: gas %.3f ms (%.1f %%), coupling %.3f ms (%.1f %%), particles %.3f ms "
            "(%.1f %%); gas + coupling %.1f %% of the step\n",

@@ -164,7 +164,7 @@ static bdl_result pour(bdl_world *w)
 bdl_result bdl_world_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
-    if (w->gas && w->step % w->gas_every == 0) {
+    if (w->gas && w->step >= w->gas_next) {
         bdl_result r = bdl_world_gas_step(w);
         if (r != BDL_OK)
             return r;

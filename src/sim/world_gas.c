@@ -10,6 +10,9 @@
 #include "core/log.h"
 #include "core/timer.h"
 #include "couple/coupling.h"
+
+/// The longest automatic gas step [s].
+#define BDL_GAS_DT_MAX 5e-4
 #include "sim/world.h"
 
 static bdl_gas_side_type side_type(bdl_gas_boundary b)
@@ -74,17 +77,30 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
                            .max_solids = s->coupling.max_solids};
     bdl_coupling_init(w->coupling, &cd, w->gas);
 
-    // The gas step: as given, or the largest stable one for the fastest gas to expect (the
-    // inflow through the densest packing, plus a margin for bubbles), at most 1e-4 s.
+    // The gas step: as given, or CFL 1/2 for the fastest gas to expect (the inflow through the
+    // densest packing, plus a margin for bubbles) across the axes the gas can move along (more
+    // than one cell), at most BDL_GAS_DT_MAX; after the first, CFL 1/2 for the gas as it is.
     double dt_gas = gs->dt;
-    if (!(dt_gas > 0.0)) {
+    w->gas_fixed = dt_gas > 0.0;
+    if (!w->gas_fixed) {
         double u = fmax(gs->inlet_velocity, gs->jet_velocity) / (1.0 - cd.max_solids) + 0.5;
-        double hmin = fmin(fmin(w->gas->grid.h[0], w->gas->grid.h[1]), w->gas->grid.h[2]);
-        dt_gas = fmin(fmin(1e-4, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
+        double hmin = INFINITY, hany = INFINITY;
+        for (int a = 0; a < 3; ++a) {
+            hany = fmin(hany, w->gas->grid.h[a]);
+            if (w->gas->grid.n[a] > 1)
+                hmin = fmin(hmin, w->gas->grid.h[a]);
+        }
+        if (isinf(hmin))
+            hmin = hany;
+        dt_gas = fmin(fmin(BDL_GAS_DT_MAX, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
     }
     w->gas_every = (long)floor(dt_gas / w->dt * (1.0 + 1e-12));
     if (w->gas_every < 1)
         w->gas_every = 1;
+    w->gas_every_max = w->gas_fixed
+                           ? w->gas_every
+                           : (long)fmax(1.0, floor(BDL_GAS_DT_MAX / w->dt * (1.0 + 1e-12)));
+    w->gas_next = 0;
     return BDL_OK;
 }
 
@@ -138,8 +154,17 @@ bdl_result bdl_world_gas_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
     const long n = p->count;
-    const double dt = (double)w->gas_every * w->dt;
     const double t0 = bdl_wall_seconds();
+    // The last gas step's length, then this one's: CFL 1/2 for the gas as the last step left it.
+    const double dt_last = (double)w->gas_every * w->dt;
+    if (!w->gas_fixed && w->gas_steps > 0) {
+        double every = floor(w->gas_stable / w->dt * (1.0 + 1e-12));
+        w->gas_every = every < 1.0                        ? 1
+                       : every > (double)w->gas_every_max ? w->gas_every_max
+                                                          : (long)every;
+    }
+    const double dt = (double)w->gas_every * w->dt;
+    w->gas_next = w->step + w->gas_every;
     if (n * 17 > w->gas_buffer_capacity) {
         long cap = n * 17 + n * 17 / 2 + 64;
         double *b = realloc(w->gas_buffer, (size_t)cap * sizeof(double));
@@ -157,7 +182,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
             work += bdl_v3_dot(p->fluid_accel[i],
                                bdl_v3_scale(bdl_v3_add(p->vel_mark[i], p->vel[i]), 0.5)) /
                     p->inv_mass[i];
-        w->gas_work += work * dt;
+        w->gas_work += work * dt_last;
     }
     for (long i = 0; i < n; ++i) {
         double volume = 4.0 / 3.0 * BDL_PI * p->radius[i] * p->radius[i] * p->radius[i];
@@ -165,7 +190,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
         // walls, gravity and the gas pressure (gravity alone before the first).
         bdl_vec3 other =
             w->gas_steps > 0
-                ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]), 1.0 / dt),
+                ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]), 1.0 / dt_last),
                              p->drag_accel[i])
                 : w->scene.gravity;
         for (int a = 0; a < 3; ++a) {
@@ -194,7 +219,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
                   w->time, w->gas->last_solve.residual, w->gas->last_solve.iterations);
         return BDL_ERR_UNSTABLE;
     }
-    double stable = bdl_gas_stable_dt(w->gas);
+    double stable = w->gas_stable = bdl_gas_stable_dt(w->gas);
     if (dt > 2.0 * stable) {
         bdl_error("gas step at t = %.6g s: the gas step %.3g s is above twice the stable limit "
                   "%.3g s (CFL 1 or the viscous limit); set [gas] dt to %.3g s or less",
@@ -234,8 +259,9 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
     static const char *const schemes[] = {"upwind", "van Leer", "Superbee", "central"};
     snprintf(buf, size,
              "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
-             "half-width %.3g mm; gas step %.3g s = %ld particle steps",
+             "half-width %.3g mm; gas step %.3g s = %ld particle steps%s",
              g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
              schemes[w->gas->def.convection], bdl_drag_law_names[w->coupling->def.drag],
-             1e3 * w->coupling->width[0], (double)w->gas_every * w->dt, w->gas_every);
+             1e3 * w->coupling->width[0], (double)w->gas_every * w->dt, w->gas_every,
+             w->gas_fixed ? " (fixed)" : " at first, then CFL 1/2 for the gas as it flows");
 }
