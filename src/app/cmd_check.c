@@ -86,6 +86,10 @@ int bdl_cmd_check(int argc, char **argv)
            w->rolling ? "; rolling resistance" : "");
     printf("  walls: %d (%d surfaces)%s\n", s->wall_count, w->walls.prim_count,
            bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
+    if (w->container >= 0)
+        printf("  frame: the vibrating container [wall %s]; its walls stand still and particles "
+               "and gas feel gravity plus the inertial acceleration\n",
+               s->walls[w->container].name);
     char gas[256];
     bdl_world_gas_describe(w, gas, sizeof gas);
     printf("  gas: %s\n", gas);

@@ -42,9 +42,11 @@ void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls)
             break;
         }
         }
-        walls->motion[w] = d->motion;
+        // A container wall stands still: the run is done in its frame (see sim/world.h).
+        const int moves = d->motion == BDL_MOTION_VIBRATE && d->frame != BDL_FRAME_CONTAINER;
+        walls->motion[w] = moves ? d->motion : BDL_MOTION_NONE;
         walls->direction[w] = bdl_v3_normalize(d->direction);
-        walls->amplitude[w] = d->motion == BDL_MOTION_VIBRATE ? d->amplitude : 0.0;
+        walls->amplitude[w] = moves ? d->amplitude : 0.0;
         walls->omega[w] = 2.0 * PI * d->frequency;
         walls->phase[w] = d->phase;
     }

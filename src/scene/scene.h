@@ -93,6 +93,12 @@ typedef enum bdl_motion_kind {
     BDL_MOTION_VIBRATE = 1, ///< displacement A sin(2 pi f t + phase) along `direction`
 } bdl_motion_kind;
 
+/// The frame a vibrating wall is seen from.
+typedef enum bdl_wall_frame {
+    BDL_FRAME_LAB = 0,       ///< the wall moves through the fixed domain
+    BDL_FRAME_CONTAINER = 1, ///< the whole container moves with it; the run is done in its frame
+} bdl_wall_frame;
+
 typedef struct bdl_wall_def {
     char name[BDL_NAME_LEN];
     bdl_wall_kind kind;
@@ -105,6 +111,7 @@ typedef struct bdl_wall_def {
     double amplitude;      ///< A [m]
     double frequency;      ///< f [Hz]
     double phase;          ///< [rad]
+    bdl_wall_frame frame;  ///< lab, or container (every wall and the gas grid move with this one)
     bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
     int line;
 } bdl_wall_def;

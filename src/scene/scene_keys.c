@@ -17,6 +17,7 @@ _Static_assert(sizeof(bdl_rolling_model) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_size_dist) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_wall_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_motion_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_wall_frame) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_view_preset) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_projection) == sizeof(int), "enum size");
@@ -46,6 +47,7 @@ static const char *const rolling_names[] = {"none", "constant", NULL};
 static const char *const distribution_names[] = {"single", "uniform", "normal", NULL};
 static const char *const wall_type_names[] = {"plane", "box", "cylinder", NULL};
 static const char *const motion_names[] = {"none", "vibrate", NULL};
+static const char *const frame_names[] = {"lab", "container", NULL};
 static const char *const create_type_names[] = {"random", "lattice", "pour", "file", NULL};
 static const char *const view_names[] = {"iso", "front", "side", "top", NULL};
 static const char *const projection_names[] = {"perspective", "orthographic", NULL};
@@ -221,6 +223,11 @@ const bdl_scene_key bdl_scene_keys[] = {
             "(exclusive with amplitude)"},
     {S(WALL), "phase", NUM, "rad", IN_WALL(phase), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
      .def = {0}, .doc = "vibrate: phase of A sin(2 pi f t + phase)"},
+    {S(WALL), "frame", .type = BDL_KEY_ENUM, "-", IN_WALL(frame), .def = {BDL_FRAME_LAB},
+     .enum_names = frame_names, WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .doc = "vibrate: lab (the wall moves through the domain) or container (the whole container, "
+            "every wall and the gas grid, moves with this wall; particles and gas feel the "
+            "inertial acceleration instead)"},
     {S(WALL), "youngs_modulus", NUM, "Pa", IN_WALL(material.youngs_modulus), .def = {-1},
      .default_text = "species value", GT(0), .doc = "wall Young's modulus (Hertz law)"},
     // >= 0 rather than > -1: a negative value would read as "not given" (-1) to the solver.

@@ -193,6 +193,16 @@ static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
         check_box(p, s, "min", "max");
     if (p->failed || wall->motion != BDL_MOTION_VIBRATE)
         return;
+    if (wall->frame == BDL_FRAME_CONTAINER)
+        for (int k = 0; k < p->scene->wall_count; ++k)
+            if (k != s->index && p->scene->walls[k].motion != BDL_MOTION_NONE) {
+                char what[160];
+                snprintf(what, sizeof what,
+                         "the container carries every wall: [wall %s] must have motion = none",
+                         p->scene->walls[k].name);
+                fail_at_key(p, s, "frame", 0, what);
+                return;
+            }
     int has_amplitude = given(s, key_of(s, "amplitude")), has_gamma = given(s, key_of(s, "gamma"));
     if (has_amplitude && has_gamma) {
         fail_at_key(p, s, "gamma", 0, "amplitude and gamma are exclusive; give one of them");

@@ -20,7 +20,7 @@ static bdl_force_def force_def(const bdl_world *w)
     def.wall_params = w->wall_params;
     def.species_count = w->scene.species_count;
     def.background_damping = w->background_damping;
-    def.gravity = w->scene.gravity;
+    def.gravity = bdl_world_gravity(w, w->time);
     def.hertz = w->hertz;
     def.friction = w->friction;
     def.rolling = w->rolling;
@@ -104,8 +104,8 @@ void bdl_world_apply_live(bdl_world *w)
 {
     for (int k = 0; k < w->scene.wall_count; ++k) {
         const bdl_wall_def *d = &w->scene.walls[k];
-        if (d->motion != BDL_MOTION_VIBRATE)
-            continue;
+        if (d->motion != BDL_MOTION_VIBRATE || d->frame == BDL_FRAME_CONTAINER)
+            continue; // a container wall's motion is read by bdl_world_gravity
         w->walls.amplitude[k] = d->amplitude * w->live.amplitude_scale[k];
         w->walls.omega[k] = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
     }
@@ -161,16 +161,45 @@ static bdl_result pour(bdl_world *w)
     return BDL_OK;
 }
 
+bdl_vec3 bdl_world_gravity(const bdl_world *w, double t)
+{
+    const int k = w->container;
+    if (k < 0)
+        return w->scene.gravity;
+    const bdl_wall_def *d = &w->scene.walls[k];
+    const double A = d->amplitude * w->live.amplitude_scale[k];
+    const double omega = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
+    // The container accelerates by -A w^2 sin(w t + phase) along d; in its frame everything in it
+    // feels the opposite.
+    return bdl_v3_madd(w->scene.gravity, bdl_v3_normalize(d->direction),
+                       A * omega * omega * sin(omega * t + d->phase));
+}
+
+/// Momentum of the particles along the container's direction [kg m/s].
+static double container_momentum(const bdl_world *w)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_vec3 dir = bdl_v3_normalize(w->scene.walls[w->container].direction);
+    double sum = 0.0;
+    for (long i = 0; i < p->count; ++i)
+        sum += bdl_v3_dot(p->vel[i], dir) / p->inv_mass[i];
+    return sum;
+}
+
 bdl_result bdl_world_step(bdl_world *w)
 {
     bdl_particles *p = &w->particles;
+    // In a container's frame the inertial force does the work the container's walls would:
+    // its acceleration at mid-step times the mean momentum along it over the step.
+    const double momentum0 = w->container >= 0 ? container_momentum(w) : 0.0;
+    const bdl_vec3 g_mid = bdl_world_gravity(w, w->time + 0.5 * w->dt);
     if (w->gas && w->step >= w->gas_next) {
         bdl_result r = bdl_world_gas_step(w);
         if (r != BDL_OK)
             return r;
     }
     double h = 0.5 * w->dt;
-    double max_move2 = bdl_dem_kick_drift(p, w->scene.gravity, h, w->dt);
+    double max_move2 = bdl_dem_kick_drift(p, bdl_world_gravity(w, w->time), h, w->dt);
     w->step++;
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
@@ -181,6 +210,10 @@ bdl_result bdl_world_step(bdl_world *w)
     if (r != BDL_OK)
         return r;
     w->wall_work += w->dt * bdl_dem_wall_power(p, &w->neighbor, &w->walls);
+    if (w->container >= 0)
+        w->wall_work += w->dt * 0.5 * (momentum0 + container_momentum(w)) *
+                        bdl_v3_dot(bdl_v3_sub(g_mid, w->scene.gravity),
+                                   bdl_v3_normalize(w->scene.walls[w->container].direction));
     return BDL_OK;
 }
 
@@ -316,6 +349,11 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     for (int k = 0; k < BDL_MAX_WALLS; ++k)
         w->live.amplitude_scale[k] = w->live.frequency_scale[k] = 1.0;
     bdl_walls_build(scene, &w->walls);
+    w->container = -1;
+    for (int k = 0; k < scene->wall_count; ++k)
+        if (scene->walls[k].motion == BDL_MOTION_VIBRATE &&
+            scene->walls[k].frame == BDL_FRAME_CONTAINER)
+            w->container = k;
     bdl_rng_seed(&w->rng, scene->seed);
 
     w->particles.fluid = scene->gas.enabled; // before the arrays exist

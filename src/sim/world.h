@@ -59,6 +59,8 @@ typedef struct bdl_world {
     double contact_time;          ///< smallest contact time over all pairs [s]
     double contact_time_dt_ratio; ///< dt / contact_time
 
+    int container; ///< the wall whose frame the run is done in ([wall] frame = container), or -1
+
     // The gas ([gas] in the scene; NULL otherwise): a gas step spans gas_every particle steps,
     // chosen anew before every gas step from the gas's speed unless [gas] dt fixes it.
     struct bdl_gas *gas;
@@ -86,6 +88,11 @@ void bdl_world_destroy(bdl_world *world);
 
 /// Advances the world by one time step dt (velocity Verlet).
 bdl_result bdl_world_step(bdl_world *world);
+
+/// The acceleration every particle and the gas feel at time t: gravity, plus, in a vibrating
+/// container's frame ([wall] frame = container), the inertial A w^2 sin(w t + phase) along the
+/// container's direction (with the live amplitude and frequency scales).
+bdl_vec3 bdl_world_gravity(const bdl_world *world, double t);
 
 /// Recomputes forces for the current state (after creation, loading or a parameter change).
 bdl_result bdl_world_compute_forces(bdl_world *world);

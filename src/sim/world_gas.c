@@ -121,15 +121,15 @@ void bdl_world_gas_free(bdl_world *w)
 /// the gas, -V G on each particle), as a container's base would; the box then neither falls nor
 /// rises as a whole. Returns G (zero when the gravity axis has a boundary), and sets the gas's
 /// body force.
-static bdl_vec3 periodic_column(bdl_world *w)
+static bdl_vec3 periodic_column(bdl_world *w, bdl_vec3 gravity)
 {
     bdl_gas *gas = w->gas;
     const bdl_grid *g = &gas->grid;
     int axis = 2;
     for (int a = 0; a < 3; ++a)
-        if (fabs(bdl_v3_comp(w->scene.gravity, a)) > fabs(bdl_v3_comp(w->scene.gravity, axis)))
+        if (fabs(bdl_v3_comp(gravity, a)) > fabs(bdl_v3_comp(gravity, axis)))
             axis = a;
-    if (!g->periodic[axis] || bdl_v3_comp(w->scene.gravity, axis) == 0.0)
+    if (!g->periodic[axis] || bdl_v3_comp(gravity, axis) == 0.0)
         return bdl_v3_zero();
     const double vc = g->h[0] * g->h[1] * g->h[2];
     double mass = 0.0, volume = vc * g->n[0] * g->n[1] * g->n[2];
@@ -139,7 +139,7 @@ static bdl_vec3 periodic_column(bdl_world *w)
         for (int j = 0; j < g->n[1]; ++j)
             for (int i = 0; i < g->n[0]; ++i)
                 mass += gas->def.density * gas->eps[bdl_grid_index(g, i, j, k)] * vc;
-    bdl_vec3 G = bdl_v3_scale(w->scene.gravity, mass / volume);
+    bdl_vec3 G = bdl_v3_scale(gravity, mass / volume);
     bdl_grid_wrap_cells(g, gas->eps);
     for (int a = 0; a < 3; ++a) {
         const long s = g->stride[a];
@@ -165,6 +165,9 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     }
     const double dt = (double)w->gas_every * w->dt;
     w->gas_next = w->step + w->gas_every;
+    const bdl_vec3 gravity = bdl_world_gravity(w, w->time + 0.5 * dt); // mid-step
+    for (int a = 0; a < 3; ++a)
+        w->gas->def.gravity[a] = bdl_v3_comp(gravity, a);
     if (n * 17 > w->gas_buffer_capacity) {
         long cap = n * 17 + n * 17 / 2 + 64;
         double *b = realloc(w->gas_buffer, (size_t)cap * sizeof(double));
@@ -192,7 +195,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
             w->gas_steps > 0
                 ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]), 1.0 / dt_last),
                              p->drag_accel[i])
-                : w->scene.gravity;
+                : gravity;
         for (int a = 0; a < 3; ++a) {
             pos[3 * i + a] = bdl_v3_comp(p->pos[i], a);
             vel[3 * i + a] = bdl_v3_comp(p->vel[i], a);
@@ -207,7 +210,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     bdl_coupling_voidage(w->coupling, w->gas, &cp);
     if (w->gas_steps == 0)
         memcpy(w->gas->eps_old, w->gas->eps, (size_t)w->gas->grid.size * sizeof(double));
-    bdl_vec3 mean_gradient = periodic_column(w);
+    bdl_vec3 mean_gradient = periodic_column(w, gravity);
     bdl_coupling_drag_setup(w->coupling, w->gas, &cp, dt);
     const double t1 = bdl_wall_seconds();
     bdl_result r = bdl_gas_step(w->gas, dt);
