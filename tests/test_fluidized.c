@@ -22,7 +22,7 @@ int main(void)
         "[create bed]\ntype = random\nspecies = glass\ncount = 700\nregion_min = 0 0 0\n"
         "region_max = 0.04 0.006 0.05\n"
         "[gas]\ncells = 8 1 24\nymin = slip\nymax = slip\nzmin = inlet\nzmax = outlet\n"
-        "inlet_velocity = 1.6\n"
+        "inlet_velocity = 1.6\nprobe_low = 0.0025\nprobe_high = 0.1175\n"
         "[coupling]\ndrag = gidaspow\n");
     CHECK(w != NULL && w->gas != NULL);
     if (!w)
@@ -31,7 +31,7 @@ int main(void)
     for (long i = 0; i < w->particles.count; ++i)
         mass += 1.0 / w->particles.inv_mass[i];
     const double weight = mass * 9.81 / (0.04 * 0.006); // per unit base area [Pa]
-    double dp = 0.0, worst_volume = 0.0, worst_momentum = 0.0;
+    double dp = 0.0, worst_volume = 0.0, worst_momentum = 0.0, worst_probe = 0.0;
     int samples = 0;
     long seen = -1;
     while (w->time < 0.4) {
@@ -46,6 +46,8 @@ int main(void)
             dp += d.pressure_drop;
             worst_volume = fmax(worst_volume, d.gas_volume_imbalance);
             worst_momentum = fmax(worst_momentum, d.momentum_imbalance);
+            // Probes at the centres of the lowest and highest cell layers read those layers.
+            worst_probe = fmax(worst_probe, fabs(d.probe_pressure_drop - d.pressure_drop));
             ++samples;
         }
     }
@@ -58,6 +60,7 @@ int main(void)
     CHECK_MSG(fabs(dp / weight - 1.0) < 0.1, "pressure drop %g vs bed weight %g", dp, weight);
     CHECK(worst_volume < 1e-8);
     CHECK(worst_momentum < 1e-12);
+    CHECK_MSG(worst_probe < 1e-9 * weight, "probes off the layers by %g Pa", worst_probe);
     // The viewer's live parameter: a factor on the inlet velocity.
     CHECK(bdl_world_set_parameter(w, "gas.inlet_scale", 0.5) == 1);
     CHECK(w->gas->def.side[4].inflow == 0.8);

@@ -240,7 +240,9 @@ typedef struct bdl_gas_scene {
     double jet_velocity;       ///< superficial velocity through the jet rectangle [m/s]
     bdl_vec3 jet_min, jet_max; ///< jet rectangle on the inlet sides [m]
     int has_jet_min, has_jet_max;
-    double dt; ///< gas time step [s]; 0: automatic
+    double dt;                    ///< gas time step [s]; 0: automatic
+    double probe_low, probe_high; ///< heights of the two pressure probes above the floor [m]
+    int has_probe_low, has_probe_high;
 } bdl_gas_scene;
 
 /// [coupling]: how particles and gas exchange momentum.

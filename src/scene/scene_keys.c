@@ -386,8 +386,17 @@ const bdl_scene_key bdl_scene_keys[] = {
      .flag_offset = offsetof(bdl_scene, gas.has_jet_max), .default_text = "no jet",
      .doc = "high corner of the jet rectangle"},
     {S(GAS), "dt", NUM, "s", IN_GAS(dt), .def = {0}, .default_text = "0 (automatic)", GE(0),
-     .doc = "gas time step, rounded down to a whole number of particle steps; 0 = the largest "
-            "stable one (CFL 0.5, viscous limit), at most 1e-4 s"},
+     .doc = "gas time step, rounded down to a whole number of particle steps; 0 = CFL 0.5 for "
+            "the inflow through the densest packing (plus 0.5 m/s) on the axes with more than one "
+            "cell, within the viscous limit, at most 5e-4 s; a run stops with an error when the "
+            "gas step exceeds twice the stable one"},
+    {S(GAS), "probe_low", NUM, "m", IN_GAS(probe_low), .has_flag = 1,
+     .flag_offset = offsetof(bdl_scene, gas.has_probe_low), .default_text = "no probes", GE(0),
+     .doc = "height above the domain's floor (along gravity) of the lower pressure probe; "
+            "diagnostics.csv's probe_pressure_drop is the pressure there minus at probe_high"},
+    {S(GAS), "probe_high", NUM, "m", IN_GAS(probe_high), .has_flag = 1,
+     .flag_offset = offsetof(bdl_scene, gas.has_probe_high), .default_text = "no probes", GT(0),
+     .doc = "height of the upper pressure probe, above probe_low and inside the domain"},
 
     // [coupling]
     {S(COUPLING), "drag", .type = BDL_KEY_ENUM, "-", IN_COUPLING(drag), .def = {4},

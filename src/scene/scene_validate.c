@@ -361,6 +361,15 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
         fail_at_key(p, gas, "jet_velocity", 0, "a jet needs jet_min and jet_max");
         return;
     }
+    if (g->has_probe_low != g->has_probe_high) {
+        fail_at_key(p, gas, g->has_probe_low ? "probe_low" : "probe_high", 0,
+                    "the pressure probes come in pairs: give probe_low and probe_high");
+        return;
+    }
+    if (g->has_probe_low && !(g->probe_high > g->probe_low)) {
+        fail_at_key(p, gas, "probe_high", 0, "must be above probe_low");
+        return;
+    }
 }
 
 static void check_singletons(bdl_scene_parser *p)

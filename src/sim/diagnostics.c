@@ -26,6 +26,7 @@ const char *const bdl_diagnostics_columns[] = {
     "bed_height",
     "gas_volume_imbalance",
     "momentum_imbalance",
+    "probe_pressure_drop",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -99,6 +100,38 @@ static int compare_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+/// Mean pressure of cell layer m along axis a.
+static double layer_pressure(const bdl_gas *gas, int a, int m)
+{
+    const bdl_grid *g = &gas->grid;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    double sum = 0.0;
+    for (int jc = 0; jc < g->n[c]; ++jc)
+        for (int jb = 0; jb < g->n[b]; ++jb) {
+            int ix[3];
+            ix[a] = m, ix[b] = jb, ix[c] = jc;
+            sum += gas->p[bdl_grid_index(g, ix[0], ix[1], ix[2])];
+        }
+    return sum / ((double)g->n[b] * g->n[c]);
+}
+
+/// Layer-mean pressure at `height` above the domain's floor along the up axis: linear between
+/// the layers' centres, the nearest layer beyond the first and last centre.
+static double pressure_at_height(const bdl_world *w, int a, double up, double height)
+{
+    const bdl_grid *g = &w->gas->grid;
+    const int n = g->n[a];
+    double x = height / g->h[a] - 0.5; // in layer units from the lowest layer's centre
+    int lo = (int)floor(x);
+    if (lo < 0)
+        return layer_pressure(w->gas, a, up > 0.0 ? 0 : n - 1);
+    if (lo >= n - 1)
+        return layer_pressure(w->gas, a, up > 0.0 ? n - 1 : 0);
+    double f = x - lo;
+    int m0 = up > 0.0 ? lo : n - 1 - lo, m1 = up > 0.0 ? lo + 1 : n - 2 - lo;
+    return (1.0 - f) * layer_pressure(w->gas, a, m0) + f * layer_pressure(w->gas, a, m1);
+}
+
 static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
 {
     const bdl_gas *gas = w->gas;
@@ -118,6 +151,10 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
         layer[side] /= (double)g->n[b] * g->n[c];
     }
     d->pressure_drop = up > 0.0 ? layer[0] - layer[1] : layer[1] - layer[0];
+    const bdl_gas_scene *gs = &w->scene.gas;
+    d->probe_pressure_drop = gs->has_probe_low ? pressure_at_height(w, a, up, gs->probe_low) -
+                                                     pressure_at_height(w, a, up, gs->probe_high)
+                                               : NAN;
     const long n = w->particles.count;
     double *h = n > 0 ? malloc((size_t)n * sizeof(double)) : NULL;
     if (h) {
@@ -167,6 +204,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
         s.speed = fmax(s.speed, blocks[b].speed);
     }
     memset(d, 0, sizeof *d);
+    d->probe_pressure_drop = NAN; // without [gas] probe_low and probe_high
     d->time = w->time;
     d->step = w->step;
     d->particle_count = n;
@@ -209,4 +247,5 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[15] = d->bed_height;
     v[16] = d->gas_volume_imbalance;
     v[17] = d->momentum_imbalance;
+    v[18] = d->probe_pressure_drop;
 }

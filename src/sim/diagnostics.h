@@ -31,6 +31,8 @@ typedef struct bdl_diagnostics {
     double gas_volume_imbalance; ///< largest cell |d eps/dt + div(eps u)| dt of the last gas step
     double momentum_imbalance;   ///< |drag on particles + drag on gas| / |drag on particles| over
                                  ///< the axes the gas can move along
+    double probe_pressure_drop;  ///< pressure at [gas] probe_low minus at probe_high [Pa]; NaN
+                                 ///< without probes (with or without a gas)
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.
