@@ -342,6 +342,60 @@ static void jacobi(const bdl_poisson *p, level *L, int sweeps)
     }
 }
 
+/// One Gauss-Seidel sweep over the cells of one colour ((i + j + k) % 2 == color), in place.
+/// Cells of a colour never neighbour each other (see red_black_ok), so the order within a sweep
+/// and the thread count do not matter.
+static void colour_sweep(const bdl_poisson *p, level *L, int color)
+{
+    const int n0 = L->n[0], n1 = L->n[1], n2 = L->n[2];
+    double *x = L->x;
+    BDL_PARALLEL_FOR(
+        L->cells >= BDL_GRID_PARALLEL_MIN,
+        for (int k = 0; k < n2; ++k) for (int j = 0; j < n1; ++j) {
+            const long c0 = cell_of(L, 0, j, k);
+            double *xr = x + c0;
+            const double *dg = L->diag + c0, *b = L->b + c0;
+            const row_link y = link_rows(p, L, 1, j, k, x), z = link_rows(p, L, 2, j, k, x);
+            const double *Kx = L->K[0] + face_of(L, 0, 0, j, k);
+            const int wrap = p->periodic[0] && n0 > 1;
+            for (int i = (j + k + color) & 1; i < n0; i += 2) {
+                double off = y.K_lo[i] * y.x_lo[i] + y.K_hi[i] * y.x_hi[i] + z.K_lo[i] * z.x_lo[i] +
+                             z.K_hi[i] * z.x_hi[i];
+                if (n0 > 1) {
+                    off += i > 0 ? Kx[i] * xr[i - 1] : wrap ? Kx[0] * xr[n0 - 1] : 0.0;
+                    off += i < n0 - 1 ? Kx[i + 1] * xr[i + 1] : wrap ? Kx[0] * xr[0] : 0.0;
+                }
+                if (dg[i] > 0.0)
+                    xr[i] = (b[i] + off) / dg[i];
+            }
+        });
+}
+
+/// Red-black ordering needs every neighbour to have the other colour: no periodic axis with an
+/// odd number of cells above one (whose last and first cells would share a colour).
+static int red_black_ok(const bdl_poisson *p, const level *L)
+{
+    for (int a = 0; a < 3; ++a)
+        if (p->periodic[a] && L->n[a] > 1 && L->n[a] % 2 == 1)
+            return 0;
+    return 1;
+}
+
+/// Smoothing on level L: red-black Gauss-Seidel, red then black before the coarse correction and
+/// black then red after it (so the V-cycle stays a symmetric operator, as CG needs); damped
+/// Jacobi where red-black ordering is impossible.
+static void smooth(const bdl_poisson *p, level *L, int sweeps, int after)
+{
+    if (!red_black_ok(p, L)) {
+        jacobi(p, L, sweeps);
+        return;
+    }
+    for (int s = 0; s < sweeps; ++s) {
+        colour_sweep(p, L, after ? 1 : 0);
+        colour_sweep(p, L, after ? 0 : 1);
+    }
+}
+
 /// x = V-cycle(b) on level l, from x = 0: a fixed linear, symmetric operator of b.
 static void vcycle(const bdl_poisson *p, int l)
 {
@@ -351,7 +405,7 @@ static void vcycle(const bdl_poisson *p, int l)
         jacobi(p, L, COARSEST_SWEEPS);
         return;
     }
-    jacobi(p, L, SMOOTH_SWEEPS);
+    smooth(p, L, SMOOTH_SWEEPS, 0);
     apply(p, L, L->x, L->t);
     level *C = (level *)&p->levels[l + 1];
     memset(C->b, 0, (size_t)C->cells * sizeof(double));
@@ -370,7 +424,7 @@ static void vcycle(const bdl_poisson *p, int l)
                          L->x[cell_of(L, i, j, k)] +=
                      C->x[cell_of(C, L->coarsen[0] ? i / 2 : i, L->coarsen[1] ? j / 2 : j,
                                   L->coarsen[2] ? k / 2 : k)];);
-    jacobi(p, L, SMOOTH_SWEEPS);
+    smooth(p, L, SMOOTH_SWEEPS, 1);
 }
 
 /// z = V-cycle(r) on the finest level.
