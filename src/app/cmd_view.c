@@ -9,6 +9,8 @@
 // name such as "Space", "C", "F12"), so a session can be driven without a person (the tests do).
 #include <math.h>
 #include <stdio.h>
+
+#include <omp.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,6 +130,8 @@ static void find_live_parameter(viewer *v)
 static int start_world(viewer *v)
 {
     bdl_scene_error err;
+    // Only the solver thread runs an OpenMP team (see sim/run.c): the main thread draws.
+    omp_set_num_threads(1);
     if (bdl_world_create(v->scene, &v->world, &err) != BDL_OK) {
         fprintf(stderr, "error: %s\n", err.message);
         return 0;
