@@ -4,9 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cfd/gas.h"
 #include "io/atomic_file.h"
 
-static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '1'};
+// Version 2: the gas state and the inlet scale among the live parameters.
+static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '2'};
 
 uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
 {
@@ -22,6 +24,8 @@ uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
         int kind = (int)s->walls[k].kind;
         h = bdl_hash_bytes(h, &kind, sizeof kind);
     }
+    if (s->gas.enabled)
+        h = bdl_hash_bytes(h, &s->gas.cells, sizeof s->gas.cells);
     return h;
 }
 
@@ -52,8 +56,9 @@ static void get(reader *r, void *data, size_t size)
     X(time)                                                                                        \
     X(step)                                                                                        \
     X(dt)                                                                                          \
-    X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0)            \
-        X(contact_time) X(contact_time_dt_ratio)
+    X(rng)                                                                                         \
+    X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0) X(contact_time)   \
+        X(contact_time_dt_ratio)
 
 /// One array of the saved state.
 typedef struct field {
@@ -61,7 +66,7 @@ typedef struct field {
     size_t bytes;
 } field;
 
-#define MAX_FIELDS 32
+#define MAX_FIELDS 64
 
 /// The arrays of the state in file order, for the counts the world holds now. Save and load walk
 /// the same table, so the two cannot drift apart.
@@ -94,6 +99,31 @@ static int state_fields(bdl_world *w, field *f)
     f[k++] = (field){nb->wall_history, nw * v};
     f[k++] = (field){nb->wall_force, nw * v};
     f[k++] = (field){nb->wall_touching, nw};
+    if (p->fluid) { // the gas's forces on the particles, held between gas steps
+        f[k++] = (field){p->fluid_accel, n * v};
+        f[k++] = (field){p->vel_mark, n * v};
+        f[k++] = (field){p->drag_accel, n * v};
+    }
+    bdl_gas *g = w->gas;
+    if (g) {
+        const size_t cells = (size_t)g->grid.size * sizeof(double);
+        f[k++] = (field){&w->gas_every, sizeof w->gas_every};
+        f[k++] = (field){&w->gas_next, sizeof w->gas_next};
+        f[k++] = (field){&w->gas_steps, sizeof w->gas_steps};
+        f[k++] = (field){&w->gas_stable, sizeof w->gas_stable};
+        f[k++] = (field){&w->gas_work, sizeof w->gas_work};
+        f[k++] = (field){w->particle_drag, sizeof w->particle_drag};
+        f[k++] = (field){w->gas_drag, sizeof w->gas_drag};
+        f[k++] = (field){&g->time, sizeof g->time};
+        f[k++] = (field){&g->steps, sizeof g->steps};
+        f[k++] = (field){&g->last_solve, sizeof g->last_solve};
+        f[k++] = (field){&g->mass_imbalance, sizeof g->mass_imbalance};
+        for (int a = 0; a < 3; ++a)
+            f[k++] = (field){g->u[a], cells};
+        f[k++] = (field){g->p, cells};
+        f[k++] = (field){g->eps, cells};
+        f[k++] = (field){g->eps_old, cells};
+    }
     return k;
 }
 

@@ -2,8 +2,10 @@
 //
 // A checkpoint holds everything the next step reads: particle state including this step's forces,
 // the neighbour and wall-contact lists with their history and the positions they were built at,
-// the random generator, pour counters, live parameters and energy bookkeeping. Restoring it into a
-// world built from the same scene continues bit-for-bit. Files are written atomically.
+// the random generator, pour counters, live parameters and energy bookkeeping, and with a gas its
+// velocity, pressure and voidage, the gas's forces the particles carry between gas steps and the
+// gas-step schedule. Restoring it into a world built from the same scene continues bit-for-bit.
+// Files are written atomically.
 #ifndef BDL_CHECKPOINT_H
 #define BDL_CHECKPOINT_H
 

@@ -50,11 +50,8 @@ bdl_loop_def bdl_default_loop_def(void)
 int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
 {
     if (strcmp(key, "gas.inlet_scale") == 0 && w->gas) {
-        // Inlet and jet velocities of every inlet side, as a factor on the scene's values.
-        for (int s = 0; s < 6; ++s) {
-            w->gas->def.side[s].inflow = value * w->scene.gas.inlet_velocity;
-            w->gas->def.side[s].jet_inflow = value * w->scene.gas.jet_velocity;
-        }
+        w->live.inlet_scale = value;
+        bdl_world_apply_live(w);
         return 1;
     }
     for (int k = 0; k < w->scene.wall_count; ++k) {

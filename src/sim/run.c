@@ -388,12 +388,6 @@ int bdl_run(const bdl_run_def *def)
     }
     if (warning[0])
         bdl_warn("%s", warning);
-    if (def->resume && world->gas) {
-        // Checkpoints hold the particles only; a resumed gas would restart from rest.
-        bdl_error("--resume: scenes with [gas] cannot be resumed yet (the checkpoint does not hold "
-                  "the gas); run the scene from its start");
-        return finish(2, world, log);
-    }
     if (def->resume) {
         if (bdl_checkpoint_load(world, ckpt, why, sizeof why) != BDL_OK) {
             bdl_error("%s", why);

@@ -102,6 +102,11 @@ double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which,
 
 void bdl_world_apply_live(bdl_world *w)
 {
+    if (w->gas) // inlet and jet velocities of every inlet side, as a factor on the scene's
+        for (int s = 0; s < 6; ++s) {
+            w->gas->def.side[s].inflow = w->live.inlet_scale * w->scene.gas.inlet_velocity;
+            w->gas->def.side[s].jet_inflow = w->live.inlet_scale * w->scene.gas.jet_velocity;
+        }
     for (int k = 0; k < w->scene.wall_count; ++k) {
         const bdl_wall_def *d = &w->scene.walls[k];
         if (d->motion != BDL_MOTION_VIBRATE || d->frame == BDL_FRAME_CONTAINER)
@@ -348,6 +353,7 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
         w->background_damping[s] = scene->species[s].background_damping;
     for (int k = 0; k < BDL_MAX_WALLS; ++k)
         w->live.amplitude_scale[k] = w->live.frequency_scale[k] = 1.0;
+    w->live.inlet_scale = 1.0;
     bdl_walls_build(scene, &w->walls);
     w->container = -1;
     for (int k = 0; k < scene->wall_count; ++k)

@@ -23,6 +23,7 @@ struct bdl_coupling;
 typedef struct bdl_live_params {
     double amplitude_scale[BDL_MAX_WALLS]; ///< multiplies each wall's vibration amplitude
     double frequency_scale[BDL_MAX_WALLS]; ///< multiplies each wall's vibration frequency
+    double inlet_scale;                    ///< multiplies the gas inlet and jet velocities
 } bdl_live_params;
 
 typedef struct bdl_world {
