@@ -422,6 +422,57 @@ static void test_overlay_and_png(const char *tag)
     remove(path);
 }
 
+/// A gas-field slice: one flat colour per cell from the sequential map over the slice's range,
+/// blended at the view's opacity; a sphere in front of it hides it; opacity 0 draws nothing.
+static void test_gas_slice(void)
+{
+    small_snapshot ss;
+    snapshot_init(&ss, 1);
+    ss.pos[0] = 0.03f, ss.pos[1] = -0.02f, ss.pos[2] = 0.03f; // in front, over cell (1, 1)
+    ss.radius[0] = 0.005f;
+    float cells[4] = {0.0f, 1.0f, 2.0f, 3.0f}; // x fastest, then z
+    ss.s.slice = cells;
+    ss.s.slice_field = BDL_GAS_FIELD_VOIDAGE;
+    ss.s.slice_axis = 1;   // normal y: the plane spans z (first) and x (second)
+    ss.s.slice_at = 0.04f; // behind the particle for a view along +y
+    for (int k = 0; k < 3; ++k)
+        ss.s.slice_lo[k] = -0.05f, ss.s.slice_hi[k] = 0.05f;
+    ss.s.slice_n[0] = 2;
+    ss.s.slice_n[1] = 2;
+    bdl_view v;
+    base_view(&v, 1);
+    v.gas_opacity = 0.5f;
+    draw(&ss, &v);
+    // Cells along z (first axis) then x: value (jz + 2 jx) / 3 of the range 0..3.
+    double half = 0.2 * tan(20.0 * BDL_PI / 180.0), ppm = (H / 2.0) / half;
+    int worst = 0;
+    for (int jx = 0; jx < 2; ++jx)
+        for (int jz = 0; jz < 2; ++jz) {
+            float rgb[3];
+            bdl_colormap_eval(BDL_CMAP_SEQUENTIAL, (jz + 2.0 * jx) / 3.0, rgb);
+            double x = jx ? 0.015 : -0.015, z = jz ? 0.015 : -0.015;
+            if (jx && jz)
+                x = 0.015, z = 0.01; // beside the sphere
+            const uint8_t *p = pixel((int)(W / 2.0 + x * ppm), (int)(H / 2.0 - z * ppm));
+            for (int k = 0; k < 3; ++k) {
+                int expect = (int)lrintf(0.5f * 255.0f * rgb[k]);
+                worst = abs(p[k] - expect) > worst ? abs(p[k] - expect) : worst;
+            }
+        }
+    printf("gas slice: 4 cells within %d levels of half their map colour over black\n", worst);
+    CHECK_MSG(worst <= 3, "slice colours off by %d levels", worst);
+    // The sphere in front hides the slice at its centre: no map colour mixed in there.
+    const uint8_t *c = pixel((int)(W / 2.0 + 0.03 * ppm), (int)(H / 2.0 - 0.03 * ppm));
+    float top[3];
+    bdl_colormap_eval(BDL_CMAP_SEQUENTIAL, 1.0, top);
+    CHECK_MSG(!(abs(c[0] - (int)lrintf(127.5f * top[0])) <= 3 &&
+                abs(c[1] - (int)lrintf(127.5f * top[1])) <= 3),
+              "the slice shows through the sphere");
+    v.gas_opacity = 0.0f;
+    draw(&ss, &v);
+    CHECK(is_background((int)(W / 2.0 - 0.015 * ppm), (int)(H / 2.0 + 0.015 * ppm)));
+}
+
 static int run_backend(bdl_gl_backend backend)
 {
     char why[1024];
@@ -439,6 +490,7 @@ static int run_backend(bdl_gl_backend backend)
         test_position_perspective();
         test_colors();
         test_depth();
+        test_gas_slice();
         test_culling(backend);
         test_overlay_and_png(bdl_gl_backend_name(backend));
         bdl_renderer_destroy(fr.r);

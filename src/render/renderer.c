@@ -33,7 +33,12 @@ typedef struct line_group {
 struct bdl_renderer {
     bdl_scene scene;
     int headless, width, height, samples;
-    GLuint sphere_prog, line_prog, overlay_prog;
+    GLuint sphere_prog, line_prog, overlay_prog, slice_prog;
+    GLuint slice_vao, slice_vbo, slice_tex;
+    uint8_t *slice_rgb; ///< the slice's cells as colours
+    long slice_rgb_capacity;
+    float slice_range[2]; ///< value range of the last slice drawn
+    int slice_drawn;
     GLuint sphere_vao, point_vao, sphere_vbo;
     float point_max;   ///< largest point size the driver draws [px]
     float max_radius;  ///< of the last snapshot [m]
@@ -332,6 +337,16 @@ static void make_vertex_arrays(bdl_renderer *r)
     glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, sizeof(overlay_vertex), (void *)8);
     glEnableVertexAttribArray(2);
     glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, sizeof(overlay_vertex), (void *)16);
+
+    // The gas slice: 6 vertices of xyz and uv.
+    glGenVertexArrays(1, &r->slice_vao);
+    glBindVertexArray(r->slice_vao);
+    glGenBuffers(1, &r->slice_vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, r->slice_vbo);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 20, (void *)0);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 2, GL_FLOAT, GL_FALSE, 20, (void *)12);
     glBindVertexArray(0);
 }
 
@@ -632,6 +647,9 @@ static void help_box(bdl_renderer *r, const char *help, int width, int height)
     text(r, x0 + 16.0f, y0 + 12.0f, help, text_color);
 }
 
+static const char *const gas_field_labels[] = {"", "voidage", "pressure", "gas speed"};
+static const char *const gas_field_units[] = {"", "", "Pa", "m/s"};
+
 static void build_overlay(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v, int width,
                           int height)
 {
@@ -645,8 +663,17 @@ static void build_overlay(bdl_renderer *r, const bdl_snapshot *s, const bdl_view
                  s->count);
         float lh = r->font ? bdl_font_line_height(r->font) : 0.0f;
         text(r, 10, 8, line, text_color);
+        float y = 8 + lh;
         if (v->status)
-            text(r, 10, 8 + lh, v->status, text_color);
+            text(r, 10, y, v->status, text_color), y += lh;
+        if (r->slice_drawn > 0 && r->slice_drawn < 4) {
+            char lo[32], hi[32];
+            format_value(lo, sizeof lo, r->slice_range[0]);
+            format_value(hi, sizeof hi, r->slice_range[1]);
+            snprintf(line, sizeof line, "slice: %s %s to %s %s", gas_field_labels[r->slice_drawn],
+                     lo, hi, gas_field_units[r->slice_drawn]);
+            text(r, 10, y, line, text_color);
+        }
         if (v->color == BDL_COLOR_SPECIES || v->color == BDL_COLOR_COORDINATION)
             legend(r, v, width, height);
         else
@@ -720,6 +747,7 @@ void bdl_view_from_scene(const bdl_scene *scene, float aspect, bdl_view *view)
     view->background[0] = (float)d->background.x;
     view->background[1] = (float)d->background.y;
     view->background[2] = (float)d->background.z;
+    view->gas_opacity = d->gas_field != BDL_GAS_FIELD_NONE ? (float)d->gas_opacity : 0.0f;
 }
 
 static int reserve_instances(bdl_renderer *r, long n)
@@ -862,6 +890,69 @@ static void draw_spheres(bdl_renderer *r, const bdl_snapshot *s, long count, con
     }
 }
 
+
+/// The snapshot's gas-field slice: one flat colour per cell (sequential map over the slice's
+/// range), blended over what is behind it; particles in front of it hide it.
+static void draw_slice(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
+                       const float *view_proj)
+{
+    r->slice_drawn = 0;
+    const long cells = (long)s->slice_n[0] * s->slice_n[1];
+    if (cells <= 0 || !s->slice || !(v->gas_opacity > 0.0f))
+        return;
+    if (cells > r->slice_rgb_capacity) {
+        uint8_t *p = realloc(r->slice_rgb, (size_t)cells * 3);
+        if (!p)
+            return;
+        r->slice_rgb = p;
+        r->slice_rgb_capacity = cells;
+    }
+    float lo = s->slice[0], hi = s->slice[0];
+    for (long c = 1; c < cells; ++c)
+        lo = fminf(lo, s->slice[c]), hi = fmaxf(hi, s->slice[c]);
+    const float span = hi > lo ? hi - lo : 1.0f;
+    for (long c = 0; c < cells; ++c) {
+        float rgb[3];
+        bdl_colormap_eval(BDL_CMAP_SEQUENTIAL, (s->slice[c] - lo) / span, rgb);
+        for (int k = 0; k < 3; ++k)
+            r->slice_rgb[3 * c + k] = to_byte(rgb[k]);
+    }
+    if (!r->slice_tex)
+        r->slice_tex = texture_2d(GL_RGB8, 1, 1, GL_RGB, r->slice_rgb, GL_NEAREST);
+    glBindTexture(GL_TEXTURE_2D, r->slice_tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, s->slice_n[0], s->slice_n[1], 0, GL_RGB,
+                 GL_UNSIGNED_BYTE, r->slice_rgb);
+    // The quad: the slice's two axes span the box, the normal axis sits at slice_at.
+    const int a = s->slice_axis, b = (a + 1) % 3, c2 = (a + 2) % 3;
+    float quad[6][5];
+    static const int corner[6][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 0}, {1, 1}, {0, 1}};
+    for (int k = 0; k < 6; ++k) {
+        quad[k][a] = s->slice_at;
+        quad[k][b] = corner[k][0] ? s->slice_hi[b] : s->slice_lo[b];
+        quad[k][c2] = corner[k][1] ? s->slice_hi[c2] : s->slice_lo[c2];
+        quad[k][3] = (float)corner[k][0];
+        quad[k][4] = (float)corner[k][1];
+    }
+    glUseProgram(r->slice_prog);
+    glUniformMatrix4fv(glGetUniformLocation(r->slice_prog, "u_view_proj"), 1, GL_FALSE, view_proj);
+    glUniform1f(glGetUniformLocation(r->slice_prog, "u_alpha"), v->gas_opacity);
+    glUniform1i(glGetUniformLocation(r->slice_prog, "u_cells"), 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(r->slice_vao);
+    glBindBuffer(GL_ARRAY_BUFFER, r->slice_vbo);
+    glBufferData(GL_ARRAY_BUFFER, sizeof quad, quad, GL_STREAM_DRAW);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glDepthMask(GL_FALSE);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    r->slice_range[0] = lo;
+    r->slice_range[1] = hi;
+    r->slice_drawn = s->slice_field;
+}
+
 static void draw_outlines(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
                           const float *view_proj)
 {
@@ -914,6 +1005,8 @@ void bdl_renderer_draw(bdl_renderer *r, const bdl_snapshot *snap, const bdl_view
             draw_spheres(r, snap, r->drawn, view, v, p, width, height);
     }
     bdl_snapshot none = {0};
+    if (snap)
+        draw_slice(r, snap, view, (const float *)vp);
     if (view->outlines) {
         glEnable(GL_BLEND);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
@@ -1002,7 +1095,8 @@ bdl_result bdl_renderer_create(const bdl_renderer_def *def, bdl_renderer **out, 
     r->sphere_prog = program("sphere.vert", "sphere.frag", why, why_len);
     r->line_prog = r->sphere_prog ? program("line.vert", "line.frag", why, why_len) : 0;
     r->overlay_prog = r->line_prog ? program("overlay.vert", "overlay.frag", why, why_len) : 0;
-    if (!r->overlay_prog || (r->headless && !make_framebuffer(r, why, why_len))) {
+    r->slice_prog = r->overlay_prog ? program("slice.vert", "slice.frag", why, why_len) : 0;
+    if (!r->slice_prog || (r->headless && !make_framebuffer(r, why, why_len))) {
         bdl_renderer_destroy(r);
         return BDL_ERR_GL;
     }
@@ -1022,6 +1116,15 @@ void bdl_renderer_destroy(bdl_renderer *r)
         glDeleteProgram(r->line_prog);
     if (r->overlay_prog)
         glDeleteProgram(r->overlay_prog);
+    if (r->slice_prog)
+        glDeleteProgram(r->slice_prog);
+    if (r->slice_vao) {
+        glDeleteBuffers(1, &r->slice_vbo);
+        glDeleteVertexArrays(1, &r->slice_vao);
+    }
+    if (r->slice_tex)
+        glDeleteTextures(1, &r->slice_tex);
+    free(r->slice_rgb);
     GLuint buffers[3] = {r->sphere_vbo, r->line_vbo, r->overlay_vbo};
     GLuint arrays[4] = {r->sphere_vao, r->line_vao, r->overlay_vao, r->point_vao};
     GLuint textures[3] = {r->font_tex, r->cmap_tex[0], r->cmap_tex[1]};

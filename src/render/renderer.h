@@ -27,6 +27,7 @@ typedef struct bdl_view {
     int outlines;         ///< domain and wall outlines
     int no_culling;       ///< draw hidden particles too (same image, slower; for tests)
     float background[3];  ///< sRGB 0..1
+    float gas_opacity;    ///< of the snapshot's gas-field slice (0: not drawn)
     const char *status;   ///< extra overlay line, or NULL
     const char *help;     ///< help text box in the middle, or NULL
 } bdl_view;

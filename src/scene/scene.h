@@ -178,6 +178,14 @@ extern const char *const bdl_color_mode_names[];
 /// Scene names of the drag laws ([coupling] drag), NULL-terminated.
 extern const char *const bdl_scene_drag_names[];
 
+/// A gas field drawn as a translucent slice behind or through the particles ([camera] gas_field).
+typedef enum bdl_gas_field {
+    BDL_GAS_FIELD_NONE = 0,
+    BDL_GAS_FIELD_VOIDAGE = 1,
+    BDL_GAS_FIELD_PRESSURE = 2, ///< gauge pressure [Pa]
+    BDL_GAS_FIELD_SPEED = 3,    ///< |u| of the interstitial gas [m/s]
+} bdl_gas_field;
+
 typedef struct bdl_camera_def {
     bdl_view_preset view;
     bdl_projection projection;
@@ -194,11 +202,15 @@ typedef struct bdl_camera_def {
     int clip;            ///< cut the bed open: hide particles whose centre is on the normal's side
     bdl_vec3 clip_point; ///< a point on the clipping plane [m]; default the target
     int has_clip_point;
-    bdl_vec3 clip_normal; ///< unit normal; particles on this side are hidden
-    int lighting;         ///< shaded spheres (else flat colour)
-    int overlay;          ///< text and colour bar
-    int outlines;         ///< domain and wall outlines
-    bdl_vec3 background;  ///< sRGB 0..1
+    bdl_vec3 clip_normal;      ///< unit normal; particles on this side are hidden
+    int lighting;              ///< shaded spheres (else flat colour)
+    int overlay;               ///< text and colour bar
+    int outlines;              ///< domain and wall outlines
+    bdl_vec3 background;       ///< sRGB 0..1
+    bdl_gas_field gas_field;   ///< a gas field on a slice of the grid
+    int gas_slice_axis;        ///< normal of the slice (0 x, 1 y, 2 z)
+    double gas_slice_position; ///< where along that axis, 0..1 of the domain
+    double gas_opacity;        ///< of the slice, 0..1
 } bdl_camera_def;
 
 typedef struct bdl_guard_def {

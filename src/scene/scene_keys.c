@@ -24,6 +24,7 @@ _Static_assert(sizeof(bdl_projection) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_color_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_gas_boundary) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_gas_convection) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_gas_field) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_RUN] = {"run", "run", 0, 1},
@@ -52,6 +53,8 @@ static const char *const create_type_names[] = {"random", "lattice", "pour", "fi
 static const char *const view_names[] = {"iso", "front", "side", "top", NULL};
 static const char *const projection_names[] = {"perspective", "orthographic", NULL};
 static const char *const gas_side_names[] = {"wall", "slip", "inlet", "outlet", NULL};
+static const char *const gas_field_names[] = {"none", "voidage", "pressure", "speed", NULL};
+static const char *const axis_names[] = {"x", "y", "z", NULL};
 static const char *const convection_names[] = {"upwind", "vanleer", "superbee", "central", NULL};
 // The drag laws of src/couple/drag.h, in the same order (test_scene checks it).
 const char *const bdl_scene_drag_names[] = {
@@ -354,6 +357,18 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "draw the outlines of the domain and the walls"},
     {S(CAMERA), "background", VEC, "-", IN_CAMERA(background), .def = {0.11, 0.12, 0.14}, GE(0),
      LE(1), .doc = "background colour, sRGB red green blue in 0..1"},
+    {S(CAMERA), "gas_field", .type = BDL_KEY_ENUM, "-", IN_CAMERA(gas_field),
+     .def = {BDL_GAS_FIELD_NONE}, .enum_names = gas_field_names,
+     .doc = "with [gas]: a gas field drawn on a translucent slice of the grid, one flat colour per "
+            "cell (sequential map, range of the slice)"},
+    {S(CAMERA), "gas_slice_axis", .type = BDL_KEY_ENUM, "-", IN_CAMERA(gas_slice_axis), .def = {1},
+     .enum_names = axis_names, .doc = "normal of the slice plane"},
+    {S(CAMERA), "gas_slice_position", NUM, "-", IN_CAMERA(gas_slice_position), .def = {0.5}, GE(0),
+     LE(1),
+     .doc = "where the slice lies along its axis, as a fraction of the domain (1 = the far side "
+            "of a front view: behind the particles)"},
+    {S(CAMERA), "gas_opacity", NUM, "-", IN_CAMERA(gas_opacity), .def = {0.6}, GE(0), LE(1),
+     .doc = "opacity of the slice"},
 
     // [gas]
     {S(GAS), "density", NUM, "kg/m^3", IN_GAS(density), .def = {1.2}, GT(0),

@@ -4,6 +4,7 @@
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -98,6 +99,63 @@ static int snapshot_reserve(bdl_snapshot *s, long n)
     return 1;
 }
 
+static int reserve_slice(bdl_snapshot *s, long count)
+{
+    if (count <= s->slice_capacity)
+        return 1;
+    float *a = realloc(s->slice, (size_t)count * sizeof(float));
+    if (!a)
+        return 0;
+    s->slice = a;
+    s->slice_capacity = count;
+    return 1;
+}
+
+/// The [camera] gas_field on its slice: the layer of cells the slice position falls in.
+static int fill_slice(bdl_snapshot *s, const bdl_world *w)
+{
+    const bdl_camera_def *cam = &w->scene.camera;
+    s->slice_n[0] = s->slice_n[1] = 0;
+    if (!w->gas || cam->gas_field == BDL_GAS_FIELD_NONE)
+        return 1;
+    const bdl_gas *gas = w->gas;
+    const bdl_grid *g = &gas->grid;
+    const int a = cam->gas_slice_axis, b = (a + 1) % 3, c = (a + 2) % 3;
+    if (!reserve_slice(s, (long)g->n[b] * g->n[c]))
+        return 0;
+    int m = (int)floor(cam->gas_slice_position * g->n[a]);
+    m = m < 0 ? 0 : m >= g->n[a] ? g->n[a] - 1 : m;
+    for (int jc = 0; jc < g->n[c]; ++jc)
+        for (int jb = 0; jb < g->n[b]; ++jb) {
+            int ix[3];
+            ix[a] = m, ix[b] = jb, ix[c] = jc;
+            const long idx = bdl_grid_index(g, ix[0], ix[1], ix[2]);
+            double v = gas->eps[idx];
+            if (cam->gas_field == BDL_GAS_FIELD_PRESSURE) {
+                v = gas->p[idx];
+            } else if (cam->gas_field == BDL_GAS_FIELD_SPEED) {
+                double sum = 0.0;
+                for (int d = 0; d < 3; ++d) {
+                    double u = bdl_gas_cell_velocity(gas, d, ix[0], ix[1], ix[2]);
+                    sum += u * u;
+                }
+                v = sqrt(sum);
+            }
+            s->slice[(long)jc * g->n[b] + jb] = (float)v;
+        }
+    s->slice_field = (int)cam->gas_field;
+    s->slice_axis = a;
+    for (int d = 0; d < 3; ++d) {
+        s->slice_lo[d] = (float)g->origin[d];
+        s->slice_hi[d] = (float)(g->origin[d] + g->n[d] * g->h[d]);
+    }
+    s->slice_at =
+        s->slice_lo[a] + (float)cam->gas_slice_position * (s->slice_hi[a] - s->slice_lo[a]);
+    s->slice_n[0] = g->n[b];
+    s->slice_n[1] = g->n[c];
+    return 1;
+}
+
 int bdl_snapshot_fill(bdl_snapshot *s, const bdl_world *w)
 {
     const bdl_particles *p = &w->particles;
@@ -124,7 +182,7 @@ int bdl_snapshot_fill(bdl_snapshot *s, const bdl_world *w)
         s->wall_offset[k][1] = (float)w->walls.offset[k].y;
         s->wall_offset[k][2] = (float)w->walls.offset[k].z;
     }
-    return 1;
+    return fill_slice(s, w);
 }
 
 int bdl_snapshot_copy(bdl_snapshot *dst, const bdl_snapshot *src)
@@ -144,11 +202,23 @@ int bdl_snapshot_copy(bdl_snapshot *dst, const bdl_snapshot *src)
     dst->wall_count = src->wall_count;
     memcpy(dst->wall_offset, src->wall_offset, sizeof dst->wall_offset);
     dst->steps_per_second = src->steps_per_second;
+    long cells = (long)src->slice_n[0] * src->slice_n[1];
+    if (!reserve_slice(dst, cells))
+        return 0;
+    if (cells > 0)
+        memcpy(dst->slice, src->slice, (size_t)cells * sizeof(float));
+    dst->slice_field = src->slice_field;
+    dst->slice_axis = src->slice_axis;
+    dst->slice_at = src->slice_at;
+    memcpy(dst->slice_lo, src->slice_lo, sizeof dst->slice_lo);
+    memcpy(dst->slice_hi, src->slice_hi, sizeof dst->slice_hi);
+    memcpy(dst->slice_n, src->slice_n, sizeof dst->slice_n);
     return 1;
 }
 
 void bdl_snapshot_free(bdl_snapshot *s)
 {
+    free(s->slice);
     free(s->pos);
     free(s->vel);
     free(s->radius);

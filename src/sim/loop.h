@@ -41,6 +41,14 @@ typedef struct bdl_snapshot {
     int wall_count;
     float wall_offset[BDL_MAX_WALLS][3]; ///< displacement of each (vibrating) wall from rest [m]
     double steps_per_second;             ///< the solver's recent speed (0 if unknown)
+    // A slice of a gas field, when [camera] gas_field asks for one (slice_n[0] == 0: none).
+    int slice_field;                ///< bdl_gas_field
+    int slice_axis;                 ///< normal of the slice plane
+    float slice_at;                 ///< its coordinate [m]
+    float slice_lo[3], slice_hi[3]; ///< the box it spans [m]
+    int slice_n[2];                 ///< cells along axes (axis + 1) % 3 and (axis + 2) % 3
+    float *slice;                   ///< slice_n[0] x slice_n[1] values, the first axis fastest
+    long slice_capacity;
 } bdl_snapshot;
 
 /// Copies the world's particles into a snapshot (growing it as needed). Returns 0 when out of
