@@ -21,6 +21,8 @@ bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const
     for (int a = 0; a < 3; ++a) {
         double h = gas->grid.h[a];
         c->width[a] = fmin(fmax(def->kernel_width, h), 4.0 * h);
+        c->inv_h[a] = 1.0 / h;
+        c->reach[a] = c->width[a] / h;
         if (!(c->grad[a] = bdl_grid_alloc(&gas->grid))) {
             bdl_coupling_free(c);
             return BDL_ERR_NOMEM;
@@ -70,7 +72,6 @@ static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double
                          int hi, double x, int *first, int *span, double *w)
 {
     const int n = g->n[a];
-    const double h = g->h[a], width = c->width[a];
     *span = 0;
     *first = 0;
     if (hi < lo)
@@ -79,8 +80,8 @@ static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double
         *span = 1, w[0] = 1.0;
         return;
     }
-    const double reach = width / h, inv_reach = h / width;
-    double u = (x - g->origin[a]) / h - offset; // position in point units
+    const double reach = c->reach[a], inv_reach = 1.0 / reach;
+    double u = (x - g->origin[a]) * c->inv_h[a] - offset; // position in point units
     // ceil and floor by truncation: libm's are calls here, and this runs 6 times per particle.
     double lo_x = u - reach, hi_x = u + reach;
     int from = (int)lo_x, to = (int)hi_x;
@@ -107,8 +108,9 @@ static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double
         w[0] = 1.0;
         return;
     }
+    const double norm = 1.0 / sum;
     for (int k = 0; k < count; ++k)
-        w[k] /= sum;
+        w[k] *= norm;
     *first = from;
     *span = count;
 }

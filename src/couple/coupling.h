@@ -47,6 +47,8 @@ typedef struct bdl_coupling {
     double *weight;  ///< BDL_KERNEL_MAX normalised weights per slot
     double *factor;  ///< per particle: a_i = m D / (1 + D dt) [kg/s]
     double width[3]; ///< kernel half-width per axis [m]
+    double inv_h[3]; ///< 1 / cell size per axis [1/m]
+    double reach[3]; ///< half-width in cells per axis
     double *grad[3]; ///< scratch: cell-centred pressure gradient (padded grid fields)
 } bdl_coupling;
 
