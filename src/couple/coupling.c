@@ -8,9 +8,9 @@
 
 #include "core/vec3.h"
 
-/// Per-particle loops over fewer particles than this run on one thread (each particle's kernel
-/// work is a few hundred operations: a pseudo-2D bed of 800 particles gains from two threads).
-#define BDL_COUPLING_PARALLEL_MIN 512
+/// Per-particle loops over fewer particles than this run on one thread (as the force pass: see
+/// BDL_PARALLEL_MIN).
+#define BDL_COUPLING_PARALLEL_MIN 4096
 
 bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const bdl_gas *gas)
 {

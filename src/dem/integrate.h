@@ -27,10 +27,11 @@ typedef struct bdl_force_def {
     long parallel_min; ///< fewer particles than this: one thread
 } bdl_force_def;
 
-/// Below this many particles a parallel region costs more than it saves. (Measured: a dense bed
-/// of 1000-2000 particles runs about as fast on two threads as on one; the pseudo-2D fluidized
-/// bed of 800, two wall contacts per particle, 1.4x faster.)
-#define BDL_PARALLEL_MIN 512
+/// Below this many particles a parallel region costs more than it saves. (Measured on the
+/// two-core CI machine: a dense bed of 1000-2000 particles runs about as fast on two threads as
+/// on one; the pseudo-2D fluidized bed of 800 ran 1.4x faster on two at best, but in the spells
+/// when the virtual machine's parallel regions take twice as long, 1.7x slower than on one.)
+#define BDL_PARALLEL_MIN 4096
 
 #define BDL_MAX_FORCE_THREADS 256
 
