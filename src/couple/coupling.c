@@ -8,16 +8,13 @@
 
 #include "core/vec3.h"
 
-/// Per-particle loops over fewer particles than this run on one thread (as the force pass: see
-/// BDL_PARALLEL_MIN).
-#define BDL_COUPLING_PARALLEL_MIN 4096
-
 bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const bdl_gas *gas)
 {
     *c = (bdl_coupling){0};
     c->def = *def;
     if (!(c->def.max_solids > 0.0))
         c->def.max_solids = 0.7;
+    c->parallel_min = BDL_COUPLING_PARALLEL_MIN;
     for (int a = 0; a < 3; ++a) {
         double h = gas->grid.h[a];
         c->width[a] = fmin(fmax(def->kernel_width, h), 4.0 * h);
@@ -143,8 +140,7 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, 
         momentum_faces(gas, a, &flo[a], &fhi[a]);
     const bdl_grid *g = &gas->grid;
     BDL_PARALLEL_FOR(
-        count >= BDL_COUPLING_PARALLEL_MIN,
-        for (long i = 0; i < count; ++i) for (int a = 0; a < 3; ++a) {
+        count >= c->parallel_min, for (long i = 0; i < count; ++i) for (int a = 0; a < 3; ++a) {
             // Slots 0-2: cell centres per axis; 3-5: the momentum faces of component a.
             for (int slot = a; slot < 6; slot += 3) {
                 const long at = 6 * i + slot;
@@ -245,7 +241,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_p
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
     BDL_PARALLEL_FOR(
-        p->count >= BDL_COUPLING_PARALLEL_MIN, for (long i = 0; i < p->count; ++i) {
+        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             double u[3];
             gas_velocity_at(c, gas, i, u);
             const double *v = &p->vel[3 * i];
@@ -313,7 +309,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_co
                         c->grad[a][idx] = pressure_gradient(gas, a, m[a], idx);
                 }
     BDL_PARALLEL_FOR(
-        p->count >= BDL_COUPLING_PARALLEL_MIN, for (long i = 0; i < p->count; ++i) {
+        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             if (drag) {
                 double u[3];
                 gas_velocity_at(c, gas, i, u);

@@ -30,6 +30,10 @@
 
 #define BDL_KERNEL_MAX 8 ///< cells per axis a particle may touch (w <= 4 cells)
 
+/// Per-particle loops over fewer particles than this run on one thread (as the force pass: see
+/// BDL_PARALLEL_MIN in dem/integrate.h).
+#define BDL_COUPLING_PARALLEL_MIN 4096
+
 typedef struct bdl_coupling_def {
     bdl_drag_law drag;
     bdl_drag_params drag_params;
@@ -42,14 +46,15 @@ typedef struct bdl_coupling {
     long capacity;
     // Per particle, six separable kernels: slots 0-2 over the cell centres along x, y, z;
     // slots 3-5 over the momentum faces of component x, y, z along its own axis.
-    int *offset;     ///< BDL_KERNEL_MAX padded-index offsets per slot (periodic axes wrapped)
-    int *span;       ///< points touched in each slot
-    double *weight;  ///< BDL_KERNEL_MAX normalised weights per slot
-    double *factor;  ///< per particle: a_i = m D / (1 + D dt) [kg/s]
-    double width[3]; ///< kernel half-width per axis [m]
-    double inv_h[3]; ///< 1 / cell size per axis [1/m]
-    double reach[3]; ///< half-width in cells per axis
-    double *grad[3]; ///< scratch: cell-centred pressure gradient (padded grid fields)
+    int *offset;       ///< BDL_KERNEL_MAX padded-index offsets per slot (periodic axes wrapped)
+    int *span;         ///< points touched in each slot
+    double *weight;    ///< BDL_KERNEL_MAX normalised weights per slot
+    double *factor;    ///< per particle: a_i = m D / (1 + D dt) [kg/s]
+    double width[3];   ///< kernel half-width per axis [m]
+    double inv_h[3];   ///< 1 / cell size per axis [1/m]
+    double reach[3];   ///< half-width in cells per axis
+    long parallel_min; ///< per-particle loops go parallel from this many particles
+    double *grad[3];   ///< scratch: cell-centred pressure gradient (padded grid fields)
 } bdl_coupling;
 
 typedef struct bdl_coupling_particles {

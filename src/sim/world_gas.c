@@ -205,6 +205,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
         dens[i] = 1.0 / (p->inv_mass[i] * volume);
     }
     bdl_coupling_particles cp = {n, pos, vel, acc, rad, dens};
+    w->coupling->parallel_min = w->parallel_min; // one threshold for all particle loops
     if (bdl_coupling_locate(w->coupling, w->gas, n, pos) != BDL_OK)
         return BDL_ERR_NOMEM;
     bdl_coupling_voidage(w->coupling, w->gas, &cp);
