@@ -370,11 +370,27 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
         fail_at_key(p, gas, "probe_high", 0, "must be above probe_low");
         return;
     }
+    if (g->has_probe_high) {
+        // Heights are measured along gravity (z without it) from the domain's floor.
+        const bdl_scene *sc = p->scene;
+        int axis = 2;
+        for (int a = 0; a < 3; ++a)
+            if (fabs(bdl_v3_comp(sc->gravity, a)) > fabs(bdl_v3_comp(sc->gravity, axis)))
+                axis = a;
+        double height = bdl_v3_comp(sc->domain_max, axis) - bdl_v3_comp(sc->domain_min, axis);
+        if (g->probe_high > height) {
+            char what[128];
+            snprintf(what, sizeof what, "must lie inside the domain (height %.6g m)", height);
+            fail_at_key(p, gas, "probe_high", 0, what);
+            return;
+        }
+    }
 }
 
 static void check_singletons(bdl_scene_parser *p)
 {
-    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL;
+    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL,
+                      *camera = NULL;
     for (int i = 0; i < p->section_count && !p->failed; ++i) {
         bdl_scene_section *s = &p->sections[i];
         if (bdl_section_infos[s->kind].name_count != 0)
@@ -388,7 +404,12 @@ static void check_singletons(bdl_scene_parser *p)
             gas = s;
         if (s->kind == BDL_SECTION_COUPLING)
             coupling = s;
+        if (s->kind == BDL_SECTION_CAMERA)
+            camera = s;
     }
+    if (!p->failed && camera && p->scene->camera.gas_field != BDL_GAS_FIELD_NONE &&
+        !p->scene->gas.enabled)
+        fail_at_key(p, camera, "gas_field", 0, "needs a [gas] section (this scene has no gas)");
     if (!p->failed)
         check_gas(p, gas, coupling);
     if (!p->failed)
