@@ -389,8 +389,7 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
 
 static void check_singletons(bdl_scene_parser *p)
 {
-    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL,
-                      *camera = NULL;
+    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL, *camera = NULL;
     for (int i = 0; i < p->section_count && !p->failed; ++i) {
         bdl_scene_section *s = &p->sections[i];
         if (bdl_section_infos[s->kind].name_count != 0)
@@ -407,8 +406,7 @@ static void check_singletons(bdl_scene_parser *p)
         if (s->kind == BDL_SECTION_CAMERA)
             camera = s;
     }
-    if (!p->failed && camera && p->scene->camera.gas_field != BDL_GAS_FIELD_NONE &&
-        !p->scene->gas.enabled)
+    if (!p->failed && camera && p->scene->camera.gas_field != BDL_GAS_FIELD_NONE && !gas)
         fail_at_key(p, camera, "gas_field", 0, "needs a [gas] section (this scene has no gas)");
     if (!p->failed)
         check_gas(p, gas, coupling);
