@@ -406,10 +406,11 @@ static void check_singletons(bdl_scene_parser *p)
         if (s->kind == BDL_SECTION_CAMERA)
             camera = s;
     }
-    if (!p->failed && camera && p->scene->camera.gas_field != BDL_GAS_FIELD_NONE && !gas)
-        fail_at_key(p, camera, "gas_field", 0, "needs a [gas] section (this scene has no gas)");
     if (!p->failed)
         check_gas(p, gas, coupling);
+    if (!p->failed && camera && p->scene->camera.gas_field != BDL_GAS_FIELD_NONE &&
+        !p->scene->gas.enabled)
+        fail_at_key(p, camera, "gas_field", 0, "needs a [gas] section (this scene has no gas)");
     if (!p->failed)
         check_box(p, domain, "min", "max");
     if (!p->failed && p->scene->guards.dt_warn > p->scene->guards.dt_refuse) {
