@@ -47,3 +47,5 @@ add_test(NAME cli_threads COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/settling_box.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/threads
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/threads_cli.cmake)
 set_tests_properties(cli_threads PROPERTIES LABELS cli TIMEOUT 600)
+bdl_cli_expect(cli_bench_coupled 0 "per gas step: gas" bench coupled ${PROJECT_SOURCE_DIR}/scenes/fluidized_bed.ini --warmup 0.01 --time 0.01 --repeat 2)
+bdl_cli_expect(cli_bench_coupled_no_gas 2 "no .gas. section" bench coupled ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --time 0.01)
