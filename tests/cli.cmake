@@ -49,3 +49,5 @@ add_test(NAME cli_threads COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam
 set_tests_properties(cli_threads PROPERTIES LABELS cli TIMEOUT 600)
 bdl_cli_expect(cli_bench_coupled 0 "per gas step: gas" bench coupled ${PROJECT_SOURCE_DIR}/scenes/fluidized_bed.ini --warmup 0.01 --time 0.01 --repeat 2)
 bdl_cli_expect(cli_bench_coupled_no_gas 2 "no .gas. section" bench coupled ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --time 0.01)
+# Every run reports its own errors beside its speed (off a terminal, every 10 progress intervals).
+bdl_cli_expect(cli_progress_errors 0 "energy balance .* dp/weight [0-9.]+  gas volume" run ${PROJECT_SOURCE_DIR}/scenes/fluidized_bed.ini --until 0.4 --set output.progress_interval=0.02 --set output.frame_interval=0 --out ${CMAKE_CURRENT_BINARY_DIR}/runs/progress_errors)

@@ -27,6 +27,7 @@ const char *const bdl_diagnostics_columns[] = {
     "gas_volume_imbalance",
     "momentum_imbalance",
     "probe_pressure_drop",
+    "weight_ratio",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -168,6 +169,20 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
     }
     d->gas_work = w->gas_work;
     d->gas_volume_imbalance = gas->mass_imbalance;
+    // The bed's weight less buoyancy per unit base area, against the pressure drop less the gas
+    // column's own weight (along a periodic gravity axis there is no column to measure).
+    const double g_len = bdl_v3_len(w->scene.gravity), rho = gas->def.density;
+    if (!g->periodic[a] && g_len > 0.0) {
+        double weight = 0.0;
+        for (long i = 0; i < n; ++i) {
+            const double r = w->particles.radius[i], m = 1.0 / w->particles.inv_mass[i];
+            const double volume = 4.0 / 3.0 * BDL_PI * r * r * r;
+            weight += (m - rho * volume) * g_len;
+        }
+        const double area = g->n[b] * g->h[b] * g->n[c] * g->h[c];
+        const double column = rho * g_len * (g->n[a] - 1) * g->h[a]; // between the layer centres
+        d->weight_ratio = weight > 0.0 ? (d->pressure_drop - column) / (weight / area) : NAN;
+    }
     double sum = 0.0, mag = 0.0;
     for (int k = 0; k < 3; ++k) {
         if (g->n[k] == 1 && !g->periodic[k])
@@ -205,6 +220,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     }
     memset(d, 0, sizeof *d);
     d->probe_pressure_drop = NAN; // without [gas] probe_low and probe_high
+    d->weight_ratio = NAN;
     d->time = w->time;
     d->step = w->step;
     d->particle_count = n;
@@ -248,4 +264,5 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[16] = d->gas_volume_imbalance;
     v[17] = d->momentum_imbalance;
     v[18] = d->probe_pressure_drop;
+    v[19] = d->weight_ratio;
 }

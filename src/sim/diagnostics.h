@@ -33,6 +33,9 @@ typedef struct bdl_diagnostics {
                                  ///< the axes the gas can move along
     double probe_pressure_drop;  ///< pressure at [gas] probe_low minus at probe_high [Pa]; NaN
                                  ///< without probes (with or without a gas)
+    double weight_ratio; ///< (pressure_drop - gas column's weight per area) / (particles' weight
+                         ///< less buoyancy per base area): 1 when the gas carries the bed; NaN
+                         ///< without a gas or along a periodic gravity axis
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <omp.h>
 #include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -59,6 +60,9 @@ typedef struct run_state {
     long frame_index;
     bdl_frames *frames; ///< NULL: no frames
     char failure[1024];
+    // The errors of the last diagnostics, for the progress line (written by the solver thread).
+    _Atomic double energy_balance, energy_in, weight_ratio, gas_mass, momentum;
+    _Atomic int measured;
 } run_state;
 
 static void path_join(char *out, size_t len, const char *a, const char *b)
@@ -176,6 +180,12 @@ static bdl_result on_step(void *user, bdl_world *w)
     if (diag || check) {
         bdl_diagnostics d;
         bdl_diagnostics_compute(w, rs->energy0, &d);
+        atomic_store(&rs->energy_balance, d.energy_balance);
+        atomic_store(&rs->energy_in, d.wall_work + d.gas_work + w->inserted_energy);
+        atomic_store(&rs->weight_ratio, d.weight_ratio);
+        atomic_store(&rs->gas_mass, d.gas_volume_imbalance);
+        atomic_store(&rs->momentum, d.momentum_imbalance);
+        atomic_store(&rs->measured, 1);
         if (check) {
             bdl_result r = bdl_guards_check(w, &rs->guard, &d, rs->failure, sizeof rs->failure);
             if (r != BDL_OK)
@@ -259,9 +269,27 @@ static void format_hms(double s, char *out, size_t len)
     snprintf(out, len, "%02ld:%02ld:%02ld", t / 3600, (t / 60) % 60, t % 60);
 }
 
-static void progress_line(bdl_loop *loop, double end_time, double start_wall, double t0, int tty,
+/// The run's own errors beside its speed: the energy balance (energy now, less the energy at the
+/// start and the work put in by walls, gas and insertion: zero for elastic contacts, the
+/// dissipated energy otherwise) and, with a gas, the pressure drop against the bed's weight, the
+/// worst cell's gas volume imbalance and the interphase momentum imbalance.
+static void error_summary(run_state *rs, int gas, char *out, size_t len)
+{
+    out[0] = 0;
+    if (!atomic_load(&rs->measured))
+        return;
+    int k = snprintf(out, len, "  energy balance %.2e J (work in %.2e J)",
+                     atomic_load(&rs->energy_balance), atomic_load(&rs->energy_in));
+    if (gas && k > 0 && (size_t)k < len)
+        snprintf(out + k, len - (size_t)k, "  dp/weight %.3f  gas volume %.1e  momentum %.1e",
+                 atomic_load(&rs->weight_ratio), atomic_load(&rs->gas_mass),
+                 atomic_load(&rs->momentum));
+}
+
+static void progress_line(bdl_loop *loop, run_state *rs, double end_time, double t0, int tty,
                           double *last_t, long *last_step, double *last_wall)
 {
+    const double start_wall = rs->start_wall;
     double t, now = bdl_wall_seconds();
     long step, particles;
     int finished;
@@ -271,13 +299,14 @@ static void progress_line(bdl_loop *loop, double end_time, double start_wall, do
     double speed = dw > 0 ? (t - *last_t) / dw : 0.0;
     double elapsed = now - start_wall;
     double eta = t > t0 ? (end_time - t) * elapsed / (t - t0) : NAN;
-    char e1[16], e2[16];
+    char e1[16], e2[16], errors[192];
     format_hms(elapsed, e1, sizeof e1);
     format_hms(eta, e2, sizeof e2);
+    error_summary(rs, rs->world->gas != NULL, errors, sizeof errors);
     fprintf(stderr,
             "%st = %.4g / %.4g s  step %ld  %ld particles  %.3g particle-steps/s  %.3gx real time  "
-            "elapsed %s  ETA %s%s",
-            tty ? "\r" : "", t, end_time, step, particles, rate, speed, e1, e2,
+            "elapsed %s  ETA %s%s%s",
+            tty ? "\r" : "", t, end_time, step, particles, rate, speed, e1, e2, errors,
             tty ? "\033[K" : "\n");
     fflush(stderr);
     *last_t = t;
@@ -516,8 +545,7 @@ int bdl_run(const bdl_run_def *def)
             nanosleep(&(struct timespec){0, 20000000L}, NULL);
         double now = bdl_wall_seconds();
         if (def->progress && now - last_print >= (tty ? interval : 10.0 * interval)) {
-            progress_line(loop, ld.end_time, rs.start_wall, t0, tty, &last_t, &last_step,
-                          &last_wall);
+            progress_line(loop, &rs, ld.end_time, t0, tty, &last_t, &last_step, &last_wall);
             last_print = now;
         }
     }
