@@ -14,3 +14,4 @@ bdl_add_test(test_settling SOURCES test_settling.c LABELS "cfd;verification" TIM
 # thread each keeps them from fighting over the cores when ctest runs them side by side.
 set_tests_properties(test_gas test_cavity test_coupling test_fluidized test_packed_bed test_umf test_settling PROPERTIES ENVIRONMENT "OMP_NUM_THREADS=1")
 bdl_add_test(test_container SOURCES test_container.c LABELS "cfd;verification")
+bdl_add_test(test_stiff_drag SOURCES test_stiff_drag.c LABELS "cfd;verification;stability")
