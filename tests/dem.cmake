@@ -13,3 +13,4 @@ bdl_add_test(test_column SOURCES test_column.c LABELS dem verification TIMEOUT 3
 target_link_libraries(test_column PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_voidage SOURCES test_voidage.c)
 bdl_add_test(test_restitution_limits SOURCES test_restitution_limits.c LABELS "dem;stability" TIMEOUT 600)
+bdl_add_test(test_stiff_contacts SOURCES test_stiff_contacts.c LABELS "dem;stability" TIMEOUT 600)
