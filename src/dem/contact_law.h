@@ -174,4 +174,16 @@ static inline bdl_vec3 bdl_rolling_torque(const bdl_contact_params *cp, double n
     return bdl_v3_scale(w_rel, -m / w);
 }
 
+/// Elastic energy stored in a contact [J]: the normal spring, and the tangential spring u (zero
+/// without friction) as 1/2 k_t |u|^2 with the contact's current k_t.
+static inline double bdl_contact_elastic_energy(const bdl_contact_params *cp, int hertz,
+                                                double overlap, double r_eff, bdl_vec3 u)
+{
+    const double u2 = bdl_v3_dot(u, u);
+    if (hertz)
+        return (8.0 / 15.0) * cp->e_star * sqrt(r_eff) * pow(overlap, 2.5) +
+               4.0 * cp->g_star * sqrt(r_eff * overlap) * u2;
+    return 0.5 * cp->kn * overlap * overlap + 0.5 * cp->kt * u2;
+}
+
 #endif

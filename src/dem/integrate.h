@@ -78,8 +78,4 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
 /// Power delivered by moving walls to the particles this step [W]: sum F_wall . v_wall.
 double bdl_dem_wall_power(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls);
 
-/// Elastic energy stored in the contacts [J] (normal springs only).
-double bdl_dem_elastic_energy(const bdl_particles *p, const bdl_neighbor *nb,
-                              const bdl_walls *walls, const bdl_force_def *def);
-
 #endif

@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cfd/gas.h"
+#include "dem/contact_law.h"
 #include "dem/integrate.h"
 
 const char *const bdl_diagnostics_columns[] = {
@@ -63,8 +64,8 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
             s->overlap = ratio;
         const bdl_contact_params *cp = &w->pair_params[p->species[i] * ns + p->species[j]];
         double r_eff = p->radius[i] * p->radius[j] / cut;
-        s->elastic += w->hertz ? (8.0 / 15.0) * cp->e_star * sqrt(r_eff) * pow(overlap, 2.5)
-                               : 0.5 * cp->kn * overlap * overlap;
+        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, overlap, r_eff,
+                                                 nb->history ? nb->history[k] : bdl_v3_zero());
     }
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
         bdl_vec3 n;
@@ -78,8 +79,8 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         const bdl_contact_params *cp =
             &w->wall_params[w->walls.prims[prim].wall * ns + p->species[i]];
         double r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
-        s->elastic += w->hertz ? (8.0 / 15.0) * cp->e_star * sqrt(r_eff) * pow(-gap, 2.5)
-                               : 0.5 * cp->kn * gap * gap;
+        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, -gap, r_eff,
+                                                 w->friction ? nb->wall_history[k] : bdl_v3_zero());
     }
 }
 
