@@ -54,6 +54,10 @@ double bdl_world_reference_speed(const bdl_world *w)
     bdl_vec3 span = bdl_v3_sub(s->domain_max, s->domain_min);
     double h = fmax(span.x, fmax(span.y, span.z));
     double v = sqrt(2.0 * g * h) + bdl_walls_max_speed(&w->walls);
+    if (w->container >= 0) { // the container's walls stand still, but hit as hard as moving ones
+        const bdl_wall_def *d = &s->walls[w->container];
+        v += d->amplitude * 2.0 * PI * d->frequency;
+    }
     double vmax = 0.0;
     for (long i = 0; i < w->particles.count; ++i) {
         double vi = bdl_v3_len(w->particles.vel[i]);
