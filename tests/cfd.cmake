@@ -15,3 +15,4 @@ bdl_add_test(test_settling SOURCES test_settling.c LABELS "cfd;verification" TIM
 set_tests_properties(test_gas test_cavity test_coupling test_fluidized test_packed_bed test_umf test_settling PROPERTIES ENVIRONMENT "OMP_NUM_THREADS=1")
 bdl_add_test(test_container SOURCES test_container.c LABELS "cfd;verification")
 bdl_add_test(test_stiff_drag SOURCES test_stiff_drag.c LABELS "cfd;verification;stability")
+bdl_add_test(test_density_ratio SOURCES test_density_ratio.c LABELS "cfd;stability" TIMEOUT 600)

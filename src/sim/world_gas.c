@@ -190,19 +190,21 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     for (long i = 0; i < n; ++i) {
         double volume = 4.0 / 3.0 * BDL_PI * p->radius[i] * p->radius[i] * p->radius[i];
         // The particle's acceleration other than the drag over the last gas step: contacts,
-        // walls, gravity and the gas pressure (gravity alone before the first).
+        // walls, gravity and the gas pressure (before the first, gravity less the buoyancy of a
+        // fluid at rest).
+        const double density = 1.0 / (p->inv_mass[i] * volume);
         bdl_vec3 other =
             w->gas_steps > 0
                 ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]), 1.0 / dt_last),
                              p->drag_accel[i])
-                : gravity;
+                : bdl_v3_scale(gravity, 1.0 - w->gas->def.density / density);
         for (int a = 0; a < 3; ++a) {
             pos[3 * i + a] = bdl_v3_comp(p->pos[i], a);
             vel[3 * i + a] = bdl_v3_comp(p->vel[i], a);
             acc[3 * i + a] = bdl_v3_comp(other, a);
         }
         rad[i] = p->radius[i];
-        dens[i] = 1.0 / (p->inv_mass[i] * volume);
+        dens[i] = density;
     }
     bdl_coupling_particles cp = {n, pos, vel, acc, rad, dens};
     w->coupling->parallel_min = w->parallel_min; // one threshold for all particle loops
