@@ -16,3 +16,4 @@ set_tests_properties(test_gas test_cavity test_coupling test_fluidized test_pack
 bdl_add_test(test_container SOURCES test_container.c LABELS "cfd;verification")
 bdl_add_test(test_stiff_drag SOURCES test_stiff_drag.c LABELS "cfd;verification;stability")
 bdl_add_test(test_density_ratio SOURCES test_density_ratio.c LABELS "cfd;stability" TIMEOUT 600)
+bdl_add_test(test_close_packing SOURCES test_close_packing.c LABELS "cfd;stability" TIMEOUT 600)
