@@ -57,7 +57,8 @@ static void get(reader *r, void *data, size_t size)
     X(step)                                                                                        \
     X(dt)                                                                                          \
     X(rng)                                                                                         \
-    X(poured) X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0) X(contact_time)   \
+    X(poured)                                                                                      \
+    X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0) X(contact_time)             \
         X(contact_time_dt_ratio)
 
 /// One array of the saved state.

@@ -890,7 +890,6 @@ static void draw_spheres(bdl_renderer *r, const bdl_snapshot *s, long count, con
     }
 }
 
-
 /// The snapshot's gas-field slice: one flat colour per cell (sequential map over the slice's
 /// range), blended over what is behind it; particles in front of it hide it.
 static void draw_slice(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
