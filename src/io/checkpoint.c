@@ -51,15 +51,12 @@ static void get(reader *r, void *data, size_t size)
         r->ok = 0;
 }
 
-/// The fields saved and restored, in file order; `n` is the element count for arrays.
-#define SCALARS(X)                                                                                 \
-    X(time)                                                                                        \
-    X(step)                                                                                        \
-    X(dt)                                                                                          \
-    X(rng)                                                                                         \
-    X(poured)                                                                                      \
-    X(live) X(wall_work) X(inserted_energy) X(damping_work) X(energy0) X(contact_time)             \
-        X(contact_time_dt_ratio)
+/// The scalar fields saved and restored, in file order.
+// clang-format off
+#define SCALARS(X) \
+    X(time) X(step) X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) \
+    X(damping_work) X(energy0) X(contact_time) X(contact_time_dt_ratio)
+// clang-format on
 
 /// One array of the saved state.
 typedef struct field {
