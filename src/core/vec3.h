@@ -63,6 +63,17 @@ static inline double bdl_v3_comp(bdl_vec3 a, int axis)
     return axis == 0 ? a.x : (axis == 1 ? a.y : a.z);
 }
 
+/// The axis of v's largest component in magnitude: z on a tie with z, and for the zero vector
+/// (the axis "up" is measured along when gravity is v).
+static inline int bdl_v3_major_axis(bdl_vec3 v)
+{
+    int axis = 2;
+    for (int a = 0; a < 2; ++a)
+        if (fabs(bdl_v3_comp(v, a)) > fabs(bdl_v3_comp(v, axis)))
+            axis = a;
+    return axis;
+}
+
 static inline void bdl_v3_set_comp(bdl_vec3 *a, int axis, double v)
 {
     if (axis == 0)

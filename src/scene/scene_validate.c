@@ -373,10 +373,7 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
     if (g->has_probe_high) {
         // Heights are measured along gravity (z without it) from the domain's floor.
         const bdl_scene *sc = p->scene;
-        int axis = 2;
-        for (int a = 0; a < 3; ++a)
-            if (fabs(bdl_v3_comp(sc->gravity, a)) > fabs(bdl_v3_comp(sc->gravity, axis)))
-                axis = a;
+        const int axis = bdl_v3_major_axis(sc->gravity);
         double height = bdl_v3_comp(sc->domain_max, axis) - bdl_v3_comp(sc->domain_min, axis);
         if (g->probe_high > height) {
             char what[128];

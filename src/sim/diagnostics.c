@@ -87,11 +87,7 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
 /// The axis gravity points along (z without gravity) and the sign of "up" on it.
 static int vertical_axis(const bdl_world *w, double *up)
 {
-    int axis = 2;
-    double best = 0.0;
-    for (int a = 0; a < 3; ++a)
-        if (fabs(bdl_v3_comp(w->scene.gravity, a)) > best)
-            best = fabs(bdl_v3_comp(w->scene.gravity, a)), axis = a;
+    const int axis = bdl_v3_major_axis(w->scene.gravity);
     *up = bdl_v3_comp(w->scene.gravity, axis) > 0.0 ? -1.0 : 1.0;
     return axis;
 }
@@ -141,18 +137,8 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
     double up;
     const int a = vertical_axis(w, &up);
     const int b = (a + 1) % 3, c = (a + 2) % 3;
-    double layer[2] = {0.0, 0.0};
-    for (int side = 0; side < 2; ++side) {
-        int m = side == 0 ? 0 : g->n[a] - 1;
-        for (int jc = 0; jc < g->n[c]; ++jc)
-            for (int jb = 0; jb < g->n[b]; ++jb) {
-                int ix[3];
-                ix[a] = m, ix[b] = jb, ix[c] = jc;
-                layer[side] += gas->p[bdl_grid_index(g, ix[0], ix[1], ix[2])];
-            }
-        layer[side] /= (double)g->n[b] * g->n[c];
-    }
-    d->pressure_drop = up > 0.0 ? layer[0] - layer[1] : layer[1] - layer[0];
+    const double first = layer_pressure(gas, a, 0), last = layer_pressure(gas, a, g->n[a] - 1);
+    d->pressure_drop = up > 0.0 ? first - last : last - first;
     const bdl_gas_scene *gs = &w->scene.gas;
     d->probe_pressure_drop = gs->has_probe_low ? pressure_at_height(w, a, up, gs->probe_low) -
                                                      pressure_at_height(w, a, up, gs->probe_high)

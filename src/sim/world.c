@@ -180,7 +180,7 @@ bdl_vec3 bdl_world_gravity(const bdl_world *w, double t)
     const double omega = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
     // The container accelerates by -A w^2 sin(w t + phase) along d; in its frame everything in it
     // feels the opposite.
-    return bdl_v3_madd(w->scene.gravity, bdl_v3_normalize(d->direction),
+    return bdl_v3_madd(w->scene.gravity, d->direction, // unit: the scene normalises it
                        A * omega * omega * sin(omega * t + d->phase));
 }
 
@@ -188,7 +188,7 @@ bdl_vec3 bdl_world_gravity(const bdl_world *w, double t)
 static double container_momentum(const bdl_world *w)
 {
     const bdl_particles *p = &w->particles;
-    const bdl_vec3 dir = bdl_v3_normalize(w->scene.walls[w->container].direction);
+    const bdl_vec3 dir = w->scene.walls[w->container].direction;
     double sum = 0.0;
     for (long i = 0; i < p->count; ++i)
         sum += bdl_v3_dot(p->vel[i], dir) / p->inv_mass[i];
@@ -220,9 +220,9 @@ bdl_result bdl_world_step(bdl_world *w)
         return r;
     w->wall_work += w->dt * bdl_dem_wall_power(p, &w->neighbor, &w->walls);
     if (w->container >= 0)
-        w->wall_work += w->dt * 0.5 * (momentum0 + container_momentum(w)) *
-                        bdl_v3_dot(bdl_v3_sub(g_mid, w->scene.gravity),
-                                   bdl_v3_normalize(w->scene.walls[w->container].direction));
+        w->wall_work +=
+            w->dt * 0.5 * (momentum0 + container_momentum(w)) *
+            bdl_v3_dot(bdl_v3_sub(g_mid, w->scene.gravity), w->scene.walls[w->container].direction);
     return BDL_OK;
 }
 

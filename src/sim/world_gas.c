@@ -10,10 +10,17 @@
 #include "core/log.h"
 #include "core/timer.h"
 #include "couple/coupling.h"
+#include "sim/world.h"
 
 /// The longest automatic gas step [s].
 #define BDL_GAS_DT_MAX 5e-4
-#include "sim/world.h"
+
+/// Whole particle steps in a time span (a span that is a whole number of steps up to round-off
+/// counts as that number).
+static long steps_in(const bdl_world *w, double span)
+{
+    return (long)floor(span / w->dt * (1.0 + 1e-12));
+}
 
 static bdl_gas_side_type side_type(bdl_gas_boundary b)
 {
@@ -75,7 +82,10 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
                            .kernel_width = s->coupling.kernel_width > 0.0 ? s->coupling.kernel_width
                                                                           : 1.5 * hmax,
                            .max_solids = s->coupling.max_solids};
-    bdl_coupling_init(w->coupling, &cd, w->gas);
+    if (bdl_coupling_init(w->coupling, &cd, w->gas) != BDL_OK) {
+        snprintf(err->message, sizeof err->message, "%s: [coupling]: out of memory", s->path);
+        return BDL_ERR_NOMEM;
+    }
 
     // The gas step: as given, or CFL 1/2 for the fastest gas to expect (the inflow through the
     // densest packing, plus a margin for bubbles) across the axes the gas can move along (more
@@ -94,12 +104,12 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
             hmin = hany;
         dt_gas = fmin(fmin(BDL_GAS_DT_MAX, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
     }
-    w->gas_every = (long)floor(dt_gas / w->dt * (1.0 + 1e-12));
+    w->gas_every = steps_in(w, dt_gas);
     if (w->gas_every < 1)
         w->gas_every = 1;
-    w->gas_every_max = w->gas_fixed
-                           ? w->gas_every
-                           : (long)fmax(1.0, floor(BDL_GAS_DT_MAX / w->dt * (1.0 + 1e-12)));
+    w->gas_every_max = w->gas_fixed ? w->gas_every : steps_in(w, BDL_GAS_DT_MAX);
+    if (w->gas_every_max < 1)
+        w->gas_every_max = 1;
     w->gas_next = 0;
     return BDL_OK;
 }
@@ -125,10 +135,7 @@ static bdl_vec3 periodic_column(bdl_world *w, bdl_vec3 gravity)
 {
     bdl_gas *gas = w->gas;
     const bdl_grid *g = &gas->grid;
-    int axis = 2;
-    for (int a = 0; a < 3; ++a)
-        if (fabs(bdl_v3_comp(gravity, a)) > fabs(bdl_v3_comp(gravity, axis)))
-            axis = a;
+    const int axis = bdl_v3_major_axis(gravity);
     if (!g->periodic[axis] || bdl_v3_comp(gravity, axis) == 0.0)
         return bdl_v3_zero();
     const double vc = g->h[0] * g->h[1] * g->h[2];
@@ -158,10 +165,8 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     // The last gas step's length, then this one's: CFL 1/2 for the gas as the last step left it.
     const double dt_last = (double)w->gas_every * w->dt;
     if (!w->gas_fixed && w->gas_steps > 0) {
-        double every = floor(w->gas_stable / w->dt * (1.0 + 1e-12));
-        w->gas_every = every < 1.0                        ? 1
-                       : every > (double)w->gas_every_max ? w->gas_every_max
-                                                          : (long)every;
+        const long every = steps_in(w, w->gas_stable);
+        w->gas_every = every < 1 ? 1 : every > w->gas_every_max ? w->gas_every_max : every;
     }
     const double dt = (double)w->gas_every * w->dt;
     w->gas_next = w->step + w->gas_every;
