@@ -51,3 +51,16 @@ bdl_cli_expect(cli_bench_coupled 0 "per gas step: gas" bench coupled ${PROJECT_S
 bdl_cli_expect(cli_bench_coupled_no_gas 2 "no .gas. section" bench coupled ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --time 0.01)
 # Every run reports its own errors beside its speed (off a terminal, every 10 progress intervals).
 bdl_cli_expect(cli_progress_errors 0 "energy balance .* dp/weight [0-9.]+  gas volume" run ${PROJECT_SOURCE_DIR}/scenes/fluidized_bed.ini --until 0.4 --set output.progress_interval=0.02 --set output.frame_interval=0 --out ${CMAKE_CURRENT_BINARY_DIR}/runs/progress_errors)
+
+# bedlam verify: options, bad input, one case end to end (CSV, README), and the --quick set
+# (label verify: run by the README's test command, left out of the sanitizer build, where the
+# same measurements run as the verification tests).
+bdl_cli_expect(cli_verify_help 0 "usage: bedlam verify" verify --help)
+bdl_cli_expect(cli_verify_unknown 2 "unknown case 'nosuchcase'" verify nosuchcase)
+bdl_cli_expect(cli_verify_unwritable 2 "--out" verify poiseuille --out ${PROJECT_SOURCE_DIR}/README.md/x)
+bdl_cli_expect(cli_verify_one 0 "1 case, 0 failed" verify poiseuille --quick --no-plots
+  --out ${CMAKE_CURRENT_BINARY_DIR}/verify-one)
+add_test(NAME verify_quick COMMAND ${CMAKE_COMMAND} -DEXPECT=0 "-DCONTAINS= 0 failed"
+  "-DCMD=$<TARGET_FILE:bedlam>;verify;--quick;--out;${CMAKE_CURRENT_BINARY_DIR}/validation-quick"
+  -P ${BDL_EXPECT})
+set_tests_properties(verify_quick PROPERTIES LABELS verify TIMEOUT 900)

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 
 #include "sim/world.h"
+#include "verify/verify.h"
 
 #if defined(__GNUC__)
 #define BDL_TEST_PRINTF(a, b) __attribute__((format(printf, a, b)))
@@ -32,21 +33,9 @@ static inline bdl_world *bdl_test_world(const char *format, ...)
         fprintf(stderr, "bdl_test_world: scene text too long (%d characters)\n", n);
         abort();
     }
-    bdl_scene *scene = calloc(1, sizeof *scene); // large: keep it off the stack
-    bdl_scene_error err;
-    err.message[0] = '\0';
-    bdl_world *w = NULL;
-    if (!scene) {
-        fprintf(stderr, "bdl_test_world: out of memory\n");
-        abort();
-    }
-    if (bdl_scene_load_string(text, "test-scene", NULL, 0, scene, &err) != BDL_OK ||
-        bdl_world_create(scene, &w, &err) != BDL_OK || !w) {
-        fprintf(stderr, "bdl_test_world: %s\n--- scene ---\n%s\n-------------\n", err.message,
-                text);
-        abort();
-    }
-    free(scene);
+    bdl_world *w = bdl_verify_world_text(text);
+    if (!w)
+        abort(); // the scene's message and text are printed already
     return w;
 }
 

@@ -14,91 +14,31 @@
 
 #include "check.h"
 #include "scene_util.h"
+#include "verify/verify.h"
 
 #define PI 3.14159265358979323846
 
-static const double diameter = 0.01;   // m
-static const double density = 2500.0;  // kg/m^3
-static const double stiffness = 2.0e6; // N/m (linear law): overlap ~1 % of r at 2 m/s
-static const double youngs = 1.0e9;    // Pa (Hertz law): overlap ~2 % of r at 2 m/s
-static const double poisson = 0.3;
+static const double diameter = 0.01; // m, as in bdl_verify_bounce_world
 
-static double sphere_mass(void) { return density * PI / 6.0 * diameter * diameter * diameter; }
-
-/// t_c of the reference: linear pi/(omega_0 sqrt(1 - zeta^2)) with the closed-form zeta(e);
-/// Hertz 2.87 (m^2/(r E*^2 v))^(1/5), E* = E/(2(1 - nu^2)) for a wall of the same material.
 static double contact_time(int hertz, double e, double v)
 {
-    double m = sphere_mass(), r = 0.5 * diameter;
-    if (!hertz) {
-        double l = log(e);
-        double zeta = -l / sqrt(PI * PI + l * l);
-        return PI / (sqrt(stiffness / m) * sqrt(1.0 - zeta * zeta));
-    }
-    double es = youngs / (2.0 * (1.0 - poisson * poisson));
-    return 2.87 * pow(m * m / (r * es * es * v), 0.2);
+    return bdl_verify_bounce_contact_time(hertz, e, v);
 }
 
-/// One sphere above a plane at z = 0, moving down at v. `z0` is the centre height.
-static bdl_world *make_bounce(int hertz, const char *damping, double e, double v, double z0,
-                              double dt, double g)
-{
-    double r = 0.5 * diameter;
-    return bdl_test_world(
-        "[run]\nend_time = 10\ndt = %.17g\ngravity = 0 0 %.17g\n"
-        "[domain]\nmin = -0.02 -0.02 -0.01\nmax = 0.02 0.02 0.5\n"
-        "[contact]\nlaw = %s\ndamping = %s\n"
-        "[species ball]\ndiameter = %.17g\ndensity = %.17g\n%s = %.17g\npoisson_ratio = %.17g\n"
-        "restitution = %.17g\nfriction = 0\n"
-        "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
-        "[create ball]\ntype = lattice\ncount = 1\nvelocity = 0 0 %.17g\n"
-        "region_min = %.17g %.17g %.17g\nregion_max = %.17g %.17g %.17g\n",
-        dt, -g, hertz ? "hertz" : "linear", damping, diameter, density,
-        hertz ? "youngs_modulus" : "stiffness", hertz ? youngs : stiffness, poisson, e, -v, -r, -r,
-        z0 - r, r + diameter, r + diameter, z0 + 2.0 * r);
-}
-
-/// Realised restitution of one impact without gravity: rebound speed / impact speed, read once
-/// the sphere has left the wall (no force acts on it any more). Returns -1 if it never left.
 static double measure_restitution(int hertz, const char *damping, double e, double v, double dt,
                                   double phi)
 {
-    double r = 0.5 * diameter;
-    double z0 = r + (3.0 + phi) * v * dt;
-    bdl_world *w = make_bounce(hertz, damping, e, v, z0, dt, 0.0);
-    double tc = contact_time(hertz, e, v);
-    long max_steps = 10 + (long)(4.0 * tc / dt);
-    int touched = 0;
-    double result = -1.0;
-    for (long s = 0; s < max_steps; ++s) {
-        bdl_world_step(w);
-        double z = w->particles.pos[0].z, vz = w->particles.vel[0].z;
-        if (z < r)
-            touched = 1;
-        if (touched && z >= r && vz > 0.0) {
-            result = vz / v;
-            break;
-        }
-    }
-    bdl_world_destroy(w);
-    return result;
+    return bdl_verify_restitution(hertz, damping, e, v, dt, phi, NULL);
 }
 
-#define NPHASE 8
+#define NPHASE 8 // contact phases of bdl_verify_restitution_worst
 #define NDT    5
 static const double dt_div[NDT] = {25, 50, 100, 200, 400};
 
 /// Worst relative restitution error over the contact phases.
 static double worst_error(int hertz, double e, double v, double dt)
 {
-    double worst = 0.0;
-    for (int k = 0; k < NPHASE; ++k) {
-        double em = measure_restitution(hertz, "exact", e, v, dt, (k + 0.5) / NPHASE);
-        double err = em < 0.0 ? INFINITY : fabs(em - e) / e;
-        if (err > worst)
-            worst = err;
-    }
-    return worst;
+    return bdl_verify_restitution_worst(hertz, e, v, dt, NULL);
 }
 
 static void restitution_vs_dt(void)
@@ -199,7 +139,10 @@ static void drop_heights(void)
             // dt from the contact time of the fastest (first) impact: later, slower impacts have
             // longer Hertz contacts and so are resolved at least as finely.
             double dt = contact_time(hertz, e, v0) / dt_fraction, dt_flight = 200.0 * dt;
-            bdl_world *w = make_bounce(hertz, "exact", e, 0.0, h0 + r, dt, g);
+            bdl_world *w = bdl_verify_bounce_world(hertz, "exact", e, 0.0, h0 + r, dt, g);
+            CHECK(w != NULL);
+            if (!w)
+                continue;
             int n = 0, in_contact = 0;
             double t_end = 2.0 * sqrt(2.0 * h0 / g) * (1.0 + e + e * e + e * e * e);
             long fine_steps = 0, flight_steps = 0;

@@ -27,6 +27,7 @@
 #include "check.h"
 #include "scene_util.h"
 #include "sim/diagnostics.h"
+#include "verify/verify.h"
 
 #define PI 3.14159265358979323846
 
@@ -118,45 +119,10 @@ static void conservation(void)
     }
 }
 
-/// Relative kinetic-energy error of one elastic head-on collision of two equal spheres.
-static double energy_error(int hertz, double v, double dt, double phi)
-{
-    const double r = 0.005;
-    double gap0 = (3.0 + phi) * v * dt, x0 = r + 0.5 * gap0;
-    bdl_world *w = bdl_test_world(
-        "[run]\nend_time = 1\ndt = %.17g\ngravity = 0 0 0\n"
-        "[domain]\nmin = -0.05 -0.02 -0.02\nmax = 0.05 0.02 0.02\n"
-        "[contact]\nlaw = %s\n"
-        "[species s]\ndiameter = 0.01\ndensity = 2500\n%s\nrestitution = 1\nfriction = 0\n"
-        "[create left]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
-        "region_min = %.17g -0.005 -0.005\nregion_max = %.17g 0.01 0.01\n"
-        "[create right]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
-        "region_min = %.17g -0.005 -0.005\nregion_max = %.17g 0.01 0.01\n",
-        dt, hertz ? "hertz" : "linear",
-        hertz ? "youngs_modulus = 1e9\npoisson_ratio = 0.3" : "stiffness = 1e6", 0.5 * v, -x0 - r,
-        -x0 + 2.0 * r, -0.5 * v, x0 - r, x0 + 2.0 * r);
-    bdl_diagnostics d;
-    bdl_diagnostics_compute(w, 0.0, &d);
-    double e0 = d.kinetic_energy;
-    int touched = 0;
-    for (long s = 0; s < 100000; ++s) {
-        bdl_world_step(w);
-        const bdl_particles *p = &w->particles;
-        double dist = bdl_v3_len(bdl_v3_sub(p->pos[0], p->pos[1]));
-        if (dist < 2.0 * r)
-            touched = 1;
-        else if (touched)
-            break;
-    }
-    bdl_diagnostics_compute(w, 0.0, &d);
-    bdl_world_destroy(w);
-    return touched ? fabs(d.kinetic_energy - e0) / e0 : INFINITY;
-}
-
 static void energy_order(void)
 {
     static const double div[5] = {25, 50, 100, 200, 400};
-    const double v = 1.0, r = 0.005, m = 2500.0 * PI / 6.0 * 1e-6;
+    const double v = 1.0;
     printf("\n(b) Elastic head-on collision, v_rel = %g m/s: worst relative kinetic-energy error "
            "after the collision over 8 contact phases\n\n",
            v);
@@ -164,18 +130,13 @@ static void energy_order(void)
            "| 200-400 |\n");
     printf("|---|---|---|---|---|---|---|---|---|---|\n");
     for (int hertz = 0; hertz <= 1; ++hertz) {
-        double m_eff = 0.5 * m, tc;
-        if (hertz) {
-            double es = 1e9 / (2.0 * (1.0 - 0.09));
-            tc = 2.87 * pow(m_eff * m_eff / (0.5 * r * es * es * v), 0.2);
-        } else {
-            tc = PI / sqrt(1e6 / m_eff);
-        }
+        double tc = bdl_verify_collision_contact_time(hertz, v);
         double err[5], order[4];
         for (int k = 0; k < 5; ++k) {
             err[k] = 0.0;
             for (int ph = 0; ph < 8; ++ph)
-                err[k] = fmax(err[k], energy_error(hertz, v, tc / div[k], (ph + 0.5) / 8.0));
+                err[k] = fmax(err[k], bdl_verify_collision_energy(hertz, v, tc / div[k],
+                                                                  (ph + 0.5) / 8.0, NULL));
         }
         printf("| %s |", hertz ? "hertz" : "linear");
         for (int k = 0; k < 5; ++k)

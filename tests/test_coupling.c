@@ -10,6 +10,7 @@
 #include "check.h"
 #include "core/vec3.h"
 #include "couple/coupling.h"
+#include "verify/verify.h"
 
 static double uniform(unsigned *state, double lo, double hi)
 {
@@ -139,99 +140,15 @@ static void test_linear_interpolation(void)
     bdl_gas_destroy(g);
 }
 
-/// Slip s with K(s) s = (rho_p - rho_g) g: the drag law's terminal slip, by bisection.
-static double implied_slip(bdl_drag_law law, double eps, double d, double rho_p, double rho,
-                           double mu)
-{
-    double lo = 0.0, hi = 100.0, target = (rho_p - rho) * 9.81;
-    for (int it = 0; it < 200; ++it) {
-        double mid = 0.5 * (lo + hi);
-        if (bdl_drag_per_volume(law, NULL, eps, d, mid, rho, mu) * mid < target)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return 0.5 * (lo + hi);
-}
-
-/// One sphere settling through gas in a periodic box (the box's weight is carried by a uniform
-/// body force on the gas equal to the total drag, as a container's base would).
+/// One sphere settling through gas in a periodic box (cells of 4 d; see bdl_verify_terminal_slip).
 static void test_terminal(double d, double rho_p, bdl_drag_law law)
 {
-    const double rho = 1.2, mu = 1.8e-5, h = 4.0 * d;
-    bdl_gas_def gd = {0};
-    gd.n[0] = gd.n[1] = 6, gd.n[2] = 8;
-    gd.hi[0] = gd.hi[1] = 6 * h, gd.hi[2] = 8 * h;
-    gd.density = rho;
-    gd.viscosity = mu;
-    for (int s = 0; s < 6; ++s)
-        gd.side[s].type = BDL_SIDE_PERIODIC;
-    gd.convection = BDL_CONVECTION_VANLEER;
-    gd.tolerance = 1e-10;
-    bdl_gas *g = NULL;
-    CHECK(bdl_gas_create(&gd, &g) == BDL_OK);
-    bdl_coupling_def def = {.drag = law, .kernel_width = 1.5 * h};
-    bdl_coupling k;
-    bdl_coupling_init(&k, &def, g);
-    double pos[3] = {3.1 * h, 2.9 * h, 6.0 * h}, vel[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
-    double radius = 0.5 * d, density = rho_p;
-    const double m = rho_p * BDL_PI / 6.0 * d * d * d, gz = -9.81 * (1.0 - rho / rho_p);
-    const double vt = implied_slip(law, 1.0, d, rho_p, rho, mu);
-    const double tau = vt / 9.81; // time to terminal scale
-    double dt = fmin(fmin(0.5 * h / vt, 0.2 * tau), 0.9 * bdl_gas_stable_dt(g));
-    const int steps = (int)(6.0 * tau / dt) + 1;
-    bdl_coupling_particles p = {1, pos, vel, acc, &radius, &density};
-    double slip_sum = 0.0, eps_sum = 0.0;
-    int averaged = 0;
-    double *src = g->source[2];
-    for (int step = 0; step < steps; ++step) {
-        dt = fmin(dt, 0.9 * bdl_gas_stable_dt(g));
-        bdl_coupling_locate(&k, g, 1, pos);
-        bdl_coupling_voidage(&k, g, &p);
-        if (step == 0)
-            memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
-        bdl_coupling_drag_setup(&k, g, &p, dt);
-        CHECK(bdl_gas_step(g, dt) == BDL_OK);
-        double drag[3], pres[3], u[3];
-        bdl_coupling_forces(&k, g, &p, dt, drag, pres);
-        // The base's reaction: the total drag spread over the box as a body force on the gas.
-        double vbox = gd.hi[0] * gd.hi[1] * gd.hi[2];
-        for (long i = 0; i < g->grid.size; ++i)
-            src[i] = drag[2] / vbox;
-        for (int a = 0; a < 3; ++a) {
-            double a_other = (a == 2 ? gz : 0.0) + pres[a] / m;
-            vel[a] += dt * (a_other + drag[a] / m);
-            acc[a] = a_other;
-            pos[a] += dt * vel[a];
-            double len = gd.hi[a];
-            pos[a] = fmod(fmod(pos[a], len) + len, len);
-        }
-        if (step > 2 * steps / 3) {
-            for (int a = 0; a < 3; ++a) {
-                double *cell_u = g->rhs; // scratch: cell-centre velocity of component a
-                for (int kk = 0; kk < gd.n[2]; ++kk)
-                    for (int j = 0; j < gd.n[1]; ++j)
-                        for (int i = 0; i < gd.n[0]; ++i)
-                            cell_u[bdl_grid_index(&g->grid, i, j, kk)] =
-                                bdl_gas_cell_velocity(g, a, i, j, kk);
-                bdl_coupling_locate(&k, g, 1, pos);
-                u[a] = bdl_coupling_interpolate(&k, 0, cell_u);
-            }
-            slip_sum += u[2] - vel[2];
-            eps_sum += bdl_coupling_interpolate(&k, 0, g->eps);
-            averaged++;
-        }
-    }
-    double slip = slip_sum / averaged, eps = eps_sum / averaged;
-    double expected = implied_slip(law, eps, d, rho_p, rho, mu);
-    double re = rho * d * slip / mu;
+    bdl_verify_terminal t = bdl_verify_terminal_slip(d, rho_p, law, 6);
     printf("%s, d %.0f um, rho_p %.0f: Re %.3g, terminal slip %.5g m/s, drag law %.5g m/s "
            "(%+.3f %%), gas at the particle %.3g m/s\n",
-           bdl_drag_law_names[law], d * 1e6, rho_p, re, slip, expected,
-           100.0 * (slip / expected - 1.0), slip + vel[2]);
-    CHECK_MSG(fabs(slip / expected - 1.0) < 0.01, "terminal slip %g vs %g", slip, expected);
-    bdl_coupling_free(&k);
-    bdl_gas_destroy(g);
+           bdl_drag_law_names[law], d * 1e6, rho_p, t.re, t.slip, t.expected,
+           100.0 * (t.slip / t.expected - 1.0), t.gas_speed);
+    CHECK_MSG(fabs(t.slip / t.expected - 1.0) < 0.01, "terminal slip %g vs %g", t.slip, t.expected);
 }
 
 /// A coupled step sequence on 1 and 2 threads: the same bits in the gas and the forces.

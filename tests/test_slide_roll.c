@@ -22,75 +22,9 @@
 #include <stdio.h>
 
 #include "check.h"
-#include "scene_util.h"
+#include "verify/verify.h"
 
-static const double diameter = 0.01, density = 2500.0, g = 9.81;
-
-typedef struct slide_result {
-    double t_fit;       ///< zero of the fitted sliding-phase slip line [s]
-    long forward;       ///< sliding steps where the friction force points along the slip
-    double max_forward; ///< largest such force over mu F_n [-]
-    double v_roll;      ///< v_x at 2 t_s [s]
-    double slip_end;    ///< |slip| at 2 t_s [m/s]
-} slide_result;
-
-static slide_result slide(int hertz, double mu, double v0)
-{
-    double r = 0.5 * diameter;
-    double ts = 2.0 * v0 / (7.0 * mu * g);
-    // Linear: k_n = 1e5 N/m, t_c ~ 5e-4 s; Hertz: E = 1e8 Pa, resting contact period ~ 2e-3 s.
-    // Both with dt = 1e-5 s (t_c/50 or finer). e = 0.2 (zeta = 0.73, exact damping).
-    double dt = 1.0e-5;
-    bdl_world *w =
-        bdl_test_world("[run]\nend_time = 10\ndt = %.17g\ngravity = 0 0 %.17g\n"
-                       "[domain]\nmin = -0.02 -0.02 -0.01\nmax = 1.5 0.02 0.05\n"
-                       "[contact]\nlaw = %s\n"
-                       "[species ball]\ndiameter = %.17g\ndensity = %.17g\n%s\nrestitution = 0.2\n"
-                       "friction = %.17g\ntangential_damping_ratio = 0.5\n"
-                       "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
-                       "[create ball]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
-                       "region_min = %.17g %.17g 0\nregion_max = %.17g %.17g %.17g\n",
-                       dt, -g, hertz ? "hertz" : "linear", diameter, density,
-                       hertz ? "youngs_modulus = 1e8\npoisson_ratio = 0.3" : "stiffness = 1e5", mu,
-                       v0, -r, -r, r + diameter, r + diameter, 3.0 * diameter);
-    // Least-squares sums of s(t) over the sliding window.
-    double n = 0, st = 0, ss = 0, stt = 0, sts = 0;
-    slide_result res = {-1.0, 0, 0.0, 0.0, 0.0};
-    long steps = (long)(2.0 * ts / dt) + 1;
-    for (long k = 0; k < steps; ++k) {
-        bdl_world_step(w);
-        const bdl_particles *p = &w->particles;
-        double z = p->pos[0].z;
-        double arm = 0.5 * (r + z); // r - delta/2 with delta = r - z
-        double s = p->vel[0].x - arm * p->omega[0].y;
-        double t = w->time;
-        if (s > 0.2 * v0 && s < 0.8 * v0) {
-            n += 1;
-            st += t;
-            ss += s;
-            stt += t * t;
-            sts += t * s;
-        }
-        // Wall force on the sphere: its x component is tangential (the normal is z).
-        const bdl_neighbor *nb = &w->neighbor;
-        bdl_vec3 fw = bdl_v3_zero();
-        for (int32_t c = nb->wall_start[0]; c < nb->wall_start[1]; ++c)
-            fw = bdl_v3_add(fw, nb->wall_force[c]);
-        if (s > 0.05 * v0 && fw.x > 0.0) {
-            ++res.forward;
-            double ratio = fw.z > 0.0 ? fw.x / (mu * fw.z) : INFINITY;
-            if (ratio > res.max_forward)
-                res.max_forward = ratio;
-        }
-        res.v_roll = p->vel[0].x;
-        res.slip_end = fabs(s);
-    }
-    double slope = (n * sts - st * ss) / (n * stt - st * st);
-    double icpt = (ss - slope * st) / n;
-    res.t_fit = -icpt / slope;
-    bdl_world_destroy(w);
-    return res;
-}
+static const double g = 9.81;
 
 int main(void)
 {
@@ -105,7 +39,7 @@ int main(void)
             for (int iv = 0; iv < 2; ++iv) {
                 double mu = im == 0 ? 0.3 : 0.6, v0 = iv == 0 ? 0.5 : 1.0;
                 double ts = 2.0 * v0 / (7.0 * mu * g), vr = 5.0 / 7.0;
-                slide_result s = slide(hertz, mu, v0);
+                bdl_verify_slide s = bdl_verify_slide_roll(hertz, mu, v0, 1.0e-5);
                 printf(
                     "| %s | %.1f | %.1f | %.5f | %.5f | %.1e | %.5f | %.1e | %.1e | %ld (%.2f) |\n",
                     hertz ? "hertz" : "linear", mu, v0, ts, s.t_fit, fabs(s.t_fit - ts) / ts,

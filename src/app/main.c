@@ -17,6 +17,8 @@ static const char usage[] =
     "  check SCENE   validate a scene; print the active modules, contact time, stable time-step\n"
     "                limit and the estimated cost\n"
     "  bench [CASE]  performance benchmarks (dem, render, coupled)\n"
+    "  verify [CASE] verification cases at several refinements: error against run time,\n"
+    "                observed orders, tables and plots in docs/validation/\n"
     "\n"
     "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
     "interrupted), 2 bad input (scene, options).\n"
@@ -30,10 +32,8 @@ typedef struct command {
 int main(int argc, char **argv)
 {
     static const command commands[] = {
-        {"run", bdl_cmd_run},
-        {"view", bdl_cmd_view},
-        {"check", bdl_cmd_check},
-        {"bench", bdl_cmd_bench},
+        {"run", bdl_cmd_run},     {"view", bdl_cmd_view},     {"check", bdl_cmd_check},
+        {"bench", bdl_cmd_bench}, {"verify", bdl_cmd_verify},
     };
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {

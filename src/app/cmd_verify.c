@@ -1,0 +1,380 @@
+// bedlam verify [CASE...] — every verification case at several refinements: error against run
+// time, observed orders, CSV per case, a README with the tables and gnuplot work-precision plots.
+#include <errno.h>
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "app/app.h"
+#include "core/timer.h"
+#include "io/atomic_file.h"
+#include "verify/verify.h"
+
+static const char verify_usage[] =
+    "usage: bedlam verify [CASE...] [--quick] [--out DIR] [--threads N] [--no-plots] [--list]\n"
+    "\n"
+    "Runs each verification case (all of them when none is named) at three or more refinements\n"
+    "(time step, grid, averaging time, ...) and records, per run, the error against the case's\n"
+    "known answer and the wall-clock time. Writes into DIR (default docs/validation):\n"
+    "  CASE.csv   one row per run: series, refinement N, error, wall seconds, steps, threads\n"
+    "  CASE.png   work-precision plot: error against N and against run time (needs gnuplot)\n"
+    "  README.md  a table per case: reference, tolerance, error, observed order, run time\n"
+    "\n"
+    "  --quick      the reduced set (fewer refinements, the slowest cases left out), for CI\n"
+    "  --out DIR    output folder (created if missing)\n"
+    "  --threads N  OpenMP threads (default 1: these are small problems; timings compare)\n"
+    "  --no-plots   skip gnuplot\n"
+    "  --list       list the cases and exit\n"
+    "\n"
+    "Exit codes: 0 every case within its tolerance (and its order, where one applies), 1 a case\n"
+    "failed, 2 bad options or an unwritable output folder.\n";
+
+#define MAX_POINTS 32
+
+typedef struct point {
+    int series;
+    double n, wall;
+    bdl_verify_result r;
+    bdl_result status;
+} point;
+
+typedef struct case_run {
+    const bdl_verify_case *c;
+    int levels;
+    int count;
+    point p[MAX_POINTS];
+    double wall;
+    int pass;
+    char why[512];
+} case_run;
+
+static const point *find_point(const case_run *cr, int series, int level)
+{
+    for (int k = 0; k < cr->count; ++k)
+        if (cr->p[k].series == series && cr->p[k].n == cr->c->level[level])
+            return &cr->p[k];
+    return NULL;
+}
+
+/// Observed order between levels k and k+1 of a series (NAN where it cannot be formed).
+static double order_at(const case_run *cr, int series, int k)
+{
+    const point *a = find_point(cr, series, k), *b = find_point(cr, series, k + 1);
+    if (!a || !b || !(a->r.error > 0.0) || !(b->r.error > 0.0) || !isfinite(a->r.error) ||
+        !isfinite(b->r.error))
+        return NAN;
+    return bdl_verify_order(a->n, a->r.error, b->n, b->r.error);
+}
+
+static void judge(case_run *cr)
+{
+    const bdl_verify_case *c = cr->c;
+    cr->pass = 1;
+    cr->why[0] = '\0';
+    size_t used = 0;
+    for (int s = 0; s < c->series_count; ++s) {
+        for (int k = 0; k < cr->levels; ++k) {
+            const point *p = find_point(cr, s, k);
+            if (p && p->status != BDL_OK) {
+                cr->pass = 0;
+                used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
+                                         "%s N=%g: the run failed (%s); ", c->series[s], p->n,
+                                         bdl_result_text(p->status));
+            }
+            if (used >= sizeof cr->why)
+                used = sizeof cr->why - 1;
+        }
+        const point *t =
+            c->tolerance_level < cr->levels ? find_point(cr, s, c->tolerance_level) : NULL;
+        if (t && !(t->r.error <= c->tolerance)) {
+            cr->pass = 0;
+            used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
+                                     "%s: error %.3g at N=%g above the tolerance %g; ",
+                                     c->series[s], t->r.error, t->n, c->tolerance);
+        }
+        if (used >= sizeof cr->why)
+            used = sizeof cr->why - 1;
+        double q = cr->levels >= 2 ? order_at(cr, s, cr->levels - 2) : NAN;
+        if (c->order_min > 0.0 && !(q >= c->order_min)) {
+            cr->pass = 0;
+            used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
+                                     "%s: observed order %.2f over the finest pair, below %.2f; ",
+                                     c->series[s], q, c->order_min);
+        }
+        if (used >= sizeof cr->why)
+            used = sizeof cr->why - 1;
+    }
+}
+
+static void run_case(case_run *cr, int quick)
+{
+    const bdl_verify_case *c = cr->c;
+    cr->levels = quick ? c->quick_levels : c->level_count;
+    cr->count = 0;
+    cr->wall = 0.0;
+    printf("%s — %s\n", c->name, c->title);
+    for (int s = 0; s < c->series_count; ++s)
+        for (int k = 0; k < cr->levels && cr->count < MAX_POINTS; ++k) {
+            point *p = &cr->p[cr->count++];
+            memset(p, 0, sizeof *p);
+            p->series = s;
+            p->n = c->level[k];
+            double t0 = bdl_wall_seconds();
+            p->status = c->run(s, p->n, &p->r);
+            p->wall = bdl_wall_seconds() - t0;
+            cr->wall += p->wall;
+            double q = k > 0 ? order_at(cr, s, k - 1) : NAN;
+            printf("  %-14s N = %-8g error %-10.3e %8.3f s  %9ld steps", c->series[s], p->n,
+                   p->r.error, p->wall, p->r.steps);
+            if (isfinite(q))
+                printf("  order %5.2f", q);
+            printf("%s\n", p->status == BDL_OK ? "" : "  FAILED");
+            fflush(stdout);
+        }
+    judge(cr);
+    printf("  %s in %.1f s%s%s\n\n", cr->pass ? "pass" : "FAIL", cr->wall, cr->pass ? "" : ": ",
+           cr->why);
+}
+
+static bdl_result write_csv(const char *dir, const case_run *cr, int threads)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s.csv", dir, cr->c->name);
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    fprintf(af.file, "case,series,N,error,value,reference,wall_seconds,steps,threads,status\n");
+    for (int k = 0; k < cr->count; ++k) {
+        const point *p = &cr->p[k];
+        fprintf(af.file, "%s,%s,%.10g,%.6e,%.10g,%.10g,%.6f,%ld,%d,%s\n", cr->c->name,
+                cr->c->series[p->series], p->n, p->r.error, p->r.value, p->r.exact, p->wall,
+                p->r.steps, threads, bdl_result_text(p->status));
+    }
+    return bdl_atomic_commit(&af);
+}
+
+/// gnuplot script for one case: error against N (left) and against wall time (right).
+static int plot_case(const char *dir, const case_run *cr)
+{
+    char script[1100], data[1100];
+    snprintf(script, sizeof script, "%s/%s.gp", dir, cr->c->name);
+    snprintf(data, sizeof data, "%s/%s.dat", dir, cr->c->name);
+    FILE *f = fopen(data, "w");
+    if (!f)
+        return 0;
+    // One gnuplot data block per series (blocks separated by two blank lines).
+    for (int s = 0; s < cr->c->series_count; ++s) {
+        fprintf(f, "# %s\n", cr->c->series[s]);
+        for (int k = 0; k < cr->count; ++k) {
+            const point *p = &cr->p[k];
+            if (p->series == s && p->r.error > 0.0 && isfinite(p->r.error))
+                fprintf(f, "%.10g %.6e %.6e\n", p->n, p->r.error, fmax(p->wall, 1e-4));
+        }
+        fprintf(f, "\n\n");
+    }
+    fclose(f);
+    f = fopen(script, "w");
+    if (!f)
+        return 0;
+    fprintf(f,
+            "set terminal pngcairo size 1100,420 font 'DejaVu Sans,10'\n"
+            "set output '%s/%s.png'\n"
+            "set logscale xy\nset grid\nset key top right\nset format y '%%.0e'\n"
+            "set multiplot layout 1,2 title '%s: %s'\n"
+            "set xlabel '%s'\nset ylabel 'error'\n",
+            dir, cr->c->name, cr->c->name, cr->c->title, cr->c->param);
+    fprintf(f, "plot ");
+    for (int s = 0; s < cr->c->series_count; ++s)
+        fprintf(f, "%s'%s' index %d using 1:2 with linespoints lw 2 pt 7 title '%s'", s ? ", " : "",
+                data, s, cr->c->series[s]);
+    fprintf(f, "\nset xlabel 'wall time [s]'\nplot ");
+    for (int s = 0; s < cr->c->series_count; ++s)
+        fprintf(f, "%s'%s' index %d using 3:2 with linespoints lw 2 pt 7 title '%s'", s ? ", " : "",
+                data, s, cr->c->series[s]);
+    fprintf(f, "\nunset multiplot\n");
+    fclose(f);
+    char cmd[2400];
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", script);
+    int ok = system(cmd) == 0;
+    remove(script);
+    remove(data);
+    return ok;
+}
+
+static const char readme_intro[] =
+    "Every model in bedlam is checked against a known answer — an analytic solution, a "
+    "conservation law or published data — at several refinements. Each table below gives, per "
+    "method or parameter (a *series*), the error at each refinement N, the wall time that run "
+    "took, and the observed order of convergence p = log(e_k/e_k+1)/log(N_k+1/N_k) where the "
+    "scheme has one. The plots show the same data as error against N and error against run time "
+    "(work-precision: lower left is better).\n\n"
+    "How to read them: *how accurate* is the error column at the refinement you would run; *at "
+    "what cost* is the wall-time column (one thread, this machine); *where it breaks* is the "
+    "last line of each section and [stability.md](stability.md), which tabulates the stiff and "
+    "extreme cases and what bedlam does at and beyond each limit.\n\n"
+    "This file, the CSV files and the plots are written by `bedlam verify` (all cases) or "
+    "`bedlam verify --quick` (the reduced set CI runs); the ctest programs assert the same "
+    "measurements with the tolerances listed.\n\n";
+
+static bdl_result write_readme(const char *dir, const case_run *runs, int n, int quick, int threads,
+                               double total, int plots)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/README.md", dir);
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    FILE *f = af.file;
+    time_t now = time(NULL);
+    char date[32];
+    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
+    fprintf(f, "# Verification: error against run time\n\n%s", readme_intro);
+    fprintf(f, "Run: `bedlam verify%s`, bedlam %s, %s, %d thread%s, %.0f s in all (%.1f min).\n\n",
+            quick ? " --quick" : "", BDL_VERSION, date, threads, threads == 1 ? "" : "s", total,
+            total / 60.0);
+    fprintf(f, "## Summary\n\n| case | reference | tolerance | error at N | observed order "
+               "(finest pair) | run time | result |\n|---|---|---|---|---|---|---|\n");
+    for (int k = 0; k < n; ++k) {
+        const case_run *cr = &runs[k];
+        const bdl_verify_case *c = cr->c;
+        fprintf(f, "| [%s](#%s) | %s | %g at N = %g | ", c->name, c->name, c->reference,
+                c->tolerance, c->level[c->tolerance_level]);
+        for (int s = 0; s < c->series_count; ++s) {
+            const point *p =
+                c->tolerance_level < cr->levels ? find_point(cr, s, c->tolerance_level) : NULL;
+            fprintf(f, "%s%s %.2e", s ? "; " : "", c->series[s], p ? p->r.error : NAN);
+        }
+        fprintf(f, " | ");
+        for (int s = 0; s < c->series_count; ++s) {
+            double q = cr->levels >= 2 ? order_at(cr, s, cr->levels - 2) : NAN;
+            fprintf(f, "%s%s %.2f", s ? "; " : "", c->series[s], q);
+        }
+        fprintf(f, " | %.1f s | %s |\n", cr->wall, cr->pass ? "pass" : "**FAIL**");
+    }
+    for (int k = 0; k < n; ++k) {
+        const case_run *cr = &runs[k];
+        const bdl_verify_case *c = cr->c;
+        fprintf(f, "\n## %s\n\n**%s.** Model: %s. Reference: %s. Error: %s. Refinement: %s.\n\n",
+                c->name, c->title, c->model, c->reference, c->measure, c->param);
+        fprintf(f, "Expected order: %s. Acceptance: error at most %g at N = %g", c->order_note,
+                c->tolerance, c->level[c->tolerance_level]);
+        if (c->order_min > 0.0)
+            fprintf(f, ", observed order over the finest pair at least %.2g", c->order_min);
+        fprintf(f, ".\n\n| series | N | error | order | wall time [s] | steps |\n"
+                   "|---|---|---|---|---|---|\n");
+        for (int s = 0; s < c->series_count; ++s)
+            for (int l = 0; l < cr->levels; ++l) {
+                const point *p = find_point(cr, s, l);
+                if (!p)
+                    continue;
+                double q = l > 0 ? order_at(cr, s, l - 1) : NAN;
+                fprintf(f, "| %s | %g | %.3e | ", c->series[s], p->n, p->r.error);
+                if (isfinite(q))
+                    fprintf(f, "%.2f", q);
+                else
+                    fprintf(f, "–");
+                fprintf(f, " | %.3f | %ld |\n", p->wall, p->r.steps);
+            }
+        fprintf(f, "\nResult: %s%s%s. Where it breaks: %s\n", cr->pass ? "pass" : "**FAIL**",
+                cr->pass ? "" : " — ", cr->why, c->breaks);
+        if (plots)
+            fprintf(f, "\n![%s: error against N and against run time](%s.png)\n", c->name, c->name);
+    }
+    return bdl_atomic_commit(&af);
+}
+
+int bdl_cmd_verify(int argc, char **argv)
+{
+    int quick = 0, threads = 1, plots = 1, list = 0, named = 0;
+    const char *out = "docs/validation";
+    const char *names[64];
+    for (int i = 1; i < argc; ++i) {
+        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            fputs(verify_usage, stdout);
+            return 0;
+        } else if (strcmp(argv[i], "--quick") == 0) {
+            quick = 1;
+        } else if (strcmp(argv[i], "--no-plots") == 0) {
+            plots = 0;
+        } else if (strcmp(argv[i], "--list") == 0) {
+            list = 1;
+        } else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
+            out = argv[++i];
+        } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
+            char *end;
+            long t = strtol(argv[++i], &end, 10);
+            if (*end || t < 1 || t > 256) {
+                fprintf(stderr, "error: --threads %s: expected an integer in [1, 256]\n", argv[i]);
+                return 2;
+            }
+            threads = (int)t;
+        } else if (argv[i][0] == '-') {
+            fprintf(stderr, "error: unknown option '%s'\n\n%s", argv[i], verify_usage);
+            return 2;
+        } else if (named < 64) {
+            if (!bdl_verify_find(argv[i])) {
+                fprintf(stderr, "error: unknown case '%s'; bedlam verify --list shows them\n",
+                        argv[i]);
+                return 2;
+            }
+            names[named++] = argv[i];
+        }
+    }
+    int count;
+    const bdl_verify_case *cases = bdl_verify_cases(&count);
+    if (list) {
+        for (int k = 0; k < count; ++k)
+            printf("%-18s %s%s\n", cases[k].name, cases[k].title,
+                   cases[k].quick ? "" : " (full set only)");
+        return 0;
+    }
+    char why[512];
+    if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
+        fprintf(stderr, "error: --out %s: %s\n", out, why);
+        return 2;
+    }
+    omp_set_num_threads(threads);
+    case_run *runs = calloc((size_t)count, sizeof *runs);
+    if (!runs)
+        return 1;
+    int n = 0, failed = 0;
+    double t0 = bdl_wall_seconds();
+    for (int k = 0; k < count; ++k) {
+        int want = named == 0 ? (!quick || cases[k].quick) : 0;
+        for (int m = 0; m < named; ++m)
+            want |= strcmp(names[m], cases[k].name) == 0;
+        if (!want)
+            continue;
+        case_run *cr = &runs[n++];
+        cr->c = &cases[k];
+        run_case(cr, quick && cases[k].quick_levels > 0);
+        failed += !cr->pass;
+        if (write_csv(out, cr, threads) != BDL_OK) {
+            fprintf(stderr, "error: cannot write %s/%s.csv: %s\n", out, cr->c->name,
+                    strerror(errno));
+            free(runs);
+            return 2;
+        }
+    }
+    double total = bdl_wall_seconds() - t0;
+    int plotted = plots;
+    for (int k = 0; k < n && plotted; ++k)
+        if (!plot_case(out, &runs[k])) {
+            fprintf(stderr, "warning: gnuplot failed or is missing: no plots written\n");
+            plotted = 0;
+        }
+    if (write_readme(out, runs, n, quick, threads, total, plotted) != BDL_OK) {
+        fprintf(stderr, "error: cannot write %s/README.md: %s\n", out, strerror(errno));
+        free(runs);
+        return 2;
+    }
+    printf("%d case%s, %d failed, %.1f s; tables in %s/README.md\n", n, n == 1 ? "" : "s", failed,
+           total, out);
+    free(runs);
+    return failed ? 1 : 0;
+}

@@ -1,0 +1,410 @@
+// bedlam — the verification registry: what each case checks, against what, at which
+// refinements, and what counts as a pass.
+#include <math.h>
+#include <string.h>
+
+#include "cfd/gas.h"
+#include "verify/verify.h"
+
+static double finite_or_inf(double x) { return isfinite(x) ? x : INFINITY; }
+
+// Bounce: e = 0.6 at 0.5 m/s, dt = t_c/N.
+static bdl_result run_restitution(int series, double n, bdl_verify_result *out)
+{
+    const double e = 0.6, v = 0.5, dt = bdl_verify_bounce_contact_time(series, e, v) / n;
+    out->error = bdl_verify_restitution_worst(series, e, v, dt, &out->steps);
+    out->exact = e;
+    out->value = e * (1.0 - out->error); // the worst case's magnitude (its sign is not kept)
+    return isfinite(out->error) ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_hertz_duration(int series, double n, bdl_verify_result *out)
+{
+    const double v = 1.0, ref = bdl_verify_hertz_time(series, v);
+    double rebound = 0.0;
+    out->value = bdl_verify_hertz_duration(series, v, ref / n, &rebound, &out->steps);
+    out->exact = ref;
+    out->error = out->value > 0.0 ? fabs(out->value - ref) / ref : INFINITY;
+    return out->value > 0.0 ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_slide_roll(int series, double n, bdl_verify_result *out)
+{
+    const double mu = 0.3, v0 = 0.5, ts = 2.0 * v0 / (7.0 * mu * 9.81);
+    bdl_verify_slide s = bdl_verify_slide_roll(series, mu, v0, 1.0 / n);
+    out->value = s.t_fit;
+    out->exact = ts;
+    out->error = finite_or_inf(fabs(s.t_fit - ts) / ts);
+    out->steps = s.steps;
+    return s.t_fit > 0.0 && s.forward == 0 ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_collision_energy(int series, double n, bdl_verify_result *out)
+{
+    const double v = 1.0, dt = bdl_verify_collision_contact_time(series, v) / n;
+    out->error = 0.0;
+    for (int ph = 0; ph < 8; ++ph)
+        out->error = fmax(
+            out->error, bdl_verify_collision_energy(series, v, dt, (ph + 0.5) / 8.0, &out->steps));
+    out->exact = 0.0;
+    out->value = out->error;
+    return isfinite(out->error) ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_column(int series, double n, bdl_verify_result *out)
+{
+    bdl_verify_column c = bdl_verify_static_column(series, 1.0 / n);
+    out->error = 0.0;
+    for (int k = 0; k < BDL_VERIFY_COLUMN; ++k)
+        out->error = fmax(out->error, fabs(c.overlap[k] - c.theory[k]) / c.theory[k]);
+    out->error = finite_or_inf(out->error);
+    out->value = c.overlap[0];
+    out->exact = c.theory[0];
+    out->steps = c.steps;
+    return c.kinetic < c.kinetic_limit ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_poiseuille(int series, double n, bdl_verify_result *out)
+{
+    (void)series;
+    double cross = 0.0;
+    out->error = bdl_verify_poiseuille((int)n, &cross, &out->steps);
+    out->exact = 0.0;
+    out->value = cross;
+    return isfinite(out->error) ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_cavity(int series, double n, bdl_verify_result *out)
+{
+    static const bdl_convection scheme[2] = {BDL_CONVECTION_CENTRAL, BDL_CONVECTION_VANLEER};
+    double du = 0.0, dv = 0.0;
+    out->error = bdl_verify_cavity((int)n, scheme[series], &du, &dv, 0, &out->steps);
+    out->value = du;
+    out->exact = dv;
+    return out->error >= 0.0 ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_terminal(int series, double n, bdl_verify_result *out)
+{
+    static const double d[3] = {40e-6, 200e-6, 1.0e-3}, rho_p[3] = {1000.0, 2500.0, 2500.0};
+    bdl_verify_terminal t =
+        bdl_verify_terminal_slip(d[series], rho_p[series], BDL_DRAG_SCHILLER_NAUMANN, (int)n);
+    out->value = t.slip;
+    out->exact = t.expected;
+    out->error = finite_or_inf(fabs(t.slip / t.expected - 1.0));
+    out->steps = t.steps;
+    return isfinite(t.slip) ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+static bdl_result run_ergun(int series, double n, bdl_verify_result *out)
+{
+    (void)series;
+    const double U[2] = {0.3, 0.6};
+    double ratio[2], eps[2];
+    bdl_result r = bdl_verify_packed_bed((int)n, U, 2, ratio, eps, &out->steps);
+    out->value = ratio[1];
+    out->exact = 1.0;
+    out->error =
+        r == BDL_OK ? finite_or_inf(fmax(fabs(ratio[0] - 1.0), fabs(ratio[1] - 1.0))) : INFINITY;
+    return r;
+}
+
+static bdl_result run_umf(int series, double n, bdl_verify_result *out)
+{
+    (void)series;
+    double down = NAN, up = NAN, wen_yu = NAN;
+    bdl_result r = bdl_verify_umf(1e-3 * n, &down, &up, &wen_yu, 0, &out->steps);
+    out->value = down;
+    out->exact = wen_yu;
+    out->error = r == BDL_OK
+                     ? finite_or_inf(fmax(fabs(down / wen_yu - 1.0), fabs(up / wen_yu - 1.0)))
+                     : INFINITY;
+    return r;
+}
+
+static bdl_result run_settling(int series, double n, bdl_verify_result *out)
+{
+    static const double phi[3] = {0.1, 0.2, 0.3};
+    bdl_verify_settling s;
+    bdl_result r = bdl_verify_suspension(phi[series], (int)lrint(8.0 / n), &s);
+    out->value = s.measured;
+    out->exact = s.expected;
+    out->error = r == BDL_OK ? finite_or_inf(fabs(s.measured / s.expected - 1.0)) : INFINITY;
+    out->steps = s.steps;
+    return r;
+}
+
+static const bdl_verify_case cases[] = {
+    {
+        .name = "restitution",
+        .breaks = "above dt = t_c/5 (`[guards] dt_refuse` 0.2) bedlam refuses the scene; between "
+                  "t_c/20 and t_c/5 it warns; restitution 0.01 and 1.0 stay bounded over long runs "
+                  "(stability.md: test_restitution_limits).",
+        .title = "Restitution of a sphere bouncing on a plane",
+        .model = "normal contact laws (linear spring-dashpot; Hertz with the damping solved for "
+                 "the configured e) in velocity Verlet",
+        .reference = "the configured restitution e = 0.6 (MFiX DEM01/DEM02), impact at 0.5 m/s, "
+                     "gravity off",
+        .measure = "worst |e_realised - e|/e over 8 phases of first touch within a step",
+        .param = "N = t_c/dt (steps per contact time)",
+        .order_note = "first order: the linear dashpot force jumps at first touch, and both laws "
+                      "evaluate the dashpot with the half-step velocity",
+        .tolerance = 0.05,
+        .tolerance_level = 1,
+        .order_min = 0.8,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 2,
+        .series = {"linear", "hertz"},
+        .level_count = 5,
+        .level = {25, 50, 100, 200, 400},
+        .run = run_restitution,
+    },
+    {
+        .name = "hertz_duration",
+        .breaks = "70 GPa glass at 100 µm has t_c of tens of ns: the same limits apply, and "
+                  "`bedlam check` prints them (stability.md: test_stiff_contacts).",
+        .title = "Duration of an elastic Hertz contact",
+        .model = "Hertz normal force, e = 1, velocity Verlet",
+        .reference = "2.8683 (m*^2/(R* E*^2 v))^(1/5) (Johnson 1985; often rounded to 2.87), "
+                     "steel, 1 m/s",
+        .measure = "|t_c measured - t_c theory|/t_c theory, start and end interpolated between "
+                   "steps",
+        .param = "N = t_c/dt",
+        .order_note = "second order (velocity Verlet; the Hertz force is C^1 at touch); the "
+                      "linear interpolation of the instants of touch and release is second "
+                      "order too",
+        .tolerance = 0.02,
+        .tolerance_level = 1,
+        .order_min = 1.8,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 2,
+        .series = {"sphere-wall", "sphere-sphere"},
+        .level_count = 5,
+        .level = {25, 50, 100, 200, 400},
+        .run = run_hertz_duration,
+    },
+    {
+        .name = "slide_roll",
+        .breaks = "the tangential spring needs dt well below its own period, the same limit as the "
+                  "normal contact; without friction no history is kept.",
+        .title = "A sliding sphere starts rolling",
+        .model = "Coulomb-capped tangential spring with history on a plane wall",
+        .reference = "slip stops at t_s = 2 v0/(7 mu g) (MFiX DEM04), mu = 0.3, v0 = 0.5 m/s",
+        .measure = "|t_s fitted - t_s|/t_s",
+        .param = "N = 1/dt [1/s]",
+        .order_note = "none: while sliding the friction force is exactly mu F_n at any step, so "
+                      "t_s is exact up to the normal transient and the fit",
+        .tolerance = 0.01,
+        .tolerance_level = 2,
+        .order_min = 0.0,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 2,
+        .series = {"linear", "hertz"},
+        .level_count = 4,
+        .level = {25000, 50000, 100000, 200000},
+        .run = run_slide_roll,
+    },
+    {
+        .name = "collision_energy",
+        .breaks = "a dense box of 1000 elastic spheres drifts by less than 1e-3 over 1e5 steps at "
+                  "t_c/50 (test_collision); with dt near t_c/5 energy grows and the run is stopped "
+                  "by the energy guard.",
+        .title = "Energy of an elastic head-on collision",
+        .model = "linear and Hertz springs, e = 1, no friction, velocity Verlet",
+        .reference = "kinetic energy conserved exactly",
+        .measure = "worst relative kinetic-energy error after one collision over 8 contact "
+                   "phases",
+        .param = "N = t_c/dt",
+        .order_note = "second order: velocity Verlet is symplectic and second order for "
+                      "conservative forces",
+        .tolerance = 0.01,
+        .tolerance_level = 1,
+        .order_min = 1.8,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 2,
+        .series = {"linear", "hertz"},
+        .level_count = 5,
+        .level = {25, 50, 100, 200, 400},
+        .run = run_collision_energy,
+    },
+    {
+        .name = "column",
+        .breaks = "overlaps beyond `[guards] max_overlap` (default 0.1 of the radius) stop the "
+                  "run: contacts too soft for the load.",
+        .title = "Static overlaps in a column of five spheres",
+        .model = "normal contact laws at rest under gravity (MFiX DEM03)",
+        .reference = "delta_k = k m g / k_n (linear), (k m g / (4/3 E* sqrt(R*)))^(2/3) (Hertz)",
+        .measure = "worst relative overlap error over the five contacts",
+        .param = "N = t_c/dt",
+        .order_note = "none: velocity Verlet's fixed point is exact force balance at any step; "
+                      "what remains is the residual motion when the run stops",
+        .tolerance = 1e-3,
+        .tolerance_level = 0,
+        .order_min = 0.0,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 2,
+        .series = {"linear", "hertz"},
+        .level_count = 3,
+        .level = {10, 20, 50},
+        .run = run_column,
+    },
+    {
+        .name = "poiseuille",
+        .breaks = "the gas step is CFL 0.5 and within the viscous limit; a run whose gas step "
+                  "exceeds twice the stable one is stopped.",
+        .title = "Plane Poiseuille flow",
+        .model = "gas momentum and projection on the staggered grid, van Leer convection",
+        .reference = "u = g y (1 - y)/(2 nu)",
+        .measure = "max |u - u_exact| / u_max",
+        .param = "N = cells across the channel",
+        .order_note = "second order (central viscous stencil; the wall sits on a face)",
+        .tolerance = 0.02,
+        .tolerance_level = 0,
+        .order_min = 1.9,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 1,
+        .series = {"van Leer"},
+        .level_count = 4,
+        .level = {8, 16, 32, 64},
+        .run = run_poiseuille,
+    },
+    {
+        .name = "cavity",
+        .breaks = "central differences oscillate at cell Reynolds numbers above 2; scenes use van "
+                  "Leer or Superbee, which stay bounded.",
+        .title = "Lid-driven cavity, Re = 100",
+        .model = "incompressible gas solver: convection, viscosity, pressure projection",
+        .reference = "Ghia, Ghia & Shin (1982), tables I and II (129 x 129 cells)",
+        .measure = "largest |u - u_Ghia| and |v - v_Ghia| on the centrelines (lid speed 1)",
+        .param = "N = cells per side",
+        .order_note = "second order for central differences while the error is above Ghia's "
+                      "own (five digits on a 129-cell grid); van Leer is first order at extrema",
+        .tolerance = 0.02,
+        .tolerance_level = 2,
+        .order_min = 0.0,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 2,
+        .series = {"central", "van Leer"},
+        .level_count = 4,
+        .level = {16, 32, 64, 128},
+        .run = run_cavity,
+    },
+    {
+        .name = "terminal",
+        .breaks = "cells smaller than about 3 particle diameters let the sphere's own wake slow "
+                  "the gas it feels (the undisturbed velocity is not available); particles whose "
+                  "drag relaxation time is far below dt are stable because the drag is implicit "
+                  "(stability.md: test_stiff_drag).",
+        .title = "Terminal slip of a settling sphere",
+        .model = "drag coupling (Schiller-Naumann), implicit drag, the particle's own wake on "
+                 "the grid",
+        .reference = "the slip the drag law implies at the particle's voidage, K(s) s = "
+                     "(rho_p - rho) g",
+        .measure = "|slip/slip_law - 1|",
+        .param = "N = cells across a box 24 d wide (cell size 24 d/N; kernel half-width 6 d)",
+        .order_note = "none: the drag is backward Euler and the terminal state is its fixed "
+                      "point at any step; what remains is the disturbance the sphere makes in "
+                      "the gas it feels, which grows as cells shrink towards d",
+        .tolerance = 0.01,
+        .tolerance_level = 1,
+        .order_min = 0.0,
+        .quick = 1,
+        .quick_levels = 2,
+        .series_count = 3,
+        .series = {"Re 0.1", "Re 19", "Re 460"},
+        .level_count = 4,
+        .level = {3, 6, 9, 12},
+        .run = run_terminal,
+    },
+    {
+        .name = "ergun",
+        .breaks = "Ergun holds for fixed beds; near close packing the deposited voidage is capped "
+                  "at 1 - max_solids (stability.md: test_close_packing).",
+        .title = "Packed bed against Ergun",
+        .model = "volume-averaged gas through a DEM packing, Ergun drag, voidage by a tent "
+                 "kernel",
+        .reference = "Ergun: 150 (1-e)^2 mu U/(e^3 d^2) + 1.75 (1-e) rho U^2/(e^3 d) at the "
+                     "layers' voidage; U = 0.3 and 0.6 m/s",
+        .measure = "worst |measured/Ergun - 1| over the two velocities",
+        .param = "N = cells along the bed (N/5 across)",
+        .order_note = "none: the pressure gradient is a layer average of a consistent "
+                      "discretisation; the error is the voidage seen by the gas",
+        .tolerance = 0.03,
+        .tolerance_level = 1,
+        .order_min = 0.0,
+        .quick = 1,
+        .quick_levels = 2,
+        .series_count = 1,
+        .series = {"ergun"},
+        .level_count = 3,
+        .level = {15, 25, 50},
+        .run = run_ergun,
+    },
+    {
+        .name = "settling",
+        .breaks = "density ratios down to 1 (liquid-solid) run stably with the added buoyancy and "
+                  "pressure-gradient force (stability.md: test_density_ratio).",
+        .title = "Hindered settling (Richardson-Zaki)",
+        .model = "four-way coupled suspension, Wen-Yu drag, gas step over several particle steps",
+        .reference = "the drag law's settling speed in the zero-volume-flux frame, v/v_t = "
+                     "eps^n (n = 4.65 in creeping flow)",
+        .measure = "|v/v_law - 1|",
+        .param = "N = gas steps per 8 particle steps (particle dt = t_c/20 = 5.7e-5 s)",
+        .order_note = "first order in the gas step (the drag coefficient and the particle "
+                      "voidage are held over a gas step) until the spatial floor of the "
+                      "4 x 4 x 8 grid",
+        .tolerance = 0.05,
+        .tolerance_level = 0,
+        .order_min = 0.0,
+        .quick = 1,
+        .quick_levels = 3,
+        .series_count = 3,
+        .series = {"phi 0.1", "phi 0.2", "phi 0.3"},
+        .level_count = 4,
+        .level = {1, 2, 4, 8},
+        .run = run_settling,
+    },
+    {
+        .name = "umf",
+        .breaks = "the narrow periodic column slugs above U_mf, so the pressure drop there "
+                  "fluctuates by tens of per cent; the packed branch below U_mf gives U_mf.",
+        .title = "Minimum fluidization velocity from a velocity sweep",
+        .model = "CFD-DEM bed of 1400 beads of 2 mm, Gidaspow drag",
+        .reference = "Wen & Yu (1966): Re_mf = sqrt(33.7^2 + 0.0408 Ar) - 33.7",
+        .measure = "worst |U_mf/U_mf,Wen-Yu - 1| of the decreasing and the increasing sweep",
+        .param = "N = dwell per velocity [ms] (averaging time)",
+        .order_note = "none: the sweep averages a fluctuating signal; longer dwells reduce the "
+                      "noise, not a truncation error",
+        .tolerance = 0.10,
+        .tolerance_level = 1,
+        .order_min = 0.0,
+        .quick = 0,
+        .quick_levels = 0,
+        .series_count = 1,
+        .series = {"sweep"},
+        .level_count = 3,
+        .level = {40, 80, 160},
+        .run = run_umf,
+    },
+};
+
+const bdl_verify_case *bdl_verify_cases(int *count)
+{
+    *count = (int)(sizeof cases / sizeof cases[0]);
+    return cases;
+}
+
+const bdl_verify_case *bdl_verify_find(const char *name)
+{
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k)
+        if (strcmp(cases[k].name, name) == 0)
+            return &cases[k];
+    return NULL;
+}

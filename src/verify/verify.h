@@ -1,0 +1,163 @@
+// bedlam — verification cases: each model against a known answer, at a chosen resolution.
+//
+// Every case is a function of one refinement number N (steps per contact time, cells per side,
+// steps per relaxation time, ...): the cost grows with N and, where the scheme converges, the
+// error falls like N^-p. `bedlam verify` runs each case at three or more N and writes the error
+// against the wall time (report.c); the ctest programs call the same measurement functions and
+// assert tolerances and orders on them, so what is tested is what is reported.
+#ifndef BDL_VERIFY_H
+#define BDL_VERIFY_H
+
+#include "core/error.h"
+#include "couple/drag.h"
+#include "sim/world.h"
+
+#if defined(__GNUC__)
+#define BDL_PRINTF(a, b) __attribute__((format(printf, a, b)))
+#else
+#define BDL_PRINTF(a, b)
+#endif
+
+/// One run of a case at one refinement.
+typedef struct bdl_verify_result {
+    double error; ///< the case's error measure (relative unless the case says otherwise)
+    double value; ///< the measured quantity
+    double exact; ///< its reference value
+    long steps;   ///< time steps taken (particle steps, or gas steps for the gas-only cases)
+} bdl_verify_result;
+
+typedef struct bdl_verify_case {
+    const char *name;       ///< command-line name, CSV and plot file stem
+    const char *title;      ///< one line
+    const char *model;      ///< the model or scheme being verified
+    const char *reference;  ///< the known answer and its source
+    const char *measure;    ///< what `error` is
+    const char *param;      ///< what the refinement number N is
+    const char *order_note; ///< the order the scheme predicts, and why (or why none applies)
+    const char *breaks;     ///< where the model stops being valid or stable
+    double tolerance;       ///< acceptance: error at level `tolerance_level` at most this
+    int tolerance_level;    ///< index into level[]
+    double order_min;       ///< acceptance: observed order over the finest pair (0: none)
+    int quick;              ///< part of `bedlam verify --quick`
+    int quick_levels;       ///< levels run by --quick (the first ones)
+    int series_count;       ///< methods or parameters drawn as separate lines
+    const char *series[4];  ///< their names
+    int level_count;        ///< refinements
+    double level[6];        ///< N, increasing (cost increases)
+    bdl_result (*run)(int series, double level, bdl_verify_result *out);
+} bdl_verify_case;
+
+/// The registry, in report order.
+const bdl_verify_case *bdl_verify_cases(int *count);
+const bdl_verify_case *bdl_verify_find(const char *name);
+
+/// Observed order between refinements n1 < n2 with errors e1, e2: log(e1/e2)/log(n2/n1).
+double bdl_verify_order(double n1, double e1, double n2, double e2);
+
+/// Builds a world from scene text; NULL (the scene's message and the text on stderr) on any error.
+bdl_world *bdl_verify_world_text(const char *text);
+/// The same from printf-formatted scene text.
+bdl_world *bdl_verify_world(const char *format, ...) BDL_PRINTF(1, 2);
+/// Index of the particle with stable id `id`, or -1.
+long bdl_verify_find_particle(const bdl_world *w, uint32_t id);
+
+// ---- DEM: one and two spheres (verify_dem.c) ----
+
+/// Contact time of the bounce case's sphere on its plane: linear pi/(w0 sqrt(1 - zeta^2)), Hertz
+/// 2.87 (m^2/(r E*^2 v))^(1/5) [s].
+double bdl_verify_bounce_contact_time(int hertz, double e, double v);
+/// The bounce case's world: one sphere of 10 mm (2500 kg/m^3; k_n 2e6 N/m or E 1 GPa) with its
+/// centre at z0 moving down at v above a plane at z = 0, gravity g downwards.
+bdl_world *bdl_verify_bounce_world(int hertz, const char *damping, double e, double v, double z0,
+                                   double dt, double g);
+/// Realised restitution of one impact at speed v, gravity off, the contact starting a fraction
+/// `phi` into a step; -1 if the sphere never left. `damping`: "exact" or "closed_form".
+double bdl_verify_restitution(int hertz, const char *damping, double e, double v, double dt,
+                              double phi, long *steps);
+/// Worst |e_measured - e|/e over 8 contact phases.
+double bdl_verify_restitution_worst(int hertz, double e, double v, double dt, long *steps);
+
+/// Hertz contact duration theory, 2.8683 (m*^2/(R* E*^2 v))^(1/5) [s], of the duration case.
+double bdl_verify_hertz_time(int pair, double v);
+/// Measured elastic Hertz contact duration [s] (start and end interpolated between steps);
+/// pair = 0 sphere on a plane, 1 two spheres head-on at relative speed v. `rebound` gets the
+/// separation speed over the impact speed. -1 if the contact never ended.
+double bdl_verify_hertz_duration(int pair, double v, double dt, double *rebound, long *steps);
+
+typedef struct bdl_verify_slide {
+    double t_fit;       ///< zero of the line fitted to the sliding phase's slip [s]
+    long forward;       ///< sliding steps where the friction force pointed along the slip
+    double max_forward; ///< the largest such force over mu F_n
+    double v_roll;      ///< v_x at 2 t_s [m/s]
+    double slip_end;    ///< |slip| at 2 t_s [m/s]
+    long steps;
+} bdl_verify_slide;
+/// A sphere launched at v0 without spin on a rough plane (dt in s).
+bdl_verify_slide bdl_verify_slide_roll(int hertz, double mu, double v0, double dt);
+
+/// Contact time of the elastic head-on collision case at relative speed v [s].
+double bdl_verify_collision_contact_time(int hertz, double v);
+/// Relative kinetic-energy error after one elastic head-on collision (contact starting a fraction
+/// phi into a step); INFINITY if the spheres never touched.
+double bdl_verify_collision_energy(int hertz, double v, double dt, double phi, long *steps);
+
+#define BDL_VERIFY_COLUMN 5
+typedef struct bdl_verify_column {
+    double overlap[BDL_VERIFY_COLUMN]; ///< contact c: 0 wall-bottom, c sphere c on c-1 [m]
+    double theory[BDL_VERIFY_COLUMN];  ///< static overlap of the spring law [m]
+    double lateral;                    ///< largest lateral offset [m]
+    double kinetic, kinetic_limit;     ///< kinetic energy at the end, and the rest criterion [J]
+    double time, dt_ratio;             ///< settling time [s]; dt / t_c
+    long steps;
+} bdl_verify_column;
+/// Five spheres stacked on a plane under gravity, settled: the overlaps against the spring law.
+bdl_verify_column bdl_verify_static_column(int hertz, double dt_fraction);
+
+// ---- gas and coupling (verify_gas.c) ----
+
+/// Steady plane Poiseuille flow on `cells` across the channel: max |u - exact| / u_max. `cross`
+/// gets the largest cross-stream velocity over u_max (must be round-off).
+double bdl_verify_poiseuille(int cells, double *cross, long *steps);
+
+/// Lid-driven cavity at Re 100 on n x n cells against Ghia, Ghia & Shin (1982): the largest
+/// difference of u on the vertical and v on the horizontal centreline (lid speed 1). With `table`
+/// set, prints the profiles. Returns -1 when the solver failed.
+double bdl_verify_cavity(int n, int scheme, double *worst_u, double *worst_v, int table,
+                         long *steps);
+
+typedef struct bdl_verify_terminal {
+    double slip, expected, re, gas_speed, voidage;
+    long steps;
+} bdl_verify_terminal;
+/// One sphere settling through gas in a periodic box 24 d wide and 32 d tall on `cells` x `cells`
+/// x 4/3 `cells` cells (a multiple of 3), its volume and drag spread by a kernel of half-width
+/// 6 d. The mean slip over the last third of 6 tau (tau = v_t/g) against the drag law's at the
+/// particle's voidage.
+bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_law law, int cells);
+/// Slip s with K(eps, s) s = target: the drag law's terminal slip, by bisection.
+double bdl_verify_implied_slip(bdl_drag_law law, double eps, double d, double rho, double mu,
+                               double target, double hi);
+
+/// Ergun's pressure gradient [Pa/m].
+double bdl_verify_ergun(double eps, double U, double d, double rho, double mu);
+/// Packed bed of 1400 2 mm beads, `cells_z` layers (cells_z/5 per side across): the measured
+/// interior pressure gradient over Ergun's at each of `n` superficial velocities U[k] (ratio[k]),
+/// with the mean voidage of the layers used. Returns BDL_OK or the failing step's result.
+bdl_result bdl_verify_packed_bed(int cells_z, const double *U, int n, double *ratio,
+                                 double *eps_mean, long *steps);
+
+/// Minimum fluidization from a decreasing then an increasing velocity sweep (dwell seconds per
+/// velocity): U_mf of each and Wen-Yu's for the same beads [m/s]. With `table`, prints the sweeps.
+bdl_result bdl_verify_umf(double dwell, double *umf_down, double *umf_up, double *wen_yu, int table,
+                          long *steps);
+
+typedef struct bdl_verify_settling {
+    double measured, expected, vt, re_t, n;
+    long steps;
+} bdl_verify_settling;
+/// Hindered settling of a periodic suspension at solids fraction phi (Wen-Yu), the gas stepped
+/// every `substeps` particle steps (0: the automatic gas step): the settling speed relative to
+/// the zero-volume-flux frame against the drag law's.
+bdl_result bdl_verify_suspension(double phi, int substeps, bdl_verify_settling *out);
+
+#endif
