@@ -250,11 +250,18 @@ static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi,
     return bdl_v3_zero();
 }
 
-static void sort_particles(bdl_neighbor *nb, bdl_particles *p)
+/// Sorts the particles by ranked cell; those with drop[i] set (when drop is not NULL) are left
+/// out, and the count shrinks by their number.
+static void sort_particles(bdl_neighbor *nb, bdl_particles *p, const uint8_t *drop)
 {
-    long n = p->count;
+    long n = p->count, kept = 0;
     memset(nb->cell_start, 0, (size_t)(nb->cell_count + 1) * sizeof(int32_t));
     for (long i = 0; i < n; ++i) {
+        if (drop && drop[i]) {
+            nb->pcell[i] = -1;
+            continue;
+        }
+        ++kept;
         int c[3];
         cell_of(nb, p->pos[i], c);
         long cell = c[0] + (long)nb->dims[0] * (c[1] + (long)nb->dims[1] * c[2]);
@@ -266,7 +273,9 @@ static void sort_particles(bdl_neighbor *nb, bdl_particles *p)
     // Stable counting sort by ranked cell: perm[new] = old.
     memcpy(nb->cell_cursor, nb->cell_start, (size_t)nb->cell_count * sizeof(int32_t));
     for (long i = 0; i < n; ++i)
-        nb->perm[nb->cell_cursor[nb->pcell[i]]++] = (int32_t)i;
+        if (nb->pcell[i] >= 0)
+            nb->perm[nb->cell_cursor[nb->pcell[i]]++] = (int32_t)i;
+    p->count = kept; // history is looked up by old index (perm), so dropping needs nothing more
     bdl_particles_permute(p, nb->perm, nb->scratch);
 }
 
@@ -388,7 +397,8 @@ static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bd
     return BDL_OK;
 }
 
-bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls)
+bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
+                              const uint8_t *drop)
 {
     long n = p->count;
     long old_count = nb->count;
@@ -403,7 +413,8 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
         old_count = 0;
     }
     wrap_periodic(nb, p);
-    sort_particles(nb, p);
+    sort_particles(nb, p, drop);
+    n = p->count;
     for (long i = 0; i < n; ++i)
         p->pos_at_build[i] = p->pos[i];
     r = build_pairs(nb, p, old_count);

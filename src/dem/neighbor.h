@@ -72,8 +72,9 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
 void bdl_neighbor_free(bdl_neighbor *nb);
 
 /// Wraps positions into periodic axes, re-sorts the particles, rebuilds pair and wall lists and
-/// carries contact history over.
-bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls);
+/// carries contact history over. Particles with drop[i] set are removed (drop may be NULL).
+bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
+                              const uint8_t *drop);
 
 /// True when the lists may have missed a contact: 2 max|x - x_build| > skin, or a particle and a
 /// wall together moved more than the skin. `max_move2` is max|x - x_build|^2 when the caller

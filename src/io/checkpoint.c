@@ -8,7 +8,7 @@
 #include "io/atomic_file.h"
 
 // Version 2: the gas state and the inlet scale among the live parameters.
-static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '2'};
+static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '3'};
 
 uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
 {
@@ -55,7 +55,8 @@ static void get(reader *r, void *data, size_t size)
 // clang-format off
 #define SCALARS(X) \
     X(time) X(step) X(dt) X(rng) X(poured) X(live) X(wall_work) X(inserted_energy) \
-    X(damping_work) X(energy0) X(contact_time) X(contact_time_dt_ratio)
+    X(damping_work) X(energy0) X(contact_time) X(contact_time_dt_ratio) X(removed) \
+    X(removed_mass) X(removed_energy)
 // clang-format on
 
 /// One array of the saved state.
@@ -172,6 +173,11 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
     uint64_t fp = 0;
     get(&in, m, sizeof m);
     get(&in, &fp, sizeof fp);
+    if (in.ok && memcmp(m, magic, sizeof magic - 1) == 0 && m[7] != magic[7]) {
+        fclose(f);
+        return fail(why, why_len, path,
+                    "was written by another version of bedlam (checkpoint format differs)");
+    }
     if (!in.ok || memcmp(m, magic, sizeof magic) != 0) {
         fclose(f);
         return fail(why, why_len, path, "is not a bedlam checkpoint (bad magic)");

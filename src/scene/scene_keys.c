@@ -82,7 +82,8 @@ const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", 
                       .enum_names = gas_side_names,                                                \
                       .doc = "gas boundary on the " name                                           \
                              " side of the domain: wall (no-slip), slip, inlet or "                \
-                             "outlet; ignored on a periodic axis"                                  \
+                             "outlet (particles that cross an outlet side leave the run and are "  \
+                             "counted: particles_out); ignored on a periodic axis"                 \
     }
 #define IN_RECORD(field) .target = BDL_TARGET_RECORD, .offset = offsetof(bdl_scene_section, field)
 #define GT(x)            .lo_kind = BDL_BOUND_OPEN, .lo = (x)

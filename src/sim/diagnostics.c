@@ -29,6 +29,8 @@ const char *const bdl_diagnostics_columns[] = {
     "momentum_imbalance",
     "probe_pressure_drop",
     "weight_ratio",
+    "particles_out",
+    "mass_out",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -154,7 +156,9 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
         d->bed_height = h[(long)floor(0.95 * (double)(n - 1))];
         free(h);
     }
-    d->gas_work = w->gas_work;
+    d->gas_work = w->gas_work; // with the work of the gas step under way
+    for (long i = 0; i < n; ++i)
+        d->gas_work += bdl_world_gas_work_pending(w, i);
     d->gas_volume_imbalance = gas->mass_imbalance;
     // The bed's weight less buoyancy per unit base area, against the pressure drop less the gas
     // column's own weight (along a periodic gravity axis there is no column to measure).
@@ -221,8 +225,10 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->wall_work = w->wall_work;
     if (w->gas)
         gas_terms(w, d);
-    d->energy_balance =
-        bdl_diagnostics_total_energy(d) - energy0 - w->wall_work - w->inserted_energy - d->gas_work;
+    d->particles_out = w->removed;
+    d->mass_out = w->removed_mass;
+    d->energy_balance = bdl_diagnostics_total_energy(d) + w->removed_energy - energy0 -
+                        w->wall_work - w->inserted_energy - d->gas_work;
 }
 
 double bdl_diagnostics_total_energy(const bdl_diagnostics *d)
@@ -252,4 +258,6 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[17] = d->momentum_imbalance;
     v[18] = d->probe_pressure_drop;
     v[19] = d->weight_ratio;
+    v[20] = (double)d->particles_out;
+    v[21] = d->mass_out;
 }

@@ -22,7 +22,8 @@ typedef struct bdl_diagnostics {
     double mean_coordination; ///< particle-particle contacts per particle
     double max_overlap_ratio; ///< largest overlap / smaller radius [-]
     double wall_work;         ///< work done by walls on the particles since the start [J]
-    double energy_balance;    ///< E - E0 - W_walls - E_inserted [J]; <= 0 for dissipative contacts
+    double energy_balance;    ///< E + E_out - E0 - W_walls - W_gas - E_inserted [J]; <= 0 for
+                              ///< dissipative contacts
     double max_speed;         ///< [m/s]
     // With a gas (0 without):
     double gas_work;             ///< work done by the gas on the particles since the start [J]
@@ -36,6 +37,8 @@ typedef struct bdl_diagnostics {
     double weight_ratio; ///< (pressure_drop - gas column's weight per area) / (particles' weight
                          ///< less buoyancy per base area): 1 when the gas carries the bed; NaN
                          ///< without a gas or along a periodic gravity axis
+    long particles_out;  ///< particles that left through gas outlets since the start
+    double mass_out;     ///< their mass [kg]
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.

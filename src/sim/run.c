@@ -62,6 +62,7 @@ typedef struct run_state {
     char failure[1024];
     // The errors of the last diagnostics, for the progress line (written by the solver thread).
     _Atomic double energy_balance, energy_in, weight_ratio, gas_mass, momentum;
+    _Atomic long particles_out;
     _Atomic int measured;
 } run_state;
 
@@ -185,6 +186,7 @@ static bdl_result on_step(void *user, bdl_world *w)
         atomic_store(&rs->weight_ratio, d.weight_ratio);
         atomic_store(&rs->gas_mass, d.gas_volume_imbalance);
         atomic_store(&rs->momentum, d.momentum_imbalance);
+        atomic_store(&rs->particles_out, d.particles_out);
         atomic_store(&rs->measured, 1);
         if (check) {
             bdl_result r = bdl_guards_check(w, &rs->guard, &d, rs->failure, sizeof rs->failure);
@@ -281,9 +283,12 @@ static void error_summary(run_state *rs, int gas, char *out, size_t len)
     int k = snprintf(out, len, "  energy balance %.2e J (work in %.2e J)",
                      atomic_load(&rs->energy_balance), atomic_load(&rs->energy_in));
     if (gas && k > 0 && (size_t)k < len)
-        snprintf(out + k, len - (size_t)k, "  dp/weight %.3f  gas volume %.1e  momentum %.1e",
-                 atomic_load(&rs->weight_ratio), atomic_load(&rs->gas_mass),
-                 atomic_load(&rs->momentum));
+        k += snprintf(out + k, len - (size_t)k, "  dp/weight %.3f  gas volume %.1e  momentum %.1e",
+                      atomic_load(&rs->weight_ratio), atomic_load(&rs->gas_mass),
+                      atomic_load(&rs->momentum));
+    long leaving = atomic_load(&rs->particles_out);
+    if (leaving > 0 && k > 0 && (size_t)k < len) // through gas outlets: counted, not lost
+        snprintf(out + k, len - (size_t)k, "  out %ld", leaving);
 }
 
 static void progress_line(bdl_loop *loop, run_state *rs, double end_time, double t0, int tty,

@@ -134,7 +134,7 @@ static bdl_result forces(bdl_world *w, double max_move2, double kick)
         w->coordination_capacity = p->capacity;
     }
     if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls, max_move2)) {
-        bdl_result r = bdl_neighbor_build(&w->neighbor, p, &w->walls);
+        bdl_result r = bdl_neighbor_build(&w->neighbor, p, &w->walls, NULL);
         if (r != BDL_OK)
             return r;
     }
@@ -168,6 +168,50 @@ static bdl_result pour(bdl_world *w)
         }
     }
     return BDL_OK;
+}
+
+/// Removes the particles that crossed a gas outlet face during the drift, booking their number,
+/// mass and energy; the lists are rebuilt without them (`*max_move2` then 0).
+static bdl_result remove_outflow(bdl_world *w, double *max_move2)
+{
+    bdl_particles *p = &w->particles;
+    const bdl_scene *s = &w->scene;
+    const long n = p->count;
+    long leaving = 0;
+    for (long i = 0; i < n; ++i)
+        for (int a = 0; a < 3; ++a) {
+            double x = bdl_v3_comp(p->pos[i], a);
+            if ((w->outflow[2 * a] && x < bdl_v3_comp(s->domain_min, a)) ||
+                (w->outflow[2 * a + 1] && x > bdl_v3_comp(s->domain_max, a))) {
+                ++leaving;
+                break;
+            }
+        }
+    if (leaving == 0)
+        return BDL_OK;
+    if (w->drop_capacity < n) {
+        uint8_t *d = realloc(w->drop, (size_t)p->capacity);
+        if (!d)
+            return BDL_ERR_NOMEM;
+        w->drop = d;
+        w->drop_capacity = p->capacity;
+    }
+    for (long i = 0; i < n; ++i) {
+        w->drop[i] = 0;
+        for (int a = 0; a < 3; ++a) {
+            double x = bdl_v3_comp(p->pos[i], a);
+            w->drop[i] |= (w->outflow[2 * a] && x < bdl_v3_comp(s->domain_min, a)) ||
+                          (w->outflow[2 * a + 1] && x > bdl_v3_comp(s->domain_max, a));
+        }
+        if (w->drop[i]) { // its gas work so far is booked now: the next gas step will not see it
+            w->gas_work += bdl_world_gas_work_pending(w, i);
+            w->removed_mass += 1.0 / p->inv_mass[i];
+            w->removed_energy += particle_energy(p, i, s->gravity);
+        }
+    }
+    w->removed += leaving;
+    *max_move2 = 0.0;
+    return bdl_neighbor_build(&w->neighbor, p, &w->walls, w->drop);
 }
 
 bdl_vec3 bdl_world_gravity(const bdl_world *w, double t)
@@ -212,7 +256,9 @@ bdl_result bdl_world_step(bdl_world *w)
     w->step++;
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
-    bdl_result r = pour(w);
+    bdl_result r = w->gas ? remove_outflow(w, &max_move2) : BDL_OK;
+    if (r == BDL_OK)
+        r = pour(w);
     if (r != BDL_OK)
         return r;
     r = forces(w, max_move2, h);
@@ -442,5 +488,6 @@ void bdl_world_destroy(bdl_world *w)
     bdl_neighbor_free(&w->neighbor);
     bdl_force_work_free(&w->force_work);
     free(w->coordination);
+    free(w->drop);
     free(w);
 }

@@ -55,12 +55,21 @@ typedef struct bdl_world {
     double wall_work;       ///< work done by walls on particles
     double inserted_energy; ///< kinetic + potential energy of particles added during the run
     double damping_work;    ///< work done by background damping (negative)
+    double removed_energy;  ///< kinetic + potential energy carried out through outlets
     double energy0;         ///< total mechanical energy when the run started
 
     double contact_time;          ///< smallest contact time over all pairs [s]
     double contact_time_dt_ratio; ///< dt / contact_time
 
     int container; ///< the wall whose frame the run is done in ([wall] frame = container), or -1
+
+    // Particles that cross a face where the gas has a pressure outlet leave the run: they are
+    // removed (at the end of the step's drift) and counted here, never lost silently.
+    int outflow[6];      ///< per face (x min, x max, y min, ...): a gas outlet
+    long removed;        ///< particles that left through outlets
+    double removed_mass; ///< their mass [kg]
+    uint8_t *drop;       ///< scratch: the particles leaving this step
+    long drop_capacity;
 
     // The gas ([gas] in the scene; NULL otherwise): a gas step spans gas_every particle steps,
     // chosen anew before every gas step from the gas's speed unless [gas] dt fixes it.
@@ -111,6 +120,10 @@ void bdl_world_gas_describe(const bdl_world *world, char *buf, size_t size);
 /// One gas step with its coupling, at the start of a particle step that begins one
 /// (bdl_world_step calls it). BDL_ERR_UNSTABLE when the gas cannot be advanced stably.
 bdl_result bdl_world_gas_step(bdl_world *world);
+
+/// Work the gas's forces have done on particle i since the current gas step began, not yet in
+/// gas_work (which books a gas step's work when the next one starts) [J]; 0 without a gas.
+double bdl_world_gas_work_pending(const bdl_world *world, long i);
 
 /// Smallest contact time over species pairs and species-wall pairs [s], with the pair that has
 /// it described in `which` (may be NULL). Hertz uses the impact speed `v_ref`.

@@ -49,6 +49,7 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
         for (int side = 0; side < 2; ++side) {
             bdl_gas_side *sd = &d.side[2 * a + side];
             sd->type = s->periodic[a] ? BDL_SIDE_PERIODIC : side_type(gs->side[2 * a + side]);
+            w->outflow[2 * a + side] = sd->type == BDL_SIDE_OUTLET;
             sd->inflow = gs->inlet_velocity;
             sd->pressure = gs->outlet_pressure;
             if (gs->jet_velocity > 0.0 && gs->has_jet_min && gs->has_jet_max) {
@@ -155,6 +156,18 @@ static bdl_vec3 periodic_column(bdl_world *w, bdl_vec3 gravity)
             gas->source[a][idx] = -0.5 * (gas->eps[idx] + gas->eps[idx - s]) * ga;
     }
     return G;
+}
+
+double bdl_world_gas_work_pending(const bdl_world *w, long i)
+{
+    if (!w->gas || w->gas_steps == 0)
+        return 0.0;
+    const bdl_particles *p = &w->particles;
+    const double elapsed = (double)(w->step - (w->gas_next - w->gas_every)) * w->dt;
+    // As gas steps book it: trapezoidal in the velocity, the gas's acceleration held.
+    return elapsed *
+           bdl_v3_dot(p->fluid_accel[i], bdl_v3_scale(bdl_v3_add(p->vel_mark[i], p->vel[i]), 0.5)) /
+           p->inv_mass[i];
 }
 
 bdl_result bdl_world_gas_step(bdl_world *w)

@@ -218,8 +218,13 @@ static const bdl_verify_case cases[] = {
         .measure = "worst relative kinetic-energy error after one collision over 8 contact "
                    "phases",
         .param = "N = t_c/dt",
-        .order_note = "second order: velocity Verlet is symplectic and second order for "
-                      "conservative forces",
+        .order_note = "at least second order, the scheme's formal order. Observed: 3 (linear) "
+                      "and 2.5 (Hertz). Velocity Verlet conserves a modified energy that "
+                      "differs from the true one by O(dt^2) terms in the spring force, and "
+                      "those vanish at zero overlap; what is left after separation comes from "
+                      "the two steps that straddle touch and release, where the force is only "
+                      "C^0 (linear: O(dt^3)) or C^1 with a singular second derivative (Hertz, "
+                      "delta^(3/2): O(dt^2.5))",
         .tolerance = 0.01,
         .tolerance_level = 1,
         .order_min = 1.8,
@@ -283,8 +288,11 @@ static const bdl_verify_case cases[] = {
         .reference = "Ghia, Ghia & Shin (1982), tables I and II (129 x 129 cells)",
         .measure = "largest |u - u_Ghia| and |v - v_Ghia| on the centrelines (lid speed 1)",
         .param = "N = cells per side",
-        .order_note = "second order for central differences while the error is above Ghia's "
-                      "own (five digits on a 129-cell grid); van Leer is first order at extrema",
+        .order_note = "second order for central differences (van Leer drops to first order "
+                      "at extrema) while our error is above the reference's own; Ghia et al. "
+                      "used 129 x 129 cells, and from 32 cells on our difference to their table "
+                      "stays at 0.7-0.9 % of the lid speed on both schemes: that is the floor "
+                      "of the comparison, not of the solver",
         .tolerance = 0.02,
         .tolerance_level = 2,
         .order_min = 0.0,
@@ -334,8 +342,10 @@ static const bdl_verify_case cases[] = {
                      "layers' voidage; U = 0.3 and 0.6 m/s",
         .measure = "worst |measured/Ergun - 1| over the two velocities",
         .param = "N = cells along the bed (N/5 across)",
-        .order_note = "none: the pressure gradient is a layer average of a consistent "
-                      "discretisation; the error is the voidage seen by the gas",
+        .order_note = "none formal: the error is in the sampling, not a truncation. On cells of "
+                      "5 d only two or three layers fit between a quarter and three quarters of "
+                      "the bed, and the layer voidage mixes in the looser packing at the floor "
+                      "and the free surface; finer layers sample the uniform interior",
         .tolerance = 0.03,
         .tolerance_level = 1,
         .order_min = 0.0,
@@ -357,12 +367,15 @@ static const bdl_verify_case cases[] = {
                      "eps^n (n = 4.65 in creeping flow)",
         .measure = "|v/v_law - 1|",
         .param = "N = gas steps per 8 particle steps (particle dt = t_c/20 = 5.7e-5 s)",
-        .order_note = "first order in the gas step (the drag coefficient and the particle "
-                      "voidage are held over a gas step) until the spatial floor of the "
-                      "4 x 4 x 8 grid",
+        .order_note = "first order in the gas step: the drag coefficient and the voidage are "
+                      "held over a gas step. The error tends to a floor that the gas step does "
+                      "not touch (the particles' disturbance of the gas on the 4 x 4 x 8 grid, "
+                      "as in the terminal case), so the plain order falls towards 0 while the "
+                      "successive differences halve with the step: their order is 1",
         .tolerance = 0.05,
         .tolerance_level = 0,
         .order_min = 0.0,
+        .diff_order_min = 0.8,
         .quick = 1,
         .quick_levels = 3,
         .series_count = 3,

@@ -38,6 +38,8 @@ typedef struct bdl_verify_case {
     double tolerance;       ///< acceptance: error at level `tolerance_level` at most this
     int tolerance_level;    ///< index into level[]
     double order_min;       ///< acceptance: observed order over the finest pair (0: none)
+    double diff_order_min;  ///< acceptance: order of the successive differences over the finest
+                            ///< three levels, for errors that tend to a floor (0: none)
     int quick;              ///< part of `bedlam verify --quick`
     int quick_levels;       ///< levels run by --quick (the first ones)
     int series_count;       ///< methods or parameters drawn as separate lines
@@ -53,6 +55,11 @@ const bdl_verify_case *bdl_verify_find(const char *name);
 
 /// Observed order between refinements n1 < n2 with errors e1, e2: log(e1/e2)/log(n2/n1).
 double bdl_verify_order(double n1, double e1, double n2, double e2);
+/// Order of the successive differences of three errors at n1 < n2 < n3 with n3/n2 = n2/n1:
+/// log((e1 - e2)/(e2 - e3))/log(n2/n1), which sees the converging part of an error that tends to
+/// a floor e_inf + c N^-p (NAN when the differences change sign).
+double bdl_verify_difference_order(double n1, double e1, double n2, double e2, double n3,
+                                   double e3);
 
 /// Builds a world from scene text; NULL (the scene's message and the text on stderr) on any error.
 bdl_world *bdl_verify_world_text(const char *text);

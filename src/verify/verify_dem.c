@@ -53,6 +53,14 @@ double bdl_verify_order(double n1, double e1, double n2, double e2)
     return log(e1 / e2) / log(n2 / n1);
 }
 
+double bdl_verify_difference_order(double n1, double e1, double n2, double e2, double n3, double e3)
+{
+    double a = e1 - e2, b = e2 - e3;
+    if (!(a * b > 0.0) || fabs(log(n3 / n2) / log(n2 / n1) - 1.0) > 1e-9)
+        return NAN;
+    return log(a / b) / log(n2 / n1);
+}
+
 // ---- restitution of a sphere bouncing on a plane ----
 
 static const double bounce_d = 0.01;       // m
