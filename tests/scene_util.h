@@ -24,18 +24,12 @@ static inline bdl_world *bdl_test_world(const char *format, ...) BDL_TEST_PRINTF
 
 static inline bdl_world *bdl_test_world(const char *format, ...)
 {
-    char text[16384];
     va_list ap;
     va_start(ap, format);
-    int n = vsnprintf(text, sizeof text, format, ap);
+    bdl_world *w = bdl_verify_world_v(format, ap);
     va_end(ap);
-    if (n < 0 || n >= (int)sizeof text) {
-        fprintf(stderr, "bdl_test_world: scene text too long (%d characters)\n", n);
-        abort();
-    }
-    bdl_world *w = bdl_verify_world_text(text);
     if (!w)
-        abort(); // the scene's message and text are printed already
+        abort(); // the scene's message (and text) are printed already
     return w;
 }
 

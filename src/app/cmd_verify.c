@@ -2,6 +2,7 @@
 // time, observed orders, CSV per case, a README with the tables and gnuplot work-precision plots.
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -81,52 +82,47 @@ static double diff_order_at(const case_run *cr, int series, int k)
     return bdl_verify_difference_order(a->n, a->r.error, b->n, b->r.error, c->n, c->r.error);
 }
 
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+/// Appends a reason to a failed case's explanation.
+static void
+fail_case(case_run *cr, const char *format, ...)
+{
+    size_t used = strlen(cr->why);
+    va_list ap;
+    va_start(ap, format);
+    if (used + 1 < sizeof cr->why)
+        vsnprintf(cr->why + used, sizeof cr->why - used, format, ap);
+    va_end(ap);
+    cr->pass = 0;
+}
+
 static void judge(case_run *cr)
 {
     const bdl_verify_case *c = cr->c;
     cr->pass = 1;
     cr->why[0] = '\0';
-    size_t used = 0;
     for (int s = 0; s < c->series_count; ++s) {
         for (int k = 0; k < cr->levels; ++k) {
             const point *p = find_point(cr, s, k);
-            if (p && p->status != BDL_OK) {
-                cr->pass = 0;
-                used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
-                                         "%s N=%g: the run failed (%s); ", c->series[s], p->n,
-                                         bdl_result_text(p->status));
-            }
-            if (used >= sizeof cr->why)
-                used = sizeof cr->why - 1;
+            if (p && p->status != BDL_OK)
+                fail_case(cr, "%s N=%g: the run failed (%s); ", c->series[s], p->n,
+                          bdl_result_text(p->status));
         }
         const point *t =
             c->tolerance_level < cr->levels ? find_point(cr, s, c->tolerance_level) : NULL;
-        if (t && !(t->r.error <= c->tolerance)) {
-            cr->pass = 0;
-            used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
-                                     "%s: error %.3g at N=%g above the tolerance %g; ",
-                                     c->series[s], t->r.error, t->n, c->tolerance);
-        }
-        if (used >= sizeof cr->why)
-            used = sizeof cr->why - 1;
+        if (t && !(t->r.error <= c->tolerance))
+            fail_case(cr, "%s: error %.3g at N=%g above the tolerance %g; ", c->series[s],
+                      t->r.error, t->n, c->tolerance);
         double q = cr->levels >= 2 ? order_at(cr, s, cr->levels - 2) : NAN;
-        if (c->order_min > 0.0 && !(q >= c->order_min)) {
-            cr->pass = 0;
-            used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
-                                     "%s: observed order %.2f over the finest pair, below %.2f; ",
-                                     c->series[s], q, c->order_min);
-        }
-        if (used >= sizeof cr->why)
-            used = sizeof cr->why - 1;
+        if (c->order_min > 0.0 && !(q >= c->order_min))
+            fail_case(cr, "%s: observed order %.2f over the finest pair, below %.2f; ",
+                      c->series[s], q, c->order_min);
         double qd = cr->levels >= 3 ? diff_order_at(cr, s, cr->levels - 2) : NAN;
-        if (c->diff_order_min > 0.0 && !(qd >= c->diff_order_min)) {
-            cr->pass = 0;
-            used += (size_t)snprintf(cr->why + used, sizeof cr->why - used,
-                                     "%s: order of the differences %.2f, below %.2f; ",
-                                     c->series[s], qd, c->diff_order_min);
-        }
-        if (used >= sizeof cr->why)
-            used = sizeof cr->why - 1;
+        if (c->diff_order_min > 0.0 && !(qd >= c->diff_order_min))
+            fail_case(cr, "%s: order of the differences %.2f, below %.2f; ", c->series[s], qd,
+                      c->diff_order_min);
     }
 }
 
@@ -277,10 +273,16 @@ static bdl_result write_readme(const char *dir, const case_run *runs, int n, int
             fprintf(f, "%s%s %.2e", s ? "; " : "", c->series[s], p ? p->r.error : NAN);
         }
         fprintf(f, " | ");
-        for (int s = 0; s < c->series_count; ++s) {
+        for (int s = 0; s < c->series_count && !c->no_order; ++s) {
             double q = cr->levels >= 2 ? order_at(cr, s, cr->levels - 2) : NAN;
+            if (c->diff_order_min > 0.0) // the converging part of an error with a floor
+                q = cr->levels >= 3 ? diff_order_at(cr, s, cr->levels - 2) : NAN;
             fprintf(f, "%s%s %.2f", s ? "; " : "", c->series[s], q);
         }
+        if (c->no_order)
+            fprintf(f, "none applies (see the case)");
+        else if (c->diff_order_min > 0.0)
+            fprintf(f, " (of the differences)");
         fprintf(f, " | %.1f s | %s |\n", cr->wall, cr->pass ? "pass" : "**FAIL**");
     }
     for (int k = 0; k < n; ++k) {

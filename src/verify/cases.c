@@ -187,6 +187,7 @@ static const bdl_verify_case cases[] = {
     },
     {
         .name = "slide_roll",
+        .no_order = 1,
         .breaks = "the tangential spring needs dt well below its own period, the same limit as the "
                   "normal contact; without friction no history is kept.",
         .title = "A sliding sphere starts rolling",
@@ -238,6 +239,7 @@ static const bdl_verify_case cases[] = {
     },
     {
         .name = "column",
+        .no_order = 1,
         .breaks = "overlaps beyond `[guards] max_overlap` (default 0.1 of the radius) stop the "
                   "run: contacts too soft for the load.",
         .title = "Static overlaps in a column of five spheres",
@@ -306,6 +308,7 @@ static const bdl_verify_case cases[] = {
     },
     {
         .name = "terminal",
+        .no_order = 1,
         .breaks = "cells smaller than about 3 particle diameters let the sphere's own wake slow "
                   "the gas it feels (the undisturbed velocity is not available); particles whose "
                   "drag relaxation time is far below dt are stable because the drag is implicit "
@@ -333,6 +336,7 @@ static const bdl_verify_case cases[] = {
     },
     {
         .name = "ergun",
+        .no_order = 1,
         .breaks = "Ergun holds for fixed beds; near close packing the deposited voidage is capped "
                   "at 1 - max_solids (stability.md: test_close_packing).",
         .title = "Packed bed against Ergun",
@@ -386,6 +390,7 @@ static const bdl_verify_case cases[] = {
     },
     {
         .name = "umf",
+        .no_order = 1,
         .breaks = "the narrow periodic column slugs above U_mf, so the pressure drop there "
                   "fluctuates by tens of per cent; the packed branch below U_mf gives U_mf.",
         .title = "Minimum fluidization velocity from a velocity sweep",

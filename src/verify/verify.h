@@ -8,6 +8,8 @@
 #ifndef BDL_VERIFY_H
 #define BDL_VERIFY_H
 
+#include <stdarg.h>
+
 #include "core/error.h"
 #include "couple/drag.h"
 #include "sim/world.h"
@@ -38,6 +40,7 @@ typedef struct bdl_verify_case {
     double tolerance;       ///< acceptance: error at level `tolerance_level` at most this
     int tolerance_level;    ///< index into level[]
     double order_min;       ///< acceptance: observed order over the finest pair (0: none)
+    int no_order;           ///< no order of convergence applies (the note says why)
     double diff_order_min;  ///< acceptance: order of the successive differences over the finest
                             ///< three levels, for errors that tend to a floor (0: none)
     int quick;              ///< part of `bedlam verify --quick`
@@ -65,6 +68,7 @@ double bdl_verify_difference_order(double n1, double e1, double n2, double e2, d
 bdl_world *bdl_verify_world_text(const char *text);
 /// The same from printf-formatted scene text.
 bdl_world *bdl_verify_world(const char *format, ...) BDL_PRINTF(1, 2);
+bdl_world *bdl_verify_world_v(const char *format, va_list ap);
 /// Index of the particle with stable id `id`, or -1.
 long bdl_verify_find_particle(const bdl_world *w, uint32_t id);
 

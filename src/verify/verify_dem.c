@@ -26,18 +26,24 @@ bdl_world *bdl_verify_world_text(const char *text)
     return w;
 }
 
-bdl_world *bdl_verify_world(const char *format, ...)
+bdl_world *bdl_verify_world_v(const char *format, va_list ap)
 {
     char text[16384];
-    va_list ap;
-    va_start(ap, format);
     int n = vsnprintf(text, sizeof text, format, ap);
-    va_end(ap);
     if (n < 0 || n >= (int)sizeof text) {
         fprintf(stderr, "verify: scene text too long (%d characters)\n", n);
         return NULL;
     }
     return bdl_verify_world_text(text);
+}
+
+bdl_world *bdl_verify_world(const char *format, ...)
+{
+    va_list ap;
+    va_start(ap, format);
+    bdl_world *w = bdl_verify_world_v(format, ap);
+    va_end(ap);
+    return w;
 }
 
 long bdl_verify_find_particle(const bdl_world *w, uint32_t id)
