@@ -1,2 +1,8 @@
 # Synthetic camera (DIA) images, their ground truth and the calibration.
 bdl_add_test(test_dia SOURCES test_dia.c LABELS dia)
+add_test(NAME dia_cli COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/dia.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/dia_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/dia_cli.cmake)
+set_tests_properties(dia_cli PROPERTIES LABELS "dia;cli" TIMEOUT 300)
+bdl_cli_expect(cli_calibrate_help 0 "usage: bedlam calibrate" calibrate --help)
+bdl_cli_expect(cli_calibrate_missing 2 "cannot read" calibrate ${CMAKE_CURRENT_SOURCE_DIR}/scenes)

@@ -24,8 +24,8 @@ static bdl_dia_def ortho_def(int w, int h, double pixel)
     d.pixel_size = pixel;
     d.samples = 4;
     d.lighting = BDL_DIA_BACK_LIT;
-    d.background = 0.9;
-    d.particle_level = 0.1;
+    d.bright = 0.9;
+    d.dark = 0.1;
     d.gamma = 1.0;
     d.bits = 8;
     d.seed = 7;
@@ -154,7 +154,8 @@ static void test_area_fraction(void)
     // than the centre, so a global threshold between the background and the mean sphere level
     // cuts the anti-aliased edge inside the true outline: a documented bias of at most 4 %.
     d.lighting = BDL_DIA_FRONT_LIT;
-    d.background = 0.05;
+    d.dark = 0.05;
+    d.bright = 1.0;
     d.ambient = 0.5;
     d.light_count = 1;
     d.light_position[0] = bdl_v3(0.05, -0.5, 0.3);

@@ -411,6 +411,9 @@ typedef struct bad_scene {
     "[species b]\ndiameter = 0.01\ndensity = 1000\nyoungs_modulus = 1e7\nrestitution = "           \
     "0.5\n" extra
 #define PLANE "[wall w]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
+#define DIA                                                                                        \
+    "[camera c]\nkind = dia\nposition = 0 -0.3 0\ntarget = 0 0 0\npixel_size = 1e-4\n"             \
+    "interval = 0.01\n"
 
 static const bad_scene bad_scenes[] = {
     {MINIMAL "densty = 3\n", "bad.ini:11:", "densty", "did you mean 'density'?", NULL},
@@ -522,6 +525,14 @@ static const bad_scene bad_scenes[] = {
     {MINIMAL SPECIES_B("[pair glass b]\n[pair b glass]\n"), "bad.ini:17:", "pair b glass",
      "duplicate section (first at line 16)", NULL},
     {MINIMAL PLANE "poisson_ratio = -0.2\n", "bad.ini:15:", "poisson_ratio", "[0, 0.5)", NULL},
+    {MINIMAL DIA "bits = 12\n", "bad.ini:17:", "bits", "8 or 16", NULL},
+    {MINIMAL DIA "pair_dt = 0.1\n", "bad.ini:17:", "pair_dt", "shorter than interval", NULL},
+    {MINIMAL "[camera c]\nkind = dia\nposition = 0 -1 0\ntarget = 0 -1 0\npixel_size = 1e-4\n"
+             "interval = 1\n",
+     "bad.ini:14:", "target", "differ from position", NULL},
+    {MINIMAL "[camera c]\nkind = dia\nposition = 0 -1 0\ntarget = 0 0 0\npixel_size = 1e-4\n",
+     "bad.ini:11:", "interval", "missing required key", NULL},
+    {MINIMAL "[camera c]\nkind = camera\n", "bad.ini:12:", "kind", "dia", NULL},
 };
 
 static void test_bad_scenes(void)

@@ -19,6 +19,8 @@ static const char usage[] =
     "  bench [CASE]  performance benchmarks (dem, render, coupled)\n"
     "  verify [CASE] verification cases at several refinements: error against run time,\n"
     "                observed orders, tables and plots in docs/validation/\n"
+    "  calibrate DIR fit the 2D-to-3D solids fraction of synthetic camera images ([camera NAME]\n"
+    "                kind = dia) against their truth; apply a fit to any images\n"
     "\n"
     "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
     "interrupted), 2 bad input (scene, options).\n"
@@ -33,7 +35,7 @@ int main(int argc, char **argv)
 {
     static const command commands[] = {
         {"run", bdl_cmd_run},     {"view", bdl_cmd_view},     {"check", bdl_cmd_check},
-        {"bench", bdl_cmd_bench}, {"verify", bdl_cmd_verify},
+        {"bench", bdl_cmd_bench}, {"verify", bdl_cmd_verify}, {"calibrate", bdl_cmd_calibrate},
     };
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {

@@ -82,7 +82,12 @@ static double shade(const bdl_dia_camera *c, bdl_vec3 p, bdl_vec3 n)
 {
     const bdl_dia_def *d = &c->def;
     if (d->lighting == BDL_DIA_BACK_LIT)
-        return d->particle_level;
+        return d->dark;
+    double fade = 1.0;
+    if (d->fade_length > 0.0) {
+        double behind = bdl_v3_dot(bdl_v3_sub(p, d->position), c->forward) - d->fade_start;
+        fade = behind > 0.0 ? exp(-behind / d->fade_length) : 1.0;
+    }
     double g = d->ambient;
     for (int k = 0; k < d->light_count; ++k) {
         bdl_vec3 l = bdl_v3_normalize(bdl_v3_sub(d->light_position[k], p));
@@ -90,7 +95,7 @@ static double shade(const bdl_dia_camera *c, bdl_vec3 p, bdl_vec3 n)
         if (lambert > 0.0)
             g += d->light_intensity[k] * lambert;
     }
-    return g < 1.0 ? g : 1.0;
+    return d->dark + (d->bright - d->dark) * fade * (g < 1.0 ? g : 1.0);
 }
 
 /// Pixel bounding box of a sphere's image (conservative for perspective).
@@ -220,7 +225,7 @@ bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long 
                     size_t k = (size_t)py * (size_t)sw + (size_t)px;
                     int32_t hit = im->hit[k];
                     if (hit < 0) {
-                        sum += d->background;
+                        sum += d->lighting == BDL_DIA_BACK_LIT ? d->bright : d->dark;
                         continue;
                     }
                     bdl_vec3 o, dir;

@@ -46,13 +46,16 @@ typedef struct bdl_dia_def {
     bdl_vec3 light_position[BDL_DIA_MAX_LIGHTS]; ///< point lights (front-lit) [m]
     double light_intensity[BDL_DIA_MAX_LIGHTS];  ///< [-], 1 = full scale on a surface facing it
     double ambient;                              ///< light every visible surface gets [-]
-    double background;                           ///< grey level where no particle is [0, 1]
-    double particle_level;                       ///< back-lit: grey level of a silhouette [0, 1]
-    double blur;                                 ///< Gaussian defocus blur, sigma [px]; 0 none
-    double noise;  ///< sensor noise, sigma as a fraction of full scale
-    double gamma;  ///< stored value = linear^(1/gamma)
-    int bits;      ///< 8 or 16 bits per pixel
-    uint64_t seed; ///< for the noise
+    double dark;        ///< front-lit: the background; back-lit: a silhouette [0, 1]
+    double bright;      ///< front-lit: a fully lit surface; back-lit: the light panel [0, 1]
+    double fade_start;  ///< front-lit: depth where the light starts to fade [m]
+    double fade_length; ///< front-lit: e-folding depth of the fade behind fade_start [m]; 0 none
+                        ///< (particles behind the front layer get less light, as in a bed)
+    double blur;        ///< Gaussian defocus blur, sigma [px]; 0 none
+    double noise;       ///< sensor noise, sigma as a fraction of full scale
+    double gamma;       ///< stored value = linear^(1/gamma)
+    int bits;           ///< 8 or 16 bits per pixel
+    uint64_t seed;      ///< for the noise
 } bdl_dia_def;
 
 /// The camera's frame, derived from its definition.

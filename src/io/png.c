@@ -84,3 +84,73 @@ bdl_result bdl_png_read(const char *path, uint8_t **pixels, int *width, int *hei
     *channels = alpha ? 4 : 3;
     return BDL_OK;
 }
+
+/// Buffers of a grey read, in memory so that a longjmp from libpng finds them (locals assigned
+/// after setjmp would be indeterminate).
+typedef struct gray_read {
+    png_bytep *rows;
+    png_bytep data;
+    double *out;
+} gray_read;
+
+bdl_result bdl_png_read_gray(const char *path, double **values, int *width, int *height, int *bits)
+{
+    *values = NULL;
+    FILE *f = fopen(path, "rb");
+    gray_read *g = calloc(1, sizeof *g);
+    png_structp png =
+        f && g ? png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL) : NULL;
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    if (!png || !info || setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, NULL);
+        if (g) {
+            free(g->rows);
+            free(g->data);
+            free(g->out);
+        }
+        free(g);
+        if (f)
+            fclose(f);
+        return BDL_ERR_IO;
+    }
+    png_init_io(png, f);
+    png_read_info(png, info);
+    int color = png_get_color_type(png, info), depth = png_get_bit_depth(png, info);
+    if (color == PNG_COLOR_TYPE_PALETTE)
+        png_set_palette_to_rgb(png);
+    if (color == PNG_COLOR_TYPE_GRAY && depth < 8)
+        png_set_expand_gray_1_2_4_to_8(png);
+    if (color & PNG_COLOR_MASK_ALPHA)
+        png_set_strip_alpha(png);
+    png_read_update_info(png, info);
+    const int w = (int)png_get_image_width(png, info), h = (int)png_get_image_height(png, info);
+    const int channels = png_get_channels(png, info), d = png_get_bit_depth(png, info);
+    const size_t rowbytes = png_get_rowbytes(png, info);
+    g->rows = malloc((size_t)h * sizeof(png_bytep));
+    g->out = malloc((size_t)w * (size_t)h * sizeof(double));
+    g->data = malloc(rowbytes * (size_t)h);
+    if (!g->rows || !g->out || !g->data)
+        png_longjmp(png, 1);
+    for (int y = 0; y < h; ++y)
+        g->rows[y] = g->data + (size_t)y * rowbytes;
+    png_read_image(png, g->rows);
+    const double full = d == 16 ? 65535.0 : 255.0;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double sum = 0.0;
+            for (int c = 0; c < channels; ++c) {
+                size_t k = (size_t)x * channels + c;
+                sum += d == 16 ? (double)((g->rows[y][2 * k] << 8) | g->rows[y][2 * k + 1])
+                               : (double)g->rows[y][k];
+            }
+            g->out[(size_t)y * w + x] = sum / (channels * full);
+        }
+    *values = g->out;
+    *width = w, *height = h, *bits = depth;
+    free(g->data);
+    free(g->rows);
+    free(g);
+    png_destroy_read_struct(&png, &info, NULL);
+    fclose(f);
+    return BDL_OK;
+}

@@ -18,4 +18,9 @@ bdl_result bdl_png_write(const char *path, const uint8_t *pixels, int width, int
 /// rows top to bottom; free it with free(). BDL_ERR_IO when the file is missing or not a PNG.
 bdl_result bdl_png_read(const char *path, uint8_t **pixels, int *width, int *height, int *channels);
 
+/// Reads any PNG as grey values in [0, 1], raw (no gamma conversion): 8- or 16-bit grey as
+/// stored; colour images as the mean of red, green and blue; alpha ignored. `*values` is
+/// malloc'ed, rows top to bottom; `*bits` gets the file's bit depth. BDL_ERR_IO on failure.
+bdl_result bdl_png_read_gray(const char *path, double **values, int *width, int *height, int *bits);
+
 #endif

@@ -17,6 +17,7 @@
 #define BDL_MAX_PAIRS   64
 #define BDL_MAX_WALLS   16
 #define BDL_MAX_CREATES 16
+#define BDL_MAX_DIA     4
 #define BDL_NAME_LEN    32
 #define BDL_PATH_LEN    512
 
@@ -213,6 +214,33 @@ typedef struct bdl_camera_def {
     double gas_opacity;        ///< of the slice, 0..1
 } bdl_camera_def;
 
+/// A synthetic camera ([camera NAME], kind = dia): images of the particles as a DIA rig sees them,
+/// with the ground truth beside every image (src/dia).
+typedef struct bdl_dia_scene_def {
+    char name[BDL_NAME_LEN];
+    int line;
+    int kind;          ///< 0: dia
+    int projection;    ///< 0 orthographic, 1 perspective (bdl_dia_projection)
+    bdl_vec3 position; ///< perspective: the pinhole; orthographic: centre of the view [m]
+    bdl_vec3 target;   ///< point on the optical axis [m]
+    bdl_vec3 up;       ///< world direction shown up
+    int width, height; ///< [px]
+    double pixel_size; ///< orthographic: m per pixel; perspective: sensor pixel pitch [m]
+    double focal_length;
+    int samples;  ///< rays per pixel along each axis
+    int lighting; ///< 0 front-lit, 1 back-lit (bdl_dia_lighting)
+    bdl_vec3 light_position;
+    int has_light_position; ///< else a light at the camera
+    double light_intensity, ambient;
+    double dark, bright; ///< grey levels of the darkest and brightest things imaged
+    double fade;         ///< e-folding depth of the light behind the front wall [m]; 0 none
+    double blur, noise, gamma;
+    int bits;
+    double start, interval, pair_dt; ///< first image, images (or pairs) apart, pair separation [s]
+    int cells_across, cells_down;    ///< ground-truth grid of image cells
+    uint64_t seed;
+} bdl_dia_scene_def;
+
 typedef struct bdl_guard_def {
     double max_overlap;     ///< stop when any overlap exceeds this fraction of the smaller radius
     double initial_overlap; ///< refuse initial overlaps above this fraction of the smaller radius
@@ -295,6 +323,8 @@ typedef struct bdl_scene {
     bdl_wall_def walls[BDL_MAX_WALLS];
     int create_count;
     bdl_create_def creates[BDL_MAX_CREATES];
+    int dia_count;
+    bdl_dia_scene_def dias[BDL_MAX_DIA];
 
     bdl_output_def output;
     bdl_guard_def guards;

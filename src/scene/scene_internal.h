@@ -26,6 +26,7 @@ typedef enum bdl_section_kind {
     BDL_SECTION_PAIR,
     BDL_SECTION_WALL,
     BDL_SECTION_CREATE,
+    BDL_SECTION_DIA, ///< [camera NAME]: the same word as [camera], with a name
     BDL_SECTION_KIND_COUNT
 } bdl_section_kind;
 
@@ -92,7 +93,7 @@ extern const bdl_scene_key bdl_scene_keys[];
 extern const int bdl_scene_key_count;
 extern const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT];
 
-#define BDL_SCENE_KEY_CAPACITY 128
+#define BDL_SCENE_KEY_CAPACITY 256
 #define BDL_SCENE_MAX_SECTIONS                                                                     \
     (5 + BDL_MAX_SPECIES + BDL_MAX_PAIRS + BDL_MAX_WALLS + BDL_MAX_CREATES)
 /// Line number recorded for a value that came from a --set override.

@@ -39,6 +39,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_PAIR] = {"pair", "pair A B", 2, BDL_MAX_PAIRS},
     [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
     [BDL_SECTION_CREATE] = {"create", "create NAME", 1, BDL_MAX_CREATES},
+    [BDL_SECTION_DIA] = {"camera", "camera NAME", 1, BDL_MAX_DIA},
 };
 
 // Names in the order of the C enums of scene.h (the parser stores the index).
@@ -55,6 +56,9 @@ static const char *const projection_names[] = {"perspective", "orthographic", NU
 static const char *const gas_side_names[] = {"wall", "slip", "inlet", "outlet", NULL};
 static const char *const gas_field_names[] = {"none", "voidage", "pressure", "speed", NULL};
 static const char *const axis_names[] = {"x", "y", "z", NULL};
+static const char *const dia_kind_names[] = {"dia", NULL};
+static const char *const dia_projection_names[] = {"orthographic", "perspective", NULL};
+static const char *const dia_lighting_names[] = {"front", "back", NULL};
 static const char *const convection_names[] = {"upwind", "vanleer", "superbee", "central", NULL};
 // The drag laws of src/couple/drag.h, in the same order (test_scene checks it).
 const char *const bdl_scene_drag_names[] = {
@@ -70,6 +74,7 @@ const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", 
     .flag_offset = offsetof(bdl_pair_def, has_##field)
 #define IN_WALL(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
 #define IN_CREATE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_create_def, field)
+#define IN_DIA(field)    .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_dia_scene_def, field)
 #define IN_CAMERA(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, camera.field)
 #define IN_CAMERA_FLAGGED(field)                                                                   \
     IN_CAMERA(field), .has_flag = 1, .flag_offset = offsetof(bdl_scene, camera.has_##field)
@@ -371,6 +376,73 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(CAMERA), "gas_opacity", NUM, "-", IN_CAMERA(gas_opacity), .def = {0.6}, GE(0), LE(1),
      .doc = "opacity of the slice"},
 
+    // [camera NAME] (kind = dia)
+    {S(DIA), "kind", .type = BDL_KEY_ENUM, "-", IN_DIA(kind), REQUIRED,
+     .enum_names = dia_kind_names,
+     .doc = "what the camera makes: dia, synthetic grey images for digital image analysis with "
+            "their ground truth, in dia/NAME/ of the run folder"},
+    {S(DIA), "projection", .type = BDL_KEY_ENUM, "-", IN_DIA(projection), .def = {0},
+     .enum_names = dia_projection_names,
+     .doc = "orthographic (a telecentric view) or perspective (a pinhole camera)"},
+    {S(DIA), "position", VEC, "m", IN_DIA(position), REQUIRED,
+     .doc = "perspective: the pinhole; orthographic: the centre of the view, in front of the bed"},
+    {S(DIA), "target", VEC, "m", IN_DIA(target), REQUIRED,
+     .doc = "a point on the optical axis: the camera looks from position towards it"},
+    {S(DIA), "up", VEC, "-", .normalise = 1, IN_DIA(up), .def = {0, 0, 1},
+     .doc = "world direction that appears up in the image"},
+    {S(DIA), "width", .type = BDL_KEY_INT, "px", IN_DIA(width), .def = {500}, GE(8), LE(8192),
+     .doc = "image width"},
+    {S(DIA), "height", .type = BDL_KEY_INT, "px", IN_DIA(height), .def = {1000}, GE(8), LE(8192),
+     .doc = "image height"},
+    {S(DIA), "pixel_size", NUM, "m", IN_DIA(pixel_size), REQUIRED, GT(0),
+     .doc = "orthographic: the size of a pixel at the object; perspective: the sensor's pixel "
+            "pitch"},
+    {S(DIA), "focal_length", NUM, "m", IN_DIA(focal_length), .def = {0.025}, GT(0),
+     WHEN("projection", BIT(1)), .doc = "focal length of the lens (perspective)"},
+    {S(DIA), "samples", .type = BDL_KEY_INT, "-", IN_DIA(samples), .def = {3}, GE(1), LE(8),
+     .doc = "rays per pixel along each axis (samples^2 per pixel): anti-aliasing and the "
+            "resolution of the truth"},
+    {S(DIA), "lighting", .type = BDL_KEY_ENUM, "-", IN_DIA(lighting), .def = {0},
+     .enum_names = dia_lighting_names,
+     .doc = "front: lights on the camera's side, bright spheres on a dark background; back: a "
+            "light panel behind the bed, dark silhouettes on a bright background"},
+    {S(DIA), "light_position", VEC, "m", IN_DIA(light_position), .has_flag = 1,
+     .flag_offset = offsetof(bdl_dia_scene_def, has_light_position),
+     .default_text = "the camera position", .doc = "a point light (front lighting)"},
+    {S(DIA), "light_intensity", NUM, "-", IN_DIA(light_intensity), .def = {0.6}, GE(0),
+     .doc = "the light's share of full brightness on a surface facing it (front lighting)"},
+    {S(DIA), "ambient", NUM, "-", IN_DIA(ambient), .def = {0.4}, GE(0), LE(1),
+     .doc = "brightness every visible sphere surface gets (front lighting)"},
+    {S(DIA), "dark", NUM, "-", IN_DIA(dark), .def = {0.05}, GE(0), LE(1),
+     .doc = "grey level of the background (front) or of a silhouette (back), 0..1"},
+    {S(DIA), "bright", NUM, "-", IN_DIA(bright), .def = {0.95}, GE(0), LE(1),
+     .doc = "grey level of a fully lit sphere (front) or of the light panel (back), 0..1"},
+    {S(DIA), "fade", NUM, "m", IN_DIA(fade), .def = {0}, GE(0),
+     .doc = "front lighting: the light falls off as exp(-s/fade) with the depth s behind the "
+            "domain's front face, so particles behind the first layer look darker, as in a "
+            "packed bed; 0 = no fall-off"},
+    {S(DIA), "blur", NUM, "px", IN_DIA(blur), .def = {0}, GE(0), LE(20),
+     .doc = "defocus: Gaussian blur, standard deviation"},
+    {S(DIA), "noise", NUM, "-", IN_DIA(noise), .def = {0}, GE(0), LE(1),
+     .doc = "sensor noise: Gaussian, standard deviation as a fraction of full scale"},
+    {S(DIA), "gamma", NUM, "-", IN_DIA(gamma), .def = {1}, GT(0), LE(5),
+     .doc = "stored grey = linear^(1/gamma)"},
+    {S(DIA), "bits", .type = BDL_KEY_INT, "-", IN_DIA(bits), .def = {8}, GE(8), LE(16),
+     .doc = "bits per pixel of the PNG: 8 or 16"},
+    {S(DIA), "start", NUM, "s", IN_DIA(start), .def = {0}, GE(0),
+     .doc = "simulated time of the first image"},
+    {S(DIA), "interval", NUM, "s", IN_DIA(interval), REQUIRED, GT(0),
+     .doc = "simulated time between images (or between the first frames of PIV pairs)"},
+    {S(DIA), "pair_dt", NUM, "s", IN_DIA(pair_dt), .def = {0}, GE(0),
+     .doc = "0: single images; > 0: double frames this far apart for PIV (rounded to whole "
+            "time steps)"},
+    {S(DIA), "cells_across", .type = BDL_KEY_INT, "-", IN_DIA(cells_across), .def = {10}, GE(1),
+     LE(1000), .doc = "ground-truth grid: image cells across"},
+    {S(DIA), "cells_down", .type = BDL_KEY_INT, "-", IN_DIA(cells_down), .def = {20}, GE(1),
+     LE(1000), .doc = "ground-truth grid: image cells down"},
+    {S(DIA), "seed", .type = BDL_KEY_U64, "-", IN_DIA(seed), .def = {1}, GE(0),
+     .doc = "seed of the sensor noise"},
+
     // [gas]
     {S(GAS), "density", NUM, "kg/m^3", IN_GAS(density), .def = {1.2}, GT(0),
      .doc = "gas density (air at 20 C: 1.2)"},
@@ -576,6 +648,8 @@ void *bdl_scene_key_field(const bdl_scene_key *key, bdl_scene *scene, bdl_scene_
         base = (char *)&scene->walls[section->index];
     else if (key->section == BDL_SECTION_CREATE)
         base = (char *)&scene->creates[section->index];
+    else if (key->section == BDL_SECTION_DIA)
+        base = (char *)&scene->dias[section->index];
     return base + key->offset;
 }
 

@@ -397,12 +397,19 @@ static void apply_key(bdl_scene_parser *p, bdl_scene_section *section, const cha
 // ---------------------------------------------------------------------------------------------
 // Sections.
 
-static int find_kind(const char *word)
+/// The section kind of a header word followed by `names` names ([camera] and [camera NAME] share
+/// the word); the first kind with the word when none has that many names (for the message).
+static int find_kind(const char *word, int names)
 {
+    int first = -1;
     for (int k = 0; k < BDL_SECTION_KIND_COUNT; ++k)
-        if (strcmp(word, bdl_section_infos[k].name) == 0)
-            return k;
-    return -1;
+        if (strcmp(word, bdl_section_infos[k].name) == 0) {
+            if (bdl_section_infos[k].name_count == names)
+                return k;
+            if (first < 0)
+                first = k;
+        }
+    return first;
 }
 
 static void fail_unknown_section(bdl_scene_parser *p, int line, const char *title, const char *word)
@@ -449,6 +456,8 @@ static int *section_counter(bdl_scene *scene, bdl_section_kind kind)
         return &scene->pair_count;
     case BDL_SECTION_WALL:
         return &scene->wall_count;
+    case BDL_SECTION_DIA:
+        return &scene->dia_count;
     default:
         return &scene->create_count;
     }
@@ -478,6 +487,10 @@ static bdl_scene_section *add_section(bdl_scene_parser *p, bdl_section_kind kind
         memset(&scene->walls[s->index], 0, sizeof scene->walls[0]);
         memcpy(scene->walls[s->index].name, names[0], BDL_NAME_LEN);
         scene->walls[s->index].line = line;
+    } else if (kind == BDL_SECTION_DIA) {
+        memset(&scene->dias[s->index], 0, sizeof scene->dias[0]);
+        memcpy(scene->dias[s->index].name, names[0], BDL_NAME_LEN);
+        scene->dias[s->index].line = line;
     } else {
         memset(&scene->creates[s->index], 0, sizeof scene->creates[0]);
         memcpy(scene->creates[s->index].name, names[0], BDL_NAME_LEN);
@@ -517,7 +530,7 @@ static void open_section(bdl_scene_parser *p, char *inner, int line)
         bdl_scene_fail(p, &where, "empty section header");
         return;
     }
-    int kind = find_kind(words[0]);
+    int kind = find_kind(words[0], count - 1);
     if (kind < 0) {
         fail_unknown_section(p, line, title, words[0]);
         return;
@@ -699,7 +712,7 @@ static void apply_override(bdl_scene_parser *p, const char *text)
         *dot = '\0';
         s = dot + 1;
     }
-    int kind = find_kind(words[0]);
+    int kind = find_kind(words[0], count - 2);
     if (kind < 0) {
         bdl_suggestion suggestion;
         bdl_suggest_init(&suggestion, words[0]);

@@ -417,6 +417,22 @@ static void check_singletons(bdl_scene_parser *p)
     }
 }
 
+static void check_dia(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    const bdl_dia_scene_def *d = &p->scene->dias[s->index];
+    bdl_vec3 view = bdl_v3_sub(d->target, d->position);
+    if (d->bits != 8 && d->bits != 16)
+        fail_at_key(p, s, "bits", 0, "must be 8 or 16");
+    else if (!(bdl_v3_len(view) > 0.0))
+        fail_at_key(p, s, "target", 0, "must differ from position: the camera looks along it");
+    else if (bdl_v3_len(bdl_v3_cross(view, d->up)) < 1e-6 * bdl_v3_len(view))
+        fail_at_key(p, s, "up", 0, "must not be parallel to the view (target - position)");
+    else if (d->pair_dt >= d->interval)
+        fail_at_key(p, s, "pair_dt", 0, "must be shorter than interval");
+    else if (d->dark >= d->bright)
+        fail_at_key(p, s, "dark", 0, "must be below bright");
+}
+
 int bdl_scene_validate(bdl_scene_parser *p)
 {
     check_singletons(p);
@@ -425,8 +441,8 @@ int bdl_scene_validate(bdl_scene_parser *p)
                        "no [species NAME] section: at least one species is required");
     // Species first: pairs and creators refer to them and to their diameters.
     static const bdl_section_kind order[] = {BDL_SECTION_SPECIES, BDL_SECTION_PAIR,
-                                             BDL_SECTION_WALL, BDL_SECTION_CREATE};
-    for (int k = 0; k < 4; ++k) {
+                                             BDL_SECTION_WALL, BDL_SECTION_CREATE, BDL_SECTION_DIA};
+    for (int k = 0; k < 5; ++k) {
         for (int i = 0; i < p->section_count && !p->failed; ++i) {
             bdl_scene_section *s = &p->sections[i];
             if (s->kind != order[k])
@@ -440,6 +456,8 @@ int bdl_scene_validate(bdl_scene_parser *p)
                 check_pair(p, s);
             else if (s->kind == BDL_SECTION_WALL)
                 check_wall(p, s);
+            else if (s->kind == BDL_SECTION_DIA)
+                check_dia(p, s);
             else
                 check_create(p, s);
         }

@@ -16,6 +16,7 @@
 #include "cfd/gas.h"
 #include "core/log.h"
 #include "core/timer.h"
+#include "dia/dia_run.h"
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
 #include "io/csv.h"
@@ -63,6 +64,7 @@ typedef struct run_state {
     // The errors of the last diagnostics, for the progress line (written by the solver thread).
     _Atomic double energy_balance, energy_in, weight_ratio, gas_mass, momentum;
     _Atomic long particles_out;
+    bdl_dia_run *dia; ///< synthetic cameras ([camera NAME]); NULL without
     _Atomic int measured;
 } run_state;
 
@@ -214,6 +216,14 @@ static bdl_result on_step(void *user, bdl_world *w)
             return r;
         while (due(w, rs->next_frame))
             rs->next_frame += s->output.frame_interval;
+    }
+    if (rs->dia) {
+        bdl_result r = bdl_dia_run_step(rs->dia, w);
+        if (r != BDL_OK) {
+            snprintf(rs->failure, sizeof rs->failure, "synthetic camera images: %s",
+                     bdl_result_text(r));
+            return r;
+        }
     }
     if (s->output.checkpoint_interval > 0.0 && due(w, rs->next_checkpoint)) {
         bdl_result r = write_checkpoint(rs);
@@ -514,6 +524,22 @@ int bdl_run(const bdl_run_def *def)
                  o->frame_interval, sub);
     }
 
+    if (world->scene.dia_count > 0) {
+        char dia_why[1024] = "";
+        if (bdl_dia_run_open(world, out, def->resume != NULL, &rs.dia, dia_why, sizeof dia_why) !=
+            BDL_OK) {
+            bdl_error("synthetic cameras: %s", dia_why);
+            return finish(2, world, log);
+        }
+        bdl_dia_run_step(rs.dia, world); // an image due at the start
+        for (int k = 0; k < world->scene.dia_count; ++k) {
+            const bdl_dia_scene_def *dd = &world->scene.dias[k];
+            bdl_info("camera %s: %dx%d %s images every %g s%s in %s/dia/%s", dd->name, dd->width,
+                     dd->height, dd->lighting ? "back-lit" : "front-lit", dd->interval,
+                     dd->pair_dt > 0.0 ? " (PIV pairs)" : "", out, dd->name);
+        }
+    }
+
     stop_requested = 0;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
@@ -564,6 +590,11 @@ int bdl_run(const bdl_run_def *def)
             bdl_error("frames: %s", bdl_result_text(fr));
             r = fr;
         }
+    }
+    if (rs.dia) {
+        bdl_info("synthetic cameras: %ld images written", bdl_dia_run_count(rs.dia));
+        bdl_dia_run_close(rs.dia);
+        rs.dia = NULL;
     }
     if (tty)
         fputc('\n', stderr);

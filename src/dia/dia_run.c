@@ -1,0 +1,311 @@
+// bedlam — writes the synthetic camera images of a run and their ground truth.
+#include "dia/dia_run.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dia/dia.h"
+#include "io/atomic_file.h"
+
+typedef struct camera_state {
+    bdl_dia_camera camera;
+    bdl_dia_truth_def truth;
+    const bdl_dia_scene_def *def;
+    char dir[900];
+    FILE *index;      ///< frames.csv
+    long frame;       ///< number of the next image (or pair)
+    double next;      ///< time of the next image (or first frame of a pair) [s]
+    double pending_b; ///< time of the pending second frame, or -1
+    long written;
+} camera_state;
+
+struct bdl_dia_run {
+    int count;
+    camera_state cam[BDL_MAX_DIA];
+};
+
+/// Times are due when the step lands within half a step of them.
+static int due(const bdl_world *w, double t) { return w->time >= t - 0.5 * w->dt; }
+
+bdl_result bdl_dia_from_scene(const bdl_world *w, int index, bdl_dia_camera *camera,
+                              bdl_dia_truth_def *truth)
+{
+    const bdl_scene *s = &w->scene;
+    const bdl_dia_scene_def *d = &s->dias[index];
+    bdl_dia_def def = {0};
+    def.projection = d->projection ? BDL_DIA_PERSPECTIVE : BDL_DIA_ORTHOGRAPHIC;
+    def.position = d->position;
+    def.target = d->target;
+    def.up = d->up;
+    def.width = d->width, def.height = d->height;
+    def.pixel_size = d->pixel_size;
+    def.focal_length = d->focal_length;
+    def.samples = d->samples;
+    def.lighting = d->lighting ? BDL_DIA_BACK_LIT : BDL_DIA_FRONT_LIT;
+    def.light_count = 1;
+    def.light_position[0] = d->has_light_position ? d->light_position : d->position;
+    def.light_intensity[0] = d->light_intensity;
+    def.ambient = d->ambient;
+    def.dark = d->dark, def.bright = d->bright;
+    def.blur = d->blur, def.noise = d->noise, def.gamma = d->gamma;
+    def.bits = d->bits;
+    def.seed = d->seed;
+    bdl_result r = bdl_dia_camera_init(camera, &def);
+    if (r != BDL_OK)
+        return r;
+    // The bed's depth range: the domain's corners along the view.
+    double front = INFINITY, back = -INFINITY;
+    for (int k = 0; k < 8; ++k) {
+        bdl_vec3 x = {k & 1 ? s->domain_max.x : s->domain_min.x,
+                      k & 2 ? s->domain_max.y : s->domain_min.y,
+                      k & 4 ? s->domain_max.z : s->domain_min.z};
+        double depth = bdl_v3_dot(bdl_v3_sub(x, def.position), camera->forward);
+        front = fmin(front, depth);
+        back = fmax(back, depth);
+    }
+    double layer = 0.0;
+    for (int k = 0; k < s->species_count; ++k)
+        layer =
+            fmax(layer, s->species[k].size_dist == BDL_SIZE_SINGLE ? s->species[k].diameter
+                                                                   : s->species[k].diameter_max);
+    camera->def.fade_start = front;
+    camera->def.fade_length = d->fade;
+    truth->cells[0] = d->cells_across, truth->cells[1] = d->cells_down;
+    truth->front = front, truth->back = back;
+    truth->layer = fmin(layer, back - front);
+    return BDL_OK;
+}
+
+static void json_vec(FILE *f, const char *name, bdl_vec3 v, const char *tail)
+{
+    fprintf(f, "  \"%s\": [%.17g, %.17g, %.17g]%s\n", name, v.x, v.y, v.z, tail);
+}
+
+static bdl_result write_camera_json(const camera_state *c, const bdl_world *w)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/camera.json", c->dir);
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    const bdl_dia_def *d = &c->camera.def;
+    FILE *f = af.file;
+    fprintf(f, "{\n  \"name\": \"%s\",\n  \"kind\": \"dia\",\n", c->def->name);
+    fprintf(f, "  \"projection\": \"%s\",\n",
+            d->projection == BDL_DIA_PERSPECTIVE ? "perspective" : "orthographic");
+    fprintf(f, "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_size\": %.17g,\n", d->width,
+            d->height, d->pixel_size);
+    fprintf(f, "  \"focal_length\": %.17g,\n",
+            d->projection == BDL_DIA_PERSPECTIVE ? d->focal_length : 0.0);
+    json_vec(f, "position", d->position, ",");
+    json_vec(f, "right", c->camera.right, ",");
+    json_vec(f, "down", c->camera.down, ",");
+    json_vec(f, "forward", c->camera.forward, ",");
+    fprintf(f, "  \"mapping\": \"depth = (x - position).forward; s = pixel_size (orthographic) or "
+               "pixel_size * depth / focal_length (perspective); u = width/2 + (x - "
+               "position).right / s; v = height/2 + (x - position).down / s; pixel (i, j) covers "
+               "[i, i+1) x [j, j+1), rows from the top\",\n");
+    fprintf(f, "  \"lighting\": \"%s\",\n  \"dark\": %.6g,\n  \"bright\": %.6g,\n",
+            d->lighting == BDL_DIA_BACK_LIT ? "back" : "front", d->dark, d->bright);
+    fprintf(f, "  \"ambient\": %.6g,\n  \"light_intensity\": %.6g,\n", d->ambient,
+            d->light_intensity[0]);
+    json_vec(f, "light_position", d->light_position[0], ",");
+    fprintf(f, "  \"fade\": %.6g,\n", d->fade_length);
+    fprintf(f, "  \"samples\": %d,\n  \"blur\": %.6g,\n  \"noise\": %.6g,\n  \"gamma\": %.6g,\n",
+            d->samples, d->blur, d->noise, d->gamma);
+    fprintf(f, "  \"bits\": %d,\n  \"cells\": [%d, %d],\n", d->bits, c->truth.cells[0],
+            c->truth.cells[1]);
+    fprintf(f, "  \"front_depth\": %.17g,\n  \"back_depth\": %.17g,\n  \"layer_depth\": %.17g,\n",
+            c->truth.front, c->truth.back, c->truth.layer);
+    fprintf(
+        f,
+        "  \"start\": %.17g,\n  \"interval\": %.17g,\n  \"pair_dt\": %.17g,\n  \"dt\": %.17g\n}\n",
+        c->def->start, c->def->interval, c->def->pair_dt, w->dt);
+    return bdl_atomic_commit(&af);
+}
+
+bdl_result bdl_dia_run_open(const bdl_world *w, const char *out_dir, int resume, bdl_dia_run **out,
+                            char *why, size_t len)
+{
+    *out = NULL;
+    const bdl_scene *s = &w->scene;
+    if (s->dia_count == 0)
+        return BDL_OK;
+    bdl_dia_run *r = calloc(1, sizeof *r);
+    if (!r)
+        return BDL_ERR_NOMEM;
+    for (int k = 0; k < s->dia_count; ++k) {
+        camera_state *c = &r->cam[r->count++];
+        c->def = &s->dias[k];
+        c->pending_b = -1.0;
+        if (bdl_dia_from_scene(w, k, &c->camera, &c->truth) != BDL_OK) {
+            snprintf(why, len, "[camera %s]: the view is degenerate", c->def->name);
+            bdl_dia_run_close(r);
+            return BDL_ERR_SCENE;
+        }
+        snprintf(c->dir, sizeof c->dir, "%s/dia/%s", out_dir, c->def->name);
+        if (bdl_check_writable_dir(c->dir, why, len) != BDL_OK ||
+            write_camera_json(c, w) != BDL_OK) {
+            if (!why[0])
+                snprintf(why, len, "cannot write %s/camera.json", c->dir);
+            bdl_dia_run_close(r);
+            return BDL_ERR_IO;
+        }
+        // Image k is at start + k interval: a resumed run continues the numbering.
+        double t0 = w->time;
+        long frame =
+            t0 <= c->def->start ? 0 : (long)ceil((t0 - c->def->start) / c->def->interval - 1e-9);
+        if (resume && due(w, c->def->start + frame * c->def->interval))
+            ++frame; // written by the first run
+        c->frame = frame;
+        c->next = c->def->start + frame * c->def->interval;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/frames.csv", c->dir);
+        c->index = fopen(path, resume ? "a" : "w");
+        if (!c->index) {
+            snprintf(why, len, "cannot write %s: %s", path, strerror(errno));
+            bdl_dia_run_close(r);
+            return BDL_ERR_IO;
+        }
+        if (!resume)
+            fprintf(c->index, "frame,time,image,particles,cells\n");
+    }
+    *out = r;
+    return BDL_OK;
+}
+
+static bdl_result write_particles(const char *path, const bdl_dia_camera *cam,
+                                  const bdl_dia_scene *s, const long *visible, int samples)
+{
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    fprintf(af.file, "id,x,y,z,vx,vy,vz,radius,u,v,depth,visible_samples,visible_fraction\n");
+    for (long i = 0; i < s->count; ++i) {
+        double u, v, z;
+        bdl_dia_project(cam, s->pos[i], &u, &v, &z);
+        // The sphere's image area in samples (its disc at its depth).
+        double rp = s->radius[i] / bdl_dia_scale(cam, z) * samples;
+        double area = BDL_PI * rp * rp;
+        fprintf(af.file, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%.9g,%ld,%.4f\n",
+                s->id[i], s->pos[i].x, s->pos[i].y, s->pos[i].z, s->vel[i].x, s->vel[i].y,
+                s->vel[i].z, s->radius[i], u, v, z, visible[i],
+                area > 0.0 ? fmin(1.0, visible[i] / area) : 0.0);
+    }
+    return bdl_atomic_commit(&af);
+}
+
+static bdl_result write_cells(const char *path, const bdl_dia_truth_def *t,
+                              const bdl_dia_cell_truth *cells)
+{
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    fprintf(af.file, "column,row,u0,v0,u1,v1,area_fraction,solids_depth,solids_layer,"
+                     "visible_particles,vx,vy,vz,du,dv\n");
+    for (int j = 0; j < t->cells[1]; ++j)
+        for (int i = 0; i < t->cells[0]; ++i) {
+            const bdl_dia_cell_truth *c = &cells[j * t->cells[0] + i];
+            fprintf(af.file,
+                    "%d,%d,%.4f,%.4f,%.4f,%.4f,%.6f,%.6f,%.6f,%ld,%.6g,%.6g,%.6g,%.6g,%.6g\n", i, j,
+                    c->u0, c->v0, c->u1, c->v1, c->area_fraction, c->solids_depth, c->solids_layer,
+                    c->visible_particles, c->velocity.x, c->velocity.y, c->velocity.z, c->du,
+                    c->dv);
+        }
+    return bdl_atomic_commit(&af);
+}
+
+/// Renders one image of camera c and writes it with its truth; `part` is "" (single), "_a" or
+/// "_b". Cell truth goes with single images and first frames.
+static bdl_result shoot(camera_state *c, const bdl_world *w, const char *part)
+{
+    const bdl_particles *p = &w->particles;
+    bdl_dia_scene s = {p->count, p->pos, p->vel, p->radius, p->id};
+    bdl_dia_image im;
+    bdl_result r = bdl_dia_render(&c->camera, &s, c->frame * 2 + (part[1] == 'b'), &im);
+    if (r != BDL_OK)
+        return r;
+    long *visible = malloc((size_t)(p->count > 0 ? p->count : 1) * sizeof(long));
+    const int ncells = c->truth.cells[0] * c->truth.cells[1];
+    bdl_dia_cell_truth *cells =
+        part[1] == 'b' ? NULL : malloc((size_t)ncells * sizeof(bdl_dia_cell_truth));
+    char stem[1000], image[1100], parts[1100], cellp[1100];
+    snprintf(stem, sizeof stem, "%s/frame_%06ld", c->dir, c->frame);
+    snprintf(image, sizeof image, "%s%s.png", stem, part);
+    snprintf(parts, sizeof parts, "%s%s_particles.csv", stem, part);
+    snprintf(cellp, sizeof cellp, "%s_cells.csv", stem);
+    if (!visible || (part[1] != 'b' && !cells))
+        r = BDL_ERR_NOMEM;
+    if (r == BDL_OK)
+        r = bdl_dia_truth(&c->camera, &s, &im, &c->truth, cells, visible);
+    if (r == BDL_OK)
+        r = bdl_dia_write_png(&im, c->camera.def.bits, image);
+    if (r == BDL_OK)
+        r = write_particles(parts, &c->camera, &s, visible, im.samples);
+    if (r == BDL_OK && cells)
+        r = write_cells(cellp, &c->truth, cells);
+    if (r == BDL_OK) {
+        const char *base = strrchr(stem, '/') + 1;
+        fprintf(c->index, "%ld,%.9g,%s%s.png,%s%s_particles.csv,%s\n", c->frame, w->time, base,
+                part, base, part, cells ? strrchr(cellp, '/') + 1 : "");
+        fflush(c->index);
+        c->written++;
+    }
+    free(visible);
+    free(cells);
+    bdl_dia_image_free(&im);
+    return r;
+}
+
+bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_world *w)
+{
+    for (int k = 0; r && k < r->count; ++k) {
+        camera_state *c = &r->cam[k];
+        bdl_result res = BDL_OK;
+        if (c->pending_b >= 0.0 && due(w, c->pending_b)) {
+            res = shoot(c, w, "_b");
+            c->pending_b = -1.0;
+            c->frame++;
+        } else if (c->pending_b < 0.0 && due(w, c->next)) {
+            int pair = c->def->pair_dt > 0.0;
+            if (pair && w->time + c->def->pair_dt > w->scene.end_time + 0.5 * w->dt) {
+                c->next = INFINITY; // the run ends before the pair's second frame
+                continue;
+            }
+            res = shoot(c, w, pair ? "_a" : "");
+            if (pair)
+                c->pending_b = w->time + c->def->pair_dt;
+            else
+                c->frame++;
+            while (due(w, c->next))
+                c->next += c->def->interval;
+        }
+        if (res != BDL_OK)
+            return res;
+    }
+    return BDL_OK;
+}
+
+long bdl_dia_run_count(const bdl_dia_run *r)
+{
+    long n = 0;
+    for (int k = 0; r && k < r->count; ++k)
+        n += r->cam[k].written;
+    return n;
+}
+
+void bdl_dia_run_close(bdl_dia_run *r)
+{
+    if (!r)
+        return;
+    for (int k = 0; k < r->count; ++k)
+        if (r->cam[k].index)
+            fclose(r->cam[k].index);
+    free(r);
+}

@@ -1,0 +1,33 @@
+// bedlam — the synthetic cameras of a run: images and ground truth in dia/NAME/ at their times.
+//
+// Per camera: camera.json (the mapping between world and pixels, the lighting and the truth
+// grid), frames.csv (one row per image: frame, time, file), and per frame frame_NNNNNN.png (or
+// frame_NNNNNN_a.png and _b.png for PIV pairs), frame_NNNNNN_particles.csv (every particle: id,
+// position, velocity, radius, pixel position, depth, visible samples) and frame_NNNNNN_cells.csv
+// (per image cell: visible area fraction, solids fraction over the depth and the first layer,
+// visible particles, mean visible velocity in m/s and px/s). Formats: docs/dia.md.
+#ifndef BDL_DIA_RUN_H
+#define BDL_DIA_RUN_H
+
+#include "core/error.h"
+#include "dia/dia.h"
+#include "sim/world.h"
+
+typedef struct bdl_dia_run bdl_dia_run;
+
+/// Opens every [camera NAME] of the world's scene under out_dir/dia/NAME; a resumed run (t0 > 0)
+/// continues the numbering. NULL *out when the scene has none. On failure `why` says what.
+bdl_result bdl_dia_run_open(const bdl_world *w, const char *out_dir, int resume, bdl_dia_run **out,
+                            char *why, size_t len);
+/// After a step: renders and writes the images that are due.
+bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_world *w);
+/// Images written so far.
+long bdl_dia_run_count(const bdl_dia_run *r);
+void bdl_dia_run_close(bdl_dia_run *r);
+
+/// The camera of a scene section, with the bed's depth range (front and back along the view,
+/// from the domain's corners) and the first layer (the largest species diameter).
+bdl_result bdl_dia_from_scene(const bdl_world *w, int index, bdl_dia_camera *camera,
+                              bdl_dia_truth_def *truth);
+
+#endif
