@@ -16,15 +16,15 @@ static const char calibrate_usage[] =
     "       bedlam calibrate --apply FIT.json IMAGE... [--cells NX NY] [--lighting front|back]\n"
     "                        [options]\n"
     "\n"
-    "Fits the relation between the solids fraction a camera sees (f2D: the fraction of particle\n"
-    "pixels in an image cell after thresholding) and the true solids fraction behind it (f3D, "
-    "over\n"
-    "the bed's depth) on the images and ground truth a run wrote in DIR (dia/NAME of the run\n"
-    "folder: camera.json, frames.csv, frame_*_cells.csv). Two models: f3D = A f2D / (B - f2D)\n"
-    "(seed 003's, capped at --cap) and f3D = a f2D^b. Reports A, B (a, b), R^2, residuals and the\n"
-    "f2D where the cap is reached; then applies the fit to held-out frames (every K-th frame of\n"
-    "DIR, --holdout K, default 4) or to another image set with truth (--test DIR2) and reports\n"
-    "the error in solids fraction and voidage. Writes fit.json, points.csv and fit.png (gnuplot).\n"
+    "Fits the relation between the solids fraction a camera sees (f2D: the fraction of\n"
+    "particle pixels in an image cell after thresholding) and the true solids fraction behind it\n"
+    "(f3D, over the bed's depth) on the images and ground truth a run wrote in DIR (dia/NAME of\n"
+    "the run folder: camera.json, frames.csv, frame_*_cells.csv). Two models, both capped at\n"
+    "--cap: f3D = A f2D / (B - f2D) (Mahajan 2019) and f3D = a f2D^b. Reports A, B (a, b), R^2,\n"
+    "the residuals and the f2D where the cap is reached; then applies the fit to held-out frames\n"
+    "(every K-th frame of DIR, --holdout K, default 4) or to another image set with truth\n"
+    "(--test DIR2) and reports the error in solids fraction, which is the error in voidage.\n"
+    "Writes fit.json, points.csv and fit.png (gnuplot).\n"
     "\n"
     "With --apply, reads a fit.json and turns any grey or colour PNG images (a real camera's\n"
     "too: no truth needed) into a voidage map per image cell: IMAGE_voidage.csv beside --out.\n"
@@ -35,7 +35,11 @@ static const char calibrate_usage[] =
     "                          plus --offset X (grey levels 0..1, default 0.02)\n"
     "  --measure depth|layer   truth to fit: solids over the whole depth (default) or over the\n"
     "                          first particle layer\n"
-    "  --cap F                 the largest f3D (default 0.49, seed 003's packed value)\n"
+    "  --normalise             scale each image's f2D so that its sum over the cells equals\n"
+    "                          the solids the truth puts in the image (Mahajan's conversion\n"
+    "                          of pixel area \"by the known total solid volume in the bed\")\n"
+    "  --cap F                 the largest f3D (default: the packed value the truth reaches,\n"
+    "                          its 99.5th percentile; Mahajan used 0.49)\n"
     "  --out DIR               where the fit and plots go (default: DIR/calibration)\n"
     "  --no-plots              skip gnuplot\n"
     "Exit codes: 0 done, 1 the fit failed, 2 bad options or unreadable input.\n";
@@ -44,7 +48,7 @@ typedef struct options {
     const char *dir, *test, *apply, *out;
     const char *images[256];
     int image_count;
-    int holdout, adaptive, window, layer, plots, cells[2], back_lit;
+    int holdout, adaptive, window, layer, plots, cells[2], back_lit, normalise;
     double offset, cap;
 } options;
 
@@ -90,6 +94,14 @@ static char *read_all(const char *path)
     fclose(f);
     return t;
 }
+
+static int compare_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+static int ok_points(long n) { return n >= 3; }
 
 /// Cells with some solids seen or present: the bed, not the empty freeboard.
 #define IN_BED 0.005
@@ -229,6 +241,13 @@ static int collect(const options *o, const char *dir, int holdout, int all_test,
             ok = 0;
             break;
         }
+        if (o->normalise) { // Mahajan (2019): pixel area scaled to the known solids in the image
+            double s2 = 0.0, s3 = 0.0;
+            for (int c = 0; c < nx * ny; ++c)
+                s2 += f2d[c], s3 += truth[c];
+            for (int c = 0; s2 > 0.0 && c < nx * ny; ++c)
+                f2d[c] *= s3 / s2;
+        }
         int test = all_test || (holdout > 0 && frame % holdout == holdout - 1);
         for (int c = 0; c < nx * ny; ++c)
             if (f2d[c] > IN_BED || truth[c] > IN_BED)
@@ -272,17 +291,20 @@ static int write_fit(const char *path, const bdl_dia_fit *fits, const errors *te
         return 0;
     fprintf(af.file, "{\n  \"method\": \"%s\",\n  \"window\": %d,\n  \"offset\": %.6g,\n",
             o->adaptive ? "adaptive" : "otsu", o->window, o->offset);
-    fprintf(af.file, "  \"measure\": \"%s\",\n  \"cap\": %.6g,\n  \"points\": %ld,\n",
-            o->layer ? "layer" : "depth", cap, train_n);
+    fprintf(af.file, "  \"measure\": \"%s\",\n  \"normalise\": %d,\n  \"cap\": %.6g,\n",
+            o->layer ? "layer" : "depth", o->normalise, cap);
+    fprintf(af.file, "  \"points\": %ld,\n", train_n);
     for (int m = 0; m < BDL_DIA_MODEL_COUNT; ++m) {
         const bdl_dia_fit *f = &fits[m];
+        char cap_f2d[32];
+        double xc = bdl_dia_fit_cap_f2d(f, cap);
+        snprintf(cap_f2d, sizeof cap_f2d, isfinite(xc) ? "%.6f" : "null", xc); // JSON has no NaN
         fprintf(af.file,
                 "  \"%s\": {\"p0\": %.9g, \"p1\": %.9g, \"r2\": %.6f, \"rms\": %.6f, "
-                "\"max_residual\": %.6f, \"cap_f2d\": %.6f, \"test_rms\": %.6f, \"test_bias\": "
+                "\"max_residual\": %.6f, \"cap_f2d\": %s, \"test_rms\": %.6f, \"test_bias\": "
                 "%.6f, \"test_points\": %ld}%s\n",
-                bdl_dia_model_names[m], f->p[0], f->p[1], f->r2, f->rms, f->max_abs,
-                bdl_dia_fit_cap_f2d(f, cap), test[m].rms, test[m].bias, test[m].n,
-                m + 1 < BDL_DIA_MODEL_COUNT ? "," : "");
+                bdl_dia_model_names[m], f->p[0], f->p[1], f->r2, f->rms, f->max_abs, cap_f2d,
+                test[m].rms, test[m].bias, test[m].n, m + 1 < BDL_DIA_MODEL_COUNT ? "," : "");
     }
     fprintf(af.file, "}\n");
     return bdl_atomic_commit(&af) == BDL_OK;
@@ -328,7 +350,7 @@ static void plot(const char *out, const bdl_dia_fit *fits, double cap)
             "     pow(x) lw 2 dt 2 lc rgb '#3060c0' title sprintf('a f^b: a = %%.3f, b = %%.3f', "
             "a, b), \\\n"
             "     (x < 0.45*0.49/(0.05+0.49) ? 0.05*x/(0.45-x) : 0.49) lw 2 dt 3 lc rgb '#208020' "
-            "title 'seed 003: A = 0.05, B = 0.45'\n",
+            "title 'Mahajan (2019): A = 0.05, B = 0.45'\n",
             out, r->p[0], r->p[1], q->p[0], q->p[1], cap, out, out);
     fclose(f);
     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", script);
@@ -451,6 +473,8 @@ static int parse(int argc, char **argv, options *o)
             o->back_lit = strcmp(argv[++i], "back") == 0;
         } else if (strcmp(a, "--out") == 0 && more) {
             o->out = argv[++i];
+        } else if (strcmp(a, "--normalise") == 0) {
+            o->normalise = 1;
         } else if (strcmp(a, "--no-plots") == 0) {
             o->plots = 0;
         } else if (a[0] == '-') {
@@ -494,7 +518,6 @@ int bdl_cmd_calibrate(int argc, char **argv)
     o.out = out;
     if (o.apply)
         return apply_fit(&o);
-    const double cap = isfinite(o.cap) ? o.cap : 0.49;
     point_set p = {0};
     int frames = 0, test_frames = 0;
     if (!collect(&o, o.dir, o.test ? 0 : o.holdout, 0, &p, &frames) ||
@@ -510,13 +533,28 @@ int bdl_cmd_calibrate(int argc, char **argv)
             x[n_train] = p.f2d[k];
             y[n_train++] = p.f3d[k];
         }
+    // The cap: given, or the packed value the truth reaches (its 99.5th percentile, so that a few
+    // over-full cells at walls do not set it).
+    double cap = o.cap;
+    if (!isfinite(cap) && ok_points(n_train)) {
+        double *sorted = malloc((size_t)n_train * sizeof(double));
+        if (sorted) {
+            memcpy(sorted, y, (size_t)n_train * sizeof(double));
+            qsort(sorted, (size_t)n_train, sizeof(double), compare_double);
+            cap = sorted[(long)(0.995 * (double)(n_train - 1))];
+            free(sorted);
+        }
+    }
+    if (!isfinite(cap))
+        cap = 0.49;
     bdl_dia_fit fits[BDL_DIA_MODEL_COUNT];
     errors test[BDL_DIA_MODEL_COUNT], train[BDL_DIA_MODEL_COUNT];
     int ok = x && y && n_train >= 3;
     printf("calibrate %s: %d frames%s, %ld cells in the bed (%ld fitted, %ld held out), threshold "
-           "%s, truth: solids over the %s\n",
+           "%s%s, truth: solids over the %s\n",
            o.dir, frames + test_frames, o.test ? " (with the test set)" : "", p.n, n_train,
            p.n - n_train, o.adaptive ? "adaptive" : "Otsu",
+           o.normalise ? ", f2D normalised to the image's solids" : "",
            o.layer ? "first layer" : "whole depth");
     for (int m = 0; ok && m < BDL_DIA_MODEL_COUNT; ++m) {
         fits[m] = bdl_dia_fit_model((bdl_dia_model)m, x, y, n_train);
@@ -532,6 +570,10 @@ int bdl_cmd_calibrate(int argc, char **argv)
             printf("           held out: %ld cells, error in solids fraction (= in voidage) rms "
                    "%.4f, bias %+.4f, max %.4f\n",
                    test[m].n, test[m].rms, test[m].bias, test[m].max_abs);
+        if (m == BDL_DIA_MODEL_RATIONAL && f->p[1] > 2.0)
+            printf("           B far above 1: the data have no curvature, and the rational form "
+                   "is the line f3D = %.4f f2D\n",
+                   f->p[0] / f->p[1]);
         ok = ok && isfinite(f->p[0]) && isfinite(f->p[1]);
     }
     char path[1300];

@@ -23,7 +23,7 @@ void bdl_dia_cell_fractions(const unsigned char *mask, int w, int h, int nx, int
                             double *fraction);
 
 typedef enum bdl_dia_model {
-    BDL_DIA_MODEL_RATIONAL = 0, ///< f3D = A f2D / (B - f2D)  (seed 003)
+    BDL_DIA_MODEL_RATIONAL = 0, ///< f3D = A f2D / (B - f2D)  (Mahajan 2019)
     BDL_DIA_MODEL_POWER,        ///< f3D = a f2D^b
     BDL_DIA_MODEL_COUNT
 } bdl_dia_model;
