@@ -45,9 +45,11 @@ bdl_result bdl_dia_from_scene(const bdl_world *w, int index, bdl_dia_camera *cam
     def.focal_length = d->focal_length;
     def.samples = d->samples;
     def.lighting = d->lighting ? BDL_DIA_BACK_LIT : BDL_DIA_FRONT_LIT;
-    def.light_count = 1;
-    def.light_position[0] = d->has_light_position ? d->light_position : d->position;
-    def.light_intensity[0] = d->light_intensity;
+    // Lights: one, or a ring in the image plane around the given point (LEDs around a lens).
+    const bdl_vec3 centre = d->has_light_position ? d->light_position : d->position;
+    def.light_count = d->lights < 1                    ? 1
+                      : d->lights > BDL_DIA_MAX_LIGHTS ? BDL_DIA_MAX_LIGHTS
+                                                       : d->lights;
     def.ambient = d->ambient;
     def.dark = d->dark, def.bright = d->bright;
     def.blur = d->blur, def.noise = d->noise, def.gamma = d->gamma;
@@ -56,6 +58,13 @@ bdl_result bdl_dia_from_scene(const bdl_world *w, int index, bdl_dia_camera *cam
     bdl_result r = bdl_dia_camera_init(camera, &def);
     if (r != BDL_OK)
         return r;
+    for (int k = 0; k < def.light_count; ++k) {
+        double angle = 2.0 * BDL_PI * (k + 0.5) / def.light_count;
+        double spread = def.light_count > 1 ? d->light_spread : 0.0;
+        bdl_vec3 p = bdl_v3_madd(centre, camera->right, spread * cos(angle));
+        camera->def.light_position[k] = bdl_v3_madd(p, camera->down, spread * sin(angle));
+        camera->def.light_intensity[k] = d->light_intensity / def.light_count;
+    }
     // The bed's depth range: the domain's corners along the view.
     double front = INFINITY, back = -INFINITY;
     for (int k = 0; k < 8; ++k) {
@@ -111,9 +120,12 @@ static bdl_result write_camera_json(const camera_state *c, const bdl_world *w)
                "[i, i+1) x [j, j+1), rows from the top\",\n");
     fprintf(f, "  \"lighting\": \"%s\",\n  \"dark\": %.6g,\n  \"bright\": %.6g,\n",
             d->lighting == BDL_DIA_BACK_LIT ? "back" : "front", d->dark, d->bright);
-    fprintf(f, "  \"ambient\": %.6g,\n  \"light_intensity\": %.6g,\n", d->ambient,
-            d->light_intensity[0]);
-    json_vec(f, "light_position", d->light_position[0], ",");
+    fprintf(f, "  \"ambient\": %.6g,\n  \"lights\": [", d->ambient);
+    for (int k = 0; k < d->light_count; ++k)
+        fprintf(f, "%s{\"position\": [%.9g, %.9g, %.9g], \"intensity\": %.6g}", k ? ", " : "",
+                d->light_position[k].x, d->light_position[k].y, d->light_position[k].z,
+                d->light_intensity[k]);
+    fprintf(f, "],\n");
     fprintf(f, "  \"fade\": %.6g,\n", d->fade_length);
     fprintf(f, "  \"samples\": %d,\n  \"blur\": %.6g,\n  \"noise\": %.6g,\n  \"gamma\": %.6g,\n",
             d->samples, d->blur, d->noise, d->gamma);

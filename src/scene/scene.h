@@ -231,6 +231,8 @@ typedef struct bdl_dia_scene_def {
     int lighting; ///< 0 front-lit, 1 back-lit (bdl_dia_lighting)
     bdl_vec3 light_position;
     int has_light_position; ///< else a light at the camera
+    int lights;             ///< 1: one light; 2-4: a ring around light_position
+    double light_spread;    ///< radius of the ring [m]
     double light_intensity, ambient;
     double dark, bright; ///< grey levels of the darkest and brightest things imaged
     double fade;         ///< e-folding depth of the light behind the front wall [m]; 0 none
