@@ -8,6 +8,7 @@ int bdl_cmd_bench(int argc, char **argv);
 int bdl_cmd_view(int argc, char **argv);
 int bdl_cmd_verify(int argc, char **argv);
 int bdl_cmd_calibrate(int argc, char **argv);
+int bdl_cmd_analyze(int argc, char **argv);
 /// `bedlam bench render` (argv[0] is "render").
 int bdl_bench_render(int argc, char **argv);
 int bdl_bench_coupled(int argc, char **argv);

@@ -21,6 +21,7 @@ static const char usage[] =
     "                observed orders, tables and plots in docs/validation/\n"
     "  calibrate DIR fit the 2D-to-3D solids fraction of synthetic camera images ([camera NAME]\n"
     "                kind = dia) against their truth; apply a fit to any images\n"
+    "  analyze WHAT RUN  a finished run's pressure-drop sweep (U_mf) or spectrum of a column\n"
     "\n"
     "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
     "interrupted), 2 bad input (scene, options).\n"
@@ -34,8 +35,9 @@ typedef struct command {
 int main(int argc, char **argv)
 {
     static const command commands[] = {
-        {"run", bdl_cmd_run},     {"view", bdl_cmd_view},     {"check", bdl_cmd_check},
-        {"bench", bdl_cmd_bench}, {"verify", bdl_cmd_verify}, {"calibrate", bdl_cmd_calibrate},
+        {"run", bdl_cmd_run},         {"view", bdl_cmd_view},     {"check", bdl_cmd_check},
+        {"bench", bdl_cmd_bench},     {"verify", bdl_cmd_verify}, {"calibrate", bdl_cmd_calibrate},
+        {"analyze", bdl_cmd_analyze},
     };
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0 ||
         strcmp(argv[1], "help") == 0) {

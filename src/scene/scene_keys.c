@@ -59,6 +59,7 @@ static const char *const axis_names[] = {"x", "y", "z", NULL};
 static const char *const dia_kind_names[] = {"dia", NULL};
 static const char *const dia_projection_names[] = {"orthographic", "perspective", NULL};
 static const char *const dia_lighting_names[] = {"front", "back", NULL};
+static const char *const sweep_names[] = {"none", "up", "down", "up_down", NULL};
 static const char *const convection_names[] = {"upwind", "vanleer", "superbee", "central", NULL};
 // The drag laws of src/couple/drag.h, in the same order (test_scene checks it).
 const char *const bdl_scene_drag_names[] = {
@@ -483,6 +484,19 @@ const bdl_scene_key bdl_scene_keys[] = {
             "the inflow through the densest packing (plus 0.5 m/s) on the axes with more than one "
             "cell, within the viscous limit, at most 5e-4 s; a run stops with an error when the "
             "gas step exceeds twice the stable one"},
+    {S(GAS), "sweep", .type = BDL_KEY_ENUM, "-", IN_GAS(sweep), .def = {0},
+     .enum_names = sweep_names,
+     .doc = "a stepwise sweep of the inlet velocity, as a pressure-drop measurement is made: up "
+            "from inlet_velocity to sweep_to, down to it, or up and back down to inlet_velocity; "
+            "each stage lasts sweep_dwell; diagnostics.csv's inlet_velocity column follows it"},
+    {S(GAS), "sweep_to", NUM, "m/s", IN_GAS(sweep_to), .def = {0}, GE(0),
+     .doc = "the far end of the sweep"},
+    {S(GAS), "sweep_step", NUM, "m/s", IN_GAS(sweep_step), .def = {0.2}, GT(0),
+     .doc = "velocity change between stages of the sweep"},
+    {S(GAS), "sweep_dwell", NUM, "s", IN_GAS(sweep_dwell), .def = {1}, GT(0),
+     .doc = "duration of each stage of the sweep"},
+    {S(GAS), "sweep_start", NUM, "s", IN_GAS(sweep_start), .def = {0}, GE(0),
+     .doc = "simulated time at which the sweep starts (inlet_velocity before)"},
     {S(GAS), "probe_low", NUM, "m", IN_GAS(probe_low), .has_flag = 1,
      .flag_offset = offsetof(bdl_scene, gas.has_probe_low), .default_text = "no probes", GE(0),
      .doc = "height above the domain's floor (along gravity) of the lower pressure probe; "

@@ -31,6 +31,7 @@ const char *const bdl_diagnostics_columns[] = {
     "weight_ratio",
     "particles_out",
     "mass_out",
+    "inlet_velocity",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -225,6 +226,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->wall_work = w->wall_work;
     if (w->gas)
         gas_terms(w, d);
+    d->inlet_velocity = w->gas ? bdl_world_inlet_velocity(w, w->time) : 0.0;
     d->particles_out = w->removed;
     d->mass_out = w->removed_mass;
     d->energy_balance = bdl_diagnostics_total_energy(d) + w->removed_energy - energy0 -
@@ -260,4 +262,5 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[19] = d->weight_ratio;
     v[20] = (double)d->particles_out;
     v[21] = d->mass_out;
+    v[22] = d->inlet_velocity;
 }

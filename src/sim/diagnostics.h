@@ -39,6 +39,7 @@ typedef struct bdl_diagnostics {
                          ///< without a gas or along a periodic gravity axis
     long particles_out;  ///< particles that left through gas outlets since the start
     double mass_out;     ///< their mass [kg]
+    double inlet_velocity; ///< superficial inlet velocity now (the sweep's stage) [m/s]
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.

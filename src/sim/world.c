@@ -108,7 +108,7 @@ void bdl_world_apply_live(bdl_world *w)
 {
     if (w->gas) // inlet and jet velocities of every inlet side, as a factor on the scene's
         for (int s = 0; s < 6; ++s) {
-            w->gas->def.side[s].inflow = w->live.inlet_scale * w->scene.gas.inlet_velocity;
+            w->gas->def.side[s].inflow = bdl_world_inlet_velocity(w, w->time);
             w->gas->def.side[s].jet_inflow = w->live.inlet_scale * w->scene.gas.jet_velocity;
         }
     for (int k = 0; k < w->scene.wall_count; ++k) {

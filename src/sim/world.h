@@ -121,6 +121,10 @@ void bdl_world_gas_describe(const bdl_world *world, char *buf, size_t size);
 /// (bdl_world_step calls it). BDL_ERR_UNSTABLE when the gas cannot be advanced stably.
 bdl_result bdl_world_gas_step(bdl_world *world);
 
+/// The superficial inlet velocity at time t: [gas] inlet_velocity, or the stage of its sweep,
+/// times the live inlet scale [m/s].
+double bdl_world_inlet_velocity(const bdl_world *world, double t);
+
 /// Work the gas's forces have done on particle i since the current gas step began, not yet in
 /// gas_work (which books a gas step's work when the next one starts) [J]; 0 without a gas.
 double bdl_world_gas_work_pending(const bdl_world *world, long i);

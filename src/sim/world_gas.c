@@ -158,6 +158,24 @@ static bdl_vec3 periodic_column(bdl_world *w, bdl_vec3 gravity)
     return G;
 }
 
+double bdl_world_inlet_velocity(const bdl_world *w, double t)
+{
+    const bdl_gas_scene *g = &w->scene.gas;
+    double u = g->inlet_velocity;
+    if (g->sweep != 0 && t >= g->sweep_start) {
+        // Stages from inlet_velocity towards sweep_to (and back for up_down), sweep_step apart.
+        const long stages = lround(fabs(g->sweep_to - u) / g->sweep_step);
+        const double sign = g->sweep_to >= u ? 1.0 : -1.0;
+        long k = (long)floor((t - g->sweep_start) / g->sweep_dwell + 1e-9);
+        if (g->sweep == 3) // up_down: out and back, then hold at the start
+            k = k <= stages ? k : k <= 2 * stages ? 2 * stages - k : 0;
+        else if (k > stages)
+            k = stages;
+        u = k == stages ? g->sweep_to : u + sign * g->sweep_step * (double)k;
+    }
+    return w->live.inlet_scale * u;
+}
+
 double bdl_world_gas_work_pending(const bdl_world *w, long i)
 {
     if (!w->gas || w->gas_steps == 0)
@@ -183,6 +201,11 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     }
     const double dt = (double)w->gas_every * w->dt;
     w->gas_next = w->step + w->gas_every;
+    if (w->scene.gas.sweep != 0) { // the sweep's stage at the start of this gas step
+        const double u = bdl_world_inlet_velocity(w, w->time);
+        for (int s = 0; s < 6; ++s)
+            w->gas->def.side[s].inflow = u;
+    }
     const bdl_vec3 gravity = bdl_world_gravity(w, w->time + 0.5 * dt); // mid-step
     for (int a = 0; a < 3; ++a)
         w->gas->def.gravity[a] = bdl_v3_comp(gravity, a);

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/umf.h"
 #include "cfd/gas.h"
 #include "couple/coupling.h"
 #include "sim/diagnostics.h"
@@ -377,27 +378,16 @@ static bdl_result sweep(bdl_world *w, const char *name, const double *u, int n, 
         if (table)
             printf("      %.2f      %.3f\n", u[k], dp[k] / target);
     }
-    int low[4], count = 0;
+    int use[16] = {0}; // the four lowest velocities
     for (int pass = 0; pass < 4; ++pass) {
         int best = -1;
-        for (int k = 0; k < n; ++k) {
-            int used = 0;
-            for (int m = 0; m < count; ++m)
-                used |= low[m] == k;
-            if (!used && (best < 0 || u[k] < u[best]))
+        for (int k = 0; k < n; ++k)
+            if (!use[k] && (best < 0 || u[k] < u[best]))
                 best = k;
-        }
-        low[count++] = best;
+        use[best] = 1;
     }
-    double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
-    for (int m = 0; m < 4; ++m) {
-        double x = u[low[m]], y = dp[low[m]];
-        s11 += x * x, s12 += x * x * x, s22 += x * x * x * x;
-        r1 += x * y, r2 += x * x * y;
-    }
-    double det = s11 * s22 - s12 * s12;
-    double a = (r1 * s22 - r2 * s12) / det, b = (s11 * r2 - s12 * r1) / det;
-    *umf = b > 0.0 ? (-a + sqrt(a * a + 4.0 * b * target)) / (2.0 * b) : target / a;
+    double a, b;
+    *umf = bdl_umf_fit(u, dp, use, n, target, &a, &b);
     return BDL_OK;
 }
 
