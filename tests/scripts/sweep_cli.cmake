@@ -8,12 +8,12 @@ endif()
 execute_process(COMMAND ${BEDLAM} analyze sweep ${WORK} --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
-if(NOT rc EQUAL 0 OR NOT out MATCHES "decreasing branch: 7 stages, U_mf")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "decreasing branch: 6 stages, U_mf")
   message(FATAL_ERROR "analyze sweep failed (${rc})")
 endif()
 file(STRINGS ${WORK}/analysis/sweep.csv rows)
 list(LENGTH rows n)
-if(NOT n EQUAL 15) # header, 13 stages (0.4 ... 1.6 ... 0.4), the U_mf comment
+if(NOT n EQUAL 15) # header, 13 stages (7 up to 1.6, 6 back down to 0.4), the U_mf comment
   message(FATAL_ERROR "sweep.csv has ${n} lines, expected 15")
 endif()
 execute_process(COMMAND ${BEDLAM} analyze spectrum ${WORK} --from 0.5 --no-plots
