@@ -34,11 +34,11 @@ typedef struct bdl_diagnostics {
                                  ///< the axes the gas can move along
     double probe_pressure_drop;  ///< pressure at [gas] probe_low minus at probe_high [Pa]; NaN
                                  ///< without probes (with or without a gas)
-    double weight_ratio; ///< (pressure_drop - gas column's weight per area) / (particles' weight
-                         ///< less buoyancy per base area): 1 when the gas carries the bed; NaN
-                         ///< without a gas or along a periodic gravity axis
-    long particles_out;  ///< particles that left through gas outlets since the start
-    double mass_out;     ///< their mass [kg]
+    double weight_ratio;   ///< (pressure_drop - gas column's weight per area) / (particles' weight
+                           ///< less buoyancy per base area): 1 when the gas carries the bed; NaN
+                           ///< without a gas or along a periodic gravity axis
+    long particles_out;    ///< particles that left through gas outlets since the start
+    double mass_out;       ///< their mass [kg]
     double inlet_velocity; ///< superficial inlet velocity now (the sweep's stage) [m/s]
 } bdl_diagnostics;
 
