@@ -66,3 +66,4 @@ add_test(NAME verify_quick COMMAND ${CMAKE_COMMAND} -DEXPECT=0 "-DCONTAINS= 0 fa
 set_tests_properties(verify_quick PROPERTIES LABELS verify TIMEOUT 900)
 bdl_cli_expect(cli_analyze_help 0 "usage: bedlam analyze" analyze --help)
 bdl_cli_expect(cli_analyze_bad 2 "expected 'sweep RUN'" analyze nonsense somewhere)
+

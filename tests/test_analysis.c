@@ -34,9 +34,10 @@ static void test_spectrum(void)
     CHECK_CLOSE(f[1], 1.0 / (2048 * dt), 1e-12);
     CHECK(fabs(peak - 3.1) < 0.5 * f[1]);
     CHECK(fabs(second - 11.0) < 0.5 * f[1]);
-    CHECK(bdl_power_spectrum(x, 3, dt, &f, &p, &count) == BDL_ERR_ARGS);
     free(f);
     free(p);
+    CHECK(bdl_power_spectrum(x, 3, dt, &f, &p, &count) == BDL_ERR_ARGS);
+    CHECK(f == NULL && p == NULL && count == 0);
 }
 
 static void test_umf(void)

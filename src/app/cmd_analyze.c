@@ -15,6 +15,7 @@ static const char analyze_usage[] =
     "usage: bedlam analyze sweep RUN [--out DIR] [--no-plots]\n"
     "       bedlam analyze spectrum RUN [--column NAME] [--from T] [--to T] [--fmin F] [--fmax F]\n"
     "                               [--out DIR] [--no-plots]\n"
+    "       bedlam analyze mean RUN --column NAME [--from T] [--to T]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run.\n"
     "\n"
@@ -29,6 +30,10 @@ static const char analyze_usage[] =
     "spectrum: the power spectrum of a column (default pressure_drop) between --from and --to\n"
     "(default: the whole run), with a Hamming window, and its dominant frequency between --fmin\n"
     "and --fmax (default 0.2 and 20 Hz). Writes spectrum.csv and spectrum.png.\n"
+    "\n"
+    "mean: the time average of a column between --from and --to, its standard deviation, and the\n"
+    "standard error of the average from 10 consecutive blocks (which allows for correlation in\n"
+    "time).\n"
     "\n"
     "--out DIR: where the files go (default RUN/analysis). Exit codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
@@ -246,6 +251,53 @@ static int analyze_spectrum(const char *run, const char *out, const char *column
     return rc != 0 ? rc : (isfinite(peak) ? 0 : 1);
 }
 
+static int analyze_mean(const char *run, const char *column, double from, double to)
+{
+    double *t = NULL, *x = NULL;
+    long n = 0, m = 0;
+    if (!read_column(run, "time", &t, &n) || !read_column(run, column, &x, &m) || m != n) {
+        free(t), free(x);
+        return 2;
+    }
+    double sum = 0.0, sum2 = 0.0, lo = INFINITY, hi = -INFINITY, block[10] = {0};
+    long count = 0, first = -1, last = -1;
+    for (long i = 0; i < n; ++i)
+        if (t[i] >= from && t[i] <= to && isfinite(x[i])) {
+            if (first < 0)
+                first = i;
+            last = i;
+            ++count;
+        }
+    for (long i = first; count > 0 && i <= last; ++i) {
+        if (!isfinite(x[i]))
+            continue;
+        sum += x[i], sum2 += x[i] * x[i];
+        lo = fmin(lo, x[i]), hi = fmax(hi, x[i]);
+        block[(i - first) * 10 / (last - first + 1)] += x[i];
+    }
+    if (count < 20) {
+        fprintf(stderr, "error: only %ld samples of %s between %g and %g s\n", count, column, from,
+                to);
+        free(t), free(x);
+        return 1;
+    }
+    double mean = sum / (double)count, sd = sqrt(fmax(0.0, sum2 / count - mean * mean));
+    // Blocks of equal length: their means scatter by the standard error times sqrt(10).
+    double bs = 0.0;
+    long per = (last - first + 1) / 10;
+    for (int b = 0; b < 10; ++b) {
+        long len = b < 9 ? per : (last - first + 1) - 9 * per;
+        double bm = block[b] / (double)len;
+        bs += (bm - mean) * (bm - mean);
+    }
+    double se = sqrt(bs / 9.0) / sqrt(10.0);
+    printf("%s from %.4g to %.4g s (%ld samples): mean %.6g, standard deviation %.4g, standard "
+           "error %.3g (10 blocks), range %.6g to %.6g\n",
+           column, t[first], t[last], count, mean, sd, se, lo, hi);
+    free(t), free(x);
+    return 0;
+}
+
 int bdl_cmd_analyze(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
@@ -282,10 +334,14 @@ int bdl_cmd_analyze(int argc, char **argv)
             run = a;
         }
     }
-    if (!run || (strcmp(what, "sweep") != 0 && strcmp(what, "spectrum") != 0)) {
-        fprintf(stderr, "error: expected 'sweep RUN' or 'spectrum RUN'\n\n%s", analyze_usage);
+    if (!run || (strcmp(what, "sweep") != 0 && strcmp(what, "spectrum") != 0 &&
+                 strcmp(what, "mean") != 0)) {
+        fprintf(stderr, "error: expected 'sweep RUN', 'spectrum RUN' or 'mean RUN'\n\n%s",
+                analyze_usage);
         return 2;
     }
+    if (strcmp(what, "mean") == 0)
+        return analyze_mean(run, column, from, to);
     if (!(fmax > fmin)) {
         fprintf(stderr, "error: --fmax must be above --fmin\n");
         return 2;

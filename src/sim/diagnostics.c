@@ -32,6 +32,7 @@ const char *const bdl_diagnostics_columns[] = {
     "particles_out",
     "mass_out",
     "inlet_velocity",
+    "mean_height",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -151,8 +152,12 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
     if (h) {
         double base =
             up > 0.0 ? bdl_v3_comp(w->scene.domain_min, a) : -bdl_v3_comp(w->scene.domain_max, a);
-        for (long i = 0; i < n; ++i)
+        double sum = 0.0;
+        for (long i = 0; i < n; ++i) {
             h[i] = up * bdl_v3_comp(w->particles.pos[i], a) - base;
+            sum += h[i];
+        }
+        d->mean_height = sum / (double)n;
         qsort(h, (size_t)n, sizeof(double), compare_double);
         d->bed_height = h[(long)floor(0.95 * (double)(n - 1))];
         free(h);
@@ -212,6 +217,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     }
     memset(d, 0, sizeof *d);
     d->probe_pressure_drop = NAN; // without [gas] probe_low and probe_high
+    d->mean_height = NAN;         // with a gas
     d->weight_ratio = NAN;
     d->time = w->time;
     d->step = w->step;
@@ -263,4 +269,5 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[20] = (double)d->particles_out;
     v[21] = d->mass_out;
     v[22] = d->inlet_velocity;
+    v[23] = d->mean_height;
 }

@@ -40,6 +40,7 @@ typedef struct bdl_diagnostics {
     long particles_out;    ///< particles that left through gas outlets since the start
     double mass_out;       ///< their mass [kg]
     double inlet_velocity; ///< superficial inlet velocity now (the sweep's stage) [m/s]
+    double mean_height;    ///< with a gas: mean particle centre height above the floor [m]
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.
