@@ -268,12 +268,17 @@ static int analyze_mean(const char *run, const char *column, double from, double
             last = i;
             ++count;
         }
+    const long per = count >= 10 ? (last - first + 1) / 10 : 1;
+    long in_block[10] = {0};
     for (long i = first; count > 0 && i <= last; ++i) {
         if (!isfinite(x[i]))
             continue;
         sum += x[i], sum2 += x[i] * x[i];
         lo = fmin(lo, x[i]), hi = fmax(hi, x[i]);
-        block[(i - first) * 10 / (last - first + 1)] += x[i];
+        long b = (i - first) / per; // blocks of `per` rows, the last takes the rest
+        b = b > 9 ? 9 : b;
+        block[b] += x[i];
+        in_block[b]++;
     }
     if (count < 20) {
         fprintf(stderr, "error: only %ld samples of %s between %g and %g s\n", count, column, from,
@@ -284,10 +289,8 @@ static int analyze_mean(const char *run, const char *column, double from, double
     double mean = sum / (double)count, sd = sqrt(fmax(0.0, sum2 / count - mean * mean));
     // Blocks of equal length: their means scatter by the standard error times sqrt(10).
     double bs = 0.0;
-    long per = (last - first + 1) / 10;
     for (int b = 0; b < 10; ++b) {
-        long len = b < 9 ? per : (last - first + 1) - 9 * per;
-        double bm = block[b] / (double)len;
+        double bm = in_block[b] > 0 ? block[b] / (double)in_block[b] : mean;
         bs += (bm - mean) * (bm - mean);
     }
     double se = sqrt(bs / 9.0) / sqrt(10.0);
