@@ -38,8 +38,6 @@ static const char analyze_usage[] =
     "--out DIR: where the files go (default RUN/analysis). Exit codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
 
-#define MAX_ROWS 4000000
-
 typedef struct series {
     long n;
     double *t, *x;
@@ -49,10 +47,10 @@ static int read_column(const char *run, const char *column, double **out, long *
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/diagnostics.csv", run);
-    *out = malloc(MAX_ROWS * sizeof(double));
-    if (!*out)
-        return 0;
-    *n = bdl_csv_read_column(path, column, *out, MAX_ROWS);
+    *out = NULL;
+    long rows = bdl_csv_read_column(path, column, NULL, 0); // count, then read
+    *out = rows > 0 ? malloc((size_t)rows * sizeof(double)) : NULL;
+    *n = *out ? bdl_csv_read_column(path, column, *out, rows) : -1;
     if (*n <= 0) {
         fprintf(stderr, "error: %s: no column '%s' (or no rows)\n", path, column);
         free(*out);

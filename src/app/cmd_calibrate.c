@@ -76,32 +76,11 @@ static void json_string(const char *text, const char *key, char *out, size_t len
         snprintf(out, len, "%.*s", (int)(e - s), s);
 }
 
-static char *read_all(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    char *t = n >= 0 ? malloc((size_t)n + 1) : NULL;
-    if (t && fread(t, 1, (size_t)n, f) != (size_t)n) {
-        free(t);
-        t = NULL;
-    }
-    if (t)
-        t[n] = '\0';
-    fclose(f);
-    return t;
-}
-
 static int compare_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
 }
-
-static int ok_points(long n) { return n >= 3; }
 
 /// Cells with some solids seen or present: the bed, not the empty freeboard.
 #define IN_BED 0.005
@@ -196,7 +175,8 @@ static int collect(const options *o, const char *dir, int holdout, int all_test,
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/camera.json", dir);
-    char *json = read_all(path);
+    size_t length;
+    char *json = bdl_read_file(path, &length);
     if (!json) {
         fprintf(stderr, "error: cannot read %s: %s\n", path, strerror(errno));
         return 0;
@@ -362,7 +342,8 @@ static void plot(const char *out, const bdl_dia_fit *fits, double cap)
 /// --apply: voidage maps of images with a saved fit (no truth needed).
 static int apply_fit(const options *o)
 {
-    char *json = read_all(o->apply);
+    size_t length;
+    char *json = bdl_read_file(o->apply, &length);
     if (!json) {
         fprintf(stderr, "error: cannot read %s: %s\n", o->apply, strerror(errno));
         return 2;
@@ -536,7 +517,7 @@ int bdl_cmd_calibrate(int argc, char **argv)
     // The cap: given, or the packed value the truth reaches (its 99.5th percentile, so that a few
     // over-full cells at walls do not set it).
     double cap = o.cap;
-    if (!isfinite(cap) && ok_points(n_train)) {
+    if (!isfinite(cap) && n_train >= 3) {
         double *sorted = malloc((size_t)n_train * sizeof(double));
         if (sorted) {
             memcpy(sorted, y, (size_t)n_train * sizeof(double));

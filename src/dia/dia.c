@@ -443,20 +443,19 @@ bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const 
             }
         }
     }
+    // Image-plane velocities and the solids boxes at the scale of the bed's mid depth.
+    const double mid = 0.5 * (t->front + t->back), scale = bdl_dia_scale(c, mid);
     for (int k = 0; k < nx * ny; ++k) {
         bdl_dia_cell_truth *ct = &cells[k];
         if (ct->area_fraction > 0.0)
             ct->velocity = bdl_v3_scale(ct->velocity, 1.0 / ct->area_fraction);
         ct->area_fraction /= weight[k];
-        // Image-plane velocity at the object plane's scale (through the cell's centre).
-        double depth = 0.5 * (t->front + t->back), scale = bdl_dia_scale(c, depth);
         ct->du = bdl_v3_dot(ct->velocity, c->right) / scale;
         ct->dv = bdl_v3_dot(ct->velocity, c->down) / scale;
     }
     // Solids fractions: each particle's volume inside each cell's box, in camera coordinates
     // (right, down, forward from the camera position); the box's cross-section is the cell at
     // the mid depth of the bed (exact for orthographic views).
-    const double mid = 0.5 * (t->front + t->back), scale = bdl_dia_scale(c, mid);
     const double cw = scale * im->width / nx, chh = scale * im->height / ny;
     const double a0 = -0.5 * im->width * scale, b0 = -0.5 * im->height * scale;
     for (long i = 0; i < s->count; ++i) {

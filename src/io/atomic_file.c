@@ -178,3 +178,38 @@ bdl_result bdl_write_file_atomic(const char *path, const void *data, size_t size
     }
     return bdl_atomic_commit(&af);
 }
+
+/// Reads a whole file; NULL with errno set on failure. The text is NUL-terminated.
+char *bdl_read_file(const char *path, size_t *length)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return NULL;
+    size_t capacity = 1 << 16, used = 0;
+    char *text = malloc(capacity);
+    while (text) {
+        used += fread(text + used, 1, capacity - used - 1, file);
+        if (ferror(file) || feof(file))
+            break;
+        char *grown = realloc(text, capacity * 2);
+        if (!grown) {
+            free(text);
+            text = NULL;
+            errno = ENOMEM;
+            break;
+        }
+        text = grown;
+        capacity *= 2;
+    }
+    int failed = !text || ferror(file);
+    fclose(file);
+    if (failed) {
+        free(text);
+        if (errno == 0)
+            errno = EIO;
+        return NULL;
+    }
+    text[used] = '\0';
+    *length = used;
+    return text;
+}

@@ -45,4 +45,8 @@ bdl_result bdl_check_writable_dir(const char *path, char *why, size_t why_len);
 /// Writes `size` bytes to `path` atomically (see bdl_atomic_open and bdl_atomic_commit).
 bdl_result bdl_write_file_atomic(const char *path, const void *data, size_t size);
 
+/// Reads a whole file into a NUL-terminated, malloc'ed buffer (*length bytes before the NUL);
+/// NULL with errno set on failure.
+char *bdl_read_file(const char *path, size_t *length);
+
 #endif

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/atomic_file.h"
 #include "scene/scene_internal.h"
 
 enum { VALUE_SHOWN = 80, WHY_LEN = 256 };
@@ -796,41 +797,6 @@ bdl_result bdl_scene_load_string(const char *text, const char *name, const char 
     return load_text(text, name ? name : "<string>", ".", overrides, override_count, scene, err);
 }
 
-/// Reads a whole file; NULL with errno set on failure. The text is NUL-terminated.
-static char *read_file(const char *path, size_t *length)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    size_t capacity = 1 << 16, used = 0;
-    char *text = malloc(capacity);
-    while (text) {
-        used += fread(text + used, 1, capacity - used - 1, file);
-        if (ferror(file) || feof(file))
-            break;
-        char *grown = realloc(text, capacity * 2);
-        if (!grown) {
-            free(text);
-            text = NULL;
-            errno = ENOMEM;
-            break;
-        }
-        text = grown;
-        capacity *= 2;
-    }
-    int failed = !text || ferror(file);
-    fclose(file);
-    if (failed) {
-        free(text);
-        if (errno == 0)
-            errno = EIO;
-        return NULL;
-    }
-    text[used] = '\0';
-    *length = used;
-    return text;
-}
-
 bdl_result bdl_scene_load(const char *path, const char *const *overrides, int override_count,
                           bdl_scene *scene, bdl_scene_error *err)
 {
@@ -842,7 +808,7 @@ bdl_result bdl_scene_load(const char *path, const char *const *overrides, int ov
     }
     size_t length = 0;
     errno = 0;
-    char *text = read_file(path, &length);
+    char *text = bdl_read_file(path, &length);
     if (!text) {
         snprintf(err->message, sizeof err->message, "%s: cannot read the scene file: %s", path,
                  strerror(errno));

@@ -170,23 +170,27 @@ static bdl_result pour(bdl_world *w)
     return BDL_OK;
 }
 
+/// True when x lies beyond a face of the domain where the gas has a pressure outlet.
+static int beyond_outlet(const bdl_world *w, bdl_vec3 x)
+{
+    for (int a = 0; a < 3; ++a) {
+        double c = bdl_v3_comp(x, a);
+        if ((w->outflow[2 * a] && c < bdl_v3_comp(w->scene.domain_min, a)) ||
+            (w->outflow[2 * a + 1] && c > bdl_v3_comp(w->scene.domain_max, a)))
+            return 1;
+    }
+    return 0;
+}
+
 /// Removes the particles that crossed a gas outlet face during the drift, booking their number,
 /// mass and energy; the lists are rebuilt without them (`*max_move2` then 0).
 static bdl_result remove_outflow(bdl_world *w, double *max_move2)
 {
     bdl_particles *p = &w->particles;
-    const bdl_scene *s = &w->scene;
     const long n = p->count;
     long leaving = 0;
     for (long i = 0; i < n; ++i)
-        for (int a = 0; a < 3; ++a) {
-            double x = bdl_v3_comp(p->pos[i], a);
-            if ((w->outflow[2 * a] && x < bdl_v3_comp(s->domain_min, a)) ||
-                (w->outflow[2 * a + 1] && x > bdl_v3_comp(s->domain_max, a))) {
-                ++leaving;
-                break;
-            }
-        }
+        leaving += beyond_outlet(w, p->pos[i]);
     if (leaving == 0)
         return BDL_OK;
     if (w->drop_capacity < n) {
@@ -197,16 +201,11 @@ static bdl_result remove_outflow(bdl_world *w, double *max_move2)
         w->drop_capacity = p->capacity;
     }
     for (long i = 0; i < n; ++i) {
-        w->drop[i] = 0;
-        for (int a = 0; a < 3; ++a) {
-            double x = bdl_v3_comp(p->pos[i], a);
-            w->drop[i] |= (w->outflow[2 * a] && x < bdl_v3_comp(s->domain_min, a)) ||
-                          (w->outflow[2 * a + 1] && x > bdl_v3_comp(s->domain_max, a));
-        }
+        w->drop[i] = (uint8_t)beyond_outlet(w, p->pos[i]);
         if (w->drop[i]) { // its gas work so far is booked now: the next gas step will not see it
             w->gas_work += bdl_world_gas_work_pending(w, i);
             w->removed_mass += 1.0 / p->inv_mass[i];
-            w->removed_energy += particle_energy(p, i, s->gravity);
+            w->removed_energy += particle_energy(p, i, w->scene.gravity);
         }
     }
     w->removed += leaving;
