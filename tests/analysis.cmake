@@ -4,3 +4,9 @@ add_test(NAME cli_sweep COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/sweep.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/sweep_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sweep_cli.cmake)
 set_tests_properties(cli_sweep PROPERTIES LABELS "analysis;cli" TIMEOUT 600)
+bdl_add_test(test_granular SOURCES test_granular.c LABELS analysis)
+add_test(NAME cli_granular COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/vibrated_pair.ini
+  -DWORK=${CMAKE_CURRENT_BINARY_DIR}/granular_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/granular_cli.cmake)
+set_tests_properties(cli_granular PROPERTIES LABELS "analysis;cli" TIMEOUT 600)

@@ -4,7 +4,10 @@
 // 1. A ball resting on a floor vibrated at Gamma = 0.5 (it never takes off): the overlap history
 //    in the container's frame matches the run with the floor moving through the lab frame, and
 //    both follow m g_eff / k.
-// 2. The gas above it, at rest in the container: the pressure difference over the column is the
+// 2. With `start`, the vibration waits: before it the floor stands still (lab frame) or adds
+//    nothing to gravity (container frame), and the ball rests at m g / k; after it the motion is
+//    A sin(w (t - start)).
+// 3. The gas above it, at rest in the container: the pressure difference over the column is the
 //    hydrostatic one of the effective gravity at the middle of the gas step, at every gas step.
 #include <math.h>
 #include <stdio.h>
@@ -81,6 +84,41 @@ static void test_ball(void)
     CHECK_MSG(coarse / fine > 1.8 && coarse / fine < 2.2, "ratio %g", coarse / fine);
 }
 
+static void test_start(void)
+{
+    const double omega = 2.0 * PI_ * 20.0, A = 0.5 * 9.81 / (omega * omega), start = 0.1;
+    for (int container = 0; container < 2; ++container) {
+        // The frame value carries the start key into the same section.
+        bdl_world *w =
+            bdl_test_world(SCENE, 1e-5, container ? "container\nstart = 0.1" : "lab\nstart = 0.1");
+        CHECK(w != NULL);
+        if (!w)
+            return;
+        double worst = 0.0;
+        while (w->time < start - 2e-5) {
+            CHECK(bdl_world_step(w) == BDL_OK);
+            worst = fmax(worst, bdl_v3_len(w->walls.offset[0]));
+            worst = fmax(worst, fabs(bdl_world_gravity(w, w->time).z + 9.81));
+        }
+        const double m = 1.0 / w->particles.inv_mass[0];
+        printf("start: %s frame, still before the start (largest offset or extra gravity %.3g); "
+               "overlap %.4g um at rest (m g / k %.4g um)\n",
+               container ? "container" : "lab", worst, 1e6 * overlap(w, container),
+               1e6 * m * 9.81 / 100.0);
+        CHECK(worst == 0.0);
+        CHECK_CLOSE(overlap(w, container), m * 9.81 / 100.0, 0.01);
+        const double t = start + 0.25 / 20.0; // a quarter period in: the top of the stroke
+        if (container) {
+            CHECK_CLOSE(bdl_world_gravity(w, t).z, -9.81 + A * omega * omega, 1e-9);
+        } else {
+            bdl_walls_update(&w->walls, t);
+            CHECK_CLOSE(w->walls.offset[0].z, A, 1e-9);
+            CHECK(fabs(w->walls.velocity[0].z) < 1e-9 * A * omega);
+        }
+        bdl_world_destroy(w);
+    }
+}
+
 static void test_gas(void)
 {
     bdl_world *w = bdl_test_world(SCENE "[gas]\ncells = 2 2 8\nzmin = wall\nzmax = outlet\n"
@@ -127,6 +165,7 @@ static void test_gas(void)
 int main(void)
 {
     test_ball();
+    test_start();
     test_gas();
     return bdl_test_summary("test_container");
 }

@@ -7,6 +7,7 @@
 
 #include "analysis/signal.h"
 #include "analysis/umf.h"
+#include "app/analyze.h"
 #include "app/app.h"
 #include "io/atomic_file.h"
 #include "io/csv.h"
@@ -16,8 +17,12 @@ static const char analyze_usage[] =
     "       bedlam analyze spectrum RUN [--column NAME] [--from T] [--to T] [--fmin F] [--fmax F]\n"
     "                               [--out DIR] [--no-plots]\n"
     "       bedlam analyze mean RUN --column NAME [--from T] [--to T]\n"
+    "       bedlam analyze phase RUN --column NAME --period P [--start T] [--from-cycle A]\n"
+    "                            [--to-cycle B] [--bins N] [--below X] [--out DIR] [--no-plots]\n"
+    "       bedlam analyze networks CONTACTS.csv [--bins N] [--fmax F] [--out DIR] [--no-plots]\n"
     "\n"
-    "Reads RUN/diagnostics.csv of a finished run.\n"
+    "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
+    "the run with --file NAME, e.g. --file species.csv).\n"
     "\n"
     "sweep: a run with a [gas] sweep. Each stage of the inlet velocity is averaged over its "
     "second\n"
@@ -35,7 +40,20 @@ static const char analyze_usage[] =
     "standard error of the average from 10 consecutive blocks (which allows for correlation in\n"
     "time).\n"
     "\n"
-    "--out DIR: where the files go (default RUN/analysis). Exit codes: 0 done, 1 the analysis\n"
+    "phase: a vibrated run's column folded over the vibration cycle of period P started at T\n"
+    "(default 0): its mean, least and largest value in N phase bins (default 50) over cycles A\n"
+    "to B-1 (default all), and the phase intervals where the mean is below X (--below; e.g.\n"
+    "wall_force below a small value: the bed in flight). Writes phase_NAME.csv and\n"
+    "phase_NAME.png (with the column against the cycle count beside it).\n"
+    "\n"
+    "networks: a contact file of a run ([output] contacts_interval): the force networks\n"
+    "(connected sets of particles touching with a normal force: their number, the largest one's\n"
+    "particles, contacts, mean coordination and length), those of the forces above the mean, and\n"
+    "the distribution of f = F_n/<F_n> in N bins (default 40) up to F (default 5), fitted with\n"
+    "P(f) = a (1 - b exp(-f^2)) exp(-beta f). Writes force_pdf.csv and force_pdf.png.\n"
+    "\n"
+    "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
+    "codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
 
 typedef struct series {
@@ -43,10 +61,11 @@ typedef struct series {
     double *t, *x;
 } series;
 
-static int read_column(const char *run, const char *column, double **out, long *n)
+int bdl_analyze_read_column(const char *run, const char *file, const char *column, double **out,
+                            long *n)
 {
     char path[1200];
-    snprintf(path, sizeof path, "%s/diagnostics.csv", run);
+    snprintf(path, sizeof path, "%s/%s", run, file);
     *out = NULL;
     long rows = bdl_csv_read_column(path, column, NULL, 0); // count, then read
     *out = rows > 0 ? malloc((size_t)rows * sizeof(double)) : NULL;
@@ -60,7 +79,12 @@ static int read_column(const char *run, const char *column, double **out, long *
     return 1;
 }
 
-static void gnuplot(const char *script_path)
+static int read_column(const char *run, const char *column, double **out, long *n)
+{
+    return bdl_analyze_read_column(run, "diagnostics.csv", column, out, n);
+}
+
+void bdl_analyze_gnuplot(const char *script_path)
 {
     char cmd[1300];
     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", script_path);
@@ -179,19 +203,20 @@ static int analyze_sweep(const char *run, const char *out, int plots)
                 "umf)\n",
                 out, d->a, d->b, d->plateau, d->umf, out, out);
             fclose(f);
-            gnuplot(path);
+            bdl_analyze_gnuplot(path);
         }
     }
     free(t), free(u), free(dp), free(wr), free(st);
     return isfinite(res[1].umf) ? 0 : 1;
 }
 
-static int analyze_spectrum(const char *run, const char *out, const char *column, double from,
-                            double to, double fmin, double fmax, int plots)
+static int analyze_spectrum(const char *run, const char *file, const char *out, const char *column,
+                            double from, double to, double fmin, double fmax, int plots)
 {
     double *t = NULL, *x = NULL;
     long n = 0, m = 0;
-    if (!read_column(run, "time", &t, &n) || !read_column(run, column, &x, &m) || m != n) {
+    if (!bdl_analyze_read_column(run, file, "time", &t, &n) ||
+        !bdl_analyze_read_column(run, file, column, &x, &m) || m != n) {
         free(t), free(x);
         return 2;
     }
@@ -242,18 +267,20 @@ static int analyze_spectrum(const char *run, const char *out, const char *column
                     "title '%s, %.1f-%.1f s; peak %.2f Hz' noenhanced\n",
                     out, fmax, peak, peak, out, column, t[i0], t[i1 - 1], peak);
             fclose(g);
-            gnuplot(path);
+            bdl_analyze_gnuplot(path);
         }
     }
     free(t), free(x), free(f), free(p);
     return rc != 0 ? rc : (isfinite(peak) ? 0 : 1);
 }
 
-static int analyze_mean(const char *run, const char *column, double from, double to)
+static int analyze_mean(const char *run, const char *file, const char *column, double from,
+                        double to)
 {
     double *t = NULL, *x = NULL;
     long n = 0, m = 0;
-    if (!read_column(run, "time", &t, &n) || !read_column(run, column, &x, &m) || m != n) {
+    if (!bdl_analyze_read_column(run, file, "time", &t, &n) ||
+        !bdl_analyze_read_column(run, file, column, &x, &m) || m != n) {
         free(t), free(x);
         return 2;
     }
@@ -306,7 +333,15 @@ int bdl_cmd_analyze(int argc, char **argv)
         return argc < 2 ? 2 : 0;
     }
     const char *what = argv[1], *run = NULL, *out_opt = NULL, *column = "pressure_drop";
-    double from = -INFINITY, to = INFINITY, fmin = 0.2, fmax = 20.0;
+    const char *file = "diagnostics.csv";
+    double from = -INFINITY, to = INFINITY, fmin = 0.2, fmax = NAN;
+    bdl_phase_opts ph = {.period = NAN,
+                         .start = 0.0,
+                         .below = NAN,
+                         .from_cycle = 0,
+                         .to_cycle = 1L << 40,
+                         .bins = -1,
+                         .plots = 1};
     int plots = 1;
     for (int i = 2; i < argc; ++i) {
         const char *a = argv[i];
@@ -324,6 +359,20 @@ int bdl_cmd_analyze(int argc, char **argv)
             fmin = atof(argv[++i]);
         } else if (strcmp(a, "--fmax") == 0 && more) {
             fmax = atof(argv[++i]);
+        } else if (strcmp(a, "--file") == 0 && more) {
+            file = argv[++i];
+        } else if (strcmp(a, "--period") == 0 && more) {
+            ph.period = atof(argv[++i]);
+        } else if (strcmp(a, "--start") == 0 && more) {
+            ph.start = atof(argv[++i]);
+        } else if (strcmp(a, "--below") == 0 && more) {
+            ph.below = atof(argv[++i]);
+        } else if (strcmp(a, "--from-cycle") == 0 && more) {
+            ph.from_cycle = atol(argv[++i]);
+        } else if (strcmp(a, "--to-cycle") == 0 && more) {
+            ph.to_cycle = atol(argv[++i]);
+        } else if (strcmp(a, "--bins") == 0 && more) {
+            ph.bins = atoi(argv[++i]);
         } else if (strcmp(a, "--out") == 0 && more) {
             out_opt = argv[++i];
         } else if (strcmp(a, "--no-plots") == 0) {
@@ -335,27 +384,51 @@ int bdl_cmd_analyze(int argc, char **argv)
             run = a;
         }
     }
-    if (!run || (strcmp(what, "sweep") != 0 && strcmp(what, "spectrum") != 0 &&
-                 strcmp(what, "mean") != 0)) {
-        fprintf(stderr, "error: expected 'sweep RUN', 'spectrum RUN' or 'mean RUN'\n\n%s",
+    static const char *const whats[] = {"sweep", "spectrum", "mean", "phase", "networks"};
+    int known = 0;
+    for (int k = 0; k < 5; ++k)
+        known |= strcmp(what, whats[k]) == 0;
+    if (!run || !known) {
+        fprintf(stderr,
+                "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN' or "
+                "'networks CONTACTS.csv'\n\n%s",
                 analyze_usage);
         return 2;
     }
     if (strcmp(what, "mean") == 0)
-        return analyze_mean(run, column, from, to);
-    if (!(fmax > fmin)) {
-        fprintf(stderr, "error: --fmax must be above --fmin\n");
+        return analyze_mean(run, file, column, from, to);
+    const int networks = strcmp(what, "networks") == 0;
+    if (isnan(fmax))
+        fmax = networks ? 5.0 : 20.0;
+    if (ph.bins < 0)
+        ph.bins = networks ? 40 : 50;
+    if (!(fmax > fmin) || ph.bins < 3 || ph.bins > 100000) {
+        fprintf(stderr, "error: --fmax must be above --fmin, --bins from 3 to 100000\n");
+        return 2;
+    }
+    if (strcmp(what, "phase") == 0 && !(ph.period > 0.0)) {
+        fprintf(stderr, "error: phase needs --period P > 0 [s]\n");
         return 2;
     }
     char out[1100], why[512];
     snprintf(out, sizeof out, "%s", out_opt ? out_opt : run);
-    if (!out_opt)
+    if (!out_opt && networks) { // next to the contact file
+        const char *slash = strrchr(run, '/');
+        snprintf(out, sizeof out, "%.*s", slash ? (int)(slash - run) : 1, slash ? run : ".");
+    } else if (!out_opt) {
         snprintf(out, sizeof out, "%s/analysis", run);
+    }
     if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
         fprintf(stderr, "error: --out %s: %s\n", out, why);
         return 2;
     }
     if (strcmp(what, "sweep") == 0)
         return analyze_sweep(run, out, plots);
-    return analyze_spectrum(run, out, column, from, to, fmin, fmax, plots);
+    if (networks)
+        return bdl_analyze_networks(run, out, ph.bins, fmax, plots);
+    if (strcmp(what, "phase") == 0) {
+        ph.file = file, ph.column = column, ph.out = out, ph.plots = plots;
+        return bdl_analyze_phase(run, &ph);
+    }
+    return analyze_spectrum(run, file, out, column, from, to, fmin, fmax, plots);
 }

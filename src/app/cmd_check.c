@@ -22,7 +22,10 @@ static void print_contacts(const bdl_world *w, double v_ref)
 {
     const bdl_scene *s = &w->scene;
     int ns = s->species_count;
-    printf("contacts (Hertz times at impact speed %.3g m/s):\n", v_ref);
+    if (w->hertz)
+        printf("contacts (Hertz times at impact speed %.3g m/s):\n", v_ref);
+    else
+        printf("contacts (linear springs: the times do not depend on the impact speed):\n");
     for (int a = 0; a < ns; ++a) {
         const bdl_species_def *sa = &s->species[a];
         double da = sa->size_dist == BDL_SIZE_SINGLE ? sa->diameter : sa->diameter_min;

@@ -49,6 +49,7 @@ void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls)
         walls->amplitude[w] = moves ? d->amplitude : 0.0;
         walls->omega[w] = 2.0 * PI * d->frequency;
         walls->phase[w] = d->phase;
+        walls->start[w] = d->start;
     }
     bdl_walls_update(walls, 0.0);
 }
@@ -56,12 +57,12 @@ void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls)
 void bdl_walls_update(bdl_walls *walls, double t)
 {
     for (int w = 0; w < walls->wall_count; ++w) {
-        if (walls->motion[w] == BDL_MOTION_NONE) {
+        if (walls->motion[w] == BDL_MOTION_NONE || t < walls->start[w]) {
             walls->offset[w] = bdl_v3_zero();
             walls->velocity[w] = bdl_v3_zero();
             continue;
         }
-        double arg = walls->omega[w] * t + walls->phase[w];
+        double arg = walls->omega[w] * (t - walls->start[w]) + walls->phase[w];
         double a = walls->amplitude[w];
         walls->offset[w] = bdl_v3_scale(walls->direction[w], a * sin(arg));
         walls->velocity[w] = bdl_v3_scale(walls->direction[w], a * walls->omega[w] * cos(arg));

@@ -1,9 +1,9 @@
 // bedlam — walls: planes, boxes and cylinders with prescribed motion.
 //
 // Every scene wall expands into primitives (a box into six inward-facing planes). A primitive
-// moves rigidly with its wall: displacement s(t) = A sin(2 pi f t + phase) d along the unit
-// direction d, velocity s'(t). Contacts treat a wall as a body of infinite mass and radius
-// (a cylinder's inside is concave: 1/R* = 1/r - 1/R_cyl).
+// moves rigidly with its wall: displacement s(t) = A sin(2 pi f (t - start) + phase) d along
+// the unit direction d from the start time on (zero before), velocity s'(t). Contacts treat a wall
+// as a body of infinite mass and radius (a cylinder's inside is concave: 1/R* = 1/r - 1/R_cyl).
 #ifndef BDL_WALLS_H
 #define BDL_WALLS_H
 
@@ -28,6 +28,7 @@ typedef struct bdl_walls {
     bdl_motion_kind motion[BDL_MAX_WALLS];
     bdl_vec3 direction[BDL_MAX_WALLS];
     double amplitude[BDL_MAX_WALLS], omega[BDL_MAX_WALLS], phase[BDL_MAX_WALLS];
+    double start[BDL_MAX_WALLS]; ///< time the vibration starts [s]
     // Live values, refreshed by bdl_walls_update; scaled by the live amplitude factor of commands.
     bdl_vec3 offset[BDL_MAX_WALLS];   ///< displacement from rest [m]
     bdl_vec3 velocity[BDL_MAX_WALLS]; ///< [m/s]

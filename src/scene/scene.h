@@ -112,6 +112,7 @@ typedef struct bdl_wall_def {
     double amplitude;      ///< A [m]
     double frequency;      ///< f [Hz]
     double phase;          ///< [rad]
+    double start;          ///< simulated time the vibration starts; still before [s]
     bdl_wall_frame frame;  ///< lab, or container (every wall and the gas grid move with this one)
     bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
     int line;
@@ -149,6 +150,8 @@ typedef struct bdl_output_def {
     double frame_interval;         ///< [s] between PNG frames; 0 = none
     int frame_width, frame_height; ///< [px]
     int frame_samples;             ///< multisample anti-aliasing samples (0 = none)
+    double contacts_interval;      ///< [s] between contact files in contacts/; 0 = none
+    bdl_vec3 mixing_cells;         ///< Lacey index grid in species.csv; 0 0 0 = the default
 } bdl_output_def;
 
 /// Preset camera orientations.

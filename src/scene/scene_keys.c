@@ -233,6 +233,10 @@ const bdl_scene_key bdl_scene_keys[] = {
             "(exclusive with amplitude)"},
     {S(WALL), "phase", NUM, "rad", IN_WALL(phase), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
      .def = {0}, .doc = "vibrate: phase of A sin(2 pi f t + phase)"},
+    {S(WALL), "start", NUM, "s", IN_WALL(start), WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .def = {0}, GE(0),
+     .doc = "vibrate: simulated time the vibration starts (the wall stands still before; t is "
+            "counted from here)"},
     {S(WALL), "frame", .type = BDL_KEY_ENUM, "-", IN_WALL(frame), .def = {BDL_FRAME_LAB},
      .enum_names = frame_names, WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
      .doc = "vibrate: lab (the wall moves through the domain) or container (the whole container, "
@@ -322,6 +326,14 @@ const bdl_scene_key bdl_scene_keys[] = {
      .def = {720}, GE(16), LE(8192), .doc = "height of the PNG frames"},
     {S(OUTPUT), "frame_samples", .type = BDL_KEY_INT, "-", IN_SCENE(output.frame_samples),
      .def = {4}, GE(0), LE(16), .doc = "multisample anti-aliasing samples per pixel; 0 = none"},
+    {S(OUTPUT), "contacts_interval", NUM, "s", IN_SCENE(output.contacts_interval), .def = {0},
+     .default_text = "0 (none)", GE(0),
+     .doc = "simulated time between contact files in contacts/ (every contact: particles, "
+            "positions, normal force; for force networks); 0 = none"},
+    {S(OUTPUT), "mixing_cells", VEC, "-", IN_SCENE(output.mixing_cells), .def = {0, 0, 0},
+     .default_text = "the gas grid's cells, else 10 10 10",
+     .doc = "cells along x y z of the grid on which species.csv's Lacey indices are taken "
+            "(scenes of two species; whole numbers >= 1)"},
 
     // [camera]
     {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},

@@ -386,7 +386,8 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
 
 static void check_singletons(bdl_scene_parser *p)
 {
-    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL, *camera = NULL;
+    bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL, *camera = NULL,
+                      *output = NULL;
     for (int i = 0; i < p->section_count && !p->failed; ++i) {
         bdl_scene_section *s = &p->sections[i];
         if (bdl_section_infos[s->kind].name_count != 0)
@@ -402,7 +403,18 @@ static void check_singletons(bdl_scene_parser *p)
             coupling = s;
         if (s->kind == BDL_SECTION_CAMERA)
             camera = s;
+        if (s->kind == BDL_SECTION_OUTPUT)
+            output = s;
     }
+    if (!p->failed && output && given(output, key_of(output, "mixing_cells")))
+        for (int a = 0; a < 3; ++a) {
+            double n = bdl_v3_comp(p->scene->output.mixing_cells, a);
+            if (n != floor(n) || n < 1.0 || n > 4096.0) {
+                fail_at_key(p, output, "mixing_cells", 0,
+                            "cell counts must be whole numbers from 1 to 4096");
+                break;
+            }
+        }
     if (!p->failed)
         check_gas(p, gas, coupling);
     if (!p->failed && camera && p->scene->camera.gas_field != BDL_GAS_FIELD_NONE &&

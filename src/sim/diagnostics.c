@@ -4,9 +4,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/granular.h"
 #include "cfd/gas.h"
 #include "dem/contact_law.h"
 #include "dem/integrate.h"
+#include "sim/granular_out.h"
 
 const char *const bdl_diagnostics_columns[] = {
     "time",
@@ -33,6 +35,8 @@ const char *const bdl_diagnostics_columns[] = {
     "mass_out",
     "inlet_velocity",
     "mean_height",
+    "multi_contact_ratio",
+    "wall_force",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -40,7 +44,7 @@ const int bdl_diagnostics_column_count =
 #define BLOCKS 256
 
 typedef struct partial {
-    double kinetic, rotational, potential, elastic, contacts, overlap, speed;
+    double kinetic, rotational, potential, elastic, contacts, overlap, speed, wall_force;
 } partial;
 
 static void particle_terms(const bdl_world *w, long i, partial *s)
@@ -85,21 +89,15 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         double r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
         s->elastic += bdl_contact_elastic_energy(cp, w->hertz, -gap, r_eff,
                                                  w->friction ? nb->wall_history[k] : bdl_v3_zero());
+        s->wall_force += bdl_wall_normal_force(w, i, prim, n, gap);
     }
 }
 
-/// The axis gravity points along (z without gravity) and the sign of "up" on it.
-static int vertical_axis(const bdl_world *w, double *up)
+int bdl_vertical_axis(const bdl_world *w, double *up)
 {
     const int axis = bdl_v3_major_axis(w->scene.gravity);
     *up = bdl_v3_comp(w->scene.gravity, axis) > 0.0 ? -1.0 : 1.0;
     return axis;
-}
-
-static int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
 }
 
 /// Mean pressure of cell layer m along axis a.
@@ -139,7 +137,7 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
     const bdl_gas *gas = w->gas;
     const bdl_grid *g = &gas->grid;
     double up;
-    const int a = vertical_axis(w, &up);
+    const int a = bdl_vertical_axis(w, &up);
     const int b = (a + 1) % 3, c = (a + 2) % 3;
     const double first = layer_pressure(gas, a, 0), last = layer_pressure(gas, a, g->n[a] - 1);
     d->pressure_drop = up > 0.0 ? first - last : last - first;
@@ -158,8 +156,7 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
             sum += h[i];
         }
         d->mean_height = sum / (double)n;
-        qsort(h, (size_t)n, sizeof(double), compare_double);
-        d->bed_height = h[(long)floor(0.95 * (double)(n - 1))];
+        d->bed_height = bdl_height_quantile(h, n, 0.95);
         free(h);
     }
     d->gas_work = w->gas_work; // with the work of the gas step under way
@@ -214,6 +211,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
         s.contacts += blocks[b].contacts;
         s.overlap = fmax(s.overlap, blocks[b].overlap);
         s.speed = fmax(s.speed, blocks[b].speed);
+        s.wall_force += blocks[b].wall_force;
     }
     memset(d, 0, sizeof *d);
     d->probe_pressure_drop = NAN; // without [gas] probe_low and probe_high
@@ -227,8 +225,11 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->potential_energy = s.potential;
     d->elastic_energy = s.elastic;
     d->mean_coordination = n > 0 ? s.contacts / (double)n : 0.0;
+    d->multi_contact_ratio =
+        w->coordination ? bdl_coordination(w->coordination, n).multi_contact_ratio : 0.0;
     d->max_overlap_ratio = s.overlap;
     d->max_speed = s.speed;
+    d->wall_force = s.wall_force;
     d->wall_work = w->wall_work;
     if (w->gas)
         gas_terms(w, d);
@@ -270,4 +271,6 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[21] = d->mass_out;
     v[22] = d->inlet_velocity;
     v[23] = d->mean_height;
+    v[24] = d->multi_contact_ratio;
+    v[25] = d->wall_force;
 }

@@ -41,7 +41,12 @@ typedef struct bdl_diagnostics {
     double mass_out;       ///< their mass [kg]
     double inlet_velocity; ///< superficial inlet velocity now (the sweep's stage) [m/s]
     double mean_height;    ///< with a gas: mean particle centre height above the floor [m]
+    double multi_contact_ratio; ///< particles with >= 2 contacts / particles with >= 1
+    double wall_force;          ///< sum of the normal forces of all particle-wall contacts [N]
 } bdl_diagnostics;
+
+/// The axis gravity points along (z without gravity) and the sign of "up" on it (+1 or -1).
+int bdl_vertical_axis(const bdl_world *w, double *up);
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.
 extern const char *const bdl_diagnostics_columns[];

@@ -23,6 +23,7 @@
 #include "io/vtk.h"
 #include "render/frames.h"
 #include "sim/diagnostics.h"
+#include "sim/granular_out.h"
 #include "sim/guards.h"
 #include "sim/loop.h"
 
@@ -50,12 +51,14 @@ typedef struct run_state {
     const char *out;
     bdl_world *world;
     bdl_csv *csv;
+    bdl_csv *species_csv; ///< species.csv, with two or more species only
+    double *species_row;
     bdl_pvd *pvd;
     bdl_pvd *gas_pvd; ///< gas fields, with [gas] only
     bdl_guard_state guard;
     double energy0;
     double start_wall;
-    double next_diag, next_vtk, next_checkpoint;
+    double next_diag, next_vtk, next_checkpoint, next_contacts;
     long vtk_index;
     double next_frame;
     long frame_index;
@@ -162,7 +165,25 @@ static bdl_result write_diagnostics(run_state *rs, bdl_diagnostics *d)
     double row[32];
     d->wall_seconds = bdl_wall_seconds() - rs->start_wall;
     bdl_diagnostics_row(d, row);
-    return bdl_csv_row(rs->csv, row);
+    bdl_result r = bdl_csv_row(rs->csv, row);
+    if (r == BDL_OK && rs->species_csv) {
+        bdl_species_row(rs->world, rs->species_row);
+        r = bdl_csv_row(rs->species_csv, rs->species_row);
+    }
+    return r;
+}
+
+static bdl_result write_contacts(run_state *rs)
+{
+    char rel[64], path[1200];
+    const bdl_world *w = rs->world;
+    snprintf(rel, sizeof rel, "contacts/contacts_%06ld.csv",
+             lround(w->time / w->scene.output.contacts_interval));
+    path_join(path, sizeof path, rs->out, rel);
+    bdl_result r = bdl_contacts_write(w, path);
+    if (r != BDL_OK)
+        bdl_error("could not write %s", path);
+    return r;
 }
 
 /// The first multiple of `interval` after t: a resumed run keeps the first run's output times.
@@ -209,6 +230,13 @@ static bdl_result on_step(void *user, bdl_world *w)
             return r;
         while (due(w, rs->next_vtk))
             rs->next_vtk += s->output.vtk_interval;
+    }
+    if (s->output.contacts_interval > 0.0 && due(w, rs->next_contacts)) {
+        bdl_result r = write_contacts(rs);
+        if (r != BDL_OK)
+            return r;
+        while (due(w, rs->next_contacts))
+            rs->next_contacts += s->output.contacts_interval;
     }
     if (rs->frames && due(w, rs->next_frame)) {
         bdl_result r = bdl_frames_submit(rs->frames, w, rs->frame_index++);
@@ -460,6 +488,29 @@ int bdl_run(const bdl_run_def *def)
         bdl_csv_truncate_after(sub, world->time);
     rs.csv = bdl_csv_open(sub, bdl_diagnostics_columns, bdl_diagnostics_column_count,
                           def->resume != NULL);
+    char species_names[BDL_SPECIES_COLUMNS_MAX][BDL_SPECIES_COLUMN_LEN];
+    const int species_columns = bdl_species_columns(world, species_names);
+    if (species_columns > 0) {
+        const char *names[BDL_SPECIES_COLUMNS_MAX];
+        for (int c = 0; c < species_columns; ++c)
+            names[c] = species_names[c];
+        path_join(sub, sizeof sub, out, "species.csv");
+        if (def->resume)
+            bdl_csv_truncate_after(sub, world->time);
+        rs.species_csv = bdl_csv_open(sub, names, species_columns, def->resume != NULL);
+        rs.species_row = malloc(BDL_SPECIES_COLUMNS_MAX * sizeof(double));
+        if (!rs.species_csv || !rs.species_row) {
+            bdl_error("cannot create output files in '%s'", out);
+            return finish(2, world, log);
+        }
+    }
+    if (o->contacts_interval > 0.0) {
+        path_join(sub, sizeof sub, out, "contacts");
+        if (bdl_mkdir_p(sub) != BDL_OK) {
+            bdl_error("cannot create '%s'", sub);
+            return finish(2, world, log);
+        }
+    }
     path_join(sub, sizeof sub, out, "particles.pvd");
     rs.pvd = bdl_pvd_create(sub);
     if (world->gas && o->vtk_interval > 0.0) {
@@ -474,6 +525,7 @@ int bdl_run(const bdl_run_def *def)
     rs.next_diag = t0;
     rs.next_vtk = t0;
     rs.next_checkpoint = next_multiple(t0, o->checkpoint_interval);
+    rs.next_contacts = next_multiple(t0, o->contacts_interval);
     if (def->resume) {
         // The rows and frames at t0 were written by the first run already.
         rs.next_diag = next_multiple(t0, o->diagnostics_interval);
@@ -492,8 +544,11 @@ int bdl_run(const bdl_run_def *def)
         bdl_result ir = write_diagnostics(&rs, &d0);
         if (ir == BDL_OK && o->vtk_interval > 0.0)
             ir = write_vtk(&rs);
+        if (ir == BDL_OK && o->contacts_interval > 0.0)
+            ir = write_contacts(&rs);
         rs.next_diag = t0 + o->diagnostics_interval;
         rs.next_vtk = t0 + o->vtk_interval;
+        rs.next_contacts = t0 + o->contacts_interval;
         if (ir != BDL_OK) {
             bdl_error("cannot write outputs in '%s'", out);
             return finish(1, world, log);
@@ -607,6 +662,9 @@ int bdl_run(const bdl_run_def *def)
     if (r == BDL_OK && !due(world, rs.next_diag - o->diagnostics_interval))
         write_diagnostics(&rs, &d);
     bdl_csv_close(rs.csv);
+    if (rs.species_csv)
+        bdl_csv_close(rs.species_csv);
+    free(rs.species_row);
     bdl_pvd_destroy(rs.pvd);
     bdl_pvd_destroy(rs.gas_pvd);
     bdl_result cr = write_checkpoint(&rs);

@@ -219,12 +219,14 @@ bdl_vec3 bdl_world_gravity(const bdl_world *w, double t)
     if (k < 0)
         return w->scene.gravity;
     const bdl_wall_def *d = &w->scene.walls[k];
+    if (t < d->start)
+        return w->scene.gravity;
     const double A = d->amplitude * w->live.amplitude_scale[k];
     const double omega = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
     // The container accelerates by -A w^2 sin(w t + phase) along d; in its frame everything in it
     // feels the opposite.
     return bdl_v3_madd(w->scene.gravity, d->direction, // unit: the scene normalises it
-                       A * omega * omega * sin(omega * t + d->phase));
+                       A * omega * omega * sin(omega * (t - d->start) + d->phase));
 }
 
 /// Momentum of the particles along the container's direction [kg m/s].

@@ -1,0 +1,168 @@
+#include "sim/granular_out.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "analysis/granular.h"
+#include "dem/contact_law.h"
+#include "io/atomic_file.h"
+#include "sim/diagnostics.h"
+
+/// Cells with fewer particles than this are left out of the Lacey indices: a cell of one or two
+/// particles has a fraction of 0, 1/2 or 1 whatever the mixing.
+#define LACEY_MIN_COUNT 5
+
+int bdl_species_columns(const bdl_world *w, char names[][BDL_SPECIES_COLUMN_LEN])
+{
+    const bdl_scene *s = &w->scene;
+    if (s->species_count < 2)
+        return 0;
+    int c = 0;
+    snprintf(names[c++], BDL_SPECIES_COLUMN_LEN, "time");
+    static const char *const what[] = {"count", "mean_height", "top_height", "coordination"};
+    for (int k = 0; k < s->species_count; ++k)
+        for (int q = 0; q < 4; ++q)
+            snprintf(names[c++], BDL_SPECIES_COLUMN_LEN, "%s_%s", what[q], s->species[k].name);
+    if (s->species_count == 2) {
+        snprintf(names[c++], BDL_SPECIES_COLUMN_LEN, "lacey");
+        snprintf(names[c++], BDL_SPECIES_COLUMN_LEN, "lacey_horizontal");
+        snprintf(names[c++], BDL_SPECIES_COLUMN_LEN, "lacey_vertical");
+    }
+    return c;
+}
+
+static void mixing_cells(const bdl_world *w, int cells[3])
+{
+    const bdl_scene *s = &w->scene;
+    bdl_vec3 c = s->output.mixing_cells;
+    if (c.x < 1.0)
+        c = s->gas.enabled ? s->gas.cells : (bdl_vec3){10, 10, 10};
+    cells[0] = (int)c.x, cells[1] = (int)c.y, cells[2] = (int)c.z;
+}
+
+void bdl_species_row(const bdl_world *w, double *row)
+{
+    const bdl_scene *s = &w->scene;
+    const bdl_particles *p = &w->particles;
+    const int ns = s->species_count;
+    double up;
+    const int a = bdl_vertical_axis(w, &up);
+    const double base = up > 0.0 ? bdl_v3_comp(s->domain_min, a) : -bdl_v3_comp(s->domain_max, a);
+    long count[BDL_MAX_SPECIES] = {0};
+    double sum[BDL_MAX_SPECIES] = {0}, top[BDL_MAX_SPECIES] = {0}, z[BDL_MAX_SPECIES] = {0};
+    for (long i = 0; i < p->count; ++i) {
+        const int k = p->species[i];
+        const double h = up * bdl_v3_comp(p->pos[i], a) - base;
+        top[k] = count[k] == 0 || h > top[k] ? h : top[k];
+        count[k]++;
+        sum[k] += h;
+        z[k] += w->coordination ? w->coordination[i] : 0;
+    }
+    int c = 0;
+    row[c++] = w->time;
+    for (int k = 0; k < ns; ++k) {
+        row[c++] = (double)count[k];
+        row[c++] = count[k] > 0 ? sum[k] / (double)count[k] : NAN;
+        row[c++] = count[k] > 0 ? top[k] : NAN;
+        row[c++] = count[k] > 0 ? z[k] / (double)count[k] : NAN;
+    }
+    if (ns != 2)
+        return;
+    uint8_t *is_a = malloc((size_t)(p->count > 0 ? p->count : 1));
+    if (!is_a) {
+        row[c] = row[c + 1] = row[c + 2] = NAN;
+        return;
+    }
+    for (long i = 0; i < p->count; ++i)
+        is_a[i] = p->species[i] == 0;
+    int cells[3], columns[3], layers[3] = {1, 1, 1};
+    mixing_cells(w, cells);
+    for (int q = 0; q < 3; ++q)
+        columns[q] = q == a ? 1 : cells[q];
+    layers[a] = cells[a];
+    row[c++] =
+        bdl_lacey(p->pos, is_a, p->count, s->domain_min, s->domain_max, cells, LACEY_MIN_COUNT);
+    row[c++] =
+        bdl_lacey(p->pos, is_a, p->count, s->domain_min, s->domain_max, columns, LACEY_MIN_COUNT);
+    row[c++] =
+        bdl_lacey(p->pos, is_a, p->count, s->domain_min, s->domain_max, layers, LACEY_MIN_COUNT);
+    free(is_a);
+}
+
+double bdl_pair_normal_force(const bdl_world *w, long i, long j, bdl_vec3 d, double dist)
+{
+    const bdl_particles *p = &w->particles;
+    const double cut = p->radius[i] + p->radius[j];
+    bdl_contact_geom g = {
+        .n = bdl_v3_scale(d, 1.0 / dist),
+        .overlap = cut - dist,
+        .v_c = bdl_v3_sub(p->vel[i], p->vel[j]), // the spins add nothing along n
+        .m_eff = 1.0 / (p->inv_mass[i] + p->inv_mass[j]),
+        .r_eff = p->radius[i] * p->radius[j] / cut,
+    };
+    const int ns = w->scene.species_count;
+    const bdl_contact_params *cp = &w->pair_params[p->species[i] * ns + p->species[j]];
+    return bdl_contact_eval(cp, w->hertz, 0, g, bdl_v3_zero(), w->dt).normal;
+}
+
+double bdl_wall_normal_force(const bdl_world *w, long i, int prim, bdl_vec3 n, double gap)
+{
+    const bdl_particles *p = &w->particles;
+    const int wall = w->walls.prims[prim].wall;
+    bdl_contact_geom g = {
+        .n = n,
+        .overlap = -gap,
+        .v_c = bdl_v3_sub(p->vel[i], w->walls.velocity[wall]),
+        .m_eff = 1.0 / p->inv_mass[i],
+        .r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]),
+    };
+    const bdl_contact_params *cp = &w->wall_params[wall * w->scene.species_count + p->species[i]];
+    return bdl_contact_eval(cp, w->hertz, 0, g, bdl_v3_zero(), w->dt).normal;
+}
+
+static void write_contact(FILE *f, const bdl_particles *p, long i, long j_label, int sj,
+                          bdl_vec3 xj, double overlap, double fn)
+{
+    fprintf(f, "%ld,%ld,%d,%d,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g\n", (long)p->id[i], j_label,
+            p->species[i], sj, p->pos[i].x, p->pos[i].y, p->pos[i].z, xj.x, xj.y, xj.z, overlap,
+            fn);
+}
+
+bdl_result bdl_contacts_write(const bdl_world *w, const char *path)
+{
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    FILE *f = af.file;
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    fprintf(f, "# time = %.9g s\ni,j,species_i,species_j,x_i,y_i,z_i,x_j,y_j,z_j,overlap,fn\n",
+            w->time);
+    for (long i = 0; i < p->count; ++i) {
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            const int32_t j = nb->partner[k];
+            const bdl_vec3 d = bdl_neighbor_delta(nb, p->pos[i], p->pos[j]);
+            const double cut = p->radius[i] + p->radius[j], dist = bdl_v3_len(d);
+            if (dist >= cut || dist <= 0.0)
+                continue;
+            write_contact(f, p, i, (long)p->id[j], p->species[j], p->pos[j], cut - dist,
+                          bdl_pair_normal_force(w, i, j, d, dist));
+        }
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+            bdl_vec3 n;
+            const int prim = nb->wall_prim[k], wall = w->walls.prims[prim].wall;
+            const double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
+            if (gap >= 0.0)
+                continue;
+            const bdl_vec3 point = bdl_v3_madd(p->pos[i], n, -(p->radius[i] + 0.5 * gap));
+            write_contact(f, p, i, -1L - wall, -1, point, -gap,
+                          bdl_wall_normal_force(w, i, prim, n, gap));
+        }
+    }
+    if (ferror(f)) {
+        bdl_atomic_abort(&af);
+        return BDL_ERR_IO;
+    }
+    return bdl_atomic_commit(&af);
+}

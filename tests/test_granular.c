@@ -1,0 +1,219 @@
+// Granular analyses on constructed inputs with known answers: coordination and the
+// multi-contact ratio, the bed-height quantile, Lacey's index of segregated, random and
+// perfectly ordered mixtures, force networks of a chain and a lattice (and their independence
+// from the contacts' order), and the fit of the force distribution to samples drawn from it.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "analysis/granular.h"
+#include "check.h"
+#include "core/rng.h"
+
+static void test_coordination(void)
+{
+    const uint8_t count[] = {0, 1, 2, 3, 0, 1};
+    bdl_coordination_stats s = bdl_coordination(count, 6);
+    CHECK_CLOSE(s.mean, 7.0 / 6.0, 1e-15);
+    CHECK(s.in_contact == 4);
+    CHECK_CLOSE(s.multi_contact_ratio, 0.5, 1e-15);
+    s = bdl_coordination(count, 1); // one particle, no contact
+    CHECK(s.mean == 0.0 && s.multi_contact_ratio == 0.0);
+}
+
+static void test_height_quantile(void)
+{
+    enum { N = 100 };
+    double h[N];
+    for (int i = 0; i < N; ++i)
+        h[i] = (double)((i * 37) % N + 1); // 1..100, shuffled
+    CHECK(bdl_height_quantile(h, N, 0.95) == 95.0);
+    CHECK(bdl_height_quantile(h, N, 1.0) == 100.0);
+    CHECK(bdl_height_quantile(h, N, 0.0) == 1.0);
+    CHECK(isnan(bdl_height_quantile(h, 0, 0.5)));
+}
+
+static void test_lacey(void)
+{
+    enum { N = 40000 };
+    static bdl_vec3 pos[N];
+    static uint8_t a[N];
+    bdl_rng rng;
+    bdl_rng_seed(&rng, 11);
+    const bdl_vec3 lo = {0, 0, 0}, hi = {1, 1, 1};
+    const int grid[3] = {10, 10, 10}, columns[3] = {10, 10, 1}, layers[3] = {1, 1, 10};
+    // Segregated: species A below z = 0.5, B above.
+    for (int i = 0; i < N; ++i) {
+        pos[i] = (bdl_vec3){bdl_rng_uniform(&rng), bdl_rng_uniform(&rng), bdl_rng_uniform(&rng)};
+        a[i] = pos[i].z < 0.5;
+    }
+    double m_layers = bdl_lacey(pos, a, N, lo, hi, layers, 5);
+    double m_columns = bdl_lacey(pos, a, N, lo, hi, columns, 5);
+    double m_grid = bdl_lacey(pos, a, N, lo, hi, grid, 5);
+    printf("lacey, segregated vertically: layers %.4f (0), columns %.4f (1), grid %.4f (0)\n",
+           m_layers, m_columns, m_grid);
+    // Every layer pure: s^2 = s0^2 and M = 0 when half the particles are A; random positions put
+    // p within about 0.005 of 1/2, which moves M by about (p - 1/2)^2 / s0^2 = 1e-4.
+    CHECK(fabs(m_layers) < 2e-3);
+    CHECK(fabs(m_grid) < 2e-3);
+    // Columns of 400 particles each hold A at p = 0.5 up to sampling noise: M = 1 +- a few
+    // sampling errors of s^2 (its relative error is sqrt(2/100) for 100 columns).
+    CHECK(fabs(m_columns - 1.0) < 0.5);
+    // Random: labels independent of position; M = 1 within the sampling error of s^2.
+    for (int i = 0; i < N; ++i)
+        a[i] = bdl_rng_uniform(&rng) < 0.3;
+    double m_random = bdl_lacey(pos, a, N, lo, hi, grid, 5);
+    printf("lacey, random: %.4f (1)\n", m_random);
+    CHECK(fabs(m_random - 1.0) < 0.3);
+    // Ordered: a lattice with exactly one A in every cell of 4: s^2 = 0 and M = 1/(1 - 1/nbar).
+    int k = 0;
+    for (int ix = 0; ix < 20; ++ix)
+        for (int iy = 0; iy < 20; ++iy)
+            for (int iz = 0; iz < 10; ++iz) {
+                pos[k] = (bdl_vec3){(ix + 0.5) / 20.0, (iy + 0.5) / 20.0, (iz + 0.5) / 10.0};
+                a[k] = ix % 2 == 0 && iy % 2 == 0;
+                ++k;
+            }
+    const int cells4[3] = {10, 10, 10};
+    double m_ordered = bdl_lacey(pos, a, k, lo, hi, cells4, 1);
+    CHECK_CLOSE(m_ordered, 1.0 / (1.0 - 1.0 / 4.0), 1e-12);
+    // One species only, or a single cell: undefined.
+    for (int i = 0; i < k; ++i)
+        a[i] = 1;
+    CHECK(isnan(bdl_lacey(pos, a, k, lo, hi, cells4, 1)));
+    const int one[3] = {1, 1, 1};
+    CHECK(isnan(bdl_lacey(pos, a, k, lo, hi, one, 1)));
+}
+
+static void test_networks_chain(void)
+{
+    // 0-1-2-3 a chain, 5-6 a pair, 4 alone, 7-8 touching without force, 9 on a wall.
+    bdl_vec3 pos[10];
+    for (int i = 0; i < 10; ++i)
+        pos[i] = (bdl_vec3){i * 1e-3, 0, 0};
+    bdl_contact_rec c[] = {{2, 3, 1.0}, {0, 1, 2.0}, {6, 5, 0.5},
+                           {1, 2, 3.0}, {7, 8, 0.0}, {9, -1, 4.0}};
+    const long nc = sizeof c / sizeof c[0];
+    int32_t label[10], label2[10];
+    bdl_network_stats s;
+    CHECK(bdl_force_networks(10, c, nc, 0.0, pos, label, &s) == BDL_OK);
+    CHECK(s.networks == 2);
+    CHECK(s.largest == 4 && s.largest_edges == 3);
+    CHECK_CLOSE(s.largest_mean_z, 1.5, 1e-15);
+    CHECK_CLOSE(s.largest_length, 3e-3, 1e-12);
+    CHECK(s.other_edges == 1);
+    CHECK(label[0] == 0 && label[3] == 0 && label[5] == 5 && label[6] == 5 && label[4] == 4);
+    CHECK(label[7] == 7 && label[8] == 8 && label[9] == 9);
+    // The same contacts in reverse order and with i, j swapped: the same labels.
+    bdl_contact_rec r[6];
+    for (long k = 0; k < nc; ++k) {
+        r[k] = c[nc - 1 - k];
+        if (r[k].j >= 0) {
+            int32_t t = r[k].i;
+            r[k].i = r[k].j;
+            r[k].j = t;
+        }
+    }
+    CHECK(bdl_force_networks(10, r, nc, 0.0, NULL, label2, &s) == BDL_OK);
+    int same = 1;
+    for (int i = 0; i < 10; ++i)
+        same &= label[i] == label2[i];
+    CHECK(same);
+    // Only forces above 1.5: 0-1 and 1-2 remain.
+    CHECK(bdl_force_networks(10, c, nc, 1.5, pos, NULL, &s) == BDL_OK);
+    CHECK(s.networks == 1 && s.largest == 3 && s.largest_edges == 2 && s.other_edges == 0);
+}
+
+static void test_networks_lattice(void)
+{
+    // A simple cubic lattice of 10^3 particles, every nearest pair in contact.
+    enum { L = 10, N = L * L * L };
+    static bdl_vec3 pos[N];
+    static bdl_contact_rec c[3 * N];
+    long nc = 0;
+    const double a = 2e-3;
+    for (int x = 0; x < L; ++x)
+        for (int y = 0; y < L; ++y)
+            for (int z = 0; z < L; ++z) {
+                int i = (x * L + y) * L + z;
+                pos[i] = (bdl_vec3){x * a, y * a, z * a};
+                if (x + 1 < L)
+                    c[nc++] = (bdl_contact_rec){i, i + L * L, 1.0};
+                if (y + 1 < L)
+                    c[nc++] = (bdl_contact_rec){i, i + L, 1.0};
+                if (z + 1 < L)
+                    c[nc++] = (bdl_contact_rec){i, i + 1, 1.0};
+            }
+    bdl_network_stats s;
+    CHECK(bdl_force_networks(N, c, nc, 0.0, pos, NULL, &s) == BDL_OK);
+    CHECK(s.networks == 1 && s.largest == N && s.largest_edges == 3 * 9 * 100);
+    CHECK_CLOSE(s.largest_mean_z, 5.4, 1e-12);
+    CHECK_CLOSE(s.largest_length, sqrt(3.0) * 9 * a, 1e-12);
+}
+
+/// Mean of P(f) = (1 - b e^(-f^2)) e^(-beta f) (unnormalised), by the midpoint rule to f = 60.
+static double pdf_mean(double b, double beta, double *norm)
+{
+    double s0 = 0.0, s1 = 0.0, h = 1e-3;
+    for (double f = 0.5 * h; f < 60.0; f += h) {
+        double p = (1.0 - b * exp(-f * f)) * exp(-beta * f);
+        s0 += p * h;
+        s1 += f * p * h;
+    }
+    *norm = s0;
+    return s1 / s0;
+}
+
+static void test_force_pdf(void)
+{
+    // b = 0.8 and the beta that makes the mean 1, so f = F/<F> has exactly this density.
+    const double b = 0.8;
+    double lo = 0.5, hi = 3.0, norm = 0.0;
+    for (int it = 0; it < 60; ++it) {
+        double mid = 0.5 * (lo + hi);
+        if (pdf_mean(b, mid, &norm) > 1.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    const double beta = 0.5 * (lo + hi);
+    pdf_mean(b, beta, &norm);
+    const double a = 1.0 / norm;
+    enum { N = 400000 };
+    double *fn = malloc(N * sizeof(double));
+    CHECK(fn != NULL);
+    if (!fn)
+        return;
+    bdl_rng rng;
+    bdl_rng_seed(&rng, 5);
+    // Rejection from the exponential e^(-beta f): accept with 1 - b e^(-f^2) <= 1.
+    for (long k = 0; k < N;) {
+        double f = -log(1.0 - bdl_rng_uniform(&rng)) / beta;
+        if (bdl_rng_uniform(&rng) < 1.0 - b * exp(-f * f))
+            fn[k++] = 3.7 * f; // any force unit: the fit sees F / <F>
+    }
+    enum { BINS = 40 };
+    double centre[BINS], pdf[BINS];
+    bdl_force_pdf_fit fit;
+    CHECK(bdl_force_pdf(fn, N, BINS, 5.0, centre, pdf, &fit) == BDL_OK);
+    printf("force pdf: fitted a %.3f b %.3f beta %.3f (true %.3f %.3f %.3f), rms %.2g\n", fit.a,
+           fit.b, fit.beta, a, b, beta, fit.rms);
+    // Sampling noise of 400 000 forces in 40 bins, and the sample mean's own error (0.2 %):
+    CHECK_CLOSE(fit.beta, beta, 0.03);
+    CHECK_CLOSE(fit.b, b, 0.05);
+    CHECK_CLOSE(fit.a, a, 0.03);
+    CHECK_CLOSE(bdl_force_pdf_eval(&fit, 1.0), a * (1.0 - b * exp(-1.0)) * exp(-beta), 0.03);
+    CHECK(bdl_force_pdf(fn, 5, BINS, 5.0, centre, pdf, &fit) == BDL_ERR_ARGS);
+    free(fn);
+}
+
+int main(void)
+{
+    test_coordination();
+    test_height_quantile();
+    test_lacey();
+    test_networks_chain();
+    test_networks_lattice();
+    test_force_pdf();
+    return bdl_test_summary("test_granular");
+}
