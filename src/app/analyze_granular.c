@@ -271,3 +271,84 @@ int bdl_analyze_networks(const char *file, const char *out, int bins, double fma
     free(c), free(pos), free(fn), free(z), free(centre), free(pdf);
     return rc;
 }
+
+int bdl_analyze_profile(const char *run, const char *out, double from, double to, int plots)
+{
+    char path[1300], header[65536];
+    snprintf(path, sizeof path, "%s/profile.csv", run);
+    FILE *f = fopen(path, "r");
+    if (!f || !fgets(header, sizeof header, f)) {
+        fprintf(stderr, "error: cannot read %s (written by runs with a gas)\n", path);
+        if (f)
+            fclose(f);
+        return 2;
+    }
+    fclose(f);
+    double *t = NULL;
+    long n = 0;
+    if (!bdl_analyze_read_column(run, "profile.csv", "time", &t, &n))
+        return 2;
+    snprintf(path, sizeof path, "%s/profile.csv", out);
+    bdl_atomic_file af;
+    if (bdl_atomic_open(&af, path) != BDL_OK) {
+        fprintf(stderr, "error: cannot write %s\n", path);
+        free(t);
+        return 2;
+    }
+    fprintf(af.file, "height,solids_fraction,std\n");
+    long used = 0;
+    double peak = 0.0, peak_h = 0.0;
+    for (char *tok = strtok(header, ",\r\n"); tok; tok = strtok(NULL, ",\r\n")) {
+        if (strncmp(tok, "phi_at_", 7) != 0)
+            continue;
+        double *x = NULL;
+        long m = 0;
+        if (!bdl_analyze_read_column(run, "profile.csv", tok, &x, &m) || m != n) {
+            free(x);
+            continue;
+        }
+        double s = 0.0, s2 = 0.0;
+        used = 0;
+        for (long i = 0; i < n; ++i)
+            if (t[i] >= from && t[i] <= to && isfinite(x[i])) {
+                s += x[i], s2 += x[i] * x[i];
+                used++;
+            }
+        free(x);
+        if (used == 0)
+            continue;
+        const double mean = s / (double)used, h = atof(tok + 7);
+        fprintf(af.file, "%.6g,%.6g,%.6g\n", h, mean,
+                sqrt(fmax(0.0, s2 / (double)used - mean * mean)));
+        if (mean > peak)
+            peak = mean, peak_h = h;
+    }
+    free(t);
+    if (used == 0) {
+        bdl_atomic_abort(&af);
+        fprintf(stderr, "error: no rows of %s/profile.csv between %g and %g s\n", run, from, to);
+        return 1;
+    }
+    if (bdl_atomic_commit(&af) != BDL_OK)
+        return 2;
+    printf("solids fraction against height, averaged over %ld rows: largest %.4f at %.4g m; "
+           "table in %s\n",
+           used, peak, peak_h, path);
+    if (plots) {
+        snprintf(path, sizeof path, "%s/profile.gp", out);
+        FILE *g = fopen(path, "w");
+        if (g) {
+            fprintf(g,
+                    "set terminal pngcairo size 600,700 font 'DejaVu Sans,11'\n"
+                    "set output '%s/profile.png'\nset datafile separator ','\n"
+                    "set xlabel 'solids fraction (layer mean)'\nset ylabel 'height [m]'\n"
+                    "set grid\nset key top right\nset xrange [0:*]\n"
+                    "plot '%s/profile.csv' every ::1 using 2:1:($2-$3):($2+$3) with xerrorlines "
+                    "pt 7 lc rgb '#3060c0' title 'time average +- standard deviation'\n",
+                    out, out);
+            fclose(g);
+            bdl_analyze_gnuplot(path);
+        }
+    }
+    return 0;
+}

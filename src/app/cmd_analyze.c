@@ -19,6 +19,7 @@ static const char analyze_usage[] =
     "       bedlam analyze mean RUN --column NAME [--from T] [--to T]\n"
     "       bedlam analyze phase RUN --column NAME --period P [--start T] [--from-cycle A]\n"
     "                            [--to-cycle B] [--bins N] [--below X] [--out DIR] [--no-plots]\n"
+    "       bedlam analyze profile RUN [--from T] [--to T] [--out DIR] [--no-plots]\n"
     "       bedlam analyze networks CONTACTS.csv [--bins N] [--fmax F] [--out DIR] [--no-plots]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
@@ -45,6 +46,10 @@ static const char analyze_usage[] =
     "to B-1 (default all), and the phase intervals where the mean is below X (--below; e.g.\n"
     "wall_force below a small value: the bed in flight). Writes phase_NAME.csv and\n"
     "phase_NAME.png (with the column against the cycle count beside it).\n"
+    "\n"
+    "profile: the solids fraction of each gas cell layer (RUN/profile.csv, runs with a gas)\n"
+    "averaged between --from and --to: the solids fraction against height. Writes profile.csv\n"
+    "and profile.png.\n"
     "\n"
     "networks: a contact file of a run ([output] contacts_interval): the force networks\n"
     "(connected sets of particles touching with a normal force: their number, the largest one's\n"
@@ -384,14 +389,15 @@ int bdl_cmd_analyze(int argc, char **argv)
             run = a;
         }
     }
-    static const char *const whats[] = {"sweep", "spectrum", "mean", "phase", "networks"};
+    static const char *const whats[] = {"sweep", "spectrum", "mean",
+                                        "phase", "networks", "profile"};
     int known = 0;
-    for (int k = 0; k < 5; ++k)
+    for (int k = 0; k < 6; ++k)
         known |= strcmp(what, whats[k]) == 0;
     if (!run || !known) {
         fprintf(stderr,
-                "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN' or "
-                "'networks CONTACTS.csv'\n\n%s",
+                "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
+                "'profile RUN' or 'networks CONTACTS.csv'\n\n%s",
                 analyze_usage);
         return 2;
     }
@@ -426,6 +432,8 @@ int bdl_cmd_analyze(int argc, char **argv)
         return analyze_sweep(run, out, plots);
     if (networks)
         return bdl_analyze_networks(run, out, ph.bins, fmax, plots);
+    if (strcmp(what, "profile") == 0)
+        return bdl_analyze_profile(run, out, from, to, plots);
     if (strcmp(what, "phase") == 0) {
         ph.file = file, ph.column = column, ph.out = out, ph.plots = plots;
         return bdl_analyze_phase(run, &ph);

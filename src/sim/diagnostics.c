@@ -100,8 +100,7 @@ int bdl_vertical_axis(const bdl_world *w, double *up)
     return axis;
 }
 
-/// Mean pressure of cell layer m along axis a.
-static double layer_pressure(const bdl_gas *gas, int a, int m)
+double bdl_gas_layer_mean(const struct bdl_gas *gas, const double *field, int a, int m)
 {
     const bdl_grid *g = &gas->grid;
     const int b = (a + 1) % 3, c = (a + 2) % 3;
@@ -110,9 +109,14 @@ static double layer_pressure(const bdl_gas *gas, int a, int m)
         for (int jb = 0; jb < g->n[b]; ++jb) {
             int ix[3];
             ix[a] = m, ix[b] = jb, ix[c] = jc;
-            sum += gas->p[bdl_grid_index(g, ix[0], ix[1], ix[2])];
+            sum += field[bdl_grid_index(g, ix[0], ix[1], ix[2])];
         }
     return sum / ((double)g->n[b] * g->n[c]);
+}
+
+static double layer_pressure(const bdl_gas *gas, int a, int m)
+{
+    return bdl_gas_layer_mean(gas, gas->p, a, m);
 }
 
 /// Layer-mean pressure at `height` above the domain's floor along the up axis: linear between

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "analysis/granular.h"
+#include "cfd/gas.h"
 #include "dem/contact_law.h"
 #include "io/atomic_file.h"
 #include "sim/diagnostics.h"
@@ -118,6 +119,31 @@ double bdl_wall_normal_force(const bdl_world *w, long i, int prim, bdl_vec3 n, d
     };
     const bdl_contact_params *cp = &w->wall_params[wall * w->scene.species_count + p->species[i]];
     return bdl_contact_eval(cp, w->hertz, 0, g, bdl_v3_zero(), w->dt).normal;
+}
+
+int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN])
+{
+    if (!w->gas)
+        return 0;
+    double up;
+    const int a = bdl_vertical_axis(w, &up);
+    const bdl_grid *g = &w->gas->grid;
+    if (names) {
+        snprintf(names[0], BDL_SPECIES_COLUMN_LEN, "time");
+        for (int k = 0; k < g->n[a]; ++k)
+            snprintf(names[k + 1], BDL_SPECIES_COLUMN_LEN, "phi_at_%.6g", (k + 0.5) * g->h[a]);
+    }
+    return g->n[a] + 1;
+}
+
+void bdl_profile_row(const bdl_world *w, double *row)
+{
+    double up;
+    const int a = bdl_vertical_axis(w, &up);
+    const int n = w->gas->grid.n[a];
+    row[0] = w->time;
+    for (int k = 0; k < n; ++k)
+        row[k + 1] = 1.0 - bdl_gas_layer_mean(w->gas, w->gas->eps, a, up > 0.0 ? k : n - 1 - k);
 }
 
 static void write_contact(FILE *f, const bdl_particles *p, long i, long j_label, int sj,

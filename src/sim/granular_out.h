@@ -23,6 +23,12 @@ int bdl_species_columns(const bdl_world *w, char names[][BDL_SPECIES_COLUMN_LEN]
 /// One row of species.csv for the current state.
 void bdl_species_row(const bdl_world *w, double *row);
 
+/// profile.csv (with a gas): the solids fraction 1 - voidage of each gas cell layer along
+/// gravity, from the floor up; columns "time" and "phi_at_H" with H the layer centre's height [m].
+/// Returns the column count into names (NULL: just the count).
+int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN]);
+void bdl_profile_row(const bdl_world *w, double *row);
+
 /// Normal force [N] of the contact of particles i and j, d = x_i - x_j (minimum image) and
 /// dist = |d| < r_i + r_j, as the contact law gives it now (the dashpot included).
 double bdl_pair_normal_force(const bdl_world *w, long i, long j, bdl_vec3 d, double dist);

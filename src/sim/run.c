@@ -53,6 +53,8 @@ typedef struct run_state {
     bdl_csv *csv;
     bdl_csv *species_csv; ///< species.csv, with two or more species only
     double *species_row;
+    bdl_csv *profile_csv; ///< profile.csv, with a gas only
+    double *profile_row;
     bdl_pvd *pvd;
     bdl_pvd *gas_pvd; ///< gas fields, with [gas] only
     bdl_guard_state guard;
@@ -169,6 +171,10 @@ static bdl_result write_diagnostics(run_state *rs, bdl_diagnostics *d)
     if (r == BDL_OK && rs->species_csv) {
         bdl_species_row(rs->world, rs->species_row);
         r = bdl_csv_row(rs->species_csv, rs->species_row);
+    }
+    if (r == BDL_OK && rs->profile_csv) {
+        bdl_profile_row(rs->world, rs->profile_row);
+        r = bdl_csv_row(rs->profile_csv, rs->profile_row);
     }
     return r;
 }
@@ -504,6 +510,27 @@ int bdl_run(const bdl_run_def *def)
             return finish(2, world, log);
         }
     }
+    const int profile_columns = bdl_profile_columns(world, NULL);
+    if (profile_columns > 0) {
+        char(*pnames)[BDL_SPECIES_COLUMN_LEN] = malloc((size_t)profile_columns * sizeof *pnames);
+        const char **names = malloc((size_t)profile_columns * sizeof *names);
+        rs.profile_row = malloc((size_t)profile_columns * sizeof(double));
+        if (pnames && names && rs.profile_row) {
+            bdl_profile_columns(world, pnames);
+            for (int c = 0; c < profile_columns; ++c)
+                names[c] = pnames[c];
+            path_join(sub, sizeof sub, out, "profile.csv");
+            if (def->resume)
+                bdl_csv_truncate_after(sub, world->time);
+            rs.profile_csv = bdl_csv_open(sub, names, profile_columns, def->resume != NULL);
+        }
+        free(pnames);
+        free(names);
+        if (!rs.profile_csv) {
+            bdl_error("cannot create output files in '%s'", out);
+            return finish(2, world, log);
+        }
+    }
     if (o->contacts_interval > 0.0) {
         path_join(sub, sizeof sub, out, "contacts");
         if (bdl_mkdir_p(sub) != BDL_OK) {
@@ -665,6 +692,9 @@ int bdl_run(const bdl_run_def *def)
     if (rs.species_csv)
         bdl_csv_close(rs.species_csv);
     free(rs.species_row);
+    if (rs.profile_csv)
+        bdl_csv_close(rs.profile_csv);
+    free(rs.profile_row);
     bdl_pvd_destroy(rs.pvd);
     bdl_pvd_destroy(rs.gas_pvd);
     bdl_result cr = write_checkpoint(&rs);
