@@ -102,7 +102,7 @@ int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
                     "plot '%s/phase_%s.csv' every ::1 using 1:3:4 with filledcurves lc rgb "
                     "'#c8d4ec' title 'range', '' every ::1 using 1:2 with lines lw 2 lc rgb "
                     "'#3060c0' title 'mean over cycles %ld-%ld'\n"
-                    "set xlabel 'cycles since the shaking started'\nset xrange [*:*]\n"
+                    "set xlabel 'cycles since the shaking started'\nset xrange [0:*]\n"
                     "plot '%s/%s' every ::1 using (($1-%.9g)/%.9g):(column('%s')) with lines "
                     "lc rgb '#c03030' title '%s' noenhanced\n"
                     "unset multiplot\n",
