@@ -20,6 +20,13 @@ if(BDL_WITH_SDL)
   # itself is leak-checked by test_render and cli_frames_*; here only memory errors count.
   if(BDL_SANITIZE)
     set_property(TEST view_xvfb APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
+  else()
+    # Every scene opens in the window (a few frames and a screenshot each); the sanitizer build
+    # leaves it to view_xvfb, which drives the same window through every key.
+    file(GLOB BDL_VIEW_SCENES ${PROJECT_SOURCE_DIR}/scenes/*.ini)
+    add_test(NAME view_scenes COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/view_open.sh
+      $<TARGET_FILE:bedlam> ${CMAKE_CURRENT_BINARY_DIR}/runs/view_scenes ${BDL_VIEW_SCENES})
+    set_tests_properties(view_scenes PROPERTIES LABELS "render;cli" TIMEOUT 600 SKIP_RETURN_CODE 77)
   endif()
 endif()
 bdl_cli_expect(cli_view_help 0 "Press H" view --help)
