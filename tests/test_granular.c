@@ -59,6 +59,25 @@ static void test_lacey(void)
     // Columns of 400 particles each hold A at p = 0.5 up to sampling noise: M = 1 +- a few
     // sampling errors of s^2 (its relative error is sqrt(2/100) for 100 columns).
     CHECK(fabs(m_columns - 1.0) < 0.5);
+    // Segregated with unequal cells: A packed three times as densely in the lower half as B in
+    // the upper (small particles below large ones), p = 3/4. Weighted by count, every pure layer
+    // is s0^2 and M = 0; unweighted (s^2 = 5/16 against s0^2 = 3/16), M would be -2/3.
+    {
+        int m = 0;
+        for (int i = 0; i < N; ++i) {
+            double z = bdl_rng_uniform(&rng);
+            if (i % 4 == 3) { // a quarter of the particles: B above
+                pos[m] = (bdl_vec3){bdl_rng_uniform(&rng), bdl_rng_uniform(&rng), 0.5 + 0.5 * z};
+                a[m++] = 0;
+            } else {
+                pos[m] = (bdl_vec3){bdl_rng_uniform(&rng), bdl_rng_uniform(&rng), 0.5 * z};
+                a[m++] = 1;
+            }
+        }
+        double m_dense = bdl_lacey(pos, a, m, lo, hi, layers, 5);
+        printf("lacey, segregated, A three times denser: layers %.4f (0)\n", m_dense);
+        CHECK(fabs(m_dense) < 2e-3);
+    }
     // Random: labels independent of position; M = 1 within the sampling error of s^2.
     for (int i = 0; i < N; ++i)
         a[i] = bdl_rng_uniform(&rng) < 0.3;

@@ -51,7 +51,6 @@ double bdl_lacey(const bdl_vec3 *pos, const uint8_t *is_a, long n, bdl_vec3 lo, 
         free(of_a);
         return NAN;
     }
-    long count_a = 0, inside = 0;
     for (long i = 0; i < n; ++i) {
         int cx = cell_of(pos[i].x, lo.x, hi.x, cells[0]);
         int cy = cell_of(pos[i].y, lo.y, hi.y, cells[1]);
@@ -61,25 +60,29 @@ double bdl_lacey(const bdl_vec3 *pos, const uint8_t *is_a, long n, bdl_vec3 lo, 
         long c = ((long)cz * cells[1] + cy) * cells[0] + cx;
         all[c]++;
         of_a[c] += is_a[i] != 0;
-        count_a += is_a[i] != 0;
-        inside++;
     }
+    // p over the cells used, so that a fully segregated bed gives s^2 = s0^2 exactly.
+    long used = 0, in_used = 0, a_used = 0;
+    for (long c = 0; c < total; ++c)
+        if (all[c] >= min_count && all[c] > 0) {
+            in_used += all[c];
+            a_used += of_a[c];
+            used++;
+        }
     double m = NAN;
-    const double p = inside > 0 ? (double)count_a / (double)inside : 0.0;
-    long used = 0, in_used = 0;
-    double s2 = 0.0;
-    for (long c = 0; c < total; ++c) {
-        if (all[c] < min_count || all[c] == 0)
-            continue;
-        double x = (double)of_a[c] / (double)all[c] - p;
-        s2 += x * x;
-        in_used += all[c];
-        used++;
-    }
+    const double p = in_used > 0 ? (double)a_used / (double)in_used : 0.0;
     if (used >= 2 && p > 0.0 && p < 1.0) {
+        // Each cell weighted by its particle count (its number of samples): cells holding many
+        // small particles and cells holding few large ones count as what they hold.
+        double s2 = 0.0;
+        for (long c = 0; c < total; ++c)
+            if (all[c] >= min_count && all[c] > 0) {
+                double x = (double)of_a[c] / (double)all[c] - p;
+                s2 += (double)all[c] * x * x;
+            }
+        s2 /= (double)in_used;
         const double nbar = (double)in_used / (double)used;
         const double s0 = p * (1.0 - p), sr = s0 / nbar;
-        s2 /= (double)used;
         if (nbar > 1.0)
             m = (s0 - s2) / (s0 - sr);
     }

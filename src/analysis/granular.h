@@ -31,7 +31,9 @@ double bdl_height_quantile(double *h, long n, double q);
 /// cells[0] x cells[1] x cells[2] equal cells over the box lo..hi: M = (s0^2 - s^2)/(s0^2 - sr^2)
 /// with p the number fraction of A, s0^2 = p(1-p) (fully segregated), sr^2 = p(1-p)/nbar (fully
 /// random, nbar the mean count of the cells used) and s^2 the mean squared deviation of the cells'
-/// fractions of A from p, over the cells holding at least `min_count` particles. 0 means
+/// fractions of A from p, each cell weighted by its particle count, over the cells holding at
+/// least `min_count` particles (p too is taken over those). Weighted, a fully segregated bed gives
+/// M = 0 even when the species' cells hold different numbers of particles. 0 means
 /// segregated, 1 random. A grid of columns (cells[vertical] = 1) measures horizontal segregation
 /// only, one of layers vertical segregation only. NAN when fewer than two cells qualify, when
 /// there is only one species, or when nbar <= 1.
