@@ -371,6 +371,9 @@ static void test_csv(const scratch *s)
         fputs("0.5,50", file);
         fclose(file);
     }
+    // The reader leaves the cut row out (a run killed while writing it).
+    CHECK(bdl_csv_read_column(path, "time", values, 8) == 5);
+    CHECK(bdl_csv_read_column(path, "step", NULL, 0) == 5);
     CHECK(bdl_csv_truncate_after(path, 0.1 * 2) == BDL_OK);
     CHECK(bdl_csv_read_column(path, "time", values, 8) == 3);
     CHECK(values[2] == 0.1 * 2);

@@ -231,6 +231,14 @@ static int find_column(char *header, const char *column)
     }
 }
 
+static int count_fields(const char *line)
+{
+    int n = 1;
+    for (const char *c = strchr(line, ','); c; c = strchr(c + 1, ','))
+        ++n;
+    return n;
+}
+
 /// The number in field `index` of a data line, or NaN if it is missing or not a number.
 static double field_value(const char *line, int index)
 {
@@ -253,16 +261,20 @@ long bdl_csv_read_column(const char *path, const char *column, double *out, long
     char *line = NULL;
     size_t capacity = 0;
     long length = read_line(file, &line, &capacity);
-    int index = -1;
+    int index = -1, fields = 0;
     if (length >= 0) {
         chomp(line, length);
+        fields = count_fields(line);
         index = find_column(line, column);
     }
     long count = 0;
     while (index >= 0 && (out == NULL || count < max) &&
            (length = read_line(file, &line, &capacity)) >= 0) {
+        const int complete = length > 0 && line[length - 1] == '\n';
         if (chomp(line, length) == 0)
             continue; // blank lines, e.g. at the end of a hand-edited file
+        if (!complete && count_fields(line) < fields)
+            break; // the last row, cut off when its run was killed while writing it
         if (out)
             out[count] = field_value(line, index);
         ++count;

@@ -36,7 +36,9 @@ bdl_result bdl_csv_truncate_after(const char *path, double t_keep);
 
 /// Reads the column named `column` into `out` (at most `max` values, in row order) and returns
 /// how many were stored; with `out` NULL returns the number of rows. Fields that are missing or
-/// not numbers read as NaN. Returns -1 if the file cannot be read or has no such column.
+/// not numbers read as NaN; a last row without its newline and with fewer fields than the header
+/// (cut off when its run was killed) is left out. Returns -1 if the file cannot be read or has no
+/// such column.
 long bdl_csv_read_column(const char *path, const char *column, double *out, long max);
 
 #endif
