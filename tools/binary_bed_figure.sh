@@ -15,7 +15,7 @@ set multiplot layout 1,2
 set xlabel 'time [s]'
 set grid
 set yrange [0:1.2]
-set key bottom right
+set key left center
 set title 'vertical mixing (Lacey index on layers)'
 set ylabel 'Lacey index of the glass'
 plot '$vm/species.csv' every ::1 using 1:'lacey_vertical' with lines lw 2 lc rgb '#c03030' title 'vibrated, mixed start', \
@@ -47,7 +47,7 @@ set xrange [0:15]
 set key top right
 set arrow from 5, graph 0 to 5, graph 1 nohead dt 2 lc rgb '#808080'
 do for [c in 'bed_height probe_pressure_drop'] {
-  set title c noenhanced
+  set title (c eq 'bed_height' ? 'bed height' : 'pressure drop between the probes at 5 and 35 mm')
   stats '$vm/analysis/'.c.'/spectrum.csv' every ::1 using 2 nooutput name 'V'
   stats '$gm/analysis/'.c.'/spectrum.csv' every ::1 using 2 nooutput name 'G'
   plot '$vm/analysis/'.c.'/spectrum.csv' every ::1 using 1:(\$2/V_max) with lines lw 2 lc rgb '#c03030' title 'vibrated (5 Hz)', \

@@ -24,7 +24,7 @@ set xlabel 'time [s]'
 set ylabel 'mean particle height [cm]'
 set grid
 set key bottom right
-set yrange [6:16]
+set yrange [6:17]
 set title 'real depth (1.5 cm, 24 000 spheres)'
 plot '$a/diagnostics.csv' every ::1 using 1:(100*column('mean_height')) with lines lw 1.5 lc rgb '#c03030' title '1.92 m/s (1.5 U_{mf})', \
      '$b/diagnostics.csv' every ::1 using 1:(100*column('mean_height')) with lines lw 1.5 lc rgb '#3060c0' title '2.56 m/s (2.0 U_{mf})', \
@@ -40,7 +40,7 @@ set output '$out/goldschmidt_profile.png'
 set terminal pngcairo size 640,520 font 'DejaVu Sans,11'
 set xlabel 'solids fraction (width-averaged, 5-10 s)'
 set ylabel 'height [cm]'
-set yrange [0:30]
+set yrange [0:40]
 set xrange [0:0.7]
 set key top right
 unset title
