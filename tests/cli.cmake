@@ -67,3 +67,7 @@ set_tests_properties(verify_quick PROPERTIES LABELS verify TIMEOUT 900)
 bdl_cli_expect(cli_analyze_help 0 "usage: bedlam analyze" analyze --help)
 bdl_cli_expect(cli_analyze_bad 2 "expected 'sweep RUN'" analyze nonsense somewhere)
 
+
+add_test(NAME cli_bench_bed_dir COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/bench_beds -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/bench_bed_cli.cmake)
+set_tests_properties(cli_bench_bed_dir PROPERTIES LABELS cli TIMEOUT 300)

@@ -16,6 +16,8 @@
 
 #include "app/app.h"
 #include "core/timer.h"
+#include "io/atomic_file.h"
+#include "io/checkpoint.h"
 #include "sim/world.h"
 
 static const char bench_usage[] =
@@ -38,6 +40,8 @@ static const char bench_usage[] =
     "  --skin X          neighbour-list skin as a fraction of the diameter (default: the scene\n"
     "                    default, 0.1)\n"
     "  --csv FILE        append the rows to FILE\n"
+    "  --bed-dir DIR     keep settled beds in DIR as checkpoints and start from them when they\n"
+    "                    exist (same size, depth and skin): repeated timings skip the settling\n"
     "  --quiet           no settling progress\n";
 
 // The protocol (docs/performance.md, "The bed").
@@ -67,6 +71,7 @@ typedef struct bench_opts {
     int scaling, quiet;
     double height, skin;
     const char *csv;
+    const char *bed_dir; ///< settled-bed cache (NULL: none)
 } bench_opts;
 
 typedef struct bed_info {
@@ -130,6 +135,41 @@ static int steps(bdl_world *w, long count)
     return 1;
 }
 
+/// Brings a freshly filled bed to rest at 1 g (the protocol at the top of the file).
+static int settle(bdl_world *w, long n, const bench_opts *o, double tc, double mgd)
+{ // Fall and compact at 5 g until the kinetic energy has died down.
+    long fall = 0;
+    int ok = 1;
+    while (ok && fall < BED_FALL_MAX) {
+        ok = steps(w, 250);
+        fall += 250;
+        double ke = kinetic_energy(w) / (BED_COMPACT_G * mgd);
+        if (!o->quiet)
+            printf("  settling %ld: fall %ld steps, KE/(m g d) %.2e, coordination %.2f\n", n, fall,
+                   ke, mean_coordination(w));
+        if (fall >= BED_FALL_MIN && ke < BED_SETTLED_KE)
+            break;
+    }
+    // Unload to 1 g slowly under strong damping, so that the stored elastic energy does not
+    // throw the bed up; hold; relax without damping at the timed time step.
+    w->background_damping[0] = BED_UNLOAD_DAMP;
+    for (long s = 0; ok && s < BED_UNLOAD; ++s) {
+        double g = BED_COMPACT_G + (1.0 - BED_COMPACT_G) * (double)(s + 1) / BED_UNLOAD;
+        w->scene.gravity = bdl_v3(0.0, 0.0, -g * BED_G);
+        ok = bdl_world_step(w) == BDL_OK;
+    }
+    ok = ok && steps(w, BED_HOLD1);
+    w->background_damping[0] = BED_HOLD_DAMP;
+    ok = ok && steps(w, BED_HOLD2);
+    w->background_damping[0] = 0.0;
+    w->dt = BED_RUN_DT * tc;
+    w->contact_time_dt_ratio = w->dt / tc;
+    ok = ok && steps(w, BED_RELAX);
+    if (!ok)
+        fprintf(stderr, "bench: a settling step failed\n");
+    return ok;
+}
+
 /// A settled, dense bed of n spheres (see the top of the file).
 static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
 {
@@ -177,42 +217,33 @@ static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
     w->dt = BED_SETTLE_DT * tc;
     double m = 1.0 / w->particles.inv_mass[0];
     double mgd = m * BED_G * d * (double)w->particles.count;
-
-    // Fall and compact at 5 g until the kinetic energy has died down.
-    long fall = 0;
-    int ok = 1;
-    while (ok && fall < BED_FALL_MAX) {
-        ok = steps(w, 250);
-        fall += 250;
-        double ke = kinetic_energy(w) / (BED_COMPACT_G * mgd);
+    char cached[1024] = "";
+    if (o->bed_dir)
+        snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g.chk", o->bed_dir, n, o->height,
+                 o->skin);
+    char why[256];
+    FILE *exists = cached[0] ? fopen(cached, "rb") : NULL;
+    int loaded = 0;
+    if (exists) {
+        fclose(exists);
+        loaded = bdl_checkpoint_load(w, cached, why, sizeof why) == BDL_OK;
+        if (!loaded)
+            fprintf(stderr, "bench: settling again: %s\n", why);
+    }
+    if (loaded) {
+        w->scene.gravity = bdl_v3(0.0, 0.0, -BED_G);
+        w->background_damping[0] = 0.0;
         if (!o->quiet)
-            printf("  settling %ld: fall %ld steps, KE/(m g d) %.2e, coordination %.2f\n", n, fall,
-                   ke, mean_coordination(w));
-        if (fall >= BED_FALL_MIN && ke < BED_SETTLED_KE)
-            break;
-    }
-    // Unload to 1 g slowly under strong damping, so that the stored elastic energy does not
-    // throw the bed up; hold; relax without damping at the timed time step.
-    w->background_damping[0] = BED_UNLOAD_DAMP;
-    for (long s = 0; ok && s < BED_UNLOAD; ++s) {
-        double g = BED_COMPACT_G + (1.0 - BED_COMPACT_G) * (double)(s + 1) / BED_UNLOAD;
-        w->scene.gravity = bdl_v3(0.0, 0.0, -g * BED_G);
-        ok = bdl_world_step(w) == BDL_OK;
-    }
-    ok = ok && steps(w, BED_HOLD1);
-    w->background_damping[0] = BED_HOLD_DAMP;
-    ok = ok && steps(w, BED_HOLD2);
-    w->background_damping[0] = 0.0;
-    w->dt = BED_RUN_DT * tc;
-    w->contact_time_dt_ratio = w->dt / tc;
-    ok = ok && steps(w, BED_RELAX);
-    if (!ok) {
-        fprintf(stderr, "bench: a settling step failed\n");
+            printf("  settled bed loaded from %s\n", cached);
+    } else if (!settle(w, n, o, tc, mgd)) {
         bdl_world_destroy(w);
         return NULL;
     }
+    if (cached[0] && !loaded && bdl_checkpoint_save(w, cached) != BDL_OK)
+        fprintf(stderr, "bench: cannot save the settled bed to %s (timing goes on)\n", cached);
+
     info->setup_seconds = bdl_wall_seconds() - t0;
-    info->settle_steps = fall + BED_UNLOAD + BED_HOLD1 + BED_HOLD2 + BED_RELAX;
+    info->settle_steps = w->step;
     info->dt = w->dt;
     info->ke = kinetic_energy(w) / mgd;
     info->max_overlap = max_overlap(w) / d;
@@ -227,6 +258,28 @@ static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
            w->particles.count, side / d, side / d, info->depth, info->coordination,
            100.0 * info->max_overlap, info->ke, w->dt, info->settle_steps, info->setup_seconds);
     return w;
+}
+
+/// How far apart in memory the partners of the listed pairs are: the share of pairs whose
+/// partner lies more than 64, 1024 and 16384 places after the particle (the particles are in
+/// Morton order of their cells; far partners are the ones the caches miss).
+static void report_locality(const bdl_world *w)
+{
+    const bdl_neighbor *nb = &w->neighbor;
+    long pairs = 0, far[3] = {0, 0, 0};
+    for (long i = 0; i < w->particles.count; ++i)
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            long gap = (long)nb->partner[k] - i;
+            ++pairs;
+            far[0] += gap > 64;
+            far[1] += gap > 1024;
+            far[2] += gap > 16384;
+        }
+    if (pairs > 0)
+        printf("partners more than 64 / 1024 / 16384 places away: %.1f / %.1f / %.1f %% of the "
+               "pairs\n",
+               100.0 * (double)far[0] / (double)pairs, 100.0 * (double)far[1] / (double)pairs,
+               100.0 * (double)far[2] / (double)pairs);
 }
 
 static int compare_double(const void *a, const void *b)
@@ -292,7 +345,7 @@ static long timed_steps(const bench_opts *o, long n)
 
 int bdl_cmd_bench(int argc, char **argv)
 {
-    bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL};
+    bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL, NULL};
     int k = 1;
     if (k < argc && strcmp(argv[k], "render") == 0)
         return bdl_bench_render(argc - 1, argv + 1);
@@ -319,6 +372,8 @@ int bdl_cmd_bench(int argc, char **argv)
             o.height = atof(v), ++k;
         } else if (v && strcmp(a, "--skin") == 0) {
             o.skin = atof(v), ++k;
+        } else if (v && strcmp(a, "--bed-dir") == 0) {
+            o.bed_dir = v, ++k;
         } else if (v && strcmp(a, "--csv") == 0) {
             o.csv = v, ++k;
         } else if (v && strcmp(a, "--threads") == 0) {
@@ -342,6 +397,10 @@ int bdl_cmd_bench(int argc, char **argv)
                         "--threads >= 1, --height >= 2, 0 < --skin <= 1\n");
         return 2;
     }
+    if (o.bed_dir && bdl_mkdir_p(o.bed_dir) != BDL_OK) {
+        fprintf(stderr, "error: --bed-dir: cannot create the folder '%s'\n", o.bed_dir);
+        return 2;
+    }
     FILE *csv = o.csv ? fopen(o.csv, "a") : NULL;
     if (o.csv && !csv) {
         fprintf(stderr, "error: cannot open '%s'\n", o.csv);
@@ -352,6 +411,7 @@ int bdl_cmd_bench(int argc, char **argv)
     bdl_world *w = make_bed(o.particles, &o, &bed);
     if (!w)
         return 1;
+    report_locality(w);
     long count = timed_steps(&o, w->particles.count);
     printf("timed: %ld steps per repetition\n", count);
     report_header();

@@ -12,6 +12,7 @@
 // applied right there: one pass over the particles per step. No floating-point atomics, no
 // thread-count-dependent sums: the state after N steps is bitwise the same for any thread count.
 #include "dem/integrate.h"
+#include "core/memory.h"
 
 #include <math.h>
 #include <omp.h>
@@ -391,15 +392,6 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
     }
 }
 
-static int grow(void **ptr, long count, size_t elem)
-{
-    void *q = realloc(*ptr, (size_t)(count > 0 ? count : 1) * elem);
-    if (!q)
-        return 0;
-    *ptr = q;
-    return 1;
-}
-
 /// Whether every particle has the same species, radius and mass (then the gather need not load
 /// them per pair).
 static void check_uniform(bdl_force_work *fw, const bdl_particles *p)
@@ -456,10 +448,10 @@ static bdl_result partition(bdl_force_work *fw, const bdl_neighbor *nb, const bd
                 count += nb->partner[k] >= fw->range[t + 1];
     if (count > fw->capacity) {
         long cap = count + count / 4 + 64;
-        if (!grow((void **)&fw->pair, cap, sizeof(int32_t)) ||
-            !grow((void **)&fw->pair_i, cap, sizeof(int32_t)) ||
-            !grow((void **)&fw->target, cap, sizeof(int32_t)) ||
-            !grow((void **)&fw->result, cap, sizeof *fw->result))
+        if (!bdl_grow((void **)&fw->pair, cap, sizeof(int32_t)) ||
+            !bdl_grow((void **)&fw->pair_i, cap, sizeof(int32_t)) ||
+            !bdl_grow((void **)&fw->target, cap, sizeof(int32_t)) ||
+            !bdl_grow((void **)&fw->result, cap, sizeof *fw->result))
             return BDL_ERR_NOMEM;
         fw->capacity = cap;
     }
@@ -470,7 +462,7 @@ static bdl_result partition(bdl_force_work *fw, const bdl_neighbor *nb, const bd
     long pairs = nb->start[n];
     if (pairs > fw->owner_capacity) {
         long cap = pairs + pairs / 16 + 64;
-        if (!grow((void **)&fw->owner, cap, sizeof(int32_t)))
+        if (!bdl_grow((void **)&fw->owner, cap, sizeof(int32_t)))
             return BDL_ERR_NOMEM;
         fw->owner_capacity = cap;
     }

@@ -1,17 +1,9 @@
 #include "dem/neighbor.h"
+#include "core/memory.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-static int grow_array(void **ptr, long count, size_t elem)
-{
-    void *q = realloc(*ptr, (size_t)(count > 0 ? count : 1) * elem);
-    if (!q)
-        return 0;
-    *ptr = q;
-    return 1;
-}
 
 static uint64_t spread_bits(uint64_t v)
 {
@@ -90,9 +82,9 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
     for (int a = 0; a < 3; ++a)
         if (nb->periodic[a] && nb->dims[a] < 3)
             return BDL_ERR_SCENE;
-    if (!grow_array((void **)&nb->cell_rank, nb->cell_count, sizeof(int32_t)) ||
-        !grow_array((void **)&nb->cell_start, nb->cell_count + 1, sizeof(int32_t)) ||
-        !grow_array((void **)&nb->cell_cursor, nb->cell_count, sizeof(int32_t)))
+    if (!bdl_grow((void **)&nb->cell_rank, nb->cell_count, sizeof(int32_t)) ||
+        !bdl_grow((void **)&nb->cell_start, nb->cell_count + 1, sizeof(int32_t)) ||
+        !bdl_grow((void **)&nb->cell_cursor, nb->cell_count, sizeof(int32_t)))
         return BDL_ERR_NOMEM;
     return rank_cells(nb);
 }
@@ -179,13 +171,13 @@ static bdl_result reserve_particles(bdl_neighbor *nb, long n)
     if (n <= nb->scratch_count && nb->start)
         return BDL_OK;
     long cap = n + n / 16 + 16;
-    int ok = grow_array((void **)&nb->start, cap + 1, sizeof(int32_t)) &&
-             grow_array((void **)&nb->stash_start, cap + 1, sizeof(int32_t)) &&
-             grow_array((void **)&nb->wall_start, cap + 1, sizeof(int32_t)) &&
-             grow_array((void **)&nb->old_wall_start, cap + 1, sizeof(int32_t)) &&
-             grow_array((void **)&nb->perm, cap, sizeof(int32_t)) &&
-             grow_array((void **)&nb->pcell, cap, sizeof(int32_t)) &&
-             grow_array(&nb->scratch, cap, sizeof(bdl_vec3));
+    int ok = bdl_grow((void **)&nb->start, cap + 1, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->stash_start, cap + 1, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->wall_start, cap + 1, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->old_wall_start, cap + 1, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->perm, cap, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->pcell, cap, sizeof(int32_t)) &&
+             bdl_grow(&nb->scratch, cap, sizeof(bdl_vec3));
     if (!ok)
         return BDL_ERR_NOMEM;
     nb->scratch_count = cap;
@@ -197,10 +189,10 @@ static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
     if (pairs <= nb->pair_capacity && nb->partner)
         return BDL_OK;
     long cap = pairs + pairs / 16 + 64;
-    int ok = grow_array((void **)&nb->partner, cap, sizeof(int32_t)) &&
-             grow_array((void **)&nb->touching, cap, 1);
+    int ok = bdl_grow((void **)&nb->partner, cap, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->touching, cap, 1);
     if (ok && nb->friction)
-        ok = grow_array((void **)&nb->history, cap, sizeof(bdl_vec3));
+        ok = bdl_grow((void **)&nb->history, cap, sizeof(bdl_vec3));
     if (!ok)
         return BDL_ERR_NOMEM;
     nb->pair_capacity = cap;
@@ -216,8 +208,8 @@ static bdl_result stash_history(bdl_neighbor *nb)
         touching += nb->touching[k];
     if (touching > nb->stash_capacity) {
         long cap = touching + touching / 8 + 64;
-        if (!grow_array((void **)&nb->stash_history, cap, sizeof(bdl_vec3)) ||
-            !grow_array((void **)&nb->stash_partner, cap, sizeof(int32_t)))
+        if (!bdl_grow((void **)&nb->stash_history, cap, sizeof(bdl_vec3)) ||
+            !bdl_grow((void **)&nb->stash_partner, cap, sizeof(int32_t)))
             return BDL_ERR_NOMEM;
         nb->stash_capacity = cap;
     }
@@ -468,10 +460,10 @@ static bdl_result reserve_wall_pairs(bdl_neighbor *nb, long count)
     long cap = count + count / 8 + 64;
     // Force and contact flags are not double-buffered: they must fit either list.
     long shared = cap > nb->old_wall_capacity ? cap : nb->old_wall_capacity;
-    int ok = grow_array((void **)&nb->wall_prim, cap, sizeof(int32_t)) &&
-             grow_array((void **)&nb->wall_history, cap, sizeof(bdl_vec3)) &&
-             grow_array((void **)&nb->wall_force, shared, sizeof(bdl_vec3)) &&
-             grow_array((void **)&nb->wall_touching, shared, 1);
+    int ok = bdl_grow((void **)&nb->wall_prim, cap, sizeof(int32_t)) &&
+             bdl_grow((void **)&nb->wall_history, cap, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&nb->wall_force, shared, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&nb->wall_touching, shared, 1);
     if (!ok)
         return BDL_ERR_NOMEM;
     nb->wall_pair_capacity = cap;

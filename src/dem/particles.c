@@ -1,35 +1,27 @@
 #include "dem/particles.h"
+#include "core/memory.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-static int grow(void **ptr, long count, size_t elem)
-{
-    void *q = realloc(*ptr, (size_t)count * elem);
-    if (!q)
-        return 0;
-    *ptr = q;
-    return 1;
-}
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)
 {
     if (capacity <= p->capacity)
         return BDL_OK;
-    int ok = grow((void **)&p->pos, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->vel, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->omega, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->force, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->torque, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->pos_at_build, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->radius, capacity, sizeof(double)) &&
-             grow((void **)&p->inv_mass, capacity, sizeof(double)) &&
-             grow((void **)&p->species, capacity, sizeof(int32_t)) &&
-             grow((void **)&p->id, capacity, sizeof(uint32_t));
+    int ok = bdl_grow((void **)&p->pos, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->vel, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->omega, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->force, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->torque, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->pos_at_build, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->radius, capacity, sizeof(double)) &&
+             bdl_grow((void **)&p->inv_mass, capacity, sizeof(double)) &&
+             bdl_grow((void **)&p->species, capacity, sizeof(int32_t)) &&
+             bdl_grow((void **)&p->id, capacity, sizeof(uint32_t));
     if (ok && p->fluid)
-        ok = grow((void **)&p->fluid_accel, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->vel_mark, capacity, sizeof(bdl_vec3)) &&
-             grow((void **)&p->drag_accel, capacity, sizeof(bdl_vec3));
+        ok = bdl_grow((void **)&p->fluid_accel, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->vel_mark, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->drag_accel, capacity, sizeof(bdl_vec3));
     if (!ok)
         return BDL_ERR_NOMEM;
     p->capacity = capacity;

@@ -1,0 +1,18 @@
+# bedlam bench dem --bed-dir: the first run settles a bed and saves it, the second starts from
+# the saved bed, which is the same state (same coordination, overlap and kinetic energy).
+file(REMOVE_RECURSE ${WORK})
+set(ARGS bench dem --particles 300 --threads 1 --repeat 1 --steps 20 --bed-dir ${WORK}/beds)
+execute_process(COMMAND ${BEDLAM} ${ARGS} --quiet RESULT_VARIABLE a OUTPUT_VARIABLE first)
+execute_process(COMMAND ${BEDLAM} ${ARGS} RESULT_VARIABLE b OUTPUT_VARIABLE second)
+if(NOT a EQUAL 0 OR NOT b EQUAL 0)
+  message(FATAL_ERROR "bench runs failed: ${a} ${b}\n${first}\n${second}")
+endif()
+if(NOT second MATCHES "settled bed loaded from")
+  message(FATAL_ERROR "the second run did not load the saved bed:\n${second}")
+endif()
+string(REGEX MATCH "coordination [0-9.]+, largest overlap [0-9.]+% of d, KE [0-9.e+-]+" s1 "${first}")
+string(REGEX MATCH "coordination [0-9.]+, largest overlap [0-9.]+% of d, KE [0-9.e+-]+" s2 "${second}")
+if(s1 STREQUAL "" OR NOT s1 STREQUAL s2)
+  message(FATAL_ERROR "loaded bed differs from the settled one: '${s1}' vs '${s2}'")
+endif()
+message("settled and loaded: ${s1}")
