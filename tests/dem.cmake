@@ -16,3 +16,4 @@ bdl_add_test(test_restitution_limits SOURCES test_restitution_limits.c LABELS "d
 bdl_add_test(test_stiff_contacts SOURCES test_stiff_contacts.c LABELS "dem;stability" TIMEOUT 600)
 bdl_add_test(test_size_ratio SOURCES test_size_ratio.c LABELS "dem;stability" TIMEOUT 600)
 bdl_add_test(test_violent_shaking SOURCES test_violent_shaking.c LABELS "dem;stability" TIMEOUT 600)
+bdl_add_test(test_particles SOURCES test_particles.c LABELS dem)

@@ -75,7 +75,8 @@ typedef struct bdl_pair_batch {
 /// What the gather reads, copied out of the structures so that the compiler keeps it in
 /// registers (a store through uint8_t * may alias anything).
 typedef struct gather_view {
-    const bdl_vec3 *pos, *vel, *omega, *force, *torque;
+    const bdl_vec3 *pos, *vel, *omega;
+    const bdl_wrench *load;
     const double *radius, *inv_mass;
     const int32_t *species, *partner;
     uint8_t *touching;
@@ -92,8 +93,7 @@ static gather_view make_view(const bdl_particles *p, bdl_neighbor *nb, const bdl
     v.pos = p->pos;
     v.vel = p->vel;
     v.omega = p->omega;
-    v.force = p->force;
-    v.torque = p->torque;
+    v.load = p->load;
     v.radius = p->radius;
     v.inv_mass = p->inv_mass;
     v.species = p->species;
@@ -502,9 +502,9 @@ static bdl_result partition(bdl_force_work *fw, const bdl_neighbor *nb, const bd
 static inline void add_to_j(bdl_particles *p, uint8_t *coordination, int32_t j, bdl_vec3 force,
                             bdl_vec3 torque_j, int torques)
 {
-    p->force[j] = bdl_v3_sub(p->force[j], force);
+    p->load[j].force = bdl_v3_sub(p->load[j].force, force);
     if (torques)
-        p->torque[j] = bdl_v3_add(p->torque[j], torque_j);
+        p->load[j].torque = bdl_v3_add(p->load[j].torque, torque_j);
     if (coordination[j] < 255)
         coordination[j]++;
 }
@@ -520,8 +520,7 @@ static inline void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl
     double b = def->background_damping[p->species[i]];
     if (b > 0.0)
         f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
-    p->force[i] = f;
-    p->torque[i] = t;
+    p->load[i] = (bdl_wrench){f, t};
     if (kick > 0.0) {
         double im = p->inv_mass[i];
         bdl_vec3 g = p->fluid_accel ? bdl_v3_add(def->gravity, p->fluid_accel[i]) : def->gravity;
@@ -568,8 +567,8 @@ static BDL_FORCE_INLINE int gather_run(pair_batch *b, const gather_view *v,
             BDL_PREFETCH(&v->pos[jp]);
             BDL_PREFETCH(&v->vel[jp]);
             BDL_PREFETCH(&v->omega[jp]);
-            BDL_PREFETCH(&v->force[jp]);
-            BDL_PREFETCH(&v->torque[jp]);
+            BDL_PREFETCH(&v->load[jp]);
+            BDL_PREFETCH(&v->load[jp].torque.z); // a record may straddle two lines
         }
         int32_t i = owner[k];
         if (o < out_end && boundary[o] == k) {
@@ -675,7 +674,7 @@ static BDL_FORCE_INLINE int accumulate(const pair_batch *b, int q, int q_end, in
 
 static inline particle_sum sum_start(const bdl_particles *p, const uint8_t *coordination, long i)
 {
-    particle_sum s = {p->force[i], p->torque[i], coordination[i]};
+    particle_sum s = {p->load[i].force, p->load[i].torque, coordination[i]};
     return s;
 }
 
@@ -698,8 +697,7 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
     gather_view v = make_view(p, nb, def, fw);
     const int32_t *start = nb->start;
     for (long i = lo; i < hi; ++i) {
-        p->force[i] = bdl_v3_zero();
-        p->torque[i] = bdl_v3_zero();
+        p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()};
         coordination[i] = 0;
     }
     // Boundary pairs from earlier ranges first: their i are smaller than all of ours.
@@ -812,9 +810,10 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
     for (long i = 0; i < n; ++i) {
         double im = p->inv_mass[i];
         bdl_vec3 g = p->fluid_accel ? bdl_v3_add(gravity, p->fluid_accel[i]) : gravity;
-        bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, h), p->force[i], h * im);
+        bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, h), p->load[i].force, h * im);
         p->vel[i] = v;
-        p->omega[i] = bdl_v3_madd(p->omega[i], p->torque[i], h * bdl_particle_inv_inertia(p, i));
+        p->omega[i] =
+            bdl_v3_madd(p->omega[i], p->load[i].torque, h * bdl_particle_inv_inertia(p, i));
         bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);
         p->pos[i] = x;
         double d2 = bdl_v3_len2(bdl_v3_sub(x, p->pos_at_build[i]));

@@ -11,8 +11,7 @@ bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)
     int ok = bdl_grow((void **)&p->pos, capacity, sizeof(bdl_vec3)) &&
              bdl_grow((void **)&p->vel, capacity, sizeof(bdl_vec3)) &&
              bdl_grow((void **)&p->omega, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->force, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->torque, capacity, sizeof(bdl_vec3)) &&
+             bdl_grow((void **)&p->load, capacity, sizeof(bdl_wrench)) &&
              bdl_grow((void **)&p->pos_at_build, capacity, sizeof(bdl_vec3)) &&
              bdl_grow((void **)&p->radius, capacity, sizeof(double)) &&
              bdl_grow((void **)&p->inv_mass, capacity, sizeof(double)) &&
@@ -33,8 +32,7 @@ void bdl_particles_free(bdl_particles *p)
     free(p->pos);
     free(p->vel);
     free(p->omega);
-    free(p->force);
-    free(p->torque);
+    free(p->load);
     free(p->pos_at_build);
     free(p->radius);
     free(p->inv_mass);
@@ -59,8 +57,7 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
     p->pos[i] = pos;
     p->vel[i] = vel;
     p->omega[i] = bdl_v3_zero();
-    p->force[i] = bdl_v3_zero();
-    p->torque[i] = bdl_v3_zero();
+    p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()};
     p->pos_at_build[i] = pos;
     p->radius[i] = radius;
     p->inv_mass[i] = 1.0 / mass;
@@ -82,14 +79,25 @@ static void permute_array(void *array, size_t elem, long n, const int32_t *perm,
     memcpy(array, scratch, (size_t)n * elem);
 }
 
+/// Permutes the force-torque records with scratch for one vector per particle: the forces go to
+/// scratch, the torques to the freed force slots, then both to their places.
+static void permute_load(bdl_wrench *load, long n, const int32_t *perm, bdl_vec3 *scratch)
+{
+    for (long k = 0; k < n; ++k)
+        scratch[k] = load[perm[k]].force;
+    for (long k = 0; k < n; ++k)
+        load[k].force = load[perm[k]].torque;
+    for (long k = 0; k < n; ++k)
+        load[k] = (bdl_wrench){scratch[k], load[k].force};
+}
+
 void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
 {
     long n = p->count;
     permute_array(p->pos, sizeof(bdl_vec3), n, perm, scratch);
     permute_array(p->vel, sizeof(bdl_vec3), n, perm, scratch);
     permute_array(p->omega, sizeof(bdl_vec3), n, perm, scratch);
-    permute_array(p->force, sizeof(bdl_vec3), n, perm, scratch);
-    permute_array(p->torque, sizeof(bdl_vec3), n, perm, scratch);
+    permute_load(p->load, n, perm, scratch);
     permute_array(p->pos_at_build, sizeof(bdl_vec3), n, perm, scratch);
     permute_array(p->radius, sizeof(double), n, perm, scratch);
     permute_array(p->inv_mass, sizeof(double), n, perm, scratch);

@@ -1,6 +1,6 @@
 // bedlam — particle storage (structure of arrays).
 //
-// Hot state (position, velocity, spin, force, torque) lives in separate arrays from cold
+// Hot state (position, velocity, spin, force and torque) lives in separate arrays from cold
 // metadata (species, id). Particles may be re-ordered for locality at neighbour-list rebuilds;
 // `id` is stable for a particle's lifetime and is what output and checkpoints use.
 #ifndef BDL_PARTICLES_H
@@ -11,14 +11,20 @@
 #include "core/error.h"
 #include "core/vec3.h"
 
+/// Force and torque on a particle, side by side: the force pass adds a pair's reaction to both of
+/// the partner's, which then sit in one or two cache lines instead of two arrays' worth.
+typedef struct bdl_wrench {
+    bdl_vec3 force;  ///< contact, wall and damping force of this step, gravity excluded [N]
+    bdl_vec3 torque; ///< total torque of this step [N m]
+} bdl_wrench;
+
 typedef struct bdl_particles {
     long count;             ///< live particles
     long capacity;          ///< allocated slots
     bdl_vec3 *pos;          ///< centre position [m]
     bdl_vec3 *vel;          ///< velocity [m/s]
     bdl_vec3 *omega;        ///< angular velocity [rad/s]
-    bdl_vec3 *force;        ///< contact, wall and damping force of this step, gravity excluded [N]
-    bdl_vec3 *torque;       ///< total torque of this step [N m]
+    bdl_wrench *load;       ///< force and torque of this step
     bdl_vec3 *pos_at_build; ///< position when the neighbour list was built [m]
     double *radius;         ///< [m]
     double *inv_mass;       ///< 1/m [1/kg]

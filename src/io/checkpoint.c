@@ -8,7 +8,7 @@
 #include "io/atomic_file.h"
 
 // Version 2: the gas state and the inlet scale among the live parameters.
-static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '3'};
+static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '4'};
 
 uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
 {
@@ -79,8 +79,7 @@ static int state_fields(bdl_world *w, field *f)
     f[k++] = (field){p->pos, n * v};
     f[k++] = (field){p->vel, n * v};
     f[k++] = (field){p->omega, n * v};
-    f[k++] = (field){p->force, n * v};
-    f[k++] = (field){p->torque, n * v};
+    f[k++] = (field){p->load, n * sizeof(bdl_wrench)};
     f[k++] = (field){p->pos_at_build, n * v};
     f[k++] = (field){p->radius, n * sizeof(double)};
     f[k++] = (field){p->inv_mass, n * sizeof(double)};

@@ -164,7 +164,7 @@ static bdl_result pour(bdl_world *w)
             return BDL_ERR_NOMEM;
         for (long i = before; i < w->particles.count; ++i) {
             w->inserted_energy += particle_energy(&w->particles, i, w->scene.gravity);
-            w->particles.force[i] = bdl_v3_zero();
+            w->particles.load[i].force = bdl_v3_zero();
         }
     }
     return BDL_OK;
