@@ -137,7 +137,8 @@ static int steps(bdl_world *w, long count)
 
 /// Brings a freshly filled bed to rest at 1 g (the protocol at the top of the file).
 static int settle(bdl_world *w, long n, const bench_opts *o, double tc, double mgd)
-{ // Fall and compact at 5 g until the kinetic energy has died down.
+{
+    // Fall and compact at 5 g until the kinetic energy has died down.
     long fall = 0;
     int ok = 1;
     while (ok && fall < BED_FALL_MAX) {

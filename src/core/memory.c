@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <sys/mman.h>
 
-enum { HUGE_PAGE = 2 << 20, HUGE_MIN = 2 << 20 };
+enum { HUGE_PAGE = 2 << 20 }; ///< also the smallest block worth advising
 
 /// Advises huge pages for the whole 2 MiB pages inside [p, p + bytes). Only pages first touched
 /// after the advice are affected, which is why it follows every (re)allocation; failure (no
@@ -29,7 +29,7 @@ int bdl_grow(void **ptr, long count, size_t elem)
     if (!q)
         return 0;
     *ptr = q;
-    if (bytes >= HUGE_MIN)
+    if (bytes >= HUGE_PAGE)
         advise_huge(q, bytes);
     return 1;
 }

@@ -7,7 +7,8 @@
 #include "cfd/gas.h"
 #include "io/atomic_file.h"
 
-// Version 2: the gas state and the inlet scale among the live parameters.
+// Version 2: the gas state and the inlet scale among the live parameters. 3: particles that left
+// through an outlet. 4: force and torque side by side in one record per particle.
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '4'};
 
 uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
