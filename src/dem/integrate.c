@@ -700,10 +700,10 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
     pair_batch *b = fw->batch[t];
     gather_view v = make_view(p, nb, def, fw);
     const int32_t *start = nb->start;
-    for (long i = lo; i < hi; ++i) {
-        p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()};
-        coordination[i] = 0;
-    }
+    if (!def->loads_cleared)
+        for (long i = lo; i < hi; ++i)
+            p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()};
+    memset(coordination + lo, 0, (size_t)(hi - lo));
     // Boundary pairs from earlier ranges first: their i are smaller than all of ours.
     for (long c = fw->in_start[t]; c < fw->in_start[t + 1]; ++c) {
         const pair_result *r = &fw->result[fw->target[c]];
@@ -824,6 +824,7 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
             p->vel[i] = v;
             p->omega[i] =
                 bdl_v3_madd(p->omega[i], p->load[i].torque, h * bdl_particle_inv_inertia(p, i));
+            p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()}; // for the force pass
             bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);
             p->pos[i] = x;
             double d2 = bdl_v3_len2(bdl_v3_sub(x, p->pos_at_build[i]));

@@ -25,6 +25,7 @@ typedef struct bdl_force_def {
     int hertz, friction, rolling;
     double dt;         ///< [s] (tangential spring increment)
     long parallel_min; ///< fewer particles than this: one thread
+    int loads_cleared; ///< force and torque are zero already (bdl_dem_kick_drift cleared them)
 } bdl_force_def;
 
 /// Below this many particles a parallel region costs more than it saves. (Measured on the
@@ -71,8 +72,9 @@ bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
                           const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
                           double kick);
 
-/// The opening half of a step in one pass: v += h (F/m + g), w += h T/I, x += dt v. Returns the
-/// largest squared displacement since the neighbour list was built [m^2].
+/// The opening half of a step in one pass: v += h (F/m + g), w += h T/I, x += dt v; then clears
+/// F and T for the force pass (which may skip clearing them: bdl_force_def.loads_cleared). Returns
+/// the largest squared displacement since the neighbour list was built [m^2].
 double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double dt);
 
 /// Power delivered by moving walls to the particles this step [W]: sum F_wall . v_wall.

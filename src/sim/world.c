@@ -26,6 +26,7 @@ static bdl_force_def force_def(const bdl_world *w)
     def.rolling = w->rolling;
     def.dt = w->dt;
     def.parallel_min = w->parallel_min;
+    def.loads_cleared = 0;
     return def;
 }
 
@@ -122,7 +123,8 @@ void bdl_world_apply_live(bdl_world *w)
 }
 
 /// Rebuilds the lists if needed, then evaluates all forces; with kick > 0 the closing half kick
-/// of the step is applied in the same pass.
+/// of the step is applied in the same pass, and the forces are taken as cleared by the kick and
+/// drift that opened the step.
 static bdl_result forces(bdl_world *w, double max_move2, double kick)
 {
     bdl_particles *p = &w->particles;
@@ -139,6 +141,7 @@ static bdl_result forces(bdl_world *w, double max_move2, double kick)
             return r;
     }
     bdl_force_def def = force_def(w);
+    def.loads_cleared = kick > 0.0;
     return bdl_dem_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination, kick);
 }
 
