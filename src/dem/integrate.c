@@ -571,7 +571,7 @@ static BDL_FORCE_INLINE int gather_run(pair_batch *b, const gather_view *v,
             BDL_PREFETCH(&v->load[jp].torque.z); // a record may straddle two lines
             // The springs are read in list order, but only those of touching pairs and in a
             // later loop: the hardware does not see that stream coming.
-            if (v->history)
+            if (v->history && k + 3 * PREFETCH_AHEAD < k_last)
                 BDL_PREFETCH(&v->history[k + 3 * PREFETCH_AHEAD]);
         }
         int32_t i = owner[k];
@@ -812,7 +812,7 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
     double max2 = 0.0;
     // Each thread sweeps its share of the particles backwards: the force pass that follows
     // starts at the low end of the same share, so the state it reads first is what this pass
-    // touched last and is still in the caches (+8 % at 10^6 particles, docs/performance.md).
+    // touched last and is still in the caches (docs/performance.md, "Memory").
 #pragma omp parallel reduction(max : max2) if (n >= BDL_PARALLEL_MIN)
     {
         long t = omp_get_thread_num(), threads = omp_get_num_threads();
