@@ -2,6 +2,7 @@
 #include "sim/world.h"
 
 #include "cfd/gas.h"
+#include "core/memory.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -129,10 +130,8 @@ static bdl_result forces(bdl_world *w, double max_move2, double kick)
 {
     bdl_particles *p = &w->particles;
     if (w->coordination_capacity < p->capacity) {
-        uint8_t *c = realloc(w->coordination, (size_t)p->capacity);
-        if (!c)
+        if (!bdl_grow((void **)&w->coordination, p->capacity, 1))
             return BDL_ERR_NOMEM;
-        w->coordination = c;
         w->coordination_capacity = p->capacity;
     }
     if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls, max_move2)) {
@@ -197,10 +196,8 @@ static bdl_result remove_outflow(bdl_world *w, double *max_move2)
     if (leaving == 0)
         return BDL_OK;
     if (w->drop_capacity < n) {
-        uint8_t *d = realloc(w->drop, (size_t)p->capacity);
-        if (!d)
+        if (!bdl_grow((void **)&w->drop, p->capacity, 1))
             return BDL_ERR_NOMEM;
-        w->drop = d;
         w->drop_capacity = p->capacity;
     }
     for (long i = 0; i < n; ++i) {
