@@ -22,9 +22,11 @@
 #include "dem/contact_law.h"
 
 #if defined(__GNUC__)
-#define BDL_PREFETCH(address) __builtin_prefetch(address)
+#define BDL_PREFETCH(address)    __builtin_prefetch(address)
+#define BDL_PREFETCH_L2(address) __builtin_prefetch(address, 0, 2)
 #else
-#define BDL_PREFETCH(address) ((void)(address))
+#define BDL_PREFETCH(address)    ((void)(address))
+#define BDL_PREFETCH_L2(address) ((void)(address))
 #endif
 
 /// Evaluated boundary pair (see partition()).
@@ -47,9 +49,16 @@ typedef struct bdl_pair_result {
 // at each neighbour build) the gather skips those loads; the arithmetic, and so the result, is
 // the same either way.
 
-/// How many pairs ahead the gather prefetches the partner's state.
+/// How many pairs ahead the gather prefetches the partner's state (into L2: far enough ahead to
+/// cover a miss to memory in the large beds, without crowding L1 in the small ones).
 #ifndef PREFETCH_AHEAD
-#define PREFETCH_AHEAD 8 ///< pairs
+#define PREFETCH_AHEAD 32 ///< pairs
+#endif
+
+/// How many particles (or pairs) ahead the force pass prefetches the arrays it reads in order:
+/// it reads more of them at once than the hardware prefetcher follows (docs/performance.md).
+#ifndef STREAM_AHEAD
+#define STREAM_AHEAD 32
 #endif
 
 /// Listed pairs per batch. A particle with more pairs is evaluated in several batches.
@@ -529,6 +538,21 @@ static inline void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl
     }
 }
 
+/// Prefetches the per-particle arrays the force pass reads in index order, for particle i (when
+/// below hi).
+static inline void prefetch_streams(const bdl_particles *p, const bdl_neighbor *nb,
+                                    const uint8_t *coordination, long i, long hi)
+{
+    if (i >= hi)
+        return;
+    BDL_PREFETCH(&nb->start[i + 1]);
+    BDL_PREFETCH(&nb->wall_start[i + 1]);
+    BDL_PREFETCH(&p->species[i]);
+    BDL_PREFETCH(&p->inv_mass[i]);
+    BDL_PREFETCH(&p->radius[i]);
+    BDL_PREFETCH(&coordination[i]);
+}
+
 /// Gathers pairs [k, k_end) of particle pi into the batch from slot m on, boundary pairs
 /// excepted (the cursor *out skips them); returns the new slot count.
 static BDL_FORCE_INLINE int gather_pairs(pair_batch *b, int m, const gather_view *v,
@@ -564,15 +588,19 @@ static BDL_FORCE_INLINE int gather_run(pair_batch *b, const gather_view *v,
             // The partner a few pairs ahead is read soon (its position by this loop, the rest
             // by the second gather loop and the scatter): ask for it now.
             int32_t jp = partner[k + PREFETCH_AHEAD];
-            BDL_PREFETCH(&v->pos[jp]);
-            BDL_PREFETCH(&v->vel[jp]);
-            BDL_PREFETCH(&v->omega[jp]);
-            BDL_PREFETCH(&v->load[jp]);
-            BDL_PREFETCH(&v->load[jp].torque.z); // a record may straddle two lines
+            BDL_PREFETCH_L2(&v->pos[jp]);
+            BDL_PREFETCH_L2(&v->vel[jp]);
+            BDL_PREFETCH_L2(&v->omega[jp]);
+            BDL_PREFETCH_L2(&v->load[jp]);
+            BDL_PREFETCH_L2(&v->load[jp].torque.z); // a record may straddle two lines
             // The springs are read in list order, but only those of touching pairs and in a
             // later loop: the hardware does not see that stream coming.
             if (v->history && k + 3 * PREFETCH_AHEAD < k_last)
                 BDL_PREFETCH(&v->history[k + 3 * PREFETCH_AHEAD]);
+        }
+        if (k + STREAM_AHEAD < k_last) {
+            BDL_PREFETCH(&owner[k + STREAM_AHEAD]);
+            BDL_PREFETCH(&v->touching[k + STREAM_AHEAD]);
         }
         int32_t i = owner[k];
         if (o < out_end && boundary[o] == k) {
@@ -735,8 +763,10 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
         // their pairs; b->end[i - first] ends the slots of particle i.
         long first = i, out_first = out;
         int32_t k0 = start[first];
-        while (i < hi && i - first < BATCH && start[i + 1] - k0 <= BATCH)
+        while (i < hi && i - first < BATCH && start[i + 1] - k0 <= BATCH) {
+            prefetch_streams(p, nb, coordination, i + STREAM_AHEAD, hi);
             b->end[i++ - first] = -1;
+        }
         int32_t k1 = start[i];
         int m = uniform ? gather_run(b, &v, fw, first, k0, k1, &out, out_end, 1)
                         : gather_run(b, &v, fw, first, k0, k1, &out, out_end, 0);
