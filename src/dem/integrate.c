@@ -585,8 +585,8 @@ static BDL_FORCE_INLINE int gather_run(pair_batch *b, const gather_view *v,
     int m = 0;
     for (int32_t k = k0; k < k1; ++k) {
         if (k + PREFETCH_AHEAD < k_last) {
-            // The partner a few pairs ahead is read soon (its position by this loop, the rest
-            // by the second gather loop and the scatter): ask for it now.
+            // The partner PREFETCH_AHEAD pairs on is read soon (its position by this loop, the
+            // rest by the second gather loop and the scatter): ask for it now.
             int32_t jp = partner[k + PREFETCH_AHEAD];
             BDL_PREFETCH_L2(&v->pos[jp]);
             BDL_PREFETCH_L2(&v->vel[jp]);
