@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sim/world.h"
+#include "world/world.h"
 #include "verify/verify.h"
 
 #if defined(__GNUC__)

@@ -10,7 +10,7 @@
 #include "check.h"
 #include "couple/coupling.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
+#include "output/diagnostics.h"
 
 int main(void)
 {

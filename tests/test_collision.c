@@ -26,7 +26,7 @@
 
 #include "check.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
+#include "output/diagnostics.h"
 #include "verify/verify.h"
 
 #define PI 3.14159265358979323846

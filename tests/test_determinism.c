@@ -7,9 +7,9 @@
 
 #include "check.h"
 #include "scene_util.h"
-#include "io/checkpoint.h"
-#include "sim/loop.h"
-#include "sim/world.h"
+#include "output/checkpoint.h"
+#include "run/loop.h"
+#include "world/world.h"
 
 // Pouring, friction, rolling resistance, a cylinder and a vibrating floor: every path that
 // touches ordering (re-sorting, history transfer, insertion, wall lists).

@@ -7,8 +7,8 @@
 #include "cfd/gas.h"
 #include "check.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
-#include "sim/loop.h"
+#include "output/diagnostics.h"
+#include "run/loop.h"
 
 int main(void)
 {

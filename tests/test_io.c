@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "check.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 #include "io/csv.h"
 #include "io/vtk.h"
 

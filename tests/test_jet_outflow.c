@@ -11,8 +11,8 @@
 
 #include "check.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
-#include "sim/guards.h"
+#include "output/diagnostics.h"
+#include "run/guards.h"
 
 int main(void)
 {

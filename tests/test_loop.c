@@ -9,7 +9,7 @@
 #include "check.h"
 #include "scene_util.h"
 #include "core/log.h"
-#include "sim/loop.h"
+#include "run/loop.h"
 
 static const char *const scene_text =
     "[run]\nend_time = 10\n"

@@ -8,7 +8,7 @@
 
 #include "check.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
+#include "output/diagnostics.h"
 
 static void shake(double e, double friction)
 {

@@ -9,8 +9,8 @@
 
 #include "check.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
-#include "sim/guards.h"
+#include "output/diagnostics.h"
+#include "run/guards.h"
 
 #define SCENE                                                                                      \
     "[run]\nend_time = 1\ndt = %.17g\ngravity = 0 0 -9.81\nseed = 3\n"                             \

@@ -7,7 +7,7 @@
 
 #include "check.h"
 #include "scene_util.h"
-#include "sim/diagnostics.h"
+#include "output/diagnostics.h"
 
 int main(void)
 {

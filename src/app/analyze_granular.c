@@ -8,7 +8,7 @@
 
 #include "analysis/granular.h"
 #include "app/analyze.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
 {
@@ -116,7 +116,7 @@ int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
     return rc;
 }
 
-/// Reads a contacts file of a run (see sim/granular_out.h). Returns the contact count (-1 on
+/// Reads a contacts file of a run (see output/granular_out.h). Returns the contact count (-1 on
 /// error); *pos gets the centres by particle id (NAN where a particle has no contact).
 static long read_contacts(const char *path, bdl_contact_rec **out, bdl_vec3 **pos, long *n)
 {

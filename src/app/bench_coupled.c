@@ -9,7 +9,7 @@
 #include "app/app.h"
 #include "cfd/gas.h"
 #include "core/timer.h"
-#include "sim/world.h"
+#include "world/world.h"
 
 static const char usage[] =
     "usage: bedlam bench coupled [SCENE] [options]\n"

@@ -26,7 +26,8 @@
 #include "render/context.h"
 #include "render/frames.h"
 #include "render/renderer.h"
-#include "sim/loop.h"
+#include "run/loop.h"
+#include "run/run.h"
 
 static const char usage[] =
     "usage: bedlam bench render [options]\n"
@@ -162,7 +163,7 @@ static bdl_result submit_frames(void *user, bdl_world *w)
 {
     dump_state *d = user;
     if (d->frames && w->step % d->every == 0)
-        return bdl_frames_submit(d->frames, w, d->next_index++);
+        return bdl_run_frame(d->frames, w, d->next_index++);
     return BDL_OK;
 }
 

@@ -9,7 +9,7 @@
 #include "analysis/umf.h"
 #include "app/analyze.h"
 #include "app/app.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 #include "io/csv.h"
 
 static const char analyze_usage[] =

@@ -16,9 +16,9 @@
 
 #include "app/app.h"
 #include "core/timer.h"
-#include "io/atomic_file.h"
-#include "io/checkpoint.h"
-#include "sim/world.h"
+#include "core/file.h"
+#include "output/checkpoint.h"
+#include "world/world.h"
 
 static const char bench_usage[] =
     "usage: bedlam bench dem [options]\n"

@@ -8,7 +8,7 @@
 
 #include "app/app.h"
 #include "dia/analysis.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 #include "io/png.h"
 
 static const char calibrate_usage[] =

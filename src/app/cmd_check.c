@@ -7,8 +7,8 @@
 #include "app/app.h"
 #include "core/timer.h"
 #include "dem/create.h"
-#include "sim/guards.h"
-#include "sim/world.h"
+#include "run/guards.h"
+#include "world/world.h"
 
 static const char check_usage[] =
     "usage: bedlam check SCENE [--set SECTION.KEY=VALUE]... [--threads N]\n"

@@ -5,7 +5,7 @@
 
 #include "app/app.h"
 #include "render/context.h"
-#include "sim/run.h"
+#include "run/run.h"
 
 static int parse_number(const char *opt, const char *text, double lo, double *out)
 {

@@ -11,7 +11,7 @@
 
 #include "app/app.h"
 #include "core/timer.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 #include "verify/verify.h"
 
 static const char verify_usage[] =

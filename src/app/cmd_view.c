@@ -17,12 +17,12 @@
 #include "app/app.h"
 #include "core/log.h"
 #include "core/timer.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 #include "io/png.h"
 #include "render/context.h"
 #include "render/renderer.h"
-#include "sim/loop.h"
-#include "sim/world.h"
+#include "run/loop.h"
+#include "world/world.h"
 
 static const char view_usage[] =
     "usage: bedlam view SCENE [options]\n"
@@ -130,7 +130,7 @@ static void find_live_parameter(viewer *v)
 static int start_world(viewer *v)
 {
     bdl_scene_error err;
-    // Only the solver thread runs an OpenMP team (see sim/run.c): the main thread draws.
+    // Only the solver thread runs an OpenMP team (see run/run.c): the main thread draws.
     omp_set_num_threads(1);
     if (bdl_world_create(v->scene, &v->world, &err) != BDL_OK) {
         fprintf(stderr, "error: %s\n", err.message);

@@ -42,7 +42,7 @@ void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls)
             break;
         }
         }
-        // A container wall stands still: the run is done in its frame (see sim/world.h).
+        // A container wall stands still: the run is done in its frame (see world/world.h).
         const int moves = d->motion == BDL_MOTION_VIBRATE && d->frame != BDL_FRAME_CONTAINER;
         walls->motion[w] = moves ? d->motion : BDL_MOTION_NONE;
         walls->direction[w] = bdl_v3_normalize(d->direction);

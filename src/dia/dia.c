@@ -9,7 +9,7 @@
 #include <string.h>
 
 #include "core/rng.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 bdl_result bdl_dia_camera_init(bdl_dia_camera *c, const bdl_dia_def *def)
 {

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "dia/dia.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 typedef struct camera_state {
     bdl_dia_camera camera;
@@ -24,16 +24,16 @@ typedef struct camera_state {
 
 struct bdl_dia_run {
     int count;
+    double end_time; ///< the run's end: a pair that would end after it is not started [s]
     camera_state cam[BDL_MAX_DIA];
 };
 
 /// Times are due when the step lands within half a step of them.
-static int due(const bdl_world *w, double t) { return w->time >= t - 0.5 * w->dt; }
+static int due(const bdl_particle_view *v, double t) { return v->time >= t - 0.5 * v->dt; }
 
-bdl_result bdl_dia_from_scene(const bdl_world *w, int index, bdl_dia_camera *camera,
+bdl_result bdl_dia_from_scene(const bdl_scene *s, int index, bdl_dia_camera *camera,
                               bdl_dia_truth_def *truth)
 {
-    const bdl_scene *s = &w->scene;
     const bdl_dia_scene_def *d = &s->dias[index];
     bdl_dia_def def = {0};
     def.projection = d->projection ? BDL_DIA_PERSPECTIVE : BDL_DIA_ORTHOGRAPHIC;
@@ -93,7 +93,7 @@ static void json_vec(FILE *f, const char *name, bdl_vec3 v, const char *tail)
     fprintf(f, "  \"%s\": [%.17g, %.17g, %.17g]%s\n", name, v.x, v.y, v.z, tail);
 }
 
-static bdl_result write_camera_json(const camera_state *c, const bdl_world *w)
+static bdl_result write_camera_json(const camera_state *c, double dt)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/camera.json", c->dir);
@@ -136,42 +136,42 @@ static bdl_result write_camera_json(const camera_state *c, const bdl_world *w)
     fprintf(
         f,
         "  \"start\": %.17g,\n  \"interval\": %.17g,\n  \"pair_dt\": %.17g,\n  \"dt\": %.17g\n}\n",
-        c->def->start, c->def->interval, c->def->pair_dt, w->dt);
+        c->def->start, c->def->interval, c->def->pair_dt, dt);
     return bdl_atomic_commit(&af);
 }
 
-bdl_result bdl_dia_run_open(const bdl_world *w, const char *out_dir, int resume, bdl_dia_run **out,
-                            char *why, size_t len)
+bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, const char *out_dir,
+                            int resume, bdl_dia_run **out, char *why, size_t len)
 {
     *out = NULL;
-    const bdl_scene *s = &w->scene;
     if (s->dia_count == 0)
         return BDL_OK;
     bdl_dia_run *r = calloc(1, sizeof *r);
     if (!r)
         return BDL_ERR_NOMEM;
+    r->end_time = s->end_time;
     for (int k = 0; k < s->dia_count; ++k) {
         camera_state *c = &r->cam[r->count++];
         c->def = &s->dias[k];
         c->pending_b = -1.0;
-        if (bdl_dia_from_scene(w, k, &c->camera, &c->truth) != BDL_OK) {
+        if (bdl_dia_from_scene(s, k, &c->camera, &c->truth) != BDL_OK) {
             snprintf(why, len, "[camera %s]: the view is degenerate", c->def->name);
             bdl_dia_run_close(r);
             return BDL_ERR_SCENE;
         }
         snprintf(c->dir, sizeof c->dir, "%s/dia/%s", out_dir, c->def->name);
         if (bdl_check_writable_dir(c->dir, why, len) != BDL_OK ||
-            write_camera_json(c, w) != BDL_OK) {
+            write_camera_json(c, now->dt) != BDL_OK) {
             if (!why[0])
                 snprintf(why, len, "cannot write %s/camera.json", c->dir);
             bdl_dia_run_close(r);
             return BDL_ERR_IO;
         }
         // Image k is at start + k interval: a resumed run continues the numbering.
-        double t0 = w->time;
+        double t0 = now->time;
         long frame =
             t0 <= c->def->start ? 0 : (long)ceil((t0 - c->def->start) / c->def->interval - 1e-9);
-        if (resume && due(w, c->def->start + frame * c->def->interval))
+        if (resume && due(now, c->def->start + frame * c->def->interval))
             ++frame; // written by the first run
         c->frame = frame;
         c->next = c->def->start + frame * c->def->interval;
@@ -235,15 +235,14 @@ static bdl_result write_cells(const char *path, const bdl_dia_truth_def *t,
 
 /// Renders one image of camera c and writes it with its truth; `part` is "" (single), "_a" or
 /// "_b". Cell truth goes with single images and first frames.
-static bdl_result shoot(camera_state *c, const bdl_world *w, const char *part)
+static bdl_result shoot(camera_state *c, const bdl_particle_view *v, const char *part)
 {
-    const bdl_particles *p = &w->particles;
-    bdl_dia_scene s = {p->count, p->pos, p->vel, p->radius, p->id};
+    bdl_dia_scene s = {v->count, v->pos, v->vel, v->radius, v->id};
     bdl_dia_image im;
     bdl_result r = bdl_dia_render(&c->camera, &s, c->frame * 2 + (part[1] == 'b'), &im);
     if (r != BDL_OK)
         return r;
-    long *visible = malloc((size_t)(p->count > 0 ? p->count : 1) * sizeof(long));
+    long *visible = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof(long));
     const int ncells = c->truth.cells[0] * c->truth.cells[1];
     bdl_dia_cell_truth *cells =
         part[1] == 'b' ? NULL : malloc((size_t)ncells * sizeof(bdl_dia_cell_truth));
@@ -264,7 +263,7 @@ static bdl_result shoot(camera_state *c, const bdl_world *w, const char *part)
         r = write_cells(cellp, &c->truth, cells);
     if (r == BDL_OK) {
         const char *base = strrchr(stem, '/') + 1;
-        fprintf(c->index, "%ld,%.9g,%s%s.png,%s%s_particles.csv,%s\n", c->frame, w->time, base,
+        fprintf(c->index, "%ld,%.9g,%s%s.png,%s%s_particles.csv,%s\n", c->frame, v->time, base,
                 part, base, part, cells ? strrchr(cellp, '/') + 1 : "");
         fflush(c->index);
         c->written++;
@@ -275,27 +274,27 @@ static bdl_result shoot(camera_state *c, const bdl_world *w, const char *part)
     return r;
 }
 
-bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_world *w)
+bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v)
 {
     for (int k = 0; r && k < r->count; ++k) {
         camera_state *c = &r->cam[k];
         bdl_result res = BDL_OK;
-        if (c->pending_b >= 0.0 && due(w, c->pending_b)) {
-            res = shoot(c, w, "_b");
+        if (c->pending_b >= 0.0 && due(v, c->pending_b)) {
+            res = shoot(c, v, "_b");
             c->pending_b = -1.0;
             c->frame++;
-        } else if (c->pending_b < 0.0 && due(w, c->next)) {
+        } else if (c->pending_b < 0.0 && due(v, c->next)) {
             int pair = c->def->pair_dt > 0.0;
-            if (pair && w->time + c->def->pair_dt > w->scene.end_time + 0.5 * w->dt) {
+            if (pair && v->time + c->def->pair_dt > r->end_time + 0.5 * v->dt) {
                 c->next = INFINITY; // the run ends before the pair's second frame
                 continue;
             }
-            res = shoot(c, w, pair ? "_a" : "");
+            res = shoot(c, v, pair ? "_a" : "");
             if (pair)
-                c->pending_b = w->time + c->def->pair_dt;
+                c->pending_b = v->time + c->def->pair_dt;
             else
                 c->frame++;
-            while (due(w, c->next))
+            while (due(v, c->next))
                 c->next += c->def->interval;
         }
         if (res != BDL_OK)

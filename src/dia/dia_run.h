@@ -11,23 +11,26 @@
 
 #include "core/error.h"
 #include "dia/dia.h"
-#include "sim/world.h"
+#include "output/snapshot.h"
+#include "scene/scene.h"
 
 typedef struct bdl_dia_run bdl_dia_run;
 
-/// Opens every [camera NAME] of the world's scene under out_dir/dia/NAME; a resumed run (t0 > 0)
-/// continues the numbering. NULL *out when the scene has none. On failure `why` says what.
-bdl_result bdl_dia_run_open(const bdl_world *w, const char *out_dir, int resume, bdl_dia_run **out,
-                            char *why, size_t len);
+/// Opens every [camera NAME] of the scene under out_dir/dia/NAME for a run that stands at `now`
+/// (its time and step length; a resumed run continues the numbering). NULL *out when the scene
+/// has none. On failure `why` says what.
+bdl_result bdl_dia_run_open(const bdl_scene *scene, const bdl_particle_view *now,
+                            const char *out_dir, int resume, bdl_dia_run **out, char *why,
+                            size_t len);
 /// After a step: renders and writes the images that are due.
-bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_world *w);
+bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v);
 /// Images written so far.
 long bdl_dia_run_count(const bdl_dia_run *r);
 void bdl_dia_run_close(bdl_dia_run *r);
 
 /// The camera of a scene section, with the bed's depth range (front and back along the view,
 /// from the domain's corners) and the first layer (the largest species diameter).
-bdl_result bdl_dia_from_scene(const bdl_world *w, int index, bdl_dia_camera *camera,
+bdl_result bdl_dia_from_scene(const bdl_scene *scene, int index, bdl_dia_camera *camera,
                               bdl_dia_truth_def *truth);
 
 #endif

@@ -9,7 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 struct bdl_csv {
     FILE *file;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 /// Encodes into an open stream. Everything libpng touches after setjmp is either volatile or
 /// set before it, so a longjmp back here is well defined.

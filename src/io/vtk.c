@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 // Positions are written straight from memory as a 3-component Float64 array.
 _Static_assert(sizeof(bdl_vec3) == 3 * sizeof(double), "bdl_vec3 must be three packed doubles");

@@ -11,7 +11,6 @@
 #include "core/log.h"
 #include "io/png.h"
 #include "render/renderer.h"
-#include "sim/loop.h"
 
 #define SLOTS  3 ///< snapshots waiting to be drawn
 #define IMAGES 3 ///< images waiting to be encoded
@@ -139,24 +138,28 @@ bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *wh
     return BDL_OK;
 }
 
-bdl_result bdl_frames_submit(bdl_frames *f, const bdl_world *w, long index)
+bdl_snapshot *bdl_frames_slot(bdl_frames *f)
 {
     pthread_mutex_lock(&f->lock);
     while (f->slot_count == SLOTS && f->error == BDL_OK)
         pthread_cond_wait(&f->changed, &f->lock);
+    // The slot after the queue is not drawn until it is committed, and only this thread queues.
+    bdl_snapshot *slot =
+        f->error == BDL_OK ? &f->slots[(f->slot_head + f->slot_count) % SLOTS] : NULL;
+    pthread_mutex_unlock(&f->lock);
+    return slot;
+}
+
+bdl_result bdl_frames_commit(bdl_frames *f, long index, int filled)
+{
+    pthread_mutex_lock(&f->lock);
     bdl_result r = f->error;
+    if (r == BDL_OK && !filled)
+        fail(f, r = BDL_ERR_NOMEM);
     if (r == BDL_OK) {
-        int k = (f->slot_head + f->slot_count) % SLOTS;
-        // The copy happens under the lock: the slot is not in the queue yet, but the drawing
-        // thread must not see a half-grown one either.
-        if (bdl_snapshot_fill(&f->slots[k], w)) {
-            f->slot_index[k] = index;
-            f->slot_count++;
-            pthread_cond_broadcast(&f->changed);
-        } else {
-            r = BDL_ERR_NOMEM;
-            fail(f, r);
-        }
+        f->slot_index[(f->slot_head + f->slot_count) % SLOTS] = index;
+        f->slot_count++;
+        pthread_cond_broadcast(&f->changed);
     }
     pthread_mutex_unlock(&f->lock);
     return r;

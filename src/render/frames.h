@@ -1,16 +1,17 @@
 // bedlam — headless PNG frames of a run: frames/frame_NNNNNN.png every [output] frame_interval.
 //
 // Three threads share the work, so the solver never draws or encodes:
-//   solver   copies the particles into a free snapshot slot at each frame time (and waits only
-//            when all slots are full: a dump never drops a frame);
+//   solver   fills a free snapshot slot at each frame time (and waits only when all slots are
+//            full: a dump never drops a frame);
 //   caller   (the thread that opened the frames and owns the GL context) draws each queued
 //            snapshot and reads the pixels back;
 //   encoder  compresses the pixels to PNG and writes the file atomically.
 #ifndef BDL_FRAMES_H
 #define BDL_FRAMES_H
 
+#include "output/snapshot.h"
 #include "render/context.h"
-#include "sim/world.h"
+#include "scene/scene.h"
 
 typedef struct bdl_frames_def {
     const bdl_scene *scene;
@@ -24,9 +25,13 @@ typedef struct bdl_frames bdl_frames;
 /// On failure returns BDL_ERR_GL (no context) or BDL_ERR_NOMEM with a sentence in `why`.
 bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *why, size_t why_len);
 
-/// Solver thread: queues frame number `index` of the world as it is now. Blocks while the queue
-/// is full. Returns the first error of the drawing or encoding threads, if any.
-bdl_result bdl_frames_submit(bdl_frames *f, const bdl_world *w, long index);
+/// Solver thread: a free snapshot slot to fill with the next frame; blocks while every slot is
+/// queued. NULL after an error of the drawing or encoding threads (bdl_frames_commit returns it).
+bdl_snapshot *bdl_frames_slot(bdl_frames *f);
+
+/// Solver thread: queues the slot bdl_frames_slot gave, now filled, as frame number `index`
+/// (`filled` 0: filling it ran out of memory). Returns the first error of any thread.
+bdl_result bdl_frames_commit(bdl_frames *f, long index, int filled);
 
 /// Caller thread: draws every queued frame, waiting up to `timeout` seconds for the first.
 /// Returns the number drawn.

@@ -9,9 +9,9 @@
 #include <stdint.h>
 
 #include "core/error.h"
+#include "output/snapshot.h"
 #include "render/camera.h"
 #include "scene/scene.h"
-#include "sim/loop.h"
 
 /// What a frame shows; the viewer changes it between frames.
 typedef struct bdl_view {

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "io/atomic_file.h"
+#include "core/file.h"
 #include "scene/scene_internal.h"
 
 enum { VALUE_SHOWN = 80, WHY_LEN = 256 };

@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "couple/drag.h"
-#include "sim/world.h"
+#include "world/world.h"
 
 #if defined(__GNUC__)
 #define BDL_PRINTF(a, b) __attribute__((format(printf, a, b)))

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "sim/diagnostics.h"
+#include "output/diagnostics.h"
 #include "verify/verify.h"
 
 bdl_world *bdl_verify_world_text(const char *text)

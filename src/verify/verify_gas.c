@@ -8,8 +8,8 @@
 #include "analysis/umf.h"
 #include "cfd/gas.h"
 #include "couple/coupling.h"
-#include "sim/diagnostics.h"
-#include "sim/loop.h"
+#include "output/diagnostics.h"
+#include "run/loop.h"
 #include "verify/verify.h"
 
 // ---- plane Poiseuille flow ----

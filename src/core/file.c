@@ -1,6 +1,6 @@
 // bedlam — crash-safe file writing: temporary sibling, fsync, rename.
 #define _POSIX_C_SOURCE 200809L
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 #include <errno.h>
 #include <fcntl.h>

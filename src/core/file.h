@@ -1,10 +1,10 @@
-// bedlam — crash-safe file writing and output-folder helpers.
+// bedlam — files: crash-safe writing, output folders, whole-file reads.
 //
 // Output files are written to a temporary sibling ("path.tmp.PID") and renamed over the final
 // name only once everything reached the disk, so readers (ParaView, --resume) never see a
 // half-written file even if the run is killed or the disk fills up.
-#ifndef BDL_ATOMIC_FILE_H
-#define BDL_ATOMIC_FILE_H
+#ifndef BDL_FILE_H
+#define BDL_FILE_H
 
 #include <stddef.h>
 #include <stdio.h>

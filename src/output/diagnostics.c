@@ -1,4 +1,4 @@
-#include "sim/diagnostics.h"
+#include "output/diagnostics.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -8,7 +8,7 @@
 #include "cfd/gas.h"
 #include "dem/contact_law.h"
 #include "dem/integrate.h"
-#include "sim/granular_out.h"
+#include "output/granular_out.h"
 
 const char *const bdl_diagnostics_columns[] = {
     "time",

@@ -8,7 +8,8 @@
 #ifndef BDL_RUN_H
 #define BDL_RUN_H
 
-#include "scene/scene.h"
+#include "render/frames.h"
+#include "world/world.h"
 
 typedef struct bdl_run_def {
     const char *scene_path;
@@ -28,6 +29,9 @@ bdl_run_def bdl_default_run_def(void);
 /// Runs to the end time. Returns the process exit code (0 done, 1 run-time failure or
 /// interrupted, 2 bad input) after printing any error.
 int bdl_run(const bdl_run_def *def);
+
+/// Queues frame number `index` of the world as it is now with a frame writer (solver thread).
+bdl_result bdl_run_frame(bdl_frames *frames, const bdl_world *w, long index);
 
 /// Set by the SIGINT handler; a run stops cleanly when it sees it.
 void bdl_run_request_stop(void);

@@ -140,4 +140,8 @@ double bdl_world_reference_speed(const bdl_world *world);
 /// Applies live parameters (after a command changed them).
 void bdl_world_apply_live(bdl_world *world);
 
+/// Sets a live parameter by its command key ("gas.inlet_scale", "wall.NAME.amplitude_scale",
+/// "wall.NAME.frequency_scale") and applies it; returns 0 for an unknown key.
+int bdl_world_set_parameter(bdl_world *world, const char *key, double value);
+
 #endif

@@ -10,7 +10,7 @@
 #include "core/log.h"
 #include "core/timer.h"
 #include "couple/coupling.h"
-#include "sim/world.h"
+#include "world/world.h"
 
 /// The longest automatic gas step [s].
 #define BDL_GAS_DT_MAX 5e-4

@@ -1,11 +1,11 @@
-#include "io/checkpoint.h"
+#include "output/checkpoint.h"
 
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cfd/gas.h"
-#include "io/atomic_file.h"
+#include "core/file.h"
 
 // Version 2: the gas state and the inlet scale among the live parameters. 3: particles that left
 // through an outlet. 4: force and torque side by side in one record per particle.

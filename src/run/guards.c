@@ -1,4 +1,4 @@
-#include "sim/guards.h"
+#include "run/guards.h"
 
 #include <math.h>
 #include <stdio.h>

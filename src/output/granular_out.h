@@ -12,7 +12,7 @@
 #ifndef BDL_GRANULAR_OUT_H
 #define BDL_GRANULAR_OUT_H
 
-#include "sim/world.h"
+#include "world/world.h"
 
 #define BDL_SPECIES_COLUMNS_MAX (1 + 4 * BDL_MAX_SPECIES + 3)
 #define BDL_SPECIES_COLUMN_LEN  (BDL_NAME_LEN + 24)

@@ -1,6 +1,6 @@
 // The headless run driver: validation, output folder, solver thread, progress, clean stops.
 #define _POSIX_C_SOURCE 200809L
-#include "sim/run.h"
+#include "run/run.h"
 
 #include <math.h>
 #include <omp.h>
@@ -17,15 +17,16 @@
 #include "core/log.h"
 #include "core/timer.h"
 #include "dia/dia_run.h"
-#include "io/atomic_file.h"
-#include "io/checkpoint.h"
+#include "core/file.h"
+#include "output/capture.h"
+#include "output/checkpoint.h"
 #include "io/csv.h"
 #include "io/vtk.h"
 #include "render/frames.h"
-#include "sim/diagnostics.h"
-#include "sim/granular_out.h"
-#include "sim/guards.h"
-#include "sim/loop.h"
+#include "output/diagnostics.h"
+#include "output/granular_out.h"
+#include "run/guards.h"
+#include "run/loop.h"
 
 static volatile sig_atomic_t stop_requested = 0;
 
@@ -192,6 +193,17 @@ static bdl_result write_contacts(run_state *rs)
     return r;
 }
 
+bdl_result bdl_run_frame(bdl_frames *frames, const bdl_world *w, long index)
+{
+    bdl_snapshot *slot = bdl_frames_slot(frames);
+    return bdl_frames_commit(frames, index, slot && bdl_capture(slot, w));
+}
+
+static bdl_result submit_frame(run_state *rs)
+{
+    return bdl_run_frame(rs->frames, rs->world, rs->frame_index++);
+}
+
 /// The first multiple of `interval` after t: a resumed run keeps the first run's output times.
 static double next_multiple(double t, double interval)
 {
@@ -245,14 +257,15 @@ static bdl_result on_step(void *user, bdl_world *w)
             rs->next_contacts += s->output.contacts_interval;
     }
     if (rs->frames && due(w, rs->next_frame)) {
-        bdl_result r = bdl_frames_submit(rs->frames, w, rs->frame_index++);
+        bdl_result r = submit_frame(rs);
         if (r != BDL_OK)
             return r;
         while (due(w, rs->next_frame))
             rs->next_frame += s->output.frame_interval;
     }
     if (rs->dia) {
-        bdl_result r = bdl_dia_run_step(rs->dia, w);
+        const bdl_particle_view view = bdl_capture_view(w);
+        bdl_result r = bdl_dia_run_step(rs->dia, &view);
         if (r != BDL_OK) {
             snprintf(rs->failure, sizeof rs->failure, "synthetic camera images: %s",
                      bdl_result_text(r));
@@ -599,7 +612,7 @@ int bdl_run(const bdl_run_def *def)
             rs.next_frame += o->frame_interval;
         }
         if (due(world, rs.next_frame)) {
-            bdl_frames_submit(rs.frames, world, rs.frame_index++);
+            submit_frame(&rs);
             rs.next_frame += o->frame_interval;
         }
         bdl_info("frames: %dx%d every %g s in %s", o->frame_width, o->frame_height,
@@ -608,12 +621,13 @@ int bdl_run(const bdl_run_def *def)
 
     if (world->scene.dia_count > 0) {
         char dia_why[1024] = "";
-        if (bdl_dia_run_open(world, out, def->resume != NULL, &rs.dia, dia_why, sizeof dia_why) !=
-            BDL_OK) {
+        const bdl_particle_view now = bdl_capture_view(world);
+        if (bdl_dia_run_open(&world->scene, &now, out, def->resume != NULL, &rs.dia, dia_why,
+                             sizeof dia_why) != BDL_OK) {
             bdl_error("synthetic cameras: %s", dia_why);
             return finish(2, world, log);
         }
-        bdl_dia_run_step(rs.dia, world); // an image due at the start
+        bdl_dia_run_step(rs.dia, &now); // an image due at the start
         for (int k = 0; k < world->scene.dia_count; ++k) {
             const bdl_dia_scene_def *dd = &world->scene.dias[k];
             bdl_info("camera %s: %dx%d %s images every %g s%s in %s/dia/%s", dd->name, dd->width,

@@ -8,7 +8,7 @@
 #ifndef BDL_DIAGNOSTICS_H
 #define BDL_DIAGNOSTICS_H
 
-#include "sim/world.h"
+#include "world/world.h"
 
 typedef struct bdl_diagnostics {
     double time; ///< [s]

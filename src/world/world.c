@@ -1,5 +1,5 @@
 // The world: builds the modules a scene needs and advances them by one step.
-#include "sim/world.h"
+#include "world/world.h"
 
 #include "cfd/gas.h"
 #include "core/memory.h"
@@ -121,6 +121,29 @@ void bdl_world_apply_live(bdl_world *w)
         w->walls.omega[k] = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
     }
     bdl_walls_update(&w->walls, w->time);
+}
+
+int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
+{
+    if (strcmp(key, "gas.inlet_scale") == 0 && w->gas) {
+        w->live.inlet_scale = value;
+        bdl_world_apply_live(w);
+        return 1;
+    }
+    for (int k = 0; k < w->scene.wall_count; ++k) {
+        char a[96], f[96];
+        snprintf(a, sizeof a, "wall.%s.amplitude_scale", w->scene.walls[k].name);
+        snprintf(f, sizeof f, "wall.%s.frequency_scale", w->scene.walls[k].name);
+        if (strcmp(key, a) == 0)
+            w->live.amplitude_scale[k] = value;
+        else if (strcmp(key, f) == 0)
+            w->live.frequency_scale[k] = value;
+        else
+            continue;
+        bdl_world_apply_live(w);
+        return 1;
+    }
+    return 0;
 }
 
 /// Rebuilds the lists if needed, then evaluates all forces; with kick > 0 the closing half kick

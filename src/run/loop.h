@@ -11,7 +11,8 @@
 
 #include <stdint.h>
 
-#include "sim/world.h"
+#include "output/snapshot.h"
+#include "world/world.h"
 
 typedef enum bdl_command_kind {
     BDL_CMD_PAUSE,
@@ -26,37 +27,6 @@ typedef struct bdl_command {
     char key[96];
     double value;
 } bdl_command;
-
-/// Particle data for drawing, in float (the drawing boundary). Valid until the next acquire.
-typedef struct bdl_snapshot {
-    long count, capacity;
-    float *pos;    ///< xyz per particle [m]
-    float *vel;    ///< xyz per particle [m/s]
-    float *radius; ///< [m]
-    uint8_t *coordination;
-    int32_t *species;
-    uint32_t *id;
-    double time; ///< [s]
-    long step;
-    int wall_count;
-    float wall_offset[BDL_MAX_WALLS][3]; ///< displacement of each (vibrating) wall from rest [m]
-    double steps_per_second;             ///< the solver's recent speed (0 if unknown)
-    // A slice of a gas field, when [camera] gas_field asks for one (slice_n[0] == 0: none).
-    int slice_field;                ///< bdl_gas_field
-    int slice_axis;                 ///< normal of the slice plane
-    float slice_at;                 ///< its coordinate [m]
-    float slice_lo[3], slice_hi[3]; ///< the box it spans [m]
-    int slice_n[2];                 ///< cells along axes (axis + 1) % 3 and (axis + 2) % 3
-    float *slice;                   ///< slice_n[0] x slice_n[1] values, the first axis fastest
-    long slice_capacity;
-} bdl_snapshot;
-
-/// Copies the world's particles into a snapshot (growing it as needed). Returns 0 when out of
-/// memory (the snapshot is then unchanged).
-int bdl_snapshot_fill(bdl_snapshot *s, const bdl_world *w);
-/// Copies one snapshot into another (growing it as needed). Returns 0 when out of memory.
-int bdl_snapshot_copy(bdl_snapshot *dst, const bdl_snapshot *src);
-void bdl_snapshot_free(bdl_snapshot *s);
 
 /// Called by the solver thread after every step (outputs, guards). A result other than BDL_OK
 /// stops the loop with that result.
@@ -90,8 +60,5 @@ void bdl_loop_progress(bdl_loop *loop, double *time, long *step, long *particles
 /// Waits for the solver thread and returns its result.
 bdl_result bdl_loop_join(bdl_loop *loop);
 void bdl_loop_destroy(bdl_loop *loop);
-
-/// Applies a SET command's key to the world; returns 0 for an unknown key.
-int bdl_world_set_parameter(bdl_world *w, const char *key, double value);
 
 #endif

@@ -11,8 +11,8 @@
 
 #include <stddef.h>
 
-#include "sim/diagnostics.h"
-#include "sim/world.h"
+#include "output/diagnostics.h"
+#include "world/world.h"
 
 typedef struct bdl_guard_state {
     double energy0;    ///< total energy at the start [J]

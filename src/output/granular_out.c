@@ -1,4 +1,4 @@
-#include "sim/granular_out.h"
+#include "output/granular_out.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -6,8 +6,8 @@
 #include "analysis/granular.h"
 #include "cfd/gas.h"
 #include "dem/contact_law.h"
-#include "io/atomic_file.h"
-#include "sim/diagnostics.h"
+#include "core/file.h"
+#include "output/diagnostics.h"
 
 /// Cells with fewer particles than this are left out of the Lacey indices: a cell of one or two
 /// particles has a fraction of 0, 1/2 or 1 whatever the mixing.

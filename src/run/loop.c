@@ -1,16 +1,15 @@
-#include "sim/loop.h"
+#include "run/loop.h"
 
 #include <omp.h>
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdio.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "cfd/gas.h"
 #include "core/log.h"
 #include "core/timer.h"
+#include "output/capture.h"
 
 #define QUEUE_SIZE 64
 #define DIRTY      4
@@ -48,190 +47,10 @@ bdl_loop_def bdl_default_loop_def(void)
     return d;
 }
 
-int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
-{
-    if (strcmp(key, "gas.inlet_scale") == 0 && w->gas) {
-        w->live.inlet_scale = value;
-        bdl_world_apply_live(w);
-        return 1;
-    }
-    for (int k = 0; k < w->scene.wall_count; ++k) {
-        char a[96], f[96];
-        snprintf(a, sizeof a, "wall.%s.amplitude_scale", w->scene.walls[k].name);
-        snprintf(f, sizeof f, "wall.%s.frequency_scale", w->scene.walls[k].name);
-        if (strcmp(key, a) == 0)
-            w->live.amplitude_scale[k] = value;
-        else if (strcmp(key, f) == 0)
-            w->live.frequency_scale[k] = value;
-        else
-            continue;
-        bdl_world_apply_live(w);
-        return 1;
-    }
-    return 0;
-}
-
-static int snapshot_reserve(bdl_snapshot *s, long n)
-{
-    if (n <= s->capacity)
-        return 1;
-    long cap = n + n / 4 + 64;
-    void *a = realloc(s->pos, (size_t)cap * 3 * sizeof(float));
-    if (!a)
-        return 0;
-    s->pos = a;
-    if (!(a = realloc(s->vel, (size_t)cap * 3 * sizeof(float))))
-        return 0;
-    s->vel = a;
-    if (!(a = realloc(s->radius, (size_t)cap * sizeof(float))))
-        return 0;
-    s->radius = a;
-    if (!(a = realloc(s->coordination, (size_t)cap)))
-        return 0;
-    s->coordination = a;
-    if (!(a = realloc(s->species, (size_t)cap * sizeof(int32_t))))
-        return 0;
-    s->species = a;
-    if (!(a = realloc(s->id, (size_t)cap * sizeof(uint32_t))))
-        return 0;
-    s->id = a;
-    s->capacity = cap;
-    return 1;
-}
-
-static int reserve_slice(bdl_snapshot *s, long count)
-{
-    if (count <= s->slice_capacity)
-        return 1;
-    float *a = realloc(s->slice, (size_t)count * sizeof(float));
-    if (!a)
-        return 0;
-    s->slice = a;
-    s->slice_capacity = count;
-    return 1;
-}
-
-/// The [camera] gas_field on its slice: the layer of cells the slice position falls in.
-static int fill_slice(bdl_snapshot *s, const bdl_world *w)
-{
-    const bdl_camera_def *cam = &w->scene.camera;
-    s->slice_n[0] = s->slice_n[1] = 0;
-    if (!w->gas || cam->gas_field == BDL_GAS_FIELD_NONE)
-        return 1;
-    const bdl_gas *gas = w->gas;
-    const bdl_grid *g = &gas->grid;
-    const int a = cam->gas_slice_axis, b = (a + 1) % 3, c = (a + 2) % 3;
-    if (!reserve_slice(s, (long)g->n[b] * g->n[c]))
-        return 0;
-    int m = (int)floor(cam->gas_slice_position * g->n[a]);
-    m = m < 0 ? 0 : m >= g->n[a] ? g->n[a] - 1 : m;
-    for (int jc = 0; jc < g->n[c]; ++jc)
-        for (int jb = 0; jb < g->n[b]; ++jb) {
-            int ix[3];
-            ix[a] = m, ix[b] = jb, ix[c] = jc;
-            const long idx = bdl_grid_index(g, ix[0], ix[1], ix[2]);
-            double v = gas->eps[idx];
-            if (cam->gas_field == BDL_GAS_FIELD_PRESSURE) {
-                v = gas->p[idx];
-            } else if (cam->gas_field == BDL_GAS_FIELD_SPEED) {
-                double sum = 0.0;
-                for (int d = 0; d < 3; ++d) {
-                    double u = bdl_gas_cell_velocity(gas, d, ix[0], ix[1], ix[2]);
-                    sum += u * u;
-                }
-                v = sqrt(sum);
-            }
-            s->slice[(long)jc * g->n[b] + jb] = (float)v;
-        }
-    s->slice_field = (int)cam->gas_field;
-    s->slice_axis = a;
-    for (int d = 0; d < 3; ++d) {
-        s->slice_lo[d] = (float)g->origin[d];
-        s->slice_hi[d] = (float)(g->origin[d] + g->n[d] * g->h[d]);
-    }
-    s->slice_at =
-        s->slice_lo[a] + (float)cam->gas_slice_position * (s->slice_hi[a] - s->slice_lo[a]);
-    s->slice_n[0] = g->n[b];
-    s->slice_n[1] = g->n[c];
-    return 1;
-}
-
-int bdl_snapshot_fill(bdl_snapshot *s, const bdl_world *w)
-{
-    const bdl_particles *p = &w->particles;
-    if (!snapshot_reserve(s, p->count))
-        return 0;
-    for (long i = 0; i < p->count; ++i) {
-        s->pos[3 * i] = (float)p->pos[i].x;
-        s->pos[3 * i + 1] = (float)p->pos[i].y;
-        s->pos[3 * i + 2] = (float)p->pos[i].z;
-        s->vel[3 * i] = (float)p->vel[i].x;
-        s->vel[3 * i + 1] = (float)p->vel[i].y;
-        s->vel[3 * i + 2] = (float)p->vel[i].z;
-        s->radius[i] = (float)p->radius[i];
-    }
-    memcpy(s->coordination, w->coordination, (size_t)p->count);
-    memcpy(s->species, p->species, (size_t)p->count * sizeof(int32_t));
-    memcpy(s->id, p->id, (size_t)p->count * sizeof(uint32_t));
-    s->count = p->count;
-    s->time = w->time;
-    s->step = w->step;
-    s->wall_count = w->walls.wall_count;
-    for (int k = 0; k < w->walls.wall_count; ++k) {
-        s->wall_offset[k][0] = (float)w->walls.offset[k].x;
-        s->wall_offset[k][1] = (float)w->walls.offset[k].y;
-        s->wall_offset[k][2] = (float)w->walls.offset[k].z;
-    }
-    return fill_slice(s, w);
-}
-
-int bdl_snapshot_copy(bdl_snapshot *dst, const bdl_snapshot *src)
-{
-    if (!snapshot_reserve(dst, src->count))
-        return 0;
-    long n = src->count;
-    memcpy(dst->pos, src->pos, (size_t)n * 3 * sizeof(float));
-    memcpy(dst->vel, src->vel, (size_t)n * 3 * sizeof(float));
-    memcpy(dst->radius, src->radius, (size_t)n * sizeof(float));
-    memcpy(dst->coordination, src->coordination, (size_t)n);
-    memcpy(dst->species, src->species, (size_t)n * sizeof(int32_t));
-    memcpy(dst->id, src->id, (size_t)n * sizeof(uint32_t));
-    dst->count = n;
-    dst->time = src->time;
-    dst->step = src->step;
-    dst->wall_count = src->wall_count;
-    memcpy(dst->wall_offset, src->wall_offset, sizeof dst->wall_offset);
-    dst->steps_per_second = src->steps_per_second;
-    long cells = (long)src->slice_n[0] * src->slice_n[1];
-    if (!reserve_slice(dst, cells))
-        return 0;
-    if (cells > 0)
-        memcpy(dst->slice, src->slice, (size_t)cells * sizeof(float));
-    dst->slice_field = src->slice_field;
-    dst->slice_axis = src->slice_axis;
-    dst->slice_at = src->slice_at;
-    memcpy(dst->slice_lo, src->slice_lo, sizeof dst->slice_lo);
-    memcpy(dst->slice_hi, src->slice_hi, sizeof dst->slice_hi);
-    memcpy(dst->slice_n, src->slice_n, sizeof dst->slice_n);
-    return 1;
-}
-
-void bdl_snapshot_free(bdl_snapshot *s)
-{
-    free(s->slice);
-    free(s->pos);
-    free(s->vel);
-    free(s->radius);
-    free(s->coordination);
-    free(s->species);
-    free(s->id);
-    memset(s, 0, sizeof *s);
-}
-
 static void publish(bdl_loop *loop)
 {
     bdl_snapshot *s = &loop->slots[loop->back];
-    if (!bdl_snapshot_fill(s, loop->def.world))
+    if (!bdl_capture(s, loop->def.world))
         return;
     // The solver's speed over the last quarter second or more.
     double now = bdl_wall_seconds();

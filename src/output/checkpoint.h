@@ -9,7 +9,7 @@
 #ifndef BDL_CHECKPOINT_H
 #define BDL_CHECKPOINT_H
 
-#include "sim/world.h"
+#include "world/world.h"
 
 /// Fingerprint of the scene quantities a checkpoint depends on (species, walls, law, counts).
 uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *scene);

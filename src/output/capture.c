@@ -1,0 +1,97 @@
+// bedlam — snapshots and particle views of a world.
+#include "output/capture.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "cfd/gas.h"
+
+_Static_assert(BDL_SNAPSHOT_WALLS >= BDL_MAX_WALLS, "a snapshot holds every wall");
+
+/// The [camera] gas_field on its slice: the layer of cells the slice position falls in.
+static int capture_slice(bdl_snapshot *s, const bdl_world *w)
+{
+    const bdl_camera_def *cam = &w->scene.camera;
+    s->slice_n[0] = s->slice_n[1] = 0;
+    if (!w->gas || cam->gas_field == BDL_GAS_FIELD_NONE)
+        return 1;
+    const bdl_gas *gas = w->gas;
+    const bdl_grid *g = &gas->grid;
+    const int a = cam->gas_slice_axis, b = (a + 1) % 3, c = (a + 2) % 3;
+    if (!bdl_snapshot_reserve_slice(s, (long)g->n[b] * g->n[c]))
+        return 0;
+    int m = (int)floor(cam->gas_slice_position * g->n[a]);
+    m = m < 0 ? 0 : m >= g->n[a] ? g->n[a] - 1 : m;
+    for (int jc = 0; jc < g->n[c]; ++jc)
+        for (int jb = 0; jb < g->n[b]; ++jb) {
+            int ix[3];
+            ix[a] = m, ix[b] = jb, ix[c] = jc;
+            const long idx = bdl_grid_index(g, ix[0], ix[1], ix[2]);
+            double v = gas->eps[idx];
+            if (cam->gas_field == BDL_GAS_FIELD_PRESSURE) {
+                v = gas->p[idx];
+            } else if (cam->gas_field == BDL_GAS_FIELD_SPEED) {
+                double sum = 0.0;
+                for (int d = 0; d < 3; ++d) {
+                    double u = bdl_gas_cell_velocity(gas, d, ix[0], ix[1], ix[2]);
+                    sum += u * u;
+                }
+                v = sqrt(sum);
+            }
+            s->slice[(long)jc * g->n[b] + jb] = (float)v;
+        }
+    s->slice_field = (int)cam->gas_field;
+    s->slice_axis = a;
+    for (int d = 0; d < 3; ++d) {
+        s->slice_lo[d] = (float)g->origin[d];
+        s->slice_hi[d] = (float)(g->origin[d] + g->n[d] * g->h[d]);
+    }
+    s->slice_at =
+        s->slice_lo[a] + (float)cam->gas_slice_position * (s->slice_hi[a] - s->slice_lo[a]);
+    s->slice_n[0] = g->n[b];
+    s->slice_n[1] = g->n[c];
+    return 1;
+}
+
+int bdl_capture(bdl_snapshot *s, const bdl_world *w)
+{
+    const bdl_particles *p = &w->particles;
+    if (!bdl_snapshot_reserve(s, p->count))
+        return 0;
+    for (long i = 0; i < p->count; ++i) {
+        s->pos[3 * i] = (float)p->pos[i].x;
+        s->pos[3 * i + 1] = (float)p->pos[i].y;
+        s->pos[3 * i + 2] = (float)p->pos[i].z;
+        s->vel[3 * i] = (float)p->vel[i].x;
+        s->vel[3 * i + 1] = (float)p->vel[i].y;
+        s->vel[3 * i + 2] = (float)p->vel[i].z;
+        s->radius[i] = (float)p->radius[i];
+    }
+    memcpy(s->coordination, w->coordination, (size_t)p->count);
+    memcpy(s->species, p->species, (size_t)p->count * sizeof(int32_t));
+    memcpy(s->id, p->id, (size_t)p->count * sizeof(uint32_t));
+    s->count = p->count;
+    s->time = w->time;
+    s->step = w->step;
+    s->wall_count = w->walls.wall_count;
+    for (int k = 0; k < w->walls.wall_count; ++k) {
+        s->wall_offset[k][0] = (float)w->walls.offset[k].x;
+        s->wall_offset[k][1] = (float)w->walls.offset[k].y;
+        s->wall_offset[k][2] = (float)w->walls.offset[k].z;
+    }
+    return capture_slice(s, w);
+}
+
+bdl_particle_view bdl_capture_view(const bdl_world *w)
+{
+    const bdl_particles *p = &w->particles;
+    return (bdl_particle_view){.count = p->count,
+                               .pos = p->pos,
+                               .vel = p->vel,
+                               .radius = p->radius,
+                               .id = p->id,
+                               .species = p->species,
+                               .time = w->time,
+                               .dt = w->dt,
+                               .step = w->step};
+}
