@@ -156,7 +156,7 @@ static void test_full_scene(void)
     CHECK(scene.species_count == 2);
     const bdl_species_def *glass = &scene.species[0];
     CHECK(strcmp(glass->name, "glass_beads_of_soda_lime") == 0);
-    CHECK(glass->line == 21);
+    CHECK(scene.line.species[0] == 21);
     CHECK(glass->size_dist == BDL_SIZE_NORMAL);
     CHECK_CLOSE(glass->diameter, 0.002, 1e-15);
     CHECK_CLOSE(glass->diameter_std, 0.0001, 1e-15);
@@ -189,7 +189,7 @@ static void test_full_scene(void)
     CHECK(!pair->has_rolling_friction && !pair->has_stiffness);
     CHECK_CLOSE(pair->restitution, 0.7, 1e-15);
     CHECK_CLOSE(pair->friction, 0.3, 1e-15);
-    CHECK(pair->line == 45);
+    CHECK(scene.line.pairs[0] == 45);
 
     CHECK(scene.wall_count == 3);
     const bdl_wall_def *floor_wall = &scene.walls[0];

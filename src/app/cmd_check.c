@@ -130,7 +130,7 @@ int bdl_cmd_check(int argc, char **argv)
     long n = w->particles.count > 0 ? w->particles.count : 1;
     double rate = (double)n / per_step;
     // Pouring scenes grow: cost the run at the particle count the scene will reach.
-    long total = bdl_create_estimate_total(s);
+    long total = bdl_create_estimate_total(s->creates, s->create_count, s->species);
     if (total < n)
         total = n;
     double wall = (double)total / rate * (double)steps_total;

@@ -115,7 +115,7 @@ static void find_live_parameter(viewer *v)
     v->live_key[0] = '\0';
     const bdl_gas_scene *g = &v->scene->gas;
     for (int s = 0; s < 6 && g->enabled; ++s)
-        if (g->side[s] == BDL_GAS_INLET && !v->scene->periodic[s / 2]) {
+        if (g->side[s] == BDL_SIDE_INLET && !v->scene->periodic[s / 2]) {
             snprintf(v->live_key, sizeof v->live_key, "gas.inlet_scale");
             return;
         }

@@ -22,21 +22,30 @@
 #include "cfd/grid.h"
 #include "cfd/poisson.h"
 #include "core/error.h"
+#include "core/names.h"
 
-typedef enum bdl_gas_side_type {
-    BDL_SIDE_WALL,   ///< no-slip (the wall may slide: wall_velocity)
-    BDL_SIDE_SLIP,   ///< free-slip wall
-    BDL_SIDE_INLET,  ///< given superficial velocity into the domain (a jet patch optional)
-    BDL_SIDE_OUTLET, ///< given pressure, zero-gradient velocity
-    BDL_SIDE_PERIODIC,
-} bdl_gas_side_type;
+/// Boundary of the gas on one side of the domain: a no-slip wall (it may slide: wall_velocity), a
+/// free-slip wall, an inlet of given superficial velocity (a jet patch optional) or an outlet of
+/// given pressure (zero-gradient velocity). A periodic side is not a choice of its own: it
+/// follows from a periodic axis of the domain, and comes after the list.
+#define BDL_GAS_SIDES(X)                                                                           \
+    X(SIDE_WALL, "wall", "no-slip wall")                                                           \
+    X(SIDE_SLIP, "slip", "free-slip wall")                                                         \
+    X(SIDE_INLET, "inlet", "inlet")                                                                \
+    X(SIDE_OUTLET, "outlet", "pressure outlet")
+typedef enum bdl_gas_side_type { BDL_GAS_SIDES(BDL_ENUM_ITEM) BDL_SIDE_PERIODIC } bdl_gas_side_type;
+extern const char *const bdl_gas_side_names[]; ///< scene words (no "periodic"), NULL-terminated
 
-typedef enum bdl_convection {
-    BDL_CONVECTION_UPWIND,
-    BDL_CONVECTION_VANLEER,
-    BDL_CONVECTION_SUPERBEE,
-    BDL_CONVECTION_CENTRAL, ///< second order, not bounded: for verification at low cell Reynolds
-} bdl_convection;
+/// Convection scheme of the momentum equation; central is second order but not bounded (for
+/// verification at low cell Reynolds numbers).
+#define BDL_CONVECTIONS(X)                                                                         \
+    X(CONVECTION_UPWIND, "upwind", "upwind")                                                       \
+    X(CONVECTION_VANLEER, "vanleer", "van Leer")                                                   \
+    X(CONVECTION_SUPERBEE, "superbee", "Superbee")                                                 \
+    X(CONVECTION_CENTRAL, "central", "central")
+typedef enum bdl_convection { BDL_CONVECTIONS(BDL_ENUM_ITEM) BDL_CONVECTION_COUNT } bdl_convection;
+extern const char *const bdl_convection_names[];  ///< scene words, NULL-terminated
+extern const char *const bdl_convection_labels[]; ///< for logs ("van Leer")
 
 typedef struct bdl_gas_side {
     bdl_gas_side_type type;

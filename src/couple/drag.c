@@ -4,17 +4,8 @@
 
 #include <math.h>
 
-const char *const bdl_drag_law_names[BDL_DRAG_LAW_COUNT] = {
-#define BDL_X_NAME(id, name, text) name,
-    BDL_DRAG_LAWS(BDL_X_NAME)
-#undef BDL_X_NAME
-};
-
-const char *const bdl_drag_law_texts[BDL_DRAG_LAW_COUNT] = {
-#define BDL_X_TEXT(id, name, text) text,
-    BDL_DRAG_LAWS(BDL_X_TEXT)
-#undef BDL_X_TEXT
-};
+const char *const bdl_drag_law_names[] = {BDL_DRAG_LAWS(BDL_ENUM_WORD) NULL};
+const char *const bdl_drag_law_texts[] = {BDL_DRAG_LAWS(BDL_ENUM_LABEL) NULL};
 
 bdl_drag_params bdl_drag_default_params(void)
 {

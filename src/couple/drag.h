@@ -10,28 +10,26 @@
 #ifndef BDL_DRAG_H
 #define BDL_DRAG_H
 
+#include "core/names.h"
+
 #define BDL_DRAG_LAWS(X)                                                                           \
-    X(STOKES, "stokes", "Stokes: 3 pi mu d, no voidage correction")                                \
-    X(SCHILLER_NAUMANN, "schiller_naumann", "Schiller & Naumann (1935), single sphere")            \
-    X(WEN_YU, "wen_yu", "Wen & Yu (1966): eps^-2.65 times the single-sphere law")                  \
-    X(ERGUN, "ergun", "Ergun (1952) packed bed")                                                   \
-    X(GIDASPOW, "gidaspow",                                                                        \
+    X(DRAG_STOKES, "stokes", "Stokes: 3 pi mu d, no voidage correction")                           \
+    X(DRAG_SCHILLER_NAUMANN, "schiller_naumann", "Schiller & Naumann (1935), single sphere")       \
+    X(DRAG_WEN_YU, "wen_yu", "Wen & Yu (1966): eps^-2.65 times the single-sphere law")             \
+    X(DRAG_ERGUN, "ergun", "Ergun (1952) packed bed")                                              \
+    X(DRAG_GIDASPOW, "gidaspow",                                                                   \
       "Gidaspow / Ding & Gidaspow (1990): Ergun below eps 0.8, Wen-Yu above")                      \
-    X(SYAMLAL_OBRIEN, "syamlal_obrien", "Syamlal & O'Brien (1988), C and D adjustable")            \
-    X(DI_FELICE, "di_felice", "Di Felice (1994): eps^-chi(Re)")                                    \
-    X(BEETSTRA, "beetstra", "Beetstra, van der Hoef & Kuipers (2007), from lattice-Boltzmann")     \
-    X(TENNETI, "tenneti", "Tenneti, Garg & Subramaniam (2011), from particle-resolved DNS")
+    X(DRAG_SYAMLAL_OBRIEN, "syamlal_obrien", "Syamlal & O'Brien (1988), C and D adjustable")       \
+    X(DRAG_DI_FELICE, "di_felice", "Di Felice (1994): eps^-chi(Re)")                               \
+    X(DRAG_BEETSTRA, "beetstra",                                                                   \
+      "Beetstra, van der Hoef & Kuipers (2007), from lattice-Boltzmann")                           \
+    X(DRAG_TENNETI, "tenneti", "Tenneti, Garg & Subramaniam (2011), from particle-resolved DNS")
 
-typedef enum bdl_drag_law {
-#define BDL_X_ENUM(id, name, text) BDL_DRAG_##id,
-    BDL_DRAG_LAWS(BDL_X_ENUM)
-#undef BDL_X_ENUM
-        BDL_DRAG_LAW_COUNT
-} bdl_drag_law;
+typedef enum bdl_drag_law { BDL_DRAG_LAWS(BDL_ENUM_ITEM) BDL_DRAG_LAW_COUNT } bdl_drag_law;
 
-/// Scene names ("wen_yu", ...) and one-line descriptions, indexed by law.
-extern const char *const bdl_drag_law_names[BDL_DRAG_LAW_COUNT];
-extern const char *const bdl_drag_law_texts[BDL_DRAG_LAW_COUNT];
+/// Scene words ("wen_yu", ...; NULL-terminated) and one-line descriptions, indexed by law.
+extern const char *const bdl_drag_law_names[];
+extern const char *const bdl_drag_law_texts[];
 
 typedef struct bdl_drag_params {
     double syamlal_c,

@@ -8,27 +8,7 @@
 
 #define PI 3.14159265358979323846
 
-double bdl_species_max_diameter(const bdl_species_def *s)
-{
-    return s->size_dist == BDL_SIZE_SINGLE ? s->diameter : s->diameter_max;
-}
-
-double bdl_species_draw_diameter(const bdl_species_def *s, bdl_rng *rng)
-{
-    switch (s->size_dist) {
-    case BDL_SIZE_UNIFORM:
-        return bdl_rng_range(rng, s->diameter_min, s->diameter_max);
-    case BDL_SIZE_NORMAL:
-        for (int tries = 0; tries < 1000; ++tries) {
-            double d = s->diameter + s->diameter_std * bdl_rng_normal(rng);
-            if (d >= s->diameter_min && d <= s->diameter_max)
-                return d;
-        }
-        return s->diameter;
-    default:
-        return s->diameter;
-    }
-}
+const char *const bdl_create_kind_names[] = {BDL_CREATE_KINDS(BDL_ENUM_WORD) NULL};
 
 // A bucket grid over a region for overlap tests while placing particles.
 typedef struct placement_grid {
@@ -142,11 +122,12 @@ static int inside_walls(const bdl_walls *walls, bdl_vec3 x, double r)
     return 1;
 }
 
-static double scene_max_radius(const bdl_scene *scene)
+/// The largest radius of any species: particles of all species share the placement grid.
+static double largest_radius(const bdl_create_context *ctx)
 {
     double r = 0.0;
-    for (int s = 0; s < scene->species_count; ++s) {
-        double d = bdl_species_max_diameter(&scene->species[s]);
+    for (int s = 0; s < ctx->species_count; ++s) {
+        double d = bdl_species_max_diameter(&ctx->species[s]);
         if (0.5 * d > r)
             r = 0.5 * d;
     }
@@ -196,27 +177,28 @@ static double region_volume(const bdl_create_def *c)
 }
 
 static long add_checked(bdl_particles *p, placement_grid *g, bdl_vec3 x, bdl_vec3 v, double r,
-                        const bdl_scene *scene, int species)
+                        const bdl_create_context *ctx, int species)
 {
-    long i = bdl_particles_add(p, x, v, r, scene->species[species].density, species);
+    long i = bdl_particles_add(p, x, v, r, ctx->species[species].density, species);
     if (i >= 0 && !grid_insert(g, p, i))
         return -1;
     return i;
 }
 
-static bdl_result fail(bdl_scene_error *err, const bdl_scene *scene, const bdl_create_def *c,
-                       const char *what)
+/// A creator that cannot do what it is asked: the reason into `why`.
+static bdl_result fail(char *why, size_t why_len, const char *what)
 {
-    snprintf(err->message, sizeof err->message, "%s:%d: [create %s]: %s", scene->path, c->line,
-             c->name, what);
+    snprintf(why, why_len, "%s", what);
     return BDL_ERR_SCENE;
 }
 
-static bdl_result create_random(const bdl_scene *scene, const bdl_create_def *c, bdl_particles *p,
-                                const bdl_walls *walls, bdl_rng *rng, bdl_scene_error *err)
+static bdl_result create_random(const bdl_create_def *c, const bdl_create_context *ctx,
+                                bdl_particles *p, char *why, size_t why_len)
 {
-    const bdl_species_def *s = &scene->species[c->species];
-    double r_max = scene_max_radius(scene);
+    const bdl_species_def *s = &ctx->species[c->species];
+    const bdl_walls *walls = ctx->walls;
+    bdl_rng *rng = ctx->rng;
+    double r_max = largest_radius(ctx);
     long target = c->count;
     if (target < 0) {
         // Mean particle volume from a sample of the distribution.
@@ -239,7 +221,7 @@ static bdl_result create_random(const bdl_scene *scene, const bdl_create_def *c,
         bdl_vec3 x;
         if (!try_place(c, walls, &g, p, r, r_max, rng, &x))
             continue;
-        if (add_checked(p, &g, x, draw_velocity(c, rng), r, scene, c->species) < 0) {
+        if (add_checked(p, &g, x, draw_velocity(c, rng), r, ctx, c->species) < 0) {
             grid_free(&g);
             return BDL_ERR_NOMEM;
         }
@@ -254,16 +236,18 @@ static bdl_result create_random(const bdl_scene *scene, const bdl_create_def *c,
                  "near a solids fraction of 0.38 — use a lower count or volume_fraction, a larger "
                  "region, type = lattice, or type = pour",
                  placed, target);
-        return fail(err, scene, c, what);
+        return fail(why, why_len, what);
     }
     return BDL_OK;
 }
 
-static bdl_result create_lattice(const bdl_scene *scene, const bdl_create_def *c, bdl_particles *p,
-                                 const bdl_walls *walls, bdl_rng *rng, bdl_scene_error *err)
+static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_context *ctx,
+                                 bdl_particles *p, char *why, size_t why_len)
 {
-    const bdl_species_def *s = &scene->species[c->species];
-    double r_max = scene_max_radius(scene);
+    const bdl_species_def *s = &ctx->species[c->species];
+    const bdl_walls *walls = ctx->walls;
+    bdl_rng *rng = ctx->rng;
+    double r_max = largest_radius(ctx);
     double d_species = bdl_species_max_diameter(s);
     double h = c->spacing > 0.0 ? c->spacing : 1.0001 * d_species;
     placement_grid g;
@@ -283,7 +267,7 @@ static bdl_result create_lattice(const bdl_scene *scene, const bdl_create_def *c
                                     lo.z + 0.5 * d_species + k * h);
                 if (!inside_walls(walls, x, 0.5 * d) || grid_overlaps(&g, p, x, 0.5 * d, r_max))
                     continue;
-                if (add_checked(p, &g, x, draw_velocity(c, rng), 0.5 * d, scene, c->species) < 0) {
+                if (add_checked(p, &g, x, draw_velocity(c, rng), 0.5 * d, ctx, c->species) < 0) {
                     grid_free(&g);
                     return BDL_ERR_NOMEM;
                 }
@@ -294,10 +278,10 @@ static bdl_result create_lattice(const bdl_scene *scene, const bdl_create_def *c
         char what[256];
         snprintf(what, sizeof what, "lattice holds only %ld of the %ld particles asked for", placed,
                  limit);
-        return fail(err, scene, c, what);
+        return fail(why, why_len, what);
     }
     if (placed == 0)
-        return fail(err, scene, c,
+        return fail(why, why_len,
                     "lattice region holds no particle (region smaller than a diameter?)");
     return BDL_OK;
 }
@@ -305,15 +289,16 @@ static bdl_result create_lattice(const bdl_scene *scene, const bdl_create_def *c
 /// Column names of a particle CSV file.
 enum { COL_X, COL_Y, COL_Z, COL_D, COL_VX, COL_VY, COL_VZ, COL_COUNT };
 
-static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, bdl_particles *p,
-                              bdl_rng *rng, bdl_scene_error *err)
+static bdl_result create_file(const bdl_create_def *c, const bdl_create_context *ctx,
+                              bdl_particles *p, char *why, size_t why_len)
 {
+    const bdl_species_def *species = &ctx->species[c->species];
     static const char *const names[COL_COUNT] = {"x", "y", "z", "diameter", "vx", "vy", "vz"};
     FILE *f = fopen(c->file, "r");
     char what[600];
     if (!f) {
         snprintf(what, sizeof what, "cannot open '%s': %s", c->file, strerror(errno));
-        return fail(err, scene, c, what);
+        return fail(why, why_len, what);
     }
     char line[4096];
     int col[COL_COUNT];
@@ -322,7 +307,7 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
     int ncols = 0;
     if (!fgets(line, sizeof line, f)) {
         fclose(f);
-        return fail(err, scene, c,
+        return fail(why, why_len,
                     "particle file is empty (expected a header such as x,y,z,diameter)");
     }
     for (char *tok = strtok(line, ",\r\n"); tok; tok = strtok(NULL, ",\r\n"), ++ncols) {
@@ -334,7 +319,7 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
     }
     if (col[COL_X] < 0 || col[COL_Y] < 0 || col[COL_Z] < 0) {
         fclose(f);
-        return fail(err, scene, c, "particle file header must name columns x, y and z");
+        return fail(why, why_len, "particle file header must name columns x, y and z");
     }
     long row = 1;
     bdl_result result = BDL_OK;
@@ -360,22 +345,20 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
         if (n < ncols) {
             snprintf(what, sizeof what, "%s:%ld: expected %d numbers, found %d", c->file, row,
                      ncols, n);
-            result = fail(err, scene, c, what);
+            result = fail(why, why_len, what);
             break;
         }
-        double d = col[COL_D] >= 0 ? v[col[COL_D]]
-                                   : bdl_species_draw_diameter(&scene->species[c->species], rng);
+        double d = col[COL_D] >= 0 ? v[col[COL_D]] : bdl_species_draw_diameter(species, ctx->rng);
         if (!(d > 0.0) || !isfinite(d)) {
             snprintf(what, sizeof what, "%s:%ld: diameter %g must be > 0", c->file, row, d);
-            result = fail(err, scene, c, what);
+            result = fail(why, why_len, what);
             break;
         }
         bdl_vec3 vel = c->velocity;
         if (col[COL_VX] >= 0 && col[COL_VY] >= 0 && col[COL_VZ] >= 0)
             vel = bdl_v3(v[col[COL_VX]], v[col[COL_VY]], v[col[COL_VZ]]);
         bdl_vec3 x = bdl_v3(v[col[COL_X]], v[col[COL_Y]], v[col[COL_Z]]);
-        if (bdl_particles_add(p, x, vel, 0.5 * d, scene->species[c->species].density, c->species) <
-            0) {
+        if (bdl_particles_add(p, x, vel, 0.5 * d, species->density, c->species) < 0) {
             result = BDL_ERR_NOMEM;
             break;
         }
@@ -384,27 +367,27 @@ static bdl_result create_file(const bdl_scene *scene, const bdl_create_def *c, b
     return result;
 }
 
-bdl_result bdl_create_initial(const bdl_scene *scene, int c, bdl_particles *p,
-                              const bdl_walls *walls, bdl_rng *rng, bdl_scene_error *err)
+bdl_result bdl_create_initial(const bdl_create_def *def, const bdl_create_context *ctx,
+                              bdl_particles *p, char *why, size_t why_len)
 {
-    const bdl_create_def *def = &scene->creates[c];
     switch (def->kind) {
     case BDL_CREATE_RANDOM:
-        return create_random(scene, def, p, walls, rng, err);
+        return create_random(def, ctx, p, why, why_len);
     case BDL_CREATE_LATTICE:
-        return create_lattice(scene, def, p, walls, rng, err);
+        return create_lattice(def, ctx, p, why, why_len);
     case BDL_CREATE_FILE:
-        return create_file(scene, def, p, rng, err);
+        return create_file(def, ctx, p, why, why_len);
     case BDL_CREATE_POUR:
         return BDL_OK;
     }
     return BDL_OK;
 }
 
-long bdl_create_pour(const bdl_scene *scene, int c, double t, long *poured, bdl_particles *p,
-                     const bdl_walls *walls, bdl_rng *rng)
+long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, double t,
+                     long *poured, bdl_particles *p)
 {
-    const bdl_create_def *def = &scene->creates[c];
+    const bdl_walls *walls = ctx->walls;
+    bdl_rng *rng = ctx->rng;
     if (t < def->start_time || *poured >= def->count)
         return 0;
     long due = (long)floor((t - def->start_time) * def->rate) + 1;
@@ -413,11 +396,11 @@ long bdl_create_pour(const bdl_scene *scene, int c, double t, long *poured, bdl_
     if (due <= *poured)
         return 0;
     placement_grid g;
-    double r_max = scene_max_radius(scene);
+    double r_max = largest_radius(ctx);
     if (!grid_for_region(&g, p, def->region_min, def->region_max, r_max))
         return -1;
     long added = 0;
-    const bdl_species_def *s = &scene->species[def->species];
+    const bdl_species_def *s = &ctx->species[def->species];
     while (*poured < due) {
         double r = 0.5 * bdl_species_draw_diameter(s, rng);
         int placed = 0;
@@ -425,7 +408,7 @@ long bdl_create_pour(const bdl_scene *scene, int c, double t, long *poured, bdl_
             bdl_vec3 x;
             if (!try_place(def, walls, &g, p, r, r_max, rng, &x))
                 continue;
-            if (add_checked(p, &g, x, draw_velocity(def, rng), r, scene, def->species) < 0) {
+            if (add_checked(p, &g, x, draw_velocity(def, rng), r, ctx, def->species) < 0) {
                 grid_free(&g);
                 return -1;
             }
@@ -459,17 +442,18 @@ static long count_rows(const char *path)
     return lines > 0 ? lines - 1 : 0;
 }
 
-long bdl_create_estimate_total(const bdl_scene *scene)
+long bdl_create_estimate_total(const bdl_create_def *creates, int count,
+                               const bdl_species_def *species)
 {
     long total = 0;
-    for (int c = 0; c < scene->create_count; ++c) {
-        const bdl_create_def *def = &scene->creates[c];
+    for (int c = 0; c < count; ++c) {
+        const bdl_create_def *def = &creates[c];
         if (def->count > 0) {
             total += def->count;
             continue;
         }
-        const bdl_species_def *s = &scene->species[def->species];
-        double d = s->size_dist == BDL_SIZE_SINGLE ? s->diameter : s->diameter_min;
+        const bdl_species_def *s = &species[def->species];
+        double d = bdl_species_min_diameter(s);
         double vp = PI / 6.0 * d * d * d;
         if (def->kind == BDL_CREATE_RANDOM)
             total += (long)(def->volume_fraction * region_volume(def) / vp) + 1;

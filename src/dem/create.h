@@ -10,25 +10,57 @@
 
 #include "core/rng.h"
 #include "dem/particles.h"
+#include "dem/species.h"
 #include "dem/walls.h"
-#include "scene/scene.h"
 
-/// Diameter drawn from a species' distribution [m].
-double bdl_species_draw_diameter(const bdl_species_def *s, bdl_rng *rng);
+/// How a creator makes its particles ([create NAME] type).
+#define BDL_CREATE_KINDS(X)                                                                        \
+    X(CREATE_RANDOM, "random", "non-overlapping random fill of a box region")                      \
+    X(CREATE_LATTICE, "lattice", "simple cubic lattice in a box region")                           \
+    X(CREATE_POUR, "pour", "insert particles in a region at a rate during the run")                \
+    X(CREATE_FILE, "file", "positions (and optionally diameter, velocity) from a CSV file")
+typedef enum bdl_create_kind {
+    BDL_CREATE_KINDS(BDL_ENUM_ITEM) BDL_CREATE_KIND_COUNT
+} bdl_create_kind;
+extern const char *const bdl_create_kind_names[]; ///< scene words, NULL-terminated
 
-/// Largest diameter a species can have [m].
-double bdl_species_max_diameter(const bdl_species_def *s);
+typedef struct bdl_create_def {
+    char name[BDL_NAME_LEN];
+    bdl_create_kind kind;
+    int species;             ///< species index
+    bdl_vec3 region_min;     ///< [m]
+    bdl_vec3 region_max;     ///< [m]
+    long count;              ///< number of particles (random, lattice, pour); -1 if not given
+    double volume_fraction;  ///< target solids fraction of the region (random); < 0 if not given
+    double spacing;          ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
+    double rate;             ///< pour rate [particles/s]
+    double start_time;       ///< pour start [s]
+    bdl_vec3 velocity;       ///< initial velocity [m/s]
+    double velocity_jitter;  ///< random velocity magnitude added [m/s]
+    char file[BDL_PATH_LEN]; ///< CSV path
+} bdl_create_def;
 
-/// Creates the particles of creator `c` (random, lattice or file) at the start of a run.
-bdl_result bdl_create_initial(const bdl_scene *scene, int c, bdl_particles *p,
-                              const bdl_walls *walls, bdl_rng *rng, bdl_scene_error *err);
+/// What creators draw on besides their own definition.
+typedef struct bdl_create_context {
+    const bdl_species_def *species; ///< every species (creators place clear of the largest)
+    int species_count;
+    const bdl_walls *walls; ///< particles are placed clear of them
+    bdl_rng *rng;           ///< every draw, in a fixed order
+} bdl_create_context;
 
-/// Pours the particles creator `c` owes by time t; `poured` counts what it has inserted so far
-/// and is updated. A particle that finds no free place waits for a later step.
-long bdl_create_pour(const bdl_scene *scene, int c, double t, long *poured, bdl_particles *p,
-                     const bdl_walls *walls, bdl_rng *rng);
+/// Creates the particles of a random, lattice or file creator at the start of a run. A creator
+/// that cannot make what it is asked for returns BDL_ERR_SCENE with the reason in `why`.
+bdl_result bdl_create_initial(const bdl_create_def *c, const bdl_create_context *ctx,
+                              bdl_particles *p, char *why, size_t why_len);
 
-/// Upper bound of the number of particles the scene will hold (for sizing the cell grid).
-long bdl_create_estimate_total(const bdl_scene *scene);
+/// Pours the particles a pour creator owes by time t; `poured` counts what it has inserted so far
+/// and is updated. A particle that finds no free place waits for a later step. Returns the
+/// number added, -1 when out of memory.
+long bdl_create_pour(const bdl_create_def *c, const bdl_create_context *ctx, double t, long *poured,
+                     bdl_particles *p);
+
+/// Upper bound of the number of particles `count` creators will make (for sizing the cell grid).
+long bdl_create_estimate_total(const bdl_create_def *creates, int count,
+                               const bdl_species_def *species);
 
 #endif

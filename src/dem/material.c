@@ -12,6 +12,8 @@
 // Either way e depends on the damping coefficient alone (not on the impact speed), so it is
 // computed once per distinct restitution value with classical RK4 and inverted by bisection.
 #include "dem/material.h"
+#include "dem/species.h"
+#include "dem/walls.h"
 
 #include <math.h>
 
@@ -123,6 +125,10 @@ double bdl_linear_damping_exact(double restitution) { return damping_exact(0, re
 
 static double mean2(double a, double b) { return 0.5 * (a + b); }
 
+const char *const bdl_normal_law_names[] = {BDL_NORMAL_LAWS(BDL_ENUM_WORD) NULL};
+const char *const bdl_damping_mode_names[] = {BDL_DAMPING_MODES(BDL_ENUM_WORD) NULL};
+const char *const bdl_rolling_model_names[] = {BDL_ROLLING_MODELS(BDL_ENUM_WORD) NULL};
+
 static double pick(double wall_value, double particle_value)
 {
     return wall_value >= 0.0 ? wall_value : particle_value;
@@ -137,10 +143,10 @@ typedef struct damping_cache {
     double c[BDL_MAX_SPECIES * BDL_MAX_SPECIES + BDL_MAX_WALLS * BDL_MAX_SPECIES];
 } damping_cache;
 
-static double damping_for(const bdl_scene *scene, damping_cache *cache, double e)
+static double damping_for(const bdl_contact_table_def *def, damping_cache *cache, double e)
 {
-    int hertz = scene->law == BDL_LAW_HERTZ;
-    if (scene->damping == BDL_DAMPING_CLOSED_FORM)
+    int hertz = def->law == BDL_LAW_HERTZ;
+    if (def->damping == BDL_DAMPING_CLOSED_FORM)
         return hertz ? bdl_hertz_damping_closed_form(e) : bdl_linear_damping_ratio(e);
     for (int k = 0; k < cache->count; ++k)
         if (cache->e[k] == e)
@@ -217,32 +223,32 @@ static void apply_override(const bdl_pair_def *o, bdl_contact_params *cp)
     }
 }
 
-void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_params,
+void bdl_contact_table_build(const bdl_contact_table_def *def, bdl_contact_params *pair_params,
                              bdl_contact_params *wall_params)
 {
     static const bdl_contact_params zero = {0};
     damping_cache cache = {0};
-    int ns = scene->species_count;
+    int ns = def->species_count;
     for (int a = 0; a < ns; ++a)
         for (int b = 0; b < ns; ++b) {
             bdl_contact_params cp = zero;
-            mix_pair(&scene->species[a].material, &scene->species[b].material, &cp);
-            for (int k = 0; k < scene->pair_count; ++k) {
-                const bdl_pair_def *o = &scene->pairs[k];
+            mix_pair(&def->species[a], &def->species[b], &cp);
+            for (int k = 0; k < def->pair_count; ++k) {
+                const bdl_pair_def *o = &def->pairs[k];
                 if ((o->species_a == a && o->species_b == b) ||
                     (o->species_a == b && o->species_b == a))
                     apply_override(o, &cp);
             }
-            cp.damping = damping_for(scene, &cache, cp.restitution);
-            cp.duration_ratio = bdl_contact_duration_ratio(scene->law == BDL_LAW_HERTZ, cp.damping);
+            cp.damping = damping_for(def, &cache, cp.restitution);
+            cp.duration_ratio = bdl_contact_duration_ratio(def->law == BDL_LAW_HERTZ, cp.damping);
             pair_params[a * ns + b] = cp;
         }
-    for (int w = 0; w < scene->wall_count; ++w)
+    for (int w = 0; w < def->wall_count; ++w)
         for (int s = 0; s < ns; ++s) {
             bdl_contact_params cp = zero;
-            mix_wall(&scene->walls[w].material, &scene->species[s].material, &cp);
-            cp.damping = damping_for(scene, &cache, cp.restitution);
-            cp.duration_ratio = bdl_contact_duration_ratio(scene->law == BDL_LAW_HERTZ, cp.damping);
+            mix_wall(&def->walls[w], &def->species[s], &cp);
+            cp.damping = damping_for(def, &cache, cp.restitution);
+            cp.duration_ratio = bdl_contact_duration_ratio(def->law == BDL_LAW_HERTZ, cp.damping);
             wall_params[w * ns + s] = cp;
         }
 }

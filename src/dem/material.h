@@ -14,7 +14,53 @@
 #ifndef BDL_MATERIAL_H
 #define BDL_MATERIAL_H
 
-#include "scene/scene.h"
+#include "core/names.h"
+
+/// Normal contact law, chosen per scene ([contact] law).
+#define BDL_NORMAL_LAWS(X)                                                                         \
+    X(LAW_LINEAR, "linear", "linear spring-dashpot: F = k_n delta - gamma v_n")                    \
+    X(LAW_HERTZ, "hertz", "Hertz-Mindlin with delta^(1/4)-scaled (restitution-based) damping")
+typedef enum bdl_normal_law { BDL_NORMAL_LAWS(BDL_ENUM_ITEM) BDL_LAW_COUNT } bdl_normal_law;
+extern const char *const bdl_normal_law_names[]; ///< scene words, NULL-terminated
+
+/// How the damping coefficient is obtained from the restitution ([contact] damping).
+#define BDL_DAMPING_MODES(X)                                                                       \
+    X(DAMPING_EXACT, "exact", "solved once per pair so that the realised restitution matches")     \
+    X(DAMPING_CLOSED_FORM, "closed_form", "the closed form of LIGGGHTS/EDEM (approximate at low e)")
+typedef enum bdl_damping_mode {
+    BDL_DAMPING_MODES(BDL_ENUM_ITEM) BDL_DAMPING_COUNT
+} bdl_damping_mode;
+extern const char *const bdl_damping_mode_names[]; ///< scene words, NULL-terminated
+
+/// Rolling resistance model ([contact] rolling).
+#define BDL_ROLLING_MODELS(X)                                                                      \
+    X(ROLLING_NONE, "none", "none")                                                                \
+    X(ROLLING_CONSTANT, "constant", "constant directional torque mu_r R* |F_n| against rolling")
+typedef enum bdl_rolling_model {
+    BDL_ROLLING_MODELS(BDL_ENUM_ITEM) BDL_ROLLING_COUNT
+} bdl_rolling_model;
+extern const char *const bdl_rolling_model_names[]; ///< scene words, NULL-terminated
+
+/// Material and contact parameters shared by species, pair overrides and walls.
+/// A value < 0 means "not given" where a default is derived (documented per key).
+typedef struct bdl_material {
+    double youngs_modulus;           ///< E [Pa] (Hertz law); < 0 if not given
+    double poisson_ratio;            ///< nu [-]
+    double stiffness;                ///< k_n [N/m] (linear law); < 0 if not given
+    double tangential_stiffness;     ///< k_t [N/m] (linear law); < 0 -> 2/7 k_n
+    double restitution;              ///< normal coefficient of restitution e in (0, 1]
+    double tangential_damping_ratio; ///< gamma_t / gamma_n [-] (default 0: no tangential dashpot)
+    double friction;                 ///< sliding friction coefficient mu [-]
+    double rolling_friction;         ///< rolling friction coefficient mu_r [-]
+} bdl_material;
+
+/// Override of contact parameters for one pair of species ([pair A B]). Only the fields flagged
+/// in `has_*` replace the mixed values.
+typedef struct bdl_pair_def {
+    int species_a, species_b; ///< species indices
+    int has_restitution, has_friction, has_rolling_friction, has_stiffness;
+    double restitution, friction, rolling_friction, stiffness;
+} bdl_pair_def;
 
 typedef struct bdl_contact_params {
     double kn;     ///< linear law: normal stiffness [N/m]
@@ -47,9 +93,21 @@ double bdl_restitution_of(int hertz, double c);
 double bdl_contact_duration_ratio(int hertz, double c);
 double bdl_hertz_restitution_of(double c);
 
+/// What the table of contact parameters is mixed from.
+typedef struct bdl_contact_table_def {
+    bdl_normal_law law;
+    bdl_damping_mode damping;
+    int species_count;
+    const bdl_material *species; ///< one material per species
+    int pair_count;
+    const bdl_pair_def *pairs; ///< overrides per species pair
+    int wall_count;
+    const bdl_material *walls; ///< one material per wall (fields < 0: the species' own)
+} bdl_contact_table_def;
+
 /// Fills params for every species pair (species_count^2, symmetric) and every wall-species pair
 /// (wall_count * species_count, index wall * species_count + species).
-void bdl_contact_table_build(const bdl_scene *scene, bdl_contact_params *pair_params,
+void bdl_contact_table_build(const bdl_contact_table_def *def, bdl_contact_params *pair_params,
                              bdl_contact_params *wall_params);
 
 /// Duration of a contact [s]: the elastic one, linear pi sqrt(m*/k_n) or Hertz

@@ -4,6 +4,10 @@
 
 #define PI 3.14159265358979323846
 
+const char *const bdl_wall_kind_names[] = {BDL_WALL_KINDS(BDL_ENUM_WORD) NULL};
+const char *const bdl_motion_kind_names[] = {BDL_MOTIONS(BDL_ENUM_WORD) NULL};
+const char *const bdl_wall_frame_names[] = {BDL_WALL_FRAMES(BDL_ENUM_WORD) NULL};
+
 static void add_plane(bdl_walls *walls, int wall, bdl_vec3 point, bdl_vec3 normal)
 {
     bdl_wall_prim *p = &walls->prims[walls->prim_count++];
@@ -14,12 +18,12 @@ static void add_plane(bdl_walls *walls, int wall, bdl_vec3 point, bdl_vec3 norma
     p->radius = 0.0;
 }
 
-void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls)
+void bdl_walls_build(const bdl_wall_def *defs, int count, bdl_walls *walls)
 {
     walls->prim_count = 0;
-    walls->wall_count = scene->wall_count;
-    for (int w = 0; w < scene->wall_count; ++w) {
-        const bdl_wall_def *d = &scene->walls[w];
+    walls->wall_count = count;
+    for (int w = 0; w < count; ++w) {
+        const bdl_wall_def *d = &defs[w];
         switch (d->kind) {
         case BDL_WALL_PLANE:
             add_plane(walls, w, d->point, bdl_v3_normalize(d->normal));

@@ -1,21 +1,63 @@
 // bedlam — walls: planes, boxes and cylinders with prescribed motion.
 //
-// Every scene wall expands into primitives (a box into six inward-facing planes). A primitive
+// Every wall expands into primitives (a box into six inward-facing planes). A primitive
 // moves rigidly with its wall: displacement s(t) = A sin(2 pi f (t - start) + phase) d along
 // the unit direction d from the start time on (zero before), velocity s'(t). Contacts treat a wall
 // as a body of infinite mass and radius (a cylinder's inside is concave: 1/R* = 1/r - 1/R_cyl).
 #ifndef BDL_WALLS_H
 #define BDL_WALLS_H
 
-#include "scene/scene.h"
+#include "core/vec3.h"
+#include "dem/material.h"
 
+#define BDL_MAX_WALLS 16
 #define BDL_MAX_PRIMS (6 * BDL_MAX_WALLS)
+
+/// Geometry of a wall ([wall NAME] type).
+#define BDL_WALL_KINDS(X)                                                                          \
+    X(WALL_PLANE, "plane", "half-space boundary: particles stay on the side `normal` points to")   \
+    X(WALL_BOX, "box", "the inside of an axis-aligned box (six planes)")                           \
+    X(WALL_CYLINDER, "cylinder", "the inside of a cylinder around an axis (infinite unless capped)")
+typedef enum bdl_wall_kind { BDL_WALL_KINDS(BDL_ENUM_ITEM) BDL_WALL_KIND_COUNT } bdl_wall_kind;
+extern const char *const bdl_wall_kind_names[]; ///< scene words, NULL-terminated
+
+/// Prescribed motion of a wall ([wall NAME] motion).
+#define BDL_MOTIONS(X)                                                                             \
+    X(MOTION_NONE, "none", "at rest")                                                              \
+    X(MOTION_VIBRATE, "vibrate", "displacement A sin(2 pi f t + phase) along `direction`")
+typedef enum bdl_motion_kind { BDL_MOTIONS(BDL_ENUM_ITEM) BDL_MOTION_COUNT } bdl_motion_kind;
+extern const char *const bdl_motion_kind_names[]; ///< scene words, NULL-terminated
+
+/// The frame a vibrating wall is seen from ([wall NAME] frame).
+#define BDL_WALL_FRAMES(X)                                                                         \
+    X(FRAME_LAB, "lab", "the wall moves through the fixed domain")                                 \
+    X(FRAME_CONTAINER, "container",                                                                \
+      "the whole container moves with it; the run is done in its frame")
+typedef enum bdl_wall_frame { BDL_WALL_FRAMES(BDL_ENUM_ITEM) BDL_FRAME_COUNT } bdl_wall_frame;
+extern const char *const bdl_wall_frame_names[]; ///< scene words, NULL-terminated
+
+typedef struct bdl_wall_def {
+    char name[BDL_NAME_LEN];
+    bdl_wall_kind kind;
+    bdl_vec3 point;            ///< plane: a point on it; cylinder: a point on the axis [m]
+    bdl_vec3 normal;           ///< plane: unit normal into the particle side; cylinder: unit axis
+    bdl_vec3 box_min, box_max; ///< box corners [m]
+    double radius;             ///< cylinder radius [m]
+    bdl_motion_kind motion;
+    bdl_vec3 direction;    ///< vibration direction (unit)
+    double amplitude;      ///< A [m]
+    double frequency;      ///< f [Hz]
+    double phase;          ///< [rad]
+    double start;          ///< simulated time the vibration starts; still before [s]
+    bdl_wall_frame frame;  ///< lab, or container (every wall and the gas grid move with this one)
+    bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
+} bdl_wall_def;
 
 typedef enum bdl_prim_kind { BDL_PRIM_PLANE, BDL_PRIM_CYLINDER } bdl_prim_kind;
 
 typedef struct bdl_wall_prim {
     bdl_prim_kind kind;
-    int wall;        ///< index of the scene wall it belongs to
+    int wall;        ///< index of the wall it belongs to
     bdl_vec3 point;  ///< rest position of a point on the plane / axis [m]
     bdl_vec3 normal; ///< plane: unit normal into the particle side; cylinder: unit axis
     double radius;   ///< cylinder radius [m]
@@ -34,7 +76,8 @@ typedef struct bdl_walls {
     bdl_vec3 velocity[BDL_MAX_WALLS]; ///< [m/s]
 } bdl_walls;
 
-void bdl_walls_build(const bdl_scene *scene, bdl_walls *walls);
+/// Expands `count` wall definitions into primitives, at rest at time 0.
+void bdl_walls_build(const bdl_wall_def *defs, int count, bdl_walls *walls);
 
 /// Sets offset and velocity of every wall at time t [s].
 void bdl_walls_update(bdl_walls *walls, double t);

@@ -71,18 +71,14 @@ struct bdl_renderer {
 // ---------------------------------------------------------------------------------------------
 // Colours.
 
-static const char *const mode_labels[] = {
-    "species", "coordination number", "speed", "velocity x", "velocity y", "velocity z", "voidage"};
-static const char *const mode_units[] = {"", "contacts", "m/s", "m/s", "m/s", "m/s", ""};
-
 const char *bdl_color_mode_label(bdl_color_mode mode)
 {
-    return (unsigned)mode < BDL_COLOR_MODE_COUNT ? mode_labels[mode] : "?";
+    return (unsigned)mode < BDL_COLOR_MODE_COUNT ? bdl_color_mode_labels[mode] : "?";
 }
 
 const char *bdl_color_mode_unit(bdl_color_mode mode)
 {
-    return (unsigned)mode < BDL_COLOR_MODE_COUNT ? mode_units[mode] : "";
+    return (unsigned)mode < BDL_COLOR_MODE_COUNT ? bdl_color_mode_units[mode] : "";
 }
 
 static int diverging(bdl_color_mode mode)
@@ -647,9 +643,6 @@ static void help_box(bdl_renderer *r, const char *help, int width, int height)
     text(r, x0 + 16.0f, y0 + 12.0f, help, text_color);
 }
 
-static const char *const gas_field_labels[] = {"", "voidage", "pressure", "gas speed"};
-static const char *const gas_field_units[] = {"", "", "Pa", "m/s"};
-
 static void build_overlay(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v, int width,
                           int height)
 {
@@ -670,8 +663,9 @@ static void build_overlay(bdl_renderer *r, const bdl_snapshot *s, const bdl_view
             char lo[32], hi[32];
             format_value(lo, sizeof lo, r->slice_range[0]);
             format_value(hi, sizeof hi, r->slice_range[1]);
-            snprintf(line, sizeof line, "slice: %s %s to %s %s", gas_field_labels[r->slice_drawn],
-                     lo, hi, gas_field_units[r->slice_drawn]);
+            snprintf(line, sizeof line, "slice: %s %s to %s %s",
+                     bdl_gas_field_labels[r->slice_drawn], lo, hi,
+                     bdl_gas_field_units[r->slice_drawn]);
             text(r, 10, y, line, text_color);
         }
         if (v->color == BDL_COLOR_SPECIES || v->color == BDL_COLOR_COORDINATION)

@@ -1,7 +1,10 @@
 // bedlam — the validated scene description.
 //
 // A scene file (INI, parsed with libinih) becomes a bdl_scene: plain data in SI units, every
-// value checked against its allowed range, no physics. The solver modules are built from it.
+// value checked against its allowed range, no physics. The solver modules own the definitions
+// they are built from (species, materials, walls and creators in dem/, the gas's sides and
+// convection in cfd/, the drag laws in couple/); a scene is a set of them plus what the run,
+// the outputs and the cameras need, and the world (world/) builds the solvers from it.
 // The key-by-key documentation (unit, default, range) is docs/scene-format.md; the table of keys
 // in scene_keys.c is the single source the parser, the "did you mean" hints and the docs test
 // read from.
@@ -10,137 +13,19 @@
 
 #include <stdint.h>
 
+#include "cfd/gas.h"
 #include "core/error.h"
+#include "core/names.h"
 #include "core/vec3.h"
+#include "couple/drag.h"
+#include "dem/create.h"
+#include "dem/material.h"
+#include "dem/species.h"
+#include "dem/walls.h"
 
-#define BDL_MAX_SPECIES 16
 #define BDL_MAX_PAIRS   64
-#define BDL_MAX_WALLS   16
 #define BDL_MAX_CREATES 16
 #define BDL_MAX_DIA     4
-#define BDL_NAME_LEN    32
-#define BDL_PATH_LEN    512
-
-/// Normal contact law, chosen per scene ([contact] law).
-typedef enum bdl_normal_law {
-    BDL_LAW_LINEAR = 0, ///< linear spring-dashpot: F = k_n delta - gamma v_n
-    BDL_LAW_HERTZ = 1,  ///< Hertz-Mindlin with delta^(1/4)-scaled (restitution-based) damping
-} bdl_normal_law;
-
-/// How the damping coefficient is obtained from the restitution ([contact] damping).
-typedef enum bdl_damping_mode {
-    BDL_DAMPING_EXACT = 0,       ///< solved numerically once per pair so the realised e matches
-    BDL_DAMPING_CLOSED_FORM = 1, ///< the closed form of LIGGGHTS/EDEM (approximate at low e)
-} bdl_damping_mode;
-
-/// Rolling resistance model ([contact] rolling).
-typedef enum bdl_rolling_model {
-    BDL_ROLLING_NONE = 0,
-    BDL_ROLLING_CONSTANT =
-        1, ///< constant directional torque mu_r R* |F_n| against relative rolling
-} bdl_rolling_model;
-
-/// Diameter distribution of a species.
-typedef enum bdl_size_dist {
-    BDL_SIZE_SINGLE = 0,  ///< all particles have `diameter`
-    BDL_SIZE_UNIFORM = 1, ///< uniform in [diameter_min, diameter_max]
-    BDL_SIZE_NORMAL =
-        2, ///< normal(diameter, diameter_std) truncated to [diameter_min, diameter_max]
-} bdl_size_dist;
-
-/// Material and contact parameters shared by species, pair overrides and walls.
-/// A value < 0 means "not given" where a default is derived (documented per key).
-typedef struct bdl_material {
-    double youngs_modulus;           ///< E [Pa] (Hertz law); < 0 if not given
-    double poisson_ratio;            ///< nu [-]
-    double stiffness;                ///< k_n [N/m] (linear law); < 0 if not given
-    double tangential_stiffness;     ///< k_t [N/m] (linear law); < 0 -> 2/7 k_n
-    double restitution;              ///< normal coefficient of restitution e in (0, 1]
-    double tangential_damping_ratio; ///< gamma_t / gamma_n [-] (default 0: no tangential dashpot)
-    double friction;                 ///< sliding friction coefficient mu [-]
-    double rolling_friction;         ///< rolling friction coefficient mu_r [-]
-} bdl_material;
-
-typedef struct bdl_species_def {
-    char name[BDL_NAME_LEN];
-    bdl_size_dist size_dist;
-    double diameter;           ///< [m] (mean for distributions)
-    double diameter_min;       ///< [m]
-    double diameter_max;       ///< [m]
-    double diameter_std;       ///< [m] (normal distribution)
-    double density;            ///< [kg/m^3]
-    double background_damping; ///< b [1/s]: force -b m v on every particle of the species
-    bdl_material material;
-    int line; ///< line of the section header in the scene file (for messages)
-} bdl_species_def;
-
-/// Override of contact parameters for one pair of species ([pair A B]), or a species with a
-/// wall. Only the fields flagged in `has_*` replace the mixed values.
-typedef struct bdl_pair_def {
-    int species_a, species_b; ///< indices into bdl_scene.species
-    int has_restitution, has_friction, has_rolling_friction, has_stiffness;
-    double restitution, friction, rolling_friction, stiffness;
-    int line;
-} bdl_pair_def;
-
-typedef enum bdl_wall_kind {
-    BDL_WALL_PLANE = 0,    ///< half-space boundary: particles stay on the side `normal` points to
-    BDL_WALL_BOX = 1,      ///< the inside of an axis-aligned box (six planes)
-    BDL_WALL_CYLINDER = 2, ///< the inside of a cylinder around an axis (infinite unless capped)
-} bdl_wall_kind;
-
-typedef enum bdl_motion_kind {
-    BDL_MOTION_NONE = 0,
-    BDL_MOTION_VIBRATE = 1, ///< displacement A sin(2 pi f t + phase) along `direction`
-} bdl_motion_kind;
-
-/// The frame a vibrating wall is seen from.
-typedef enum bdl_wall_frame {
-    BDL_FRAME_LAB = 0,       ///< the wall moves through the fixed domain
-    BDL_FRAME_CONTAINER = 1, ///< the whole container moves with it; the run is done in its frame
-} bdl_wall_frame;
-
-typedef struct bdl_wall_def {
-    char name[BDL_NAME_LEN];
-    bdl_wall_kind kind;
-    bdl_vec3 point;            ///< plane: a point on it; cylinder: a point on the axis [m]
-    bdl_vec3 normal;           ///< plane: unit normal into the particle side; cylinder: unit axis
-    bdl_vec3 box_min, box_max; ///< box corners [m]
-    double radius;             ///< cylinder radius [m]
-    bdl_motion_kind motion;
-    bdl_vec3 direction;    ///< vibration direction (unit)
-    double amplitude;      ///< A [m]
-    double frequency;      ///< f [Hz]
-    double phase;          ///< [rad]
-    double start;          ///< simulated time the vibration starts; still before [s]
-    bdl_wall_frame frame;  ///< lab, or container (every wall and the gas grid move with this one)
-    bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
-    int line;
-} bdl_wall_def;
-
-typedef enum bdl_create_kind {
-    BDL_CREATE_RANDOM = 0,  ///< non-overlapping random fill of a box region
-    BDL_CREATE_LATTICE = 1, ///< simple cubic lattice in a box region
-    BDL_CREATE_POUR = 2,    ///< insert particles in a region at a rate during the run
-    BDL_CREATE_FILE = 3,    ///< positions (and optionally diameter, velocity) from a CSV file
-} bdl_create_kind;
-
-typedef struct bdl_create_def {
-    char name[BDL_NAME_LEN];
-    bdl_create_kind kind;
-    int species;             ///< index into bdl_scene.species
-    bdl_vec3 region_min;     ///< [m]
-    bdl_vec3 region_max;     ///< [m]
-    long count;              ///< number of particles (random, lattice, pour); -1 if not given
-    double volume_fraction;  ///< target solids fraction of the region (random); < 0 if not given
-    double spacing;          ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
-    double rate;             ///< pour rate [particles/s]
-    double start_time;       ///< pour start [s]
-    bdl_vec3 velocity;       ///< initial velocity [m/s]
-    double velocity_jitter;  ///< random velocity magnitude added [m/s]
-    char file[BDL_PATH_LEN]; ///< CSV path (relative to the scene file's folder)
-    int line;
-} bdl_create_def;
 
 typedef struct bdl_output_def {
     double diagnostics_interval;   ///< [s] between rows of diagnostics.csv
@@ -154,42 +39,54 @@ typedef struct bdl_output_def {
     bdl_vec3 mixing_cells;         ///< Lacey index grid in species.csv; 0 0 0 = the default
 } bdl_output_def;
 
-/// Preset camera orientations.
-typedef enum bdl_view_preset {
-    BDL_VIEW_ISO,   ///< from the front-right, above
-    BDL_VIEW_FRONT, ///< along +y: the x-z plane, as a camera sees the front wall of a pseudo-2D bed
-    BDL_VIEW_SIDE,  ///< along -x: the y-z plane
-    BDL_VIEW_TOP,   ///< along -z: the x-y plane
-} bdl_view_preset;
+/// Preset camera orientations ([camera] view).
+#define BDL_VIEW_PRESETS(X)                                                                        \
+    X(VIEW_ISO, "iso", "from the front-right, above")                                              \
+    X(VIEW_FRONT, "front", "along +y: the x-z plane, as a camera sees a pseudo-2D bed's front")    \
+    X(VIEW_SIDE, "side", "along -x: the y-z plane")                                                \
+    X(VIEW_TOP, "top", "along -z: the x-y plane")
+typedef enum bdl_view_preset { BDL_VIEW_PRESETS(BDL_ENUM_ITEM) BDL_VIEW_COUNT } bdl_view_preset;
+extern const char *const bdl_view_preset_names[]; ///< scene words, NULL-terminated
 
-typedef enum bdl_projection { BDL_PROJ_PERSPECTIVE, BDL_PROJ_ORTHOGRAPHIC } bdl_projection;
+#define BDL_PROJECTIONS(X)                                                                         \
+    X(PROJ_PERSPECTIVE, "perspective", "perspective")                                              \
+    X(PROJ_ORTHOGRAPHIC, "orthographic", "orthographic")
+typedef enum bdl_projection { BDL_PROJECTIONS(BDL_ENUM_ITEM) BDL_PROJ_COUNT } bdl_projection;
+extern const char *const bdl_projection_names[]; ///< scene words, NULL-terminated
 
-/// What the particle colour shows.
+/// What the particle colour shows ([camera] color): X(NAME, "word", "label", "unit").
+#define BDL_COLOR_MODES(X)                                                                         \
+    X(COLOR_SPECIES, "species", "species", "")                                                     \
+    X(COLOR_COORDINATION, "coordination", "coordination number", "contacts")                       \
+    X(COLOR_SPEED, "speed", "speed", "m/s")                                                        \
+    X(COLOR_VX, "vx", "velocity x", "m/s")                                                         \
+    X(COLOR_VY, "vy", "velocity y", "m/s")                                                         \
+    X(COLOR_VZ, "vz", "velocity z", "m/s")                                                         \
+    X(COLOR_VOIDAGE, "voidage", "voidage", "")
+#define BDL_X_COLOR_ITEM(name, word, label, unit) BDL_##name,
 typedef enum bdl_color_mode {
-    BDL_COLOR_SPECIES,
-    BDL_COLOR_COORDINATION,
-    BDL_COLOR_SPEED,
-    BDL_COLOR_VX,
-    BDL_COLOR_VY,
-    BDL_COLOR_VZ,
-    BDL_COLOR_VOIDAGE,
-    BDL_COLOR_MODE_COUNT
+    BDL_COLOR_MODES(BDL_X_COLOR_ITEM) BDL_COLOR_MODE_COUNT
 } bdl_color_mode;
+#undef BDL_X_COLOR_ITEM
+extern const char *const bdl_color_mode_names[];  ///< scene words, NULL-terminated
+extern const char *const bdl_color_mode_labels[]; ///< what a colour bar says ("speed")
+extern const char *const bdl_color_mode_units[];  ///< its unit ("m/s"; "" when none)
+
+/// A gas field drawn as a translucent slice behind or through the particles ([camera]
+/// gas_field): X(NAME, "word", "label", "unit").
+#define BDL_GAS_FIELDS(X)                                                                          \
+    X(GAS_FIELD_NONE, "none", "", "")                                                              \
+    X(GAS_FIELD_VOIDAGE, "voidage", "voidage", "")                                                 \
+    X(GAS_FIELD_PRESSURE, "pressure", "pressure", "Pa")                                            \
+    X(GAS_FIELD_SPEED, "speed", "gas speed", "m/s")
+#define BDL_X_FIELD_ITEM(name, word, label, unit) BDL_##name,
+typedef enum bdl_gas_field { BDL_GAS_FIELDS(BDL_X_FIELD_ITEM) BDL_GAS_FIELD_COUNT } bdl_gas_field;
+#undef BDL_X_FIELD_ITEM
+extern const char *const bdl_gas_field_names[];  ///< scene words, NULL-terminated
+extern const char *const bdl_gas_field_labels[]; ///< what the overlay says ("gas speed")
+extern const char *const bdl_gas_field_units[];  ///< gauge pressure in Pa, |u| of the gas in m/s
 
 /// [camera]: how frames and the viewer look at the scene.
-/// Names of the colour modes, in enum order, NULL-terminated (the scene key `[camera] color`).
-extern const char *const bdl_color_mode_names[];
-/// Scene names of the drag laws ([coupling] drag), NULL-terminated.
-extern const char *const bdl_scene_drag_names[];
-
-/// A gas field drawn as a translucent slice behind or through the particles ([camera] gas_field).
-typedef enum bdl_gas_field {
-    BDL_GAS_FIELD_NONE = 0,
-    BDL_GAS_FIELD_VOIDAGE = 1,
-    BDL_GAS_FIELD_PRESSURE = 2, ///< gauge pressure [Pa]
-    BDL_GAS_FIELD_SPEED = 3,    ///< |u| of the interstitial gas [m/s]
-} bdl_gas_field;
-
 typedef struct bdl_camera_def {
     bdl_view_preset view;
     bdl_projection projection;
@@ -255,31 +152,15 @@ typedef struct bdl_guard_def {
     int check_interval;     ///< steps between in-run checks
 } bdl_guard_def;
 
-/// Boundary of the gas on one side of the domain ([gas] xmin ... zmax).
-typedef enum bdl_gas_boundary {
-    BDL_GAS_WALL,   ///< no-slip wall
-    BDL_GAS_SLIP,   ///< free-slip wall
-    BDL_GAS_INLET,  ///< gas enters at [gas] inlet_velocity (superficial), a jet optional
-    BDL_GAS_OUTLET, ///< pressure outlet at [gas] outlet_pressure
-} bdl_gas_boundary;
-
-/// Convection scheme of the gas momentum ([gas] convection).
-typedef enum bdl_gas_convection {
-    BDL_GAS_UPWIND,
-    BDL_GAS_VANLEER,
-    BDL_GAS_SUPERBEE,
-    BDL_GAS_CENTRAL,
-} bdl_gas_convection;
-
 /// [gas]: the gas phase. Absent: no grid, no gas, no cost.
 typedef struct bdl_gas_scene {
     int enabled;      ///< the scene has a [gas] section
     double density;   ///< [kg/m^3]
     double viscosity; ///< dynamic [Pa s]
     bdl_vec3 cells;   ///< cells per axis (whole numbers)
-    bdl_gas_convection convection;
+    bdl_convection convection;
     double tolerance;          ///< relative residual of the pressure solver
-    bdl_gas_boundary side[6];  ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
+    bdl_gas_side_type side[6]; ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
     double inlet_velocity;     ///< superficial velocity into the domain through inlets [m/s]
     double outlet_pressure;    ///< [Pa]
     double jet_velocity;       ///< superficial velocity through the jet rectangle [m/s]
@@ -297,7 +178,7 @@ typedef struct bdl_gas_scene {
 
 /// [coupling]: how particles and gas exchange momentum.
 typedef struct bdl_coupling_scene {
-    int drag;            ///< drag law (index into the couple module's registry)
+    bdl_drag_law drag;   ///< drag law
     double kernel_width; ///< half-width of the deposition kernel [m]; 0: 1.5 cells
     double max_solids;   ///< cap on the deposited solids fraction
     double syamlal_c, syamlal_d;
@@ -335,6 +216,12 @@ typedef struct bdl_scene {
     bdl_create_def creates[BDL_MAX_CREATES];
     int dia_count;
     bdl_dia_scene_def dias[BDL_MAX_DIA];
+
+    /// Lines of the section headers in the scene file, for messages (0: not from the file).
+    struct {
+        int species[BDL_MAX_SPECIES], pairs[BDL_MAX_PAIRS], walls[BDL_MAX_WALLS],
+            creates[BDL_MAX_CREATES];
+    } line;
 
     bdl_output_def output;
     bdl_guard_def guards;

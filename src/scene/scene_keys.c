@@ -22,8 +22,10 @@ _Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_view_preset) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_projection) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_color_mode) == sizeof(int), "enum size");
-_Static_assert(sizeof(bdl_gas_boundary) == sizeof(int), "enum size");
-_Static_assert(sizeof(bdl_gas_convection) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_gas_side_type) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_convection) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_drag_law) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_gas_field) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
@@ -42,31 +44,24 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_DIA] = {"camera", "camera NAME", 1, BDL_MAX_DIA},
 };
 
-// Names in the order of the C enums of scene.h (the parser stores the index).
-static const char *const law_names[] = {"linear", "hertz", NULL};
-static const char *const damping_names[] = {"exact", "closed_form", NULL};
-static const char *const rolling_names[] = {"none", "constant", NULL};
-static const char *const distribution_names[] = {"single", "uniform", "normal", NULL};
-static const char *const wall_type_names[] = {"plane", "box", "cylinder", NULL};
-static const char *const motion_names[] = {"none", "vibrate", NULL};
-static const char *const frame_names[] = {"lab", "container", NULL};
-static const char *const create_type_names[] = {"random", "lattice", "pour", "file", NULL};
-static const char *const view_names[] = {"iso", "front", "side", "top", NULL};
-static const char *const projection_names[] = {"perspective", "orthographic", NULL};
-static const char *const gas_side_names[] = {"wall", "slip", "inlet", "outlet", NULL};
-static const char *const gas_field_names[] = {"none", "voidage", "pressure", "speed", NULL};
+// Words of the choices that are the scene's own (the solver modules define theirs beside their
+// enums); the parser stores the index.
+#define BDL_X_WORD(name, word, label, unit)  word,
+#define BDL_X_LABEL(name, word, label, unit) label,
+#define BDL_X_UNIT(name, word, label, unit)  unit,
+const char *const bdl_view_preset_names[] = {BDL_VIEW_PRESETS(BDL_ENUM_WORD) NULL};
+const char *const bdl_projection_names[] = {BDL_PROJECTIONS(BDL_ENUM_WORD) NULL};
+const char *const bdl_color_mode_names[] = {BDL_COLOR_MODES(BDL_X_WORD) NULL};
+const char *const bdl_color_mode_labels[] = {BDL_COLOR_MODES(BDL_X_LABEL) NULL};
+const char *const bdl_color_mode_units[] = {BDL_COLOR_MODES(BDL_X_UNIT) NULL};
+const char *const bdl_gas_field_names[] = {BDL_GAS_FIELDS(BDL_X_WORD) NULL};
+const char *const bdl_gas_field_labels[] = {BDL_GAS_FIELDS(BDL_X_LABEL) NULL};
+const char *const bdl_gas_field_units[] = {BDL_GAS_FIELDS(BDL_X_UNIT) NULL};
 static const char *const axis_names[] = {"x", "y", "z", NULL};
 static const char *const dia_kind_names[] = {"dia", NULL};
 static const char *const dia_projection_names[] = {"orthographic", "perspective", NULL};
 static const char *const dia_lighting_names[] = {"front", "back", NULL};
 static const char *const sweep_names[] = {"none", "up", "down", "up_down", NULL};
-static const char *const convection_names[] = {"upwind", "vanleer", "superbee", "central", NULL};
-// The drag laws of src/couple/drag.h, in the same order (test_scene checks it).
-const char *const bdl_scene_drag_names[] = {
-    "stokes",         "schiller_naumann", "wen_yu",   "ergun",   "gidaspow",
-    "syamlal_obrien", "di_felice",        "beetstra", "tenneti", NULL};
-const char *const bdl_color_mode_names[] = {"species", "coordination", "speed",   "vx",
-                                            "vy",      "vz",           "voidage", NULL};
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
 #define IN_SPECIES(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_species_def, field)
@@ -84,8 +79,8 @@ const char *const bdl_color_mode_names[] = {"species", "coordination", "speed", 
     .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, coupling.field)
 #define GAS_SIDE(name, index)                                                                      \
     {                                                                                              \
-        S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_GAS_WALL},       \
-                      .enum_names = gas_side_names,                                                \
+        S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_SIDE_WALL},      \
+                      .enum_names = bdl_gas_side_names,                                            \
                       .doc = "gas boundary on the " name                                           \
                              " side of the domain: wall (no-slip), slip, inlet or "                \
                              "outlet (particles that cross an outlet side leave the run and are "  \
@@ -129,22 +124,25 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [contact]
     {S(CONTACT), "law", .type = BDL_KEY_ENUM, "-", IN_SCENE(law), .def = {BDL_LAW_HERTZ},
-     .enum_names = law_names, .doc = "normal contact law: linear spring-dashpot or Hertz-Mindlin"},
+     .enum_names = bdl_normal_law_names,
+     .doc = "normal contact law: linear spring-dashpot or Hertz-Mindlin"},
     {S(CONTACT), "damping", .type = BDL_KEY_ENUM, "-", IN_SCENE(damping),
-     .def = {BDL_DAMPING_EXACT}, .enum_names = damping_names,
+     .def = {BDL_DAMPING_EXACT}, .enum_names = bdl_damping_mode_names,
      .doc = "damping from restitution: exact (solved with the no-pull clamp) or closed_form "
             "(textbook formula)"},
     {S(CONTACT), "rolling", .type = BDL_KEY_ENUM, "-", IN_SCENE(rolling), .def = {BDL_ROLLING_NONE},
-     .enum_names = rolling_names,
+     .enum_names = bdl_rolling_model_names,
      .doc = "rolling resistance: none, or a constant torque mu_r R* F_n against rolling"},
     {S(CONTACT), "skin", NUM, "-", IN_SCENE(skin), .def = {0.1}, GT(0), LE(1),
      .doc = "Verlet neighbour-list skin as a fraction of the largest diameter"},
 
     // [species NAME]
+    {S(SPECIES), "shape", .type = BDL_KEY_ENUM, "-", IN_SPECIES(shape), .def = {BDL_SHAPE_SPHERE},
+     .enum_names = bdl_shape_names, .doc = "particle shape (spheres only in this version)"},
     {S(SPECIES), "diameter", NUM, "m", IN_SPECIES(diameter), REQUIRED, GT(0),
      .doc = "particle diameter (the mean for uniform and normal distributions)"},
     {S(SPECIES), "distribution", .type = BDL_KEY_ENUM, "-", IN_SPECIES(size_dist),
-     .def = {BDL_SIZE_SINGLE}, .enum_names = distribution_names, .doc = "diameter distribution"},
+     .def = {BDL_SIZE_SINGLE}, .enum_names = bdl_size_dist_names, .doc = "diameter distribution"},
     {S(SPECIES), "diameter_min", NUM, "m", IN_SPECIES(diameter_min),
      WHEN("distribution", BIT(BDL_SIZE_UNIFORM) | BIT(BDL_SIZE_NORMAL)),
      .required = BIT(BDL_SIZE_UNIFORM), GT(0),
@@ -194,7 +192,7 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [wall NAME]
     {S(WALL), "type", .type = BDL_KEY_ENUM, "-", IN_WALL(kind), REQUIRED,
-     .enum_names = wall_type_names, .doc = "wall geometry"},
+     .enum_names = bdl_wall_kind_names, .doc = "wall geometry"},
     {S(WALL), "point", VEC, "m", IN_WALL(point),
      WHEN("type", BIT(BDL_WALL_PLANE) | BIT(BDL_WALL_CYLINDER)),
      .required = BIT(BDL_WALL_PLANE) | BIT(BDL_WALL_CYLINDER),
@@ -217,7 +215,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .required = BIT(BDL_WALL_CYLINDER), .default_text = "required for cylinder", GT(0),
      .doc = "cylinder: radius (particles stay inside)"},
     {S(WALL), "motion", .type = BDL_KEY_ENUM, "-", IN_WALL(motion), .def = {BDL_MOTION_NONE},
-     .enum_names = motion_names, .doc = "wall motion"},
+     .enum_names = bdl_motion_kind_names, .doc = "wall motion"},
     {S(WALL), "direction", VEC, "-", .normalise = 1, IN_WALL(direction), .def = {0, 0, 1},
      WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
      .doc = "vibrate: direction of the displacement (normalised)"},
@@ -238,7 +236,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "vibrate: simulated time the vibration starts (the wall stands still before; t is "
             "counted from here)"},
     {S(WALL), "frame", .type = BDL_KEY_ENUM, "-", IN_WALL(frame), .def = {BDL_FRAME_LAB},
-     .enum_names = frame_names, WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
+     .enum_names = bdl_wall_frame_names, WHEN("motion", BIT(BDL_MOTION_VIBRATE)),
      .doc = "vibrate: lab (the wall moves through the domain) or container (the whole container, "
             "every wall and the gas grid, moves with this wall; particles and gas feel the "
             "inertial acceleration instead)"},
@@ -265,7 +263,7 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [create NAME]
     {S(CREATE), "type", .type = BDL_KEY_ENUM, "-", IN_CREATE(kind), REQUIRED,
-     .enum_names = create_type_names, .doc = "how particles are created"},
+     .enum_names = bdl_create_kind_names, .doc = "how particles are created"},
     {S(CREATE), "species", .type = BDL_KEY_NAME, "-", IN_RECORD(species_ref),
      .default_text = "the only species (required if there are several)",
      .doc = "name of the [species NAME] section of the created particles"},
@@ -337,11 +335,11 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [camera]
     {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},
-     .enum_names = view_names,
+     .enum_names = bdl_view_preset_names,
      .doc = "preset direction: iso (front-right, above), front (along +y, the x-z plane), side "
             "(along -x), top (down -z)"},
     {S(CAMERA), "projection", .type = BDL_KEY_ENUM, "-", IN_CAMERA(projection),
-     .def = {BDL_PROJ_PERSPECTIVE}, .enum_names = projection_names,
+     .def = {BDL_PROJ_PERSPECTIVE}, .enum_names = bdl_projection_names,
      .doc = "perspective or orthographic (no foreshortening: pseudo-2D beds, DIA)"},
     {S(CAMERA), "color", .type = BDL_KEY_ENUM, "-", IN_CAMERA(color), .def = {BDL_COLOR_SPEED},
      .enum_names = bdl_color_mode_names,
@@ -377,7 +375,7 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(CAMERA), "background", VEC, "-", IN_CAMERA(background), .def = {0.11, 0.12, 0.14}, GE(0),
      LE(1), .doc = "background colour, sRGB red green blue in 0..1"},
     {S(CAMERA), "gas_field", .type = BDL_KEY_ENUM, "-", IN_CAMERA(gas_field),
-     .def = {BDL_GAS_FIELD_NONE}, .enum_names = gas_field_names,
+     .def = {BDL_GAS_FIELD_NONE}, .enum_names = bdl_gas_field_names,
      .doc = "with [gas]: a gas field drawn on a translucent slice of the grid, one flat colour per "
             "cell (sequential map, range of the slice)"},
     {S(CAMERA), "gas_slice_axis", .type = BDL_KEY_ENUM, "-", IN_CAMERA(gas_slice_axis), .def = {1},
@@ -468,8 +466,8 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "dynamic viscosity (air at 20 C: 1.8e-5)"},
     {S(GAS), "cells", VEC, "-", IN_GAS(cells), .def = {1, 1, 1}, .default_text = "required", GE(1),
      LE(4096), .doc = "grid cells along x, y, z (whole numbers; 1 along an axis for 2D)"},
-    {S(GAS), "convection", .type = BDL_KEY_ENUM, "-", IN_GAS(convection), .def = {BDL_GAS_VANLEER},
-     .enum_names = convection_names,
+    {S(GAS), "convection", .type = BDL_KEY_ENUM, "-", IN_GAS(convection),
+     .def = {BDL_CONVECTION_VANLEER}, .enum_names = bdl_convection_names,
      .doc = "momentum convection: upwind, vanleer or superbee (TVD), central (verification only)"},
     {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
      .doc = "relative residual at which the pressure solver stops"},
@@ -519,7 +517,7 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [coupling]
     {S(COUPLING), "drag", .type = BDL_KEY_ENUM, "-", IN_COUPLING(drag), .def = {4},
-     .enum_names = bdl_scene_drag_names, .default_text = "gidaspow",
+     .enum_names = bdl_drag_law_names, .default_text = "gidaspow",
      .doc = "drag law: stokes, schiller_naumann, wen_yu, ergun, gidaspow, syamlal_obrien, "
             "di_felice, beetstra, tenneti (docs/verification-gas.md)"},
     {S(COUPLING), "kernel_width", NUM, "m", IN_COUPLING(kernel_width), .def = {0},

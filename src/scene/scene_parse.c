@@ -480,14 +480,14 @@ static bdl_scene_section *add_section(bdl_scene_parser *p, bdl_section_kind kind
     if (kind == BDL_SECTION_SPECIES) {
         memset(&scene->species[s->index], 0, sizeof scene->species[0]);
         memcpy(scene->species[s->index].name, names[0], BDL_NAME_LEN);
-        scene->species[s->index].line = line;
+        scene->line.species[s->index] = line;
     } else if (kind == BDL_SECTION_PAIR) {
         memset(&scene->pairs[s->index], 0, sizeof scene->pairs[0]);
-        scene->pairs[s->index].line = line;
+        scene->line.pairs[s->index] = line;
     } else if (kind == BDL_SECTION_WALL) {
         memset(&scene->walls[s->index], 0, sizeof scene->walls[0]);
         memcpy(scene->walls[s->index].name, names[0], BDL_NAME_LEN);
-        scene->walls[s->index].line = line;
+        scene->line.walls[s->index] = line;
     } else if (kind == BDL_SECTION_DIA) {
         memset(&scene->dias[s->index], 0, sizeof scene->dias[0]);
         memcpy(scene->dias[s->index].name, names[0], BDL_NAME_LEN);
@@ -495,7 +495,7 @@ static bdl_scene_section *add_section(bdl_scene_parser *p, bdl_section_kind kind
     } else {
         memset(&scene->creates[s->index], 0, sizeof scene->creates[0]);
         memcpy(scene->creates[s->index].name, names[0], BDL_NAME_LEN);
-        scene->creates[s->index].line = line;
+        scene->line.creates[s->index] = line;
     }
     bdl_scene_apply_defaults(scene, s);
     return s;

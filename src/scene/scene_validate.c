@@ -351,7 +351,7 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
     }
     int inlets = 0;
     for (int side = 0; side < 6; ++side)
-        inlets += !p->scene->periodic[side / 2] && g->side[side] == BDL_GAS_INLET;
+        inlets += !p->scene->periodic[side / 2] && g->side[side] == BDL_SIDE_INLET;
     if (inlets > 0 && !(g->inlet_velocity > 0.0 || g->jet_velocity > 0.0)) {
         fail_at_key(p, gas, "inlet_velocity", 0,
                     "an inlet side needs inlet_velocity (or jet_velocity) > 0");

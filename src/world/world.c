@@ -42,11 +42,6 @@ static double max_diameter(const bdl_scene *scene)
     return d;
 }
 
-static double min_diameter(const bdl_species_def *s)
-{
-    return s->size_dist == BDL_SIZE_SINGLE ? s->diameter : s->diameter_min;
-}
-
 static double sphere_mass(double d, double density) { return density * PI / 6.0 * d * d * d; }
 
 double bdl_world_reference_speed(const bdl_world *w)
@@ -78,10 +73,10 @@ double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which,
     int ns = s->species_count;
     double best = INFINITY;
     for (int a = 0; a < ns; ++a) {
-        double da = min_diameter(&s->species[a]);
+        double da = bdl_species_min_diameter(&s->species[a]);
         double ma = sphere_mass(da, s->species[a].density);
         for (int b = a; b < ns; ++b) {
-            double db = min_diameter(&s->species[b]);
+            double db = bdl_species_min_diameter(&s->species[b]);
             double mb = sphere_mass(db, s->species[b].density);
             double tc = bdl_contact_time(&w->pair_params[a * ns + b], s->law, ma * mb / (ma + mb),
                                          0.25 * da * db / (0.5 * (da + db)), v_ref);
@@ -177,14 +172,24 @@ static double particle_energy(const bdl_particles *p, long i, bdl_vec3 g)
            m * bdl_v3_dot(g, p->pos[i]);
 }
 
+/// What the scene's creators draw on.
+static bdl_create_context create_context(bdl_world *w)
+{
+    return (bdl_create_context){.species = w->scene.species,
+                                .species_count = w->scene.species_count,
+                                .walls = &w->walls,
+                                .rng = &w->rng};
+}
+
 static bdl_result pour(bdl_world *w)
 {
+    const bdl_create_context ctx = create_context(w);
     for (int c = 0; c < w->scene.create_count; ++c) {
         if (w->scene.creates[c].kind != BDL_CREATE_POUR)
             continue;
         long before = w->particles.count;
-        long added = bdl_create_pour(&w->scene, c, w->time, &w->poured[c], &w->particles, &w->walls,
-                                     &w->rng);
+        long added =
+            bdl_create_pour(&w->scene.creates[c], &ctx, w->time, &w->poured[c], &w->particles);
         if (added < 0)
             return BDL_ERR_NOMEM;
         for (long i = before; i < w->particles.count; ++i) {
@@ -345,69 +350,195 @@ static int any_rolling(const bdl_world *w)
     return 0;
 }
 
-/// The [create] section a particle came from, for messages (by id order of creation).
-static const bdl_create_def *creator_of(const bdl_world *w, uint32_t id, const long *first_id)
+/// "scenes/x.ini:12: [create NAME]": the section a particle came from (by id order of
+/// creation), for messages.
+static void creator_of(const bdl_world *w, uint32_t id, const long *first_id, char *out, size_t len)
 {
-    const bdl_create_def *c = NULL;
+    int c = -1;
     for (int k = 0; k < w->scene.create_count; ++k)
         if ((long)id >= first_id[k])
-            c = &w->scene.creates[k];
-    return c;
+            c = k;
+    snprintf(out, len, "%s:%d: [create %s]", w->scene.path, c >= 0 ? w->scene.line.creates[c] : 0,
+             c >= 0 ? w->scene.creates[c].name : "?");
+}
+
+/// Initial particle i outside the domain (on a non-periodic axis): the sentence, or 0.
+static int outside_domain(const bdl_world *w, long i, char *what, size_t len)
+{
+    const bdl_scene *s = &w->scene;
+    const bdl_vec3 x = w->particles.pos[i];
+    for (int a = 0; a < 3; ++a) {
+        double c = bdl_v3_comp(x, a);
+        if (!s->periodic[a] &&
+            (c < bdl_v3_comp(s->domain_min, a) || c > bdl_v3_comp(s->domain_max, a))) {
+            snprintf(what, len,
+                     "particle %u at (%g, %g, %g) m lies outside the domain [%g, %g] x [%g, %g] x "
+                     "[%g, %g] m",
+                     w->particles.id[i], x.x, x.y, x.z, s->domain_min.x, s->domain_max.x,
+                     s->domain_min.y, s->domain_max.y, s->domain_min.z, s->domain_max.z);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/// Initial particle i overlapping a listed partner beyond [guards] initial_overlap: the
+/// sentence, or 0.
+static int overlaps_particle(const bdl_world *w, long i, char *what, size_t len)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    const double allowed = w->scene.guards.initial_overlap;
+    for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+        int32_t j = nb->partner[k];
+        double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
+        double overlap = p->radius[i] + p->radius[j] - dist;
+        double rmin = fmin(p->radius[i], p->radius[j]);
+        if (overlap > allowed * rmin + 1e-12 * rmin) {
+            snprintf(what, len,
+                     "initial particles %u and %u overlap by %.3g%% of the smaller radius "
+                     "(allowed: [guards] initial_overlap = %g); move them apart or use a random or "
+                     "lattice fill",
+                     p->id[i], p->id[j], 100.0 * overlap / rmin, allowed);
+            return 1;
+        }
+    }
+    return 0;
+}
+
+/// Initial particle i overlapping a wall beyond [guards] initial_overlap: the sentence, or 0.
+static int overlaps_wall(const bdl_world *w, long i, char *what, size_t len)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+        bdl_vec3 n;
+        int prim = nb->wall_prim[k];
+        double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
+        if (gap < -(w->scene.guards.initial_overlap + 1e-12) * p->radius[i]) {
+            snprintf(what, len, "initial particle %u overlaps wall '%s' by %.3g%% of its radius",
+                     p->id[i], w->scene.walls[w->walls.prims[prim].wall].name,
+                     -100.0 * gap / p->radius[i]);
+            return 1;
+        }
+    }
+    return 0;
 }
 
 static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_error *err)
 {
-    const bdl_particles *p = &w->particles;
-    const bdl_neighbor *nb = &w->neighbor;
-    const bdl_scene *s = &w->scene;
-    for (long i = 0; i < p->count; ++i) {
-        for (int a = 0; a < 3; ++a) {
-            double x = bdl_v3_comp(p->pos[i], a);
-            if (!s->periodic[a] &&
-                (x < bdl_v3_comp(s->domain_min, a) || x > bdl_v3_comp(s->domain_max, a))) {
-                const bdl_create_def *c = creator_of(w, p->id[i], first_id);
-                snprintf(
-                    err->message, sizeof err->message,
-                    "%s:%d: [create %s]: particle %u at (%g, %g, %g) m lies outside the domain "
-                    "[%g, %g] x [%g, %g] x [%g, %g] m",
-                    s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->pos[i].x, p->pos[i].y,
-                    p->pos[i].z, s->domain_min.x, s->domain_max.x, s->domain_min.y, s->domain_max.y,
-                    s->domain_min.z, s->domain_max.z);
-                return BDL_ERR_SCENE;
-            }
+    char what[768];
+    for (long i = 0; i < w->particles.count; ++i)
+        if (outside_domain(w, i, what, sizeof what) || overlaps_particle(w, i, what, sizeof what) ||
+            overlaps_wall(w, i, what, sizeof what)) {
+            char where[BDL_PATH_LEN + 64];
+            creator_of(w, w->particles.id[i], first_id, where, sizeof where);
+            snprintf(err->message, sizeof err->message, "%s: %s", where, what);
+            return BDL_ERR_SCENE;
         }
-        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-            int32_t j = nb->partner[k];
-            double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
-            double overlap = p->radius[i] + p->radius[j] - dist;
-            double rmin = fmin(p->radius[i], p->radius[j]);
-            if (overlap > s->guards.initial_overlap * rmin + 1e-12 * rmin) {
-                const bdl_create_def *c = creator_of(w, p->id[i], first_id);
-                snprintf(err->message, sizeof err->message,
-                         "%s:%d: [create %s]: initial particles %u and %u overlap by %.3g%% of the "
-                         "smaller radius (allowed: [guards] initial_overlap = %g); move them apart "
-                         "or use a "
-                         "random or lattice fill",
-                         s->path, c ? c->line : 0, c ? c->name : "?", p->id[i], p->id[j],
-                         100.0 * overlap / rmin, s->guards.initial_overlap);
-                return BDL_ERR_SCENE;
-            }
-        }
-        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
-            bdl_vec3 n;
-            int prim = nb->wall_prim[k];
-            double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
-            if (gap < -(s->guards.initial_overlap + 1e-12) * p->radius[i]) {
-                const bdl_create_def *c = creator_of(w, p->id[i], first_id);
-                snprintf(err->message, sizeof err->message,
-                         "%s:%d: [create %s]: initial particle %u overlaps wall '%s' by %.3g%% of "
-                         "its radius",
-                         s->path, c ? c->line : 0, c ? c->name : "?", p->id[i],
-                         s->walls[w->walls.prims[prim].wall].name, -100.0 * gap / p->radius[i]);
-                return BDL_ERR_SCENE;
-            }
-        }
+    return BDL_OK;
+}
+
+/// The contact parameters of every species pair and species-wall pair, and which contact
+/// models the scene needs at all (friction keeps tangential history, rolling its own torque).
+static void build_contacts(bdl_world *w)
+{
+    const bdl_scene *scene = &w->scene;
+    bdl_material species[BDL_MAX_SPECIES], walls[BDL_MAX_WALLS];
+    for (int k = 0; k < scene->species_count; ++k)
+        species[k] = scene->species[k].material;
+    for (int k = 0; k < scene->wall_count; ++k)
+        walls[k] = scene->walls[k].material;
+    const bdl_contact_table_def table = {.law = scene->law,
+                                         .damping = scene->damping,
+                                         .species_count = scene->species_count,
+                                         .species = species,
+                                         .pair_count = scene->pair_count,
+                                         .pairs = scene->pairs,
+                                         .wall_count = scene->wall_count,
+                                         .walls = walls};
+    bdl_contact_table_build(&table, w->pair_params, w->wall_params);
+    w->hertz = scene->law == BDL_LAW_HERTZ;
+    w->friction = any_friction(w);
+    w->rolling = any_rolling(w);
+    for (int k = 0; k < scene->species_count; ++k)
+        w->background_damping[k] = scene->species[k].background_damping;
+}
+
+/// The walls at rest, with live scales of one, and the container whose frame the run is in.
+static void build_walls(bdl_world *w)
+{
+    const bdl_scene *scene = &w->scene;
+    for (int k = 0; k < BDL_MAX_WALLS; ++k)
+        w->live.amplitude_scale[k] = w->live.frequency_scale[k] = 1.0;
+    w->live.inlet_scale = 1.0;
+    bdl_walls_build(scene->walls, scene->wall_count, &w->walls);
+    w->container = -1;
+    for (int k = 0; k < scene->wall_count; ++k)
+        if (scene->walls[k].motion == BDL_MOTION_VIBRATE &&
+            scene->walls[k].frame == BDL_FRAME_CONTAINER)
+            w->container = k;
+}
+
+/// The particles of every creator that makes them at the start; `first_id` receives the id of
+/// each creator's first particle, and `expected` how many particles the run will hold at most.
+static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
+                                   bdl_scene_error *err)
+{
+    const bdl_scene *scene = &w->scene;
+    w->particles.fluid = scene->gas.enabled; // before the arrays exist
+    // Reserve what the creators will make, so storage carries no growth slack.
+    *expected = bdl_create_estimate_total(scene->creates, scene->create_count, scene->species);
+    long reserve = *expected < 64 ? 64 : (*expected > 10000000 ? 10000000 : *expected);
+    if (bdl_particles_reserve(&w->particles, reserve) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    const bdl_create_context ctx = create_context(w);
+    for (int c = 0; c < scene->create_count; ++c) {
+        first_id[c] = w->particles.next_id;
+        char why[768];
+        bdl_result r = bdl_create_initial(&scene->creates[c], &ctx, &w->particles, why, sizeof why);
+        if (r == BDL_ERR_SCENE)
+            snprintf(err->message, sizeof err->message, "%s:%d: [create %s]: %s", scene->path,
+                     scene->line.creates[c], scene->creates[c].name, why);
+        if (r != BDL_OK)
+            return r;
     }
+    if (*expected < w->particles.count)
+        *expected = w->particles.count;
+    return BDL_OK;
+}
+
+/// The cell grid and Verlet lists, sized for `expected` particles of the largest diameter.
+static bdl_result build_neighbor(bdl_world *w, long expected, bdl_scene_error *err)
+{
+    const bdl_scene *scene = &w->scene;
+    double d_max = max_diameter(scene);
+    double skin = scene->skin * d_max;
+    bdl_result r =
+        bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max, scene->periodic,
+                          d_max + skin, skin, expected, w->friction, w->rolling);
+    if (r == BDL_ERR_SCENE)
+        snprintf(
+            err->message, sizeof err->message,
+            "%s: [domain] periodic axes must be at least 3 x (largest diameter + skin) = %g m long",
+            scene->path, 3.0 * (d_max + skin));
+    return r;
+}
+
+/// The time step: as given, or a fraction of the smallest contact time.
+static bdl_result choose_time_step(bdl_world *w, bdl_scene_error *err)
+{
+    const bdl_scene *scene = &w->scene;
+    w->contact_time = bdl_world_min_contact_time(w, bdl_world_reference_speed(w), NULL, 0);
+    if (!(w->contact_time > 0.0) || !isfinite(w->contact_time)) {
+        snprintf(err->message, sizeof err->message,
+                 "%s: the contact time is %g s, so no time step can be derived; check the species' "
+                 "stiffness, youngs_modulus and restitution",
+                 scene->path, w->contact_time);
+        return BDL_ERR_SCENE;
+    }
+    w->dt = scene->dt > 0.0 ? scene->dt : scene->dt_fraction * w->contact_time;
+    w->contact_time_dt_ratio = w->dt / w->contact_time;
     return BDL_OK;
 }
 
@@ -418,87 +549,27 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     if (!w)
         return BDL_ERR_NOMEM;
     w->scene = *scene;
-    w->hertz = scene->law == BDL_LAW_HERTZ;
     w->parallel_min = BDL_PARALLEL_MIN;
-    bdl_contact_table_build(scene, w->pair_params, w->wall_params);
-    w->friction = any_friction(w);
-    w->rolling = any_rolling(w);
-    for (int s = 0; s < scene->species_count; ++s)
-        w->background_damping[s] = scene->species[s].background_damping;
-    for (int k = 0; k < BDL_MAX_WALLS; ++k)
-        w->live.amplitude_scale[k] = w->live.frequency_scale[k] = 1.0;
-    w->live.inlet_scale = 1.0;
-    bdl_walls_build(scene, &w->walls);
-    w->container = -1;
-    for (int k = 0; k < scene->wall_count; ++k)
-        if (scene->walls[k].motion == BDL_MOTION_VIBRATE &&
-            scene->walls[k].frame == BDL_FRAME_CONTAINER)
-            w->container = k;
     bdl_rng_seed(&w->rng, scene->seed);
-
-    w->particles.fluid = scene->gas.enabled; // before the arrays exist
-    // Reserve what the creators will make, so storage carries no growth slack.
-    long expected = bdl_create_estimate_total(scene);
-    long reserve = expected < 64 ? 64 : (expected > 10000000 ? 10000000 : expected);
-    if (bdl_particles_reserve(&w->particles, reserve) != BDL_OK) {
-        bdl_world_destroy(w);
-        return BDL_ERR_NOMEM;
-    }
-    long first_id[BDL_MAX_CREATES];
-    for (int c = 0; c < scene->create_count; ++c) {
-        first_id[c] = w->particles.next_id;
-        bdl_result r = bdl_create_initial(scene, c, &w->particles, &w->walls, &w->rng, err);
-        if (r != BDL_OK) {
-            bdl_world_destroy(w);
-            return r;
-        }
-    }
-
-    double d_max = max_diameter(scene);
-    double skin = scene->skin * d_max;
-    if (expected < w->particles.count)
-        expected = w->particles.count;
-    bdl_result r =
-        bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max, scene->periodic,
-                          d_max + skin, skin, expected, w->friction, w->rolling);
-    if (r == BDL_ERR_SCENE) {
-        snprintf(
-            err->message, sizeof err->message,
-            "%s: [domain] periodic axes must be at least 3 x (largest diameter + skin) = %g m long",
-            scene->path, 3.0 * (d_max + skin));
-    }
-    if (r != BDL_OK) {
-        bdl_world_destroy(w);
-        return r;
-    }
-
-    w->contact_time = bdl_world_min_contact_time(w, bdl_world_reference_speed(w), NULL, 0);
-    if (!(w->contact_time > 0.0) || !isfinite(w->contact_time)) {
-        snprintf(err->message, sizeof err->message,
-                 "%s: the contact time is %g s, so no time step can be derived; check the species' "
-                 "stiffness, youngs_modulus and restitution",
-                 scene->path, w->contact_time);
-        bdl_world_destroy(w);
-        return BDL_ERR_SCENE;
-    }
-    w->dt = scene->dt > 0.0 ? scene->dt : scene->dt_fraction * w->contact_time;
-    w->contact_time_dt_ratio = w->dt / w->contact_time;
-    if (scene->gas.enabled) {
+    build_contacts(w);
+    build_walls(w);
+    long first_id[BDL_MAX_CREATES], expected = 0;
+    bdl_result r = create_particles(w, first_id, &expected, err);
+    if (r == BDL_OK)
+        r = build_neighbor(w, expected, err);
+    if (r == BDL_OK)
+        r = choose_time_step(w, err);
+    if (r == BDL_OK && scene->gas.enabled)
         r = bdl_world_gas_init(w, err);
-        if (r != BDL_OK) {
-            bdl_world_destroy(w);
-            return r;
-        }
-    }
-
-    r = bdl_world_compute_forces(w);
+    // The first neighbour build sorts the particles for locality; forces are consistent with it.
+    if (r == BDL_OK)
+        r = bdl_world_compute_forces(w);
     if (r == BDL_OK)
         r = check_initial(w, first_id, err);
     if (r != BDL_OK) {
         bdl_world_destroy(w);
         return r;
     }
-    // The first neighbour build sorted particles for locality; forces are consistent with it.
     *out = w;
     return BDL_OK;
 }

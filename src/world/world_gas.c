@@ -22,20 +22,6 @@ static long steps_in(const bdl_world *w, double span)
     return (long)floor(span / w->dt * (1.0 + 1e-12));
 }
 
-static bdl_gas_side_type side_type(bdl_gas_boundary b)
-{
-    switch (b) {
-    case BDL_GAS_SLIP:
-        return BDL_SIDE_SLIP;
-    case BDL_GAS_INLET:
-        return BDL_SIDE_INLET;
-    case BDL_GAS_OUTLET:
-        return BDL_SIDE_OUTLET;
-    default:
-        return BDL_SIDE_WALL;
-    }
-}
-
 bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
 {
     const bdl_scene *s = &w->scene;
@@ -48,7 +34,7 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
         d.gravity[a] = bdl_v3_comp(s->gravity, a);
         for (int side = 0; side < 2; ++side) {
             bdl_gas_side *sd = &d.side[2 * a + side];
-            sd->type = s->periodic[a] ? BDL_SIDE_PERIODIC : side_type(gs->side[2 * a + side]);
+            sd->type = s->periodic[a] ? BDL_SIDE_PERIODIC : gs->side[2 * a + side];
             w->outflow[2 * a + side] = sd->type == BDL_SIDE_OUTLET;
             sd->inflow = gs->inlet_velocity;
             sd->pressure = gs->outlet_pressure;
@@ -64,9 +50,7 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
     }
     d.density = gs->density;
     d.viscosity = gs->viscosity;
-    static const bdl_convection schemes[] = {BDL_CONVECTION_UPWIND, BDL_CONVECTION_VANLEER,
-                                             BDL_CONVECTION_SUPERBEE, BDL_CONVECTION_CENTRAL};
-    d.convection = schemes[gs->convection];
+    d.convection = gs->convection;
     d.tolerance = gs->tolerance;
     d.max_iterations = 200;
     if (bdl_gas_create(&d, &w->gas) != BDL_OK) {
@@ -78,7 +62,7 @@ bdl_result bdl_world_gas_init(bdl_world *w, bdl_scene_error *err)
     if (!w->coupling)
         return BDL_ERR_NOMEM;
     double hmax = fmax(fmax(w->gas->grid.h[0], w->gas->grid.h[1]), w->gas->grid.h[2]);
-    bdl_coupling_def cd = {.drag = (bdl_drag_law)s->coupling.drag,
+    bdl_coupling_def cd = {.drag = s->coupling.drag,
                            .drag_params = {s->coupling.syamlal_c, s->coupling.syamlal_d},
                            .kernel_width = s->coupling.kernel_width > 0.0 ? s->coupling.kernel_width
                                                                           : 1.5 * hmax,
@@ -303,12 +287,12 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
         return;
     }
     const bdl_grid *g = &w->gas->grid;
-    static const char *const schemes[] = {"upwind", "van Leer", "Superbee", "central"};
     snprintf(buf, size,
              "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
              "half-width %.3g mm; gas step %.3g s = %ld particle steps%s",
              g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-             schemes[w->gas->def.convection], bdl_drag_law_names[w->coupling->def.drag],
-             1e3 * w->coupling->width[0], (double)w->gas_every * w->dt, w->gas_every,
+             bdl_convection_labels[w->gas->def.convection],
+             bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0],
+             (double)w->gas_every * w->dt, w->gas_every,
              w->gas_fixed ? " (fixed)" : " at first, then CFL 1/2 for the gas as it flows");
 }

@@ -1,0 +1,32 @@
+// bedlam — species: size distributions.
+#include "dem/species.h"
+
+const char *const bdl_shape_names[] = {BDL_SHAPES(BDL_ENUM_WORD) NULL};
+const char *const bdl_size_dist_names[] = {BDL_SIZE_DISTS(BDL_ENUM_WORD) NULL};
+
+double bdl_species_max_diameter(const bdl_species_def *s)
+{
+    return s->size_dist == BDL_SIZE_SINGLE ? s->diameter : s->diameter_max;
+}
+
+double bdl_species_min_diameter(const bdl_species_def *s)
+{
+    return s->size_dist == BDL_SIZE_SINGLE ? s->diameter : s->diameter_min;
+}
+
+double bdl_species_draw_diameter(const bdl_species_def *s, bdl_rng *rng)
+{
+    switch (s->size_dist) {
+    case BDL_SIZE_UNIFORM:
+        return bdl_rng_range(rng, s->diameter_min, s->diameter_max);
+    case BDL_SIZE_NORMAL:
+        for (int tries = 0; tries < 1000; ++tries) {
+            double d = s->diameter + s->diameter_std * bdl_rng_normal(rng);
+            if (d >= s->diameter_min && d <= s->diameter_max)
+                return d;
+        }
+        return s->diameter;
+    default:
+        return s->diameter;
+    }
+}
