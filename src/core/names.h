@@ -6,7 +6,7 @@
 // generated from that one list (sokol's _SG_LOG_ITEMS habit), so a value is added in one place:
 //
 //   #define BDL_SHAPES(X) X(SHAPE_SPHERE, "sphere", "sphere")
-//   typedef enum bdl_shape { BDL_SHAPES(BDL_ENUM_ITEM) BDL_SHAPE_COUNT } bdl_shape;
+//   typedef enum bdl_shape { BDL_SHAPES(BDL_ENUM_ITEM) } bdl_shape;
 //   const char *const bdl_shape_names[] = {BDL_SHAPES(BDL_ENUM_WORD) NULL};
 #ifndef BDL_NAMES_H
 #define BDL_NAMES_H

@@ -45,13 +45,13 @@ typedef struct bdl_output_def {
     X(VIEW_FRONT, "front", "along +y: the x-z plane, as a camera sees a pseudo-2D bed's front")    \
     X(VIEW_SIDE, "side", "along -x: the y-z plane")                                                \
     X(VIEW_TOP, "top", "along -z: the x-y plane")
-typedef enum bdl_view_preset { BDL_VIEW_PRESETS(BDL_ENUM_ITEM) BDL_VIEW_COUNT } bdl_view_preset;
+typedef enum bdl_view_preset { BDL_VIEW_PRESETS(BDL_ENUM_ITEM) } bdl_view_preset;
 extern const char *const bdl_view_preset_names[]; ///< scene words, NULL-terminated
 
 #define BDL_PROJECTIONS(X)                                                                         \
     X(PROJ_PERSPECTIVE, "perspective", "perspective")                                              \
     X(PROJ_ORTHOGRAPHIC, "orthographic", "orthographic")
-typedef enum bdl_projection { BDL_PROJECTIONS(BDL_ENUM_ITEM) BDL_PROJ_COUNT } bdl_projection;
+typedef enum bdl_projection { BDL_PROJECTIONS(BDL_ENUM_ITEM) } bdl_projection;
 extern const char *const bdl_projection_names[]; ///< scene words, NULL-terminated
 
 /// What the particle colour shows ([camera] color): X(NAME, "word", "label", "unit").
@@ -80,7 +80,7 @@ extern const char *const bdl_color_mode_units[];  ///< its unit ("m/s"; "" when 
     X(GAS_FIELD_PRESSURE, "pressure", "pressure", "Pa")                                            \
     X(GAS_FIELD_SPEED, "speed", "gas speed", "m/s")
 #define BDL_X_FIELD_ITEM(name, word, label, unit) BDL_##name,
-typedef enum bdl_gas_field { BDL_GAS_FIELDS(BDL_X_FIELD_ITEM) BDL_GAS_FIELD_COUNT } bdl_gas_field;
+typedef enum bdl_gas_field { BDL_GAS_FIELDS(BDL_X_FIELD_ITEM) } bdl_gas_field;
 #undef BDL_X_FIELD_ITEM
 extern const char *const bdl_gas_field_names[];  ///< scene words, NULL-terminated
 extern const char *const bdl_gas_field_labels[]; ///< what the overlay says ("gas speed")
