@@ -11,7 +11,7 @@
 
 #include "core/error.h"
 #include "dia/dia.h"
-#include "output/snapshot.h"
+#include "io/snapshot.h"
 #include "scene/scene.h"
 
 typedef struct bdl_dia_run bdl_dia_run;

@@ -2,7 +2,7 @@
 #ifndef BDL_CAPTURE_H
 #define BDL_CAPTURE_H
 
-#include "output/snapshot.h"
+#include "io/snapshot.h"
 #include "world/world.h"
 
 /// Copies the world's particles, wall displacements and (when the scene's [camera] asks for one)

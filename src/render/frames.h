@@ -9,7 +9,7 @@
 #ifndef BDL_FRAMES_H
 #define BDL_FRAMES_H
 
-#include "output/snapshot.h"
+#include "io/snapshot.h"
 #include "render/context.h"
 #include "scene/scene.h"
 

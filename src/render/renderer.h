@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 #include "core/error.h"
-#include "output/snapshot.h"
+#include "io/snapshot.h"
 #include "render/camera.h"
 #include "scene/scene.h"
 

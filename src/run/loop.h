@@ -11,7 +11,7 @@
 
 #include <stdint.h>
 
-#include "output/snapshot.h"
+#include "io/snapshot.h"
 #include "world/world.h"
 
 typedef enum bdl_command_kind {

@@ -9,7 +9,6 @@
 #include "cfd/gas.h"
 #include "couple/coupling.h"
 #include "output/diagnostics.h"
-#include "run/loop.h"
 #include "verify/verify.h"
 
 // ---- plane Poiseuille flow ----

@@ -1,5 +1,5 @@
 // bedlam — storage of snapshots.
-#include "output/snapshot.h"
+#include "io/snapshot.h"
 
 #include <stdlib.h>
 #include <string.h>
