@@ -18,13 +18,14 @@ typedef struct bdl_phase_opts {
 } bdl_phase_opts;
 
 /// `analyze phase`: the column folded over the vibration cycle.
-int bdl_analyze_phase(const char *run, const bdl_phase_opts *o);
+bdl_result bdl_analyze_phase(const char *run, const bdl_phase_opts *o);
 
 /// `analyze networks`: force networks and the force distribution of a contact file.
-int bdl_analyze_networks(const char *file, const char *out, int bins, double fmax, int plots);
+bdl_result bdl_analyze_networks(const char *file, const char *out, int bins, double fmax,
+                                int plots);
 
 /// `analyze profile`: the run's profile.csv (solids fraction of each gas cell layer) averaged
 /// over [from, to].
-int bdl_analyze_profile(const char *run, const char *out, double from, double to, int plots);
+bdl_result bdl_analyze_profile(const char *run, const char *out, double from, double to, int plots);
 
 #endif

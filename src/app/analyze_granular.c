@@ -10,14 +10,14 @@
 #include "app/analyze.h"
 #include "core/file.h"
 
-int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
+bdl_result bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
 {
     double *t = NULL, *x = NULL;
     long n = 0, m = 0;
     if (!bdl_analyze_read_column(run, o->file, "time", &t, &n) ||
         !bdl_analyze_read_column(run, o->file, o->column, &x, &m) || m != n) {
         free(t), free(x);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     const int bins = o->bins;
     double *sum = calloc((size_t)bins, sizeof(double)), *lo = malloc(bins * sizeof(double));
@@ -25,7 +25,7 @@ int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
     long *count = calloc((size_t)bins, sizeof(long));
     if (!sum || !lo || !hi || !count) {
         free(t), free(x), free(sum), free(lo), free(hi), free(count);
-        return 2;
+        return BDL_ERR_NOMEM;
     }
     for (int b = 0; b < bins; ++b)
         lo[b] = INFINITY, hi[b] = -INFINITY;
@@ -49,10 +49,10 @@ int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
         fprintf(stderr, "error: only %ld samples of %s in the cycles asked for (%d bins)\n", used,
                 o->column, bins);
         free(t), free(x), free(sum), free(lo), free(hi), free(count);
-        return 1;
+        return BDL_ERR_NO_RESULT;
     }
     char path[1300];
-    int rc = 0;
+    bdl_result rc = BDL_OK;
     snprintf(path, sizeof path, "%s/phase_%s.csv", o->out, o->column);
     bdl_atomic_file af;
     double best = -INFINITY, worst = INFINITY;
@@ -68,9 +68,9 @@ int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
             if (count[b] && mean < worst)
                 worst = mean, at_worst = b;
         }
-        rc = bdl_atomic_commit(&af) == BDL_OK ? 0 : 2;
+        rc = bdl_atomic_commit(&af);
     } else {
-        rc = 2;
+        rc = BDL_ERR_OUTPUT_DIR;
     }
     printf("%s over cycles %ld to %ld (%ld samples, %d phase bins): largest mean %.6g at phase "
            "%.3f, smallest %.6g at phase %.3f\n",
@@ -89,7 +89,7 @@ int bdl_analyze_phase(const char *run, const bdl_phase_opts *o)
                 printf(" to 1.000\n");
         }
     }
-    if (rc == 0 && o->plots) {
+    if (rc == BDL_OK && o->plots) {
         snprintf(path, sizeof path, "%s/phase_%s.gp", o->out, o->column);
         FILE *g = fopen(path, "w");
         if (g) {
@@ -185,13 +185,13 @@ static long read_contacts(const char *path, bdl_contact_rec **out, bdl_vec3 **po
     return nc;
 }
 
-int bdl_analyze_networks(const char *file, const char *out, int bins, double fmax, int plots)
+bdl_result bdl_analyze_networks(const char *file, const char *out, int bins, double fmax, int plots)
 {
     bdl_contact_rec *c = NULL;
     bdl_vec3 *pos = NULL;
     long n = 0, nc = read_contacts(file, &c, &pos, &n);
     if (nc < 0)
-        return 2;
+        return BDL_ERR_ARGS;
     double *fn = malloc((size_t)(nc > 0 ? nc : 1) * sizeof(double));
     uint8_t *z = calloc((size_t)(n > 0 ? n : 1), 1);
     long pp = 0, walls = 0;
@@ -213,7 +213,7 @@ int bdl_analyze_networks(const char *file, const char *out, int bins, double fma
     if (!fn || !z || bdl_force_networks(n, c, nc, 0.0, pos, NULL, &all) != BDL_OK ||
         bdl_force_networks(n, c, nc, mean, pos, NULL, &strong) != BDL_OK) {
         free(c), free(pos), free(fn), free(z);
-        return 2;
+        return BDL_ERR_NOMEM;
     }
     const bdl_coordination_stats cs = bdl_coordination(z, n);
     printf("%s: %ld contacts (%ld with walls), %ld particle pairs with a normal force, mean force "
@@ -230,10 +230,10 @@ int bdl_analyze_networks(const char *file, const char *out, int bins, double fma
            strong.networks, strong.largest);
     double *centre = malloc((size_t)bins * sizeof(double)), *pdf = malloc(bins * sizeof(double));
     bdl_force_pdf_fit fit;
-    int rc = 0;
+    bdl_result rc = BDL_OK;
     if (!centre || !pdf || bdl_force_pdf(fn, pp, bins, fmax, centre, pdf, &fit) != BDL_OK) {
         fprintf(stderr, "error: too few forces for a distribution\n");
-        rc = 1;
+        rc = BDL_ERR_NO_RESULT;
     } else {
         printf("force distribution of f = F_n/<F_n>: P(f) = a (1 - b exp(-f^2)) exp(-beta f) "
                "with a = %.4f, b = %.4f, beta = %.4f (rms residual %.3g)\n",
@@ -247,12 +247,12 @@ int bdl_analyze_networks(const char *file, const char *out, int bins, double fma
                 fprintf(af.file, "%.6g,%.6g,%.6g\n", centre[k], pdf[k],
                         bdl_force_pdf_eval(&fit, centre[k]));
             fprintf(af.file, "# a %.6g b %.6g beta %.6g\n", fit.a, fit.b, fit.beta);
-            rc = bdl_atomic_commit(&af) == BDL_OK ? 0 : 2;
+            rc = bdl_atomic_commit(&af);
         } else {
-            rc = 2;
+            rc = BDL_ERR_OUTPUT_DIR;
         }
         snprintf(path, sizeof path, "%s/force_pdf.gp", out);
-        FILE *g = rc == 0 && plots ? fopen(path, "w") : NULL;
+        FILE *g = rc == BDL_OK && plots ? fopen(path, "w") : NULL;
         if (g) {
             fprintf(g,
                     "set terminal pngcairo size 800,520 font 'DejaVu Sans,11'\n"
@@ -272,7 +272,7 @@ int bdl_analyze_networks(const char *file, const char *out, int bins, double fma
     return rc;
 }
 
-int bdl_analyze_profile(const char *run, const char *out, double from, double to, int plots)
+bdl_result bdl_analyze_profile(const char *run, const char *out, double from, double to, int plots)
 {
     char path[1300], header[65536];
     snprintf(path, sizeof path, "%s/profile.csv", run);
@@ -281,19 +281,19 @@ int bdl_analyze_profile(const char *run, const char *out, double from, double to
         fprintf(stderr, "error: cannot read %s (written by runs with a gas)\n", path);
         if (f)
             fclose(f);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     fclose(f);
     double *t = NULL;
     long n = 0;
     if (!bdl_analyze_read_column(run, "profile.csv", "time", &t, &n))
-        return 2;
+        return BDL_ERR_ARGS;
     snprintf(path, sizeof path, "%s/profile.csv", out);
     bdl_atomic_file af;
     if (bdl_atomic_open(&af, path) != BDL_OK) {
         fprintf(stderr, "error: cannot write %s\n", path);
         free(t);
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     }
     fprintf(af.file, "height,solids_fraction,std\n");
     long used = 0;
@@ -327,10 +327,10 @@ int bdl_analyze_profile(const char *run, const char *out, double from, double to
     if (used == 0) {
         bdl_atomic_abort(&af);
         fprintf(stderr, "error: no rows of %s/profile.csv between %g and %g s\n", run, from, to);
-        return 1;
+        return BDL_ERR_NO_RESULT;
     }
     if (bdl_atomic_commit(&af) != BDL_OK)
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     printf("solids fraction against height, averaged over %ld rows: largest %.4f at %.4g m; "
            "table in %s\n",
            used, peak, peak_h, path);
@@ -350,5 +350,5 @@ int bdl_analyze_profile(const char *run, const char *out, double from, double to
             bdl_analyze_gnuplot(path);
         }
     }
-    return 0;
+    return BDL_OK;
 }

@@ -1,21 +1,31 @@
 // bedlam — the command line: one function per subcommand.
+//
+// Subcommands return a result code; main turns it into the process's exit code in one place
+// (bdl_exit_code). Printing, signals and the default names of output folders are the app's.
 #ifndef BDL_APP_H
 #define BDL_APP_H
 
-int bdl_cmd_run(int argc, char **argv);
-int bdl_cmd_check(int argc, char **argv);
-int bdl_cmd_bench(int argc, char **argv);
-int bdl_cmd_view(int argc, char **argv);
-int bdl_cmd_verify(int argc, char **argv);
-int bdl_cmd_calibrate(int argc, char **argv);
-int bdl_cmd_analyze(int argc, char **argv);
+#include "core/error.h"
+
+/// Process exit code of a result: 0 success; 2 bad input (scene, options, a checkpoint or an
+/// output folder that cannot be used); 1 a failure while running (instability, interruption,
+/// input/output, memory, no GL, a result the data do not give or outside its tolerance).
+int bdl_exit_code(bdl_result r);
+
+bdl_result bdl_cmd_run(int argc, char **argv);
+bdl_result bdl_cmd_check(int argc, char **argv);
+bdl_result bdl_cmd_bench(int argc, char **argv);
+bdl_result bdl_cmd_view(int argc, char **argv);
+bdl_result bdl_cmd_verify(int argc, char **argv);
+bdl_result bdl_cmd_calibrate(int argc, char **argv);
+bdl_result bdl_cmd_analyze(int argc, char **argv);
 /// `bedlam bench render` (argv[0] is "render").
-int bdl_bench_render(int argc, char **argv);
-int bdl_bench_coupled(int argc, char **argv);
+bdl_result bdl_bench_render(int argc, char **argv);
+bdl_result bdl_bench_coupled(int argc, char **argv);
 
 /// Shared option parsing for subcommands that take a scene: --set, --threads, --out, --until,
-/// --resume, --quiet. Returns 0 and fills `opts`, or prints an error and returns 2; returns -1
-/// after printing help.
+/// --resume, --quiet. Fills `opts` (opts->help after printing the usage), or prints an error and
+/// returns BDL_ERR_ARGS.
 typedef struct bdl_scene_opts {
     const char *scene;
     const char *overrides[256];
@@ -30,8 +40,9 @@ typedef struct bdl_scene_opts {
     int width, height;  ///< --size WxH (0: default)
     const char *script; ///< --script FILE (view)
     int paused;         ///< --paused (view)
+    int help;           ///< --help was printed: nothing else to do
 } bdl_scene_opts;
 
-int bdl_parse_scene_opts(int argc, char **argv, const char *usage, bdl_scene_opts *opts);
+bdl_result bdl_parse_scene_opts(int argc, char **argv, const char *usage, bdl_scene_opts *opts);
 
 #endif

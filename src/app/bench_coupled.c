@@ -36,7 +36,7 @@ typedef struct timing {
 } timing;
 
 /// Builds the world, runs the warm-up, times the window. Returns 0 on success, else an exit code.
-static int time_window(const char *path, double warmup, double timed, timing *t)
+static bdl_result time_window(const char *path, double warmup, double timed, timing *t)
 {
     bdl_scene *scene = calloc(1, sizeof *scene);
     bdl_scene_error err;
@@ -45,19 +45,17 @@ static int time_window(const char *path, double warmup, double timed, timing *t)
         bdl_world_create(scene, &w, &err) != BDL_OK) {
         fprintf(stderr, "error: %s\n", scene ? err.message : "out of memory");
         free(scene);
-        return 2;
+        return scene ? BDL_ERR_SCENE : BDL_ERR_NOMEM;
     }
-    int code = 0;
+    bdl_result code = BDL_OK;
     if (!w->gas) {
         fprintf(stderr, "error: %s has no [gas] section\n", path);
-        code = 2;
+        code = BDL_ERR_SCENE;
     }
-    while (!code && w->time < warmup)
-        if (bdl_world_step(w) != BDL_OK) {
+    while (code == BDL_OK && w->time < warmup)
+        if ((code = bdl_world_step(w)) != BDL_OK)
             fprintf(stderr, "error: the scene failed during the warm-up at t = %g s\n", w->time);
-            code = 1;
-        }
-    if (!code) {
+    if (code == BDL_OK) {
         w->gas_seconds = w->coupling_seconds = 0.0;
         long steps0 = w->step, gas0 = w->gas_steps;
         double t0 = bdl_wall_seconds(), sim0 = w->time;
@@ -86,7 +84,7 @@ static int compare_wall(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-int bdl_bench_coupled(int argc, char **argv)
+bdl_result bdl_bench_coupled(int argc, char **argv)
 {
     const char *path = "scenes/fluidized_bed.ini";
     double warmup = 0.5, timed = 0.5;
@@ -95,7 +93,7 @@ int bdl_bench_coupled(int argc, char **argv)
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
-            return 0;
+            return BDL_OK;
         } else if (v && strcmp(a, "--warmup") == 0) {
             warmup = atof(v), ++k;
         } else if (v && strcmp(a, "--time") == 0) {
@@ -108,20 +106,20 @@ int bdl_bench_coupled(int argc, char **argv)
             path = a;
         } else {
             fprintf(stderr, "error: bench coupled: bad option '%s'\n\n%s", a, usage);
-            return 2;
+            return BDL_ERR_ARGS;
         }
     }
     if (!(warmup >= 0.0) || !(timed > 0.0) || threads < 0 || repeat < 1 || repeat > 100) {
         fprintf(stderr, "error: bench coupled: --warmup >= 0, --time > 0, --repeat 1..100, "
                         "--threads >= 0\n");
-        return 2;
+        return BDL_ERR_ARGS;
     }
     if (threads > 0)
         omp_set_num_threads(threads);
     timing runs[100];
     for (int r = 0; r < repeat; ++r) {
-        int code = time_window(path, warmup, timed, &runs[r]);
-        if (code)
+        bdl_result code = time_window(path, warmup, timed, &runs[r]);
+        if (code != BDL_OK)
             return code;
     }
     qsort(runs, (size_t)repeat, sizeof runs[0], compare_wall);
@@ -144,5 +142,5 @@ int bdl_bench_coupled(int argc, char **argv)
            100.0 * (t->gas + t->coupling) / t->wall);
     printf("pressure solver: %d iterations in the last gas step (relative residual %.2g)\n",
            t->iterations, t->residual);
-    return 0;
+    return BDL_OK;
 }

@@ -273,14 +273,14 @@ static void solver_cost(const render_opts *o, bdl_scene *scene)
         dump_cost(o, scene, o->solver, 0.0);
 }
 
-int bdl_bench_render(int argc, char **argv)
+bdl_result bdl_bench_render(int argc, char **argv)
 {
     render_opts o = {BDL_GL_AUTO, 1280, 720, 4, 0, 1000000, 20000, 2000};
     for (int k = 1; k < argc; ++k) {
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(usage, stdout);
-            return 0;
+            return BDL_OK;
         } else if (v && strcmp(a, "--gl") == 0 && bdl_gl_backend_parse(v, &o.backend) &&
                    o.backend != BDL_GL_SDL) {
             ++k;
@@ -298,20 +298,21 @@ int bdl_bench_render(int argc, char **argv)
             o.threads = atoi(v), ++k;
         } else {
             fprintf(stderr, "error: bench render: bad option '%s'\n\n%s", a, usage);
-            return 2;
+            return BDL_ERR_ARGS;
         }
     }
     if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192 || o.samples < 0 ||
         o.samples > 16 || o.max < 1 || o.solver < 0 || o.video < 0 || o.threads < 0) {
         fprintf(stderr, "error: bench render: size 16..8192, samples 0..16, --max >= 1\n");
-        return 2;
+        return BDL_ERR_ARGS;
     }
     char why[1024];
     bdl_context *ctx = NULL;
     bdl_context_def cd = {.backend = o.backend, .width = o.width, .height = o.height};
-    if (bdl_context_create(&cd, &ctx, why, sizeof why) != BDL_OK) {
+    bdl_result r = bdl_context_create(&cd, &ctx, why, sizeof why);
+    if (r != BDL_OK) {
         fprintf(stderr, "error: %s\n", why);
-        return 1;
+        return r;
     }
     bdl_scene *scene = calloc(1, sizeof *scene);
     uint8_t *rgb = malloc((size_t)o.width * (size_t)o.height * 3);
@@ -319,7 +320,7 @@ int bdl_bench_render(int argc, char **argv)
         free(scene);
         free(rgb);
         bdl_context_destroy(ctx);
-        return 1;
+        return BDL_ERR_NOMEM;
     }
     printf("bedlam bench render: %s, %dx%d, %d samples, lit spheres coloured by speed\n",
            bdl_gl_backend_name(bdl_context_backend(ctx)), o.width, o.height, o.samples);
@@ -332,5 +333,5 @@ int bdl_bench_render(int argc, char **argv)
     solver_cost(&o, scene);
     free(scene);
     free(rgb);
-    return 0;
+    return BDL_OK;
 }

@@ -103,7 +103,7 @@ typedef struct stage {
     int branch; ///< +1 increasing, -1 decreasing
 } stage;
 
-static int analyze_sweep(const char *run, const char *out, int plots)
+static bdl_result analyze_sweep(const char *run, const char *out, int plots)
 {
     double *t = NULL, *u = NULL, *dp = NULL, *wr = NULL;
     long n = 0, m;
@@ -142,7 +142,7 @@ static int analyze_sweep(const char *run, const char *out, int plots)
                 "set [gas] sweep\n",
                 run, ns);
         free(t), free(u), free(dp), free(wr), free(st);
-        return ok ? 1 : 2;
+        return ok ? BDL_ERR_NO_RESULT : BDL_ERR_ARGS;
     }
     bdl_umf_result res[2];
     double plateau_ratio[2] = {NAN, NAN};
@@ -174,7 +174,7 @@ static int analyze_sweep(const char *run, const char *out, int plots)
     if (bdl_atomic_open(&af, path) != BDL_OK) {
         fprintf(stderr, "error: cannot write %s\n", path);
         free(t), free(u), free(dp), free(wr), free(st);
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     }
     fprintf(af.file, "stage,inlet_velocity,branch,pressure_drop,pressure_drop_std,weight_ratio\n");
     for (int k = 0; k < ns; ++k)
@@ -212,18 +212,19 @@ static int analyze_sweep(const char *run, const char *out, int plots)
         }
     }
     free(t), free(u), free(dp), free(wr), free(st);
-    return isfinite(res[1].umf) ? 0 : 1;
+    return isfinite(res[1].umf) ? BDL_OK : BDL_ERR_NO_RESULT;
 }
 
-static int analyze_spectrum(const char *run, const char *file, const char *out, const char *column,
-                            double from, double to, double fmin, double fmax, int plots)
+static bdl_result analyze_spectrum(const char *run, const char *file, const char *out,
+                                   const char *column, double from, double to, double fmin,
+                                   double fmax, int plots)
 {
     double *t = NULL, *x = NULL;
     long n = 0, m = 0;
     if (!bdl_analyze_read_column(run, file, "time", &t, &n) ||
         !bdl_analyze_read_column(run, file, column, &x, &m) || m != n) {
         free(t), free(x);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     long i0 = 0, i1 = n;
     while (i0 < n && t[i0] < from)
@@ -234,7 +235,7 @@ static int analyze_spectrum(const char *run, const char *file, const char *out, 
     if (count < 16) {
         fprintf(stderr, "error: only %ld samples between %g and %g s\n", count, from, to);
         free(t), free(x);
-        return 1;
+        return BDL_ERR_NO_RESULT;
     }
     const double dt = (t[i1 - 1] - t[i0]) / (double)(count - 1);
     double *f = NULL, *p = NULL;
@@ -247,18 +248,18 @@ static int analyze_spectrum(const char *run, const char *file, const char *out, 
     char path[1300];
     snprintf(path, sizeof path, "%s/spectrum.csv", out);
     bdl_atomic_file af;
-    int rc = 0;
+    bdl_result rc = BDL_OK;
     if (bdl_atomic_open(&af, path) == BDL_OK) {
         fprintf(af.file, "frequency,power\n");
         for (long k = 0; k < bins; ++k)
             fprintf(af.file, "%.6g,%.6g\n", f[k], p[k]);
         fprintf(af.file, "# %s, %.6g to %.6g s, dominant %.6g Hz\n", column, t[i0], t[i1 - 1],
                 peak);
-        rc = bdl_atomic_commit(&af) == BDL_OK ? 0 : 2;
+        rc = bdl_atomic_commit(&af);
     } else {
-        rc = 2;
+        rc = BDL_ERR_OUTPUT_DIR;
     }
-    if (rc == 0 && plots) {
+    if (rc == BDL_OK && plots) {
         snprintf(path, sizeof path, "%s/spectrum.gp", out);
         FILE *g = fopen(path, "w");
         if (g) {
@@ -276,18 +277,18 @@ static int analyze_spectrum(const char *run, const char *file, const char *out, 
         }
     }
     free(t), free(x), free(f), free(p);
-    return rc != 0 ? rc : (isfinite(peak) ? 0 : 1);
+    return rc != BDL_OK ? rc : isfinite(peak) ? BDL_OK : BDL_ERR_NO_RESULT;
 }
 
-static int analyze_mean(const char *run, const char *file, const char *column, double from,
-                        double to)
+static bdl_result analyze_mean(const char *run, const char *file, const char *column, double from,
+                               double to)
 {
     double *t = NULL, *x = NULL;
     long n = 0, m = 0;
     if (!bdl_analyze_read_column(run, file, "time", &t, &n) ||
         !bdl_analyze_read_column(run, file, column, &x, &m) || m != n) {
         free(t), free(x);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     double sum = 0.0, sum2 = 0.0, lo = INFINITY, hi = -INFINITY, block[10] = {0};
     long count = 0, first = -1, last = -1;
@@ -314,7 +315,7 @@ static int analyze_mean(const char *run, const char *file, const char *column, d
         fprintf(stderr, "error: only %ld samples of %s between %g and %g s\n", count, column, from,
                 to);
         free(t), free(x);
-        return 1;
+        return BDL_ERR_NO_RESULT;
     }
     double mean = sum / (double)count, sd = sqrt(fmax(0.0, sum2 / count - mean * mean));
     // Blocks of equal length: their means scatter by the standard error times sqrt(10).
@@ -328,14 +329,14 @@ static int analyze_mean(const char *run, const char *file, const char *column, d
            "error %.3g (10 blocks), range %.6g to %.6g\n",
            column, t[first], t[last], count, mean, sd, se, lo, hi);
     free(t), free(x);
-    return 0;
+    return BDL_OK;
 }
 
-int bdl_cmd_analyze(int argc, char **argv)
+bdl_result bdl_cmd_analyze(int argc, char **argv)
 {
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
         fputs(analyze_usage, argc < 2 ? stderr : stdout);
-        return argc < 2 ? 2 : 0;
+        return argc < 2 ? BDL_ERR_ARGS : BDL_OK;
     }
     const char *what = argv[1], *run = NULL, *out_opt = NULL, *column = "pressure_drop";
     const char *file = "diagnostics.csv";
@@ -353,7 +354,7 @@ int bdl_cmd_analyze(int argc, char **argv)
         int more = i + 1 < argc;
         if (strcmp(a, "--help") == 0) {
             fputs(analyze_usage, stdout);
-            return 0;
+            return BDL_OK;
         } else if (strcmp(a, "--column") == 0 && more) {
             column = argv[++i];
         } else if (strcmp(a, "--from") == 0 && more) {
@@ -384,7 +385,7 @@ int bdl_cmd_analyze(int argc, char **argv)
             plots = 0;
         } else if (a[0] == '-' || run) {
             fprintf(stderr, "error: unexpected argument '%s'\n\n%s", a, analyze_usage);
-            return 2;
+            return BDL_ERR_ARGS;
         } else {
             run = a;
         }
@@ -399,7 +400,7 @@ int bdl_cmd_analyze(int argc, char **argv)
                 "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
                 "'profile RUN' or 'networks CONTACTS.csv'\n\n%s",
                 analyze_usage);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     if (strcmp(what, "mean") == 0)
         return analyze_mean(run, file, column, from, to);
@@ -410,11 +411,11 @@ int bdl_cmd_analyze(int argc, char **argv)
         ph.bins = networks ? 40 : 50;
     if (!(fmax > fmin) || ph.bins < 3 || ph.bins > 100000) {
         fprintf(stderr, "error: --fmax must be above --fmin, --bins from 3 to 100000\n");
-        return 2;
+        return BDL_ERR_ARGS;
     }
     if (strcmp(what, "phase") == 0 && !(ph.period > 0.0)) {
         fprintf(stderr, "error: phase needs --period P > 0 [s]\n");
-        return 2;
+        return BDL_ERR_ARGS;
     }
     char out[1100], why[512];
     snprintf(out, sizeof out, "%s", out_opt ? out_opt : run);
@@ -426,7 +427,7 @@ int bdl_cmd_analyze(int argc, char **argv)
     }
     if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
         fprintf(stderr, "error: --out %s: %s\n", out, why);
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     }
     if (strcmp(what, "sweep") == 0)
         return analyze_sweep(run, out, plots);

@@ -344,7 +344,7 @@ static long timed_steps(const bench_opts *o, long n)
     return s < 20 ? 20 : s;
 }
 
-int bdl_cmd_bench(int argc, char **argv)
+bdl_result bdl_cmd_bench(int argc, char **argv)
 {
     bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL, NULL};
     int k = 1;
@@ -358,7 +358,7 @@ int bdl_cmd_bench(int argc, char **argv)
         const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(bench_usage, stdout);
-            return 0;
+            return BDL_OK;
         } else if (strcmp(a, "--scaling") == 0) {
             o.scaling = 1;
         } else if (strcmp(a, "--quiet") == 0) {
@@ -386,7 +386,7 @@ int bdl_cmd_bench(int argc, char **argv)
             ++k;
         } else {
             fprintf(stderr, "error: unknown bench option '%s'\n\n%s", a, bench_usage);
-            return 2;
+            return BDL_ERR_ARGS;
         }
     }
     int bad_threads = o.thread_count < 1;
@@ -396,22 +396,22 @@ int bdl_cmd_bench(int argc, char **argv)
         o.skin < 0.0 || o.skin > 1.0) {
         fprintf(stderr, "error: bench needs --particles >= 100, --steps >= 1, --repeat >= 1, "
                         "--threads >= 1, --height >= 2, 0 < --skin <= 1\n");
-        return 2;
+        return BDL_ERR_ARGS;
     }
     if (o.bed_dir && bdl_mkdir_p(o.bed_dir) != BDL_OK) {
         fprintf(stderr, "error: --bed-dir: cannot create the folder '%s'\n", o.bed_dir);
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     }
     FILE *csv = o.csv ? fopen(o.csv, "a") : NULL;
     if (o.csv && !csv) {
         fprintf(stderr, "error: cannot open '%s'\n", o.csv);
-        return 1;
+        return BDL_ERR_OUTPUT_DIR;
     }
     printf("bedlam bench dem: settled frictional Hertz-Mindlin bed, %d repetitions\n", o.repeat);
     bed_info bed;
     bdl_world *w = make_bed(o.particles, &o, &bed);
     if (!w)
-        return 1;
+        return BDL_ERR_NOMEM;
     report_locality(w);
     long count = timed_steps(&o, w->particles.count);
     printf("timed: %ld steps per repetition\n", count);
@@ -435,7 +435,7 @@ int bdl_cmd_bench(int argc, char **argv)
             omp_set_num_threads(omp_get_num_procs());
             bdl_world *ws = make_bed(n, &o, &bed);
             if (!ws)
-                return 1;
+                return BDL_ERR_NOMEM;
             report_header();
             bench_result r = time_steps(ws, 1, timed_steps(&o, n), o.repeat);
             report(&r, &bed, csv);
@@ -444,5 +444,5 @@ int bdl_cmd_bench(int argc, char **argv)
     }
     if (csv)
         fclose(csv);
-    return 0;
+    return BDL_OK;
 }

@@ -50,6 +50,7 @@ typedef struct options {
     int image_count;
     int holdout, adaptive, window, layer, plots, cells[2], back_lit, normalise;
     double offset, cap;
+    int help; ///< --help was printed: nothing else to do
 } options;
 
 /// The value of a numeric key in a small flat JSON text (`"key": number`), or NAN.
@@ -340,13 +341,13 @@ static void plot(const char *out, const bdl_dia_fit *fits, double cap)
 }
 
 /// --apply: voidage maps of images with a saved fit (no truth needed).
-static int apply_fit(const options *o)
+static bdl_result apply_fit(const options *o)
 {
     size_t length;
     char *json = bdl_read_file(o->apply, &length);
     if (!json) {
         fprintf(stderr, "error: cannot read %s: %s\n", o->apply, strerror(errno));
-        return 2;
+        return BDL_ERR_ARGS;
     }
     const char *rat = strstr(json, "\"rational\":");
     bdl_dia_fit fit = {BDL_DIA_MODEL_RATIONAL, {NAN, NAN}, 0, 0, 0, 0, 1};
@@ -358,13 +359,13 @@ static int apply_fit(const options *o)
     free(json);
     if (!isfinite(fit.p[0]) || !isfinite(fit.p[1]) || !isfinite(cap)) {
         fprintf(stderr, "error: %s holds no rational fit (p0, p1) or cap\n", o->apply);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     const int nx = o->cells[0], ny = o->cells[1];
     for (int k = 0; k < o->image_count; ++k) {
         double *f2d = image_fractions(o, o->images[k], nx, ny, o->back_lit);
         if (!f2d)
-            return 2;
+            return BDL_ERR_ARGS;
         char path[1200];
         const char *base = strrchr(o->images[k], '/');
         base = base ? base + 1 : o->images[k];
@@ -374,7 +375,7 @@ static int apply_fit(const options *o)
         if (bdl_atomic_open(&af, path) != BDL_OK) {
             free(f2d);
             fprintf(stderr, "error: cannot write %s\n", path);
-            return 2;
+            return BDL_ERR_ARGS;
         }
         fprintf(af.file, "column,row,f2d,f3d,voidage\n");
         double mean = 0.0;
@@ -387,14 +388,14 @@ static int apply_fit(const options *o)
         free(f2d);
         if (bdl_atomic_commit(&af) != BDL_OK) {
             fprintf(stderr, "error: cannot write %s\n", path);
-            return 2;
+            return BDL_ERR_ARGS;
         }
         printf("%s: mean solids fraction %.4f -> %s\n", o->images[k], mean, path);
     }
-    return 0;
+    return BDL_OK;
 }
 
-static int parse(int argc, char **argv, options *o)
+static bdl_result parse(int argc, char **argv, options *o)
 {
     memset(o, 0, sizeof *o);
     o->holdout = 4, o->window = 15, o->offset = 0.02, o->plots = 1, o->cap = NAN;
@@ -404,14 +405,15 @@ static int parse(int argc, char **argv, options *o)
         int more = i + 1 < argc;
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             fputs(calibrate_usage, stdout);
-            return -1;
+            o->help = 1;
+            return BDL_OK;
         } else if (strcmp(a, "--test") == 0 && more) {
             o->test = argv[++i];
         } else if (strcmp(a, "--holdout") == 0 && more) {
             o->holdout = atoi(argv[++i]);
             if (o->holdout < 0) {
                 fprintf(stderr, "error: --holdout %s: expected an integer >= 0\n", argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
         } else if (strcmp(a, "--apply") == 0 && more) {
             o->apply = argv[++i];
@@ -419,14 +421,14 @@ static int parse(int argc, char **argv, options *o)
             ++i;
             if (strcmp(argv[i], "adaptive") != 0 && strcmp(argv[i], "otsu") != 0) {
                 fprintf(stderr, "error: --method %s: expected otsu or adaptive\n", argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
             o->adaptive = strcmp(argv[i], "adaptive") == 0;
         } else if (strcmp(a, "--window") == 0 && more) {
             o->window = atoi(argv[++i]);
             if (o->window < 1 || o->window > 1000) {
                 fprintf(stderr, "error: --window %s: expected 1..1000 pixels\n", argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
         } else if (strcmp(a, "--offset") == 0 && more) {
             o->offset = atof(argv[++i]);
@@ -434,21 +436,21 @@ static int parse(int argc, char **argv, options *o)
             ++i;
             if (strcmp(argv[i], "depth") != 0 && strcmp(argv[i], "layer") != 0) {
                 fprintf(stderr, "error: --measure %s: expected depth or layer\n", argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
             o->layer = strcmp(argv[i], "layer") == 0;
         } else if (strcmp(a, "--cap") == 0 && more) {
             o->cap = atof(argv[++i]);
             if (!(o->cap > 0.0 && o->cap <= 1.0)) {
                 fprintf(stderr, "error: --cap %s: expected a fraction in (0, 1]\n", argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
         } else if (strcmp(a, "--cells") == 0 && i + 2 < argc) {
             o->cells[0] = atoi(argv[++i]);
             o->cells[1] = atoi(argv[++i]);
             if (o->cells[0] < 1 || o->cells[1] < 1) {
                 fprintf(stderr, "error: --cells: expected two positive integers\n");
-                return 2;
+                return BDL_ERR_ARGS;
             }
         } else if (strcmp(a, "--lighting") == 0 && more) {
             o->back_lit = strcmp(argv[++i], "back") == 0;
@@ -460,7 +462,7 @@ static int parse(int argc, char **argv, options *o)
             o->plots = 0;
         } else if (a[0] == '-') {
             fprintf(stderr, "error: unknown option '%s'\n\n%s", a, calibrate_usage);
-            return 2;
+            return BDL_ERR_ARGS;
         } else if (o->apply) {
             if (o->image_count < 256)
                 o->images[o->image_count++] = a;
@@ -468,33 +470,33 @@ static int parse(int argc, char **argv, options *o)
             o->dir = a;
         } else {
             fprintf(stderr, "error: more than one folder given ('%s')\n", a);
-            return 2;
+            return BDL_ERR_ARGS;
         }
     }
     if (!o->apply && !o->dir) {
         fprintf(stderr, "error: no folder given\n\n%s", calibrate_usage);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     if (o->apply && o->image_count == 0) {
         fprintf(stderr, "error: --apply needs images\n");
-        return 2;
+        return BDL_ERR_ARGS;
     }
-    return 0;
+    return BDL_OK;
 }
 
-int bdl_cmd_calibrate(int argc, char **argv)
+bdl_result bdl_cmd_calibrate(int argc, char **argv)
 {
     options o;
-    int rc = parse(argc, argv, &o);
-    if (rc != 0)
-        return rc < 0 ? 0 : rc;
+    bdl_result rc = parse(argc, argv, &o);
+    if (rc != BDL_OK || o.help)
+        return rc;
     char out[1100], why[512];
     snprintf(out, sizeof out, "%s", o.out ? o.out : o.apply ? "." : o.dir);
     if (!o.out && !o.apply)
         snprintf(out, sizeof out, "%s/calibration", o.dir);
     if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
         fprintf(stderr, "error: --out %s: %s\n", out, why);
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     }
     o.out = out;
     if (o.apply)
@@ -504,7 +506,7 @@ int bdl_cmd_calibrate(int argc, char **argv)
     if (!collect(&o, o.dir, o.test ? 0 : o.holdout, 0, &p, &frames) ||
         (o.test && !collect(&o, o.test, 0, 1, &p, &test_frames))) {
         free(p.f2d), free(p.f3d), free(p.frame), free(p.cell), free(p.test);
-        return 2;
+        return BDL_ERR_ARGS;
     }
     // Fit on the training points.
     long n_train = 0;
@@ -569,5 +571,5 @@ int bdl_cmd_calibrate(int argc, char **argv)
     }
     free(x), free(y);
     free(p.f2d), free(p.f3d), free(p.frame), free(p.cell), free(p.test);
-    return ok ? 0 : 1;
+    return ok ? BDL_OK : BDL_ERR_NO_RESULT;
 }

@@ -53,29 +53,29 @@ static void print_contacts(const bdl_world *w, double v_ref)
     }
 }
 
-int bdl_cmd_check(int argc, char **argv)
+bdl_result bdl_cmd_check(int argc, char **argv)
 {
     bdl_scene_opts o;
-    int rc = bdl_parse_scene_opts(argc, argv, check_usage, &o);
-    if (rc != 0)
-        return rc < 0 ? 0 : rc;
+    bdl_result rc = bdl_parse_scene_opts(argc, argv, check_usage, &o);
+    if (rc != BDL_OK || o.help)
+        return rc;
     if (o.threads > 0)
         omp_set_num_threads(o.threads);
     bdl_scene *scene = calloc(1, sizeof *scene);
     bdl_scene_error err;
     if (!scene)
-        return 1;
-    if (bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err) != BDL_OK) {
+        return BDL_ERR_NOMEM;
+    if ((rc = bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err)) != BDL_OK) {
         fprintf(stderr, "error: %s\n", err.message);
         free(scene);
-        return 2;
+        return rc;
     }
     bdl_world *w = NULL;
     bdl_result r = bdl_world_create(scene, &w, &err);
     free(scene);
     if (r != BDL_OK) {
         fprintf(stderr, "error: %s\n", r == BDL_ERR_SCENE ? err.message : bdl_result_text(r));
-        return r == BDL_ERR_SCENE ? 2 : 1;
+        return r;
     }
     const bdl_scene *s = &w->scene;
     printf("scene: %s — valid\n", s->path);
@@ -113,7 +113,7 @@ int bdl_cmd_check(int argc, char **argv)
     if (r != BDL_OK) {
         fprintf(stderr, "error: %s\n", message);
         bdl_world_destroy(w);
-        return 2;
+        return r;
     }
     if (warning[0])
         printf("  warning: %s\n", warning);
@@ -139,5 +139,5 @@ int bdl_cmd_check(int argc, char **argv)
            steps_total, s->end_time, rate, omp_get_max_threads(), n, wall, total,
            s->end_time / wall);
     bdl_world_destroy(w);
-    return 0;
+    return BDL_OK;
 }

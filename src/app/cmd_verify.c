@@ -325,7 +325,7 @@ static bdl_result write_readme(const char *dir, const case_run *runs, int n, int
     return bdl_atomic_commit(&af);
 }
 
-int bdl_cmd_verify(int argc, char **argv)
+bdl_result bdl_cmd_verify(int argc, char **argv)
 {
     int quick = 0, threads = 1, plots = 1, list = 0, named = 0;
     const char *out = "docs/validation";
@@ -333,7 +333,7 @@ int bdl_cmd_verify(int argc, char **argv)
     for (int i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
             fputs(verify_usage, stdout);
-            return 0;
+            return BDL_OK;
         } else if (strcmp(argv[i], "--quick") == 0) {
             quick = 1;
         } else if (strcmp(argv[i], "--no-plots") == 0) {
@@ -347,17 +347,17 @@ int bdl_cmd_verify(int argc, char **argv)
             long t = strtol(argv[++i], &end, 10);
             if (*end || t < 1 || t > 256) {
                 fprintf(stderr, "error: --threads %s: expected an integer in [1, 256]\n", argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
             threads = (int)t;
         } else if (argv[i][0] == '-') {
             fprintf(stderr, "error: unknown option '%s'\n\n%s", argv[i], verify_usage);
-            return 2;
+            return BDL_ERR_ARGS;
         } else if (named < 64) {
             if (!bdl_verify_find(argv[i])) {
                 fprintf(stderr, "error: unknown case '%s'; bedlam verify --list shows them\n",
                         argv[i]);
-                return 2;
+                return BDL_ERR_ARGS;
             }
             names[named++] = argv[i];
         }
@@ -368,17 +368,17 @@ int bdl_cmd_verify(int argc, char **argv)
         for (int k = 0; k < count; ++k)
             printf("%-18s %s%s\n", cases[k].name, cases[k].title,
                    cases[k].quick ? "" : " (full set only)");
-        return 0;
+        return BDL_OK;
     }
     char why[512];
     if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
         fprintf(stderr, "error: --out %s: %s\n", out, why);
-        return 2;
+        return BDL_ERR_OUTPUT_DIR;
     }
     omp_set_num_threads(threads);
     case_run *runs = calloc((size_t)count, sizeof *runs);
     if (!runs)
-        return 1;
+        return BDL_ERR_NOMEM;
     int n = 0, failed = 0;
     double t0 = bdl_wall_seconds();
     for (int k = 0; k < count; ++k) {
@@ -395,7 +395,7 @@ int bdl_cmd_verify(int argc, char **argv)
             fprintf(stderr, "error: cannot write %s/%s.csv: %s\n", out, cr->c->name,
                     strerror(errno));
             free(runs);
-            return 2;
+            return BDL_ERR_IO;
         }
     }
     double total = bdl_wall_seconds() - t0;
@@ -408,10 +408,10 @@ int bdl_cmd_verify(int argc, char **argv)
     if (write_readme(out, runs, n, quick, threads, total, plotted) != BDL_OK) {
         fprintf(stderr, "error: cannot write %s/README.md: %s\n", out, strerror(errno));
         free(runs);
-        return 2;
+        return BDL_ERR_IO;
     }
     printf("%d case%s, %d failed, %.1f s; tables in %s/README.md\n", n, n == 1 ? "" : "s", failed,
            total, out);
     free(runs);
-    return failed ? 1 : 0;
+    return failed ? BDL_ERR_TOLERANCE : BDL_OK;
 }

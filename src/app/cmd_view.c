@@ -127,14 +127,15 @@ static void find_live_parameter(viewer *v)
         }
 }
 
-static int start_world(viewer *v)
+static bdl_result start_world(viewer *v)
 {
     bdl_scene_error err;
     // Only the solver thread runs an OpenMP team (see run/run.c): the main thread draws.
     omp_set_num_threads(1);
-    if (bdl_world_create(v->scene, &v->world, &err) != BDL_OK) {
-        fprintf(stderr, "error: %s\n", err.message);
-        return 0;
+    bdl_result r = bdl_world_create(v->scene, &v->world, &err);
+    if (r != BDL_OK) {
+        fprintf(stderr, "error: %s\n", r == BDL_ERR_SCENE ? err.message : bdl_result_text(r));
+        return r;
     }
     bdl_loop_def ld = bdl_default_loop_def();
     ld.world = v->world;
@@ -145,12 +146,12 @@ static int start_world(viewer *v)
     v->loop = bdl_loop_start(&ld);
     if (!v->loop) {
         fprintf(stderr, "error: cannot start the solver thread\n");
-        return 0;
+        return BDL_ERR_NOMEM;
     }
     if (v->speed_limit > 0.0)
         bdl_loop_set_speed_limit(v->loop, v->speed_limit);
     v->live_scale = 1.0;
-    return 1;
+    return BDL_OK;
 }
 
 static void stop_world(viewer *v)
@@ -212,7 +213,7 @@ static void change_live(viewer *v, double factor)
 static void reset(viewer *v, float aspect)
 {
     stop_world(v);
-    if (!start_world(v))
+    if (start_world(v) != BDL_OK)
         v->quit = 1;
     bdl_color_mode color = v->view.color;
     bdl_view_from_scene(v->scene, aspect, &v->view);
@@ -379,35 +380,36 @@ static void run_viewer(viewer *v)
     }
 }
 
-int bdl_cmd_view(int argc, char **argv)
+bdl_result bdl_cmd_view(int argc, char **argv)
 {
     bdl_scene_opts o;
-    int rc = bdl_parse_scene_opts(argc, argv, view_usage, &o);
-    if (rc != 0)
-        return rc < 0 ? 0 : rc;
+    bdl_result rc = bdl_parse_scene_opts(argc, argv, view_usage, &o);
+    if (rc != BDL_OK || o.help)
+        return rc;
     if (o.gl_backend != BDL_GL_AUTO && o.gl_backend != BDL_GL_SDL) {
         fprintf(stderr, "error: --gl %s: the window needs sdl\n",
                 bdl_gl_backend_name((bdl_gl_backend)o.gl_backend));
-        return 2;
+        return BDL_ERR_ARGS;
     }
     viewer *v = calloc(1, sizeof *v);
     bdl_scene *scene = calloc(1, sizeof *scene);
     if (!v || !scene) {
         free(v);
         free(scene);
-        return 1;
+        return BDL_ERR_NOMEM;
     }
     v->opts = &o;
     v->scene = scene;
     v->paused = o.paused;
     bdl_scene_error err;
-    rc = 2;
-    if (bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err) != BDL_OK) {
+    if ((rc = bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err)) != BDL_OK) {
         fprintf(stderr, "error: %s\n", err.message);
         goto done;
     }
-    if (o.script && !load_script(v, o.script))
+    if (o.script && !load_script(v, o.script)) {
+        rc = BDL_ERR_ARGS;
         goto done;
+    }
     const char *stem = strrchr(o.scene, '/') ? strrchr(o.scene, '/') + 1 : o.scene;
     if (o.out)
         snprintf(v->shot_dir, sizeof v->shot_dir, "%s", o.out);
@@ -415,31 +417,27 @@ int bdl_cmd_view(int argc, char **argv)
         snprintf(v->shot_dir, sizeof v->shot_dir, "runs/%.*s/screenshots",
                  (int)(strcspn(stem, ".")), stem);
     find_live_parameter(v);
-    rc = 1;
     char why[1024];
     bdl_context_def cd = {.backend = BDL_GL_SDL,
                           .window = 1,
                           .width = o.width ? o.width : 1280,
                           .height = o.height ? o.height : 720,
                           .title = o.scene};
-    if (bdl_context_create(&cd, &v->context, why, sizeof why) != BDL_OK) {
+    if ((rc = bdl_context_create(&cd, &v->context, why, sizeof why)) != BDL_OK) {
         fprintf(stderr, "error: cannot open a window: %s\n", why);
         goto done;
     }
     bdl_renderer_def rd = {.scene = scene};
-    if (bdl_renderer_create(&rd, &v->renderer, why, sizeof why) != BDL_OK) {
+    if ((rc = bdl_renderer_create(&rd, &v->renderer, why, sizeof why)) != BDL_OK) {
         fprintf(stderr, "error: %s\n", why);
         goto done;
     }
     int w, h;
     bdl_context_drawable_size(v->context, &w, &h);
     bdl_view_from_scene(scene, (float)w / (float)h, &v->view);
-    if (!start_world(v)) {
-        rc = 2;
+    if ((rc = start_world(v)) != BDL_OK)
         goto done;
-    }
     run_viewer(v);
-    rc = 0;
 done:
     stop_world(v);
     bdl_renderer_destroy(v->renderer);
@@ -451,18 +449,18 @@ done:
 
 #else
 
-int bdl_cmd_view(int argc, char **argv)
+bdl_result bdl_cmd_view(int argc, char **argv)
 {
     (void)help_text;
     for (int k = 1; k < argc; ++k)
         if (strcmp(argv[k], "--help") == 0 || strcmp(argv[k], "-h") == 0) {
             fputs(view_usage, stdout);
             printf("\nThis bedlam was built without SDL2 (BDL_WITH_SDL=OFF): no window.\n");
-            return 0;
+            return BDL_OK;
         }
     fprintf(stderr, "error: this bedlam was built without SDL2 (BDL_WITH_SDL=OFF): no window; "
                     "headless frames work with 'bedlam run' and [output] frame_interval\n");
-    return 1;
+    return BDL_ERR_GL;
 }
 
 #endif

@@ -29,8 +29,23 @@ static const char usage[] =
 
 typedef struct command {
     const char *name;
-    int (*fn)(int, char **);
+    bdl_result (*fn)(int, char **);
 } command;
+
+int bdl_exit_code(bdl_result r)
+{
+    switch (r) {
+    case BDL_OK:
+        return 0;
+    case BDL_ERR_SCENE:
+    case BDL_ERR_ARGS:
+    case BDL_ERR_OUTPUT_DIR:
+    case BDL_ERR_CHECKPOINT:
+        return 2;
+    default:
+        return 1;
+    }
+}
 
 int main(int argc, char **argv)
 {
@@ -50,7 +65,7 @@ int main(int argc, char **argv)
     }
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k)
         if (strcmp(argv[1], commands[k].name) == 0)
-            return commands[k].fn(argc - 1, argv + 1);
+            return bdl_exit_code(commands[k].fn(argc - 1, argv + 1));
     fprintf(stderr, "error: unknown command '%s'\n\n%s", argv[1], usage);
     return 2;
 }

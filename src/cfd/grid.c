@@ -47,3 +47,16 @@ void bdl_grid_wrap_cells(const bdl_grid *g, double *f)
             }
     }
 }
+
+double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m)
+{
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    double sum = 0.0;
+    for (int jc = 0; jc < g->n[c]; ++jc)
+        for (int jb = 0; jb < g->n[b]; ++jb) {
+            int ix[3];
+            ix[a] = m, ix[b] = jb, ix[c] = jc;
+            sum += field[bdl_grid_index(g, ix[0], ix[1], ix[2])];
+        }
+    return sum / ((double)g->n[b] * g->n[c]);
+}

@@ -43,4 +43,7 @@ double *bdl_grid_alloc(const bdl_grid *g);
 /// Copies periodic images into the ghost layers of a cell-centred field on every periodic axis.
 void bdl_grid_wrap_cells(const bdl_grid *g, double *f);
 
+/// Mean of a cell field over the layer of cells m normal to axis a.
+double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m);
+
 #endif

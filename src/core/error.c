@@ -12,16 +12,3 @@ const char *bdl_result_text(bdl_result r)
         return "unknown result";
     return result_texts[r];
 }
-
-int bdl_result_exit_code(bdl_result r)
-{
-    switch (r) {
-    case BDL_OK:
-        return 0;
-    case BDL_ERR_SCENE:
-    case BDL_ERR_ARGS:
-        return 2;
-    default:
-        return 1;
-    }
-}

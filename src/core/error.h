@@ -13,10 +13,13 @@
     X(ERR_SCENE, "invalid scene")                                                                  \
     X(ERR_ARGS, "invalid command-line arguments")                                                  \
     X(ERR_IO, "input/output failure")                                                              \
+    X(ERR_OUTPUT_DIR, "the output folder cannot be written")                                       \
     X(ERR_NOMEM, "out of memory")                                                                  \
     X(ERR_UNSTABLE, "numerical instability detected")                                              \
     X(ERR_CHECKPOINT, "checkpoint is unreadable or does not match the scene")                      \
     X(ERR_INTERRUPTED, "run interrupted")                                                          \
+    X(ERR_NO_RESULT, "the data do not determine a result")                                         \
+    X(ERR_TOLERANCE, "a verified result is outside its tolerance")                                 \
     X(ERR_GL, "no OpenGL context (display, driver or library missing)")
 
 typedef enum bdl_result {
@@ -28,9 +31,6 @@ typedef enum bdl_result {
 
 /// Human-readable text for a result code.
 const char *bdl_result_text(bdl_result r);
-
-/// Process exit code for a result: 0 success, 1 run-time failure, 2 bad input.
-int bdl_result_exit_code(bdl_result r);
 
 #ifdef BDL_ENABLE_ASSERT
 #define BDL_ASSERT(cond)                                                                           \

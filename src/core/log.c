@@ -3,10 +3,8 @@
 #include <stdarg.h>
 
 // Logging configuration is process-wide by nature (one terminal, one run log).
-static bdl_log_level log_level = BDL_LOG_WARN;
 static FILE *log_file = NULL;
 
-void bdl_log_set_level(bdl_log_level level) { log_level = level; }
 void bdl_log_set_file(FILE *file) { log_file = file; }
 FILE *bdl_log_file(void) { return log_file; }
 
@@ -14,7 +12,7 @@ void bdl_log(bdl_log_level level, const char *fmt, ...)
 {
     static const char *const prefix[] = {"error: ", "warning: ", "", ""};
     va_list ap;
-    if (level <= log_level) {
+    if (level <= BDL_LOG_WARN) {
         va_start(ap, fmt);
         fputs(prefix[level], stderr);
         vfprintf(stderr, fmt, ap);

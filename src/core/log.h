@@ -11,8 +11,8 @@ typedef enum bdl_log_level {
     BDL_LOG_DEBUG
 } bdl_log_level;
 
-/// Messages at or below `level` go to stderr; everything up to INFO also goes to `file` if set.
-void bdl_log_set_level(bdl_log_level level);
+/// Errors and warnings go to stderr; everything up to INFO also goes to `file` if set (the run's
+/// run.log).
 void bdl_log_set_file(FILE *file);
 FILE *bdl_log_file(void);
 

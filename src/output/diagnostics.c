@@ -8,7 +8,6 @@
 #include "cfd/gas.h"
 #include "dem/contact_law.h"
 #include "dem/integrate.h"
-#include "output/granular_out.h"
 
 const char *const bdl_diagnostics_columns[] = {
     "time",
@@ -89,34 +88,13 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         double r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
         s->elastic += bdl_contact_elastic_energy(cp, w->hertz, -gap, r_eff,
                                                  w->friction ? nb->wall_history[k] : bdl_v3_zero());
-        s->wall_force += bdl_wall_normal_force(w, i, prim, n, gap);
+        s->wall_force += bdl_world_wall_normal_force(w, i, prim, n, gap);
     }
-}
-
-int bdl_vertical_axis(const bdl_world *w, double *up)
-{
-    const int axis = bdl_v3_major_axis(w->scene.gravity);
-    *up = bdl_v3_comp(w->scene.gravity, axis) > 0.0 ? -1.0 : 1.0;
-    return axis;
-}
-
-double bdl_gas_layer_mean(const struct bdl_gas *gas, const double *field, int a, int m)
-{
-    const bdl_grid *g = &gas->grid;
-    const int b = (a + 1) % 3, c = (a + 2) % 3;
-    double sum = 0.0;
-    for (int jc = 0; jc < g->n[c]; ++jc)
-        for (int jb = 0; jb < g->n[b]; ++jb) {
-            int ix[3];
-            ix[a] = m, ix[b] = jb, ix[c] = jc;
-            sum += field[bdl_grid_index(g, ix[0], ix[1], ix[2])];
-        }
-    return sum / ((double)g->n[b] * g->n[c]);
 }
 
 static double layer_pressure(const bdl_gas *gas, int a, int m)
 {
-    return bdl_gas_layer_mean(gas, gas->p, a, m);
+    return bdl_grid_layer_mean(&gas->grid, gas->p, a, m);
 }
 
 /// Layer-mean pressure at `height` above the domain's floor along the up axis: linear between
@@ -141,7 +119,7 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
     const bdl_gas *gas = w->gas;
     const bdl_grid *g = &gas->grid;
     double up;
-    const int a = bdl_vertical_axis(w, &up);
+    const int a = bdl_world_vertical_axis(w, &up);
     const int b = (a + 1) % 3, c = (a + 2) % 3;
     const double first = layer_pressure(gas, a, 0), last = layer_pressure(gas, a, g->n[a] - 1);
     d->pressure_drop = up > 0.0 ? first - last : last - first;

@@ -45,12 +45,6 @@ typedef struct bdl_diagnostics {
     double wall_force;          ///< sum of the normal forces of all particle-wall contacts [N]
 } bdl_diagnostics;
 
-/// The axis gravity points along (z without gravity) and the sign of "up" on it (+1 or -1).
-int bdl_vertical_axis(const bdl_world *w, double *up);
-
-/// Mean of a cell field (pressure, voidage) over cell layer m normal to axis a.
-double bdl_gas_layer_mean(const struct bdl_gas *gas, const double *field, int a, int m);
-
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.
 extern const char *const bdl_diagnostics_columns[];
 extern const int bdl_diagnostics_column_count;

@@ -5,9 +5,7 @@
 
 #include "analysis/granular.h"
 #include "cfd/gas.h"
-#include "dem/contact_law.h"
 #include "core/file.h"
-#include "output/diagnostics.h"
 
 /// Cells with fewer particles than this are left out of the Lacey indices: a cell of one or two
 /// particles has a fraction of 0, 1/2 or 1 whatever the mixing.
@@ -47,7 +45,7 @@ void bdl_species_row(const bdl_world *w, double *row)
     const bdl_particles *p = &w->particles;
     const int ns = s->species_count;
     double up;
-    const int a = bdl_vertical_axis(w, &up);
+    const int a = bdl_world_vertical_axis(w, &up);
     const double base = up > 0.0 ? bdl_v3_comp(s->domain_min, a) : -bdl_v3_comp(s->domain_max, a);
     long count[BDL_MAX_SPECIES] = {0};
     double sum[BDL_MAX_SPECIES] = {0}, top[BDL_MAX_SPECIES] = {0}, z[BDL_MAX_SPECIES] = {0};
@@ -90,43 +88,12 @@ void bdl_species_row(const bdl_world *w, double *row)
     free(is_a);
 }
 
-double bdl_pair_normal_force(const bdl_world *w, long i, long j, bdl_vec3 d, double dist)
-{
-    const bdl_particles *p = &w->particles;
-    const double cut = p->radius[i] + p->radius[j];
-    bdl_contact_geom g = {
-        .n = bdl_v3_scale(d, 1.0 / dist),
-        .overlap = cut - dist,
-        .v_c = bdl_v3_sub(p->vel[i], p->vel[j]), // the spins add nothing along n
-        .m_eff = 1.0 / (p->inv_mass[i] + p->inv_mass[j]),
-        .r_eff = p->radius[i] * p->radius[j] / cut,
-    };
-    const int ns = w->scene.species_count;
-    const bdl_contact_params *cp = &w->pair_params[p->species[i] * ns + p->species[j]];
-    return bdl_contact_eval(cp, w->hertz, 0, g, bdl_v3_zero(), w->dt).normal;
-}
-
-double bdl_wall_normal_force(const bdl_world *w, long i, int prim, bdl_vec3 n, double gap)
-{
-    const bdl_particles *p = &w->particles;
-    const int wall = w->walls.prims[prim].wall;
-    bdl_contact_geom g = {
-        .n = n,
-        .overlap = -gap,
-        .v_c = bdl_v3_sub(p->vel[i], w->walls.velocity[wall]),
-        .m_eff = 1.0 / p->inv_mass[i],
-        .r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]),
-    };
-    const bdl_contact_params *cp = &w->wall_params[wall * w->scene.species_count + p->species[i]];
-    return bdl_contact_eval(cp, w->hertz, 0, g, bdl_v3_zero(), w->dt).normal;
-}
-
 int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN])
 {
     if (!w->gas)
         return 0;
     double up;
-    const int a = bdl_vertical_axis(w, &up);
+    const int a = bdl_world_vertical_axis(w, &up);
     const bdl_grid *g = &w->gas->grid;
     if (names) {
         snprintf(names[0], BDL_SPECIES_COLUMN_LEN, "time");
@@ -139,11 +106,12 @@ int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN
 void bdl_profile_row(const bdl_world *w, double *row)
 {
     double up;
-    const int a = bdl_vertical_axis(w, &up);
+    const int a = bdl_world_vertical_axis(w, &up);
     const int n = w->gas->grid.n[a];
     row[0] = w->time;
     for (int k = 0; k < n; ++k)
-        row[k + 1] = 1.0 - bdl_gas_layer_mean(w->gas, w->gas->eps, a, up > 0.0 ? k : n - 1 - k);
+        row[k + 1] =
+            1.0 - bdl_grid_layer_mean(&w->gas->grid, w->gas->eps, a, up > 0.0 ? k : n - 1 - k);
 }
 
 static void write_contact(FILE *f, const bdl_particles *p, long i, long j_label, int sj,
@@ -173,7 +141,7 @@ bdl_result bdl_contacts_write(const bdl_world *w, const char *path)
             if (dist >= cut || dist <= 0.0)
                 continue;
             write_contact(f, p, i, (long)p->id[j], p->species[j], p->pos[j], cut - dist,
-                          bdl_pair_normal_force(w, i, j, d, dist));
+                          bdl_world_pair_normal_force(w, i, j, d, dist));
         }
         for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
             bdl_vec3 n;
@@ -183,7 +151,7 @@ bdl_result bdl_contacts_write(const bdl_world *w, const char *path)
                 continue;
             const bdl_vec3 point = bdl_v3_madd(p->pos[i], n, -(p->radius[i] + 0.5 * gap));
             write_contact(f, p, i, -1L - wall, -1, point, -gap,
-                          bdl_wall_normal_force(w, i, prim, n, gap));
+                          bdl_world_wall_normal_force(w, i, prim, n, gap));
         }
     }
     if (ferror(f)) {

@@ -29,13 +29,6 @@ void bdl_species_row(const bdl_world *w, double *row);
 int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN]);
 void bdl_profile_row(const bdl_world *w, double *row);
 
-/// Normal force [N] of the contact of particles i and j, d = x_i - x_j (minimum image) and
-/// dist = |d| < r_i + r_j, as the contact law gives it now (the dashpot included).
-double bdl_pair_normal_force(const bdl_world *w, long i, long j, bdl_vec3 d, double dist);
-
-/// Normal force [N] of particle i on wall primitive `prim`, with n and gap < 0 from bdl_wall_gap.
-double bdl_wall_normal_force(const bdl_world *w, long i, int prim, bdl_vec3 n, double gap);
-
 /// Writes the contact file (atomically).
 bdl_result bdl_contacts_write(const bdl_world *w, const char *path);
 

@@ -67,19 +67,39 @@ double bdl_world_reference_speed(const bdl_world *w)
     return v > 0.1 ? v : 0.1;
 }
 
+/// The smallest particle of species a: its diameter and mass (the shortest contacts).
+static void smallest(const bdl_scene *s, int a, double *d, double *m)
+{
+    *d = bdl_species_min_diameter(&s->species[a]);
+    *m = sphere_mass(*d, s->species[a].density);
+}
+
+double bdl_world_pair_contact_time(const bdl_world *w, int a, int b, double v_ref)
+{
+    const bdl_scene *s = &w->scene;
+    double da, ma, db, mb;
+    smallest(s, a, &da, &ma);
+    smallest(s, b, &db, &mb);
+    return bdl_contact_time(&w->pair_params[a * s->species_count + b], s->law, ma * mb / (ma + mb),
+                            0.25 * da * db / (0.5 * (da + db)), v_ref);
+}
+
+double bdl_world_wall_contact_time(const bdl_world *w, int a, int wall, double v_ref)
+{
+    const bdl_scene *s = &w->scene;
+    double da, ma;
+    smallest(s, a, &da, &ma);
+    return bdl_contact_time(&w->wall_params[wall * s->species_count + a], s->law, ma, 0.5 * da,
+                            v_ref);
+}
+
 double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which, int which_len)
 {
     const bdl_scene *s = &w->scene;
-    int ns = s->species_count;
     double best = INFINITY;
-    for (int a = 0; a < ns; ++a) {
-        double da = bdl_species_min_diameter(&s->species[a]);
-        double ma = sphere_mass(da, s->species[a].density);
-        for (int b = a; b < ns; ++b) {
-            double db = bdl_species_min_diameter(&s->species[b]);
-            double mb = sphere_mass(db, s->species[b].density);
-            double tc = bdl_contact_time(&w->pair_params[a * ns + b], s->law, ma * mb / (ma + mb),
-                                         0.25 * da * db / (0.5 * (da + db)), v_ref);
+    for (int a = 0; a < s->species_count; ++a) {
+        for (int b = a; b < s->species_count; ++b) {
+            double tc = bdl_world_pair_contact_time(w, a, b, v_ref);
             if (tc < best) {
                 best = tc;
                 if (which)
@@ -88,8 +108,7 @@ double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which,
             }
         }
         for (int wall = 0; wall < s->wall_count; ++wall) {
-            double tc =
-                bdl_contact_time(&w->wall_params[wall * ns + a], s->law, ma, 0.5 * da, v_ref);
+            double tc = bdl_world_wall_contact_time(w, a, wall, v_ref);
             if (tc < best) {
                 best = tc;
                 if (which)
@@ -99,6 +118,21 @@ double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which,
         }
     }
     return best;
+}
+
+void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
+{
+    const bdl_scene *s = &w->scene;
+    char gas[256];
+    bdl_world_gas_describe(w, gas, sizeof gas);
+    snprintf(buf, size, "dem (%s normal law%s, %s%s), walls: %d, gas: %s",
+             w->hertz ? "Hertz" : "linear",
+             w->hertz ? (s->damping == BDL_DAMPING_EXACT ? ", exact restitution damping"
+                                                         : ", closed-form damping")
+                      : "",
+             w->friction ? "tangential history + Coulomb friction"
+                         : "frictionless, no tangential history",
+             w->rolling ? ", rolling resistance" : "", s->wall_count, gas);
 }
 
 void bdl_world_apply_live(bdl_world *w)

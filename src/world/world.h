@@ -114,6 +114,9 @@ uint64_t bdl_world_hash(const bdl_world *world);
 bdl_result bdl_world_gas_init(bdl_world *world, bdl_scene_error *err);
 void bdl_world_gas_free(bdl_world *world);
 
+/// One line naming the active modules and their models, for run.log.
+void bdl_world_describe(const bdl_world *world, char *buf, size_t size);
+
 /// One line describing the gas module ("none (...)" without gas), for check and run.log.
 void bdl_world_gas_describe(const bdl_world *world, char *buf, size_t size);
 
@@ -129,6 +132,11 @@ double bdl_world_inlet_velocity(const bdl_world *world, double t);
 /// gas_work (which books a gas step's work when the next one starts) [J]; 0 without a gas.
 double bdl_world_gas_work_pending(const bdl_world *world, long i);
 
+/// Contact time of the smallest particles of species a and b [s], and of species a with a wall;
+/// Hertz contacts at impact speed `v_ref`.
+double bdl_world_pair_contact_time(const bdl_world *world, int a, int b, double v_ref);
+double bdl_world_wall_contact_time(const bdl_world *world, int a, int wall, double v_ref);
+
 /// Smallest contact time over species pairs and species-wall pairs [s], with the pair that has
 /// it described in `which` (may be NULL). Hertz uses the impact speed `v_ref`.
 double bdl_world_min_contact_time(const bdl_world *world, double v_ref, char *which, int which_len);
@@ -136,6 +144,17 @@ double bdl_world_min_contact_time(const bdl_world *world, double v_ref, char *wh
 /// Reference impact speed for Hertz contact times [m/s]: free fall over the domain height, the
 /// fastest wall, and the initial particle speeds.
 double bdl_world_reference_speed(const bdl_world *world);
+
+/// The axis gravity points along (z without gravity) and the sign of "up" on it (+1 or -1).
+int bdl_world_vertical_axis(const bdl_world *world, double *up);
+
+/// Normal force [N] of the contact of particles i and j, d = x_i - x_j (minimum image) and
+/// dist = |d| < r_i + r_j, as the contact law gives it now (the dashpot included).
+double bdl_world_pair_normal_force(const bdl_world *world, long i, long j, bdl_vec3 d, double dist);
+
+/// Normal force [N] of particle i on wall primitive `prim`, with n and gap < 0 from bdl_wall_gap.
+double bdl_world_wall_normal_force(const bdl_world *world, long i, int prim, bdl_vec3 n,
+                                   double gap);
 
 /// Applies live parameters (after a command changed them).
 void bdl_world_apply_live(bdl_world *world);

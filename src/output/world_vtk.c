@@ -1,0 +1,66 @@
+// bedlam — a world's particles and gas fields as VTK XML files.
+#include "output/world_vtk.h"
+
+#include <stdlib.h>
+
+#include "cfd/gas.h"
+#include "io/vtk.h"
+
+bdl_result bdl_world_gas_vti_write(const bdl_world *w, const char *path)
+{
+    const bdl_gas *gas = w->gas;
+    const bdl_grid *g = &gas->grid;
+    long cells = (long)g->n[0] * g->n[1] * g->n[2];
+    double *eps = malloc((size_t)cells * sizeof(double)),
+           *p = malloc((size_t)cells * sizeof(double));
+    double *u = malloc((size_t)cells * 3 * sizeof(double));
+    bdl_result r = BDL_ERR_NOMEM;
+    if (eps && p && u) {
+        long c = 0;
+        for (int k = 0; k < g->n[2]; ++k)
+            for (int j = 0; j < g->n[1]; ++j)
+                for (int i = 0; i < g->n[0]; ++i, ++c) {
+                    long idx = bdl_grid_index(g, i, j, k);
+                    eps[c] = gas->eps[idx];
+                    p[c] = gas->p[idx];
+                    for (int a = 0; a < 3; ++a)
+                        u[3 * c + a] = bdl_gas_cell_velocity(gas, a, i, j, k);
+                }
+        bdl_vtk_array arrays[] = {{"voidage", BDL_VTK_FLOAT64, 1, eps},
+                                  {"pressure", BDL_VTK_FLOAT64, 1, p},
+                                  {"gas_velocity", BDL_VTK_FLOAT64, 3, u}};
+        double origin[3] = {g->origin[0], g->origin[1], g->origin[2]};
+        double spacing[3] = {g->h[0], g->h[1], g->h[2]};
+        r = bdl_vti_write(path, g->n, origin, spacing, arrays, 3);
+    }
+    free(eps);
+    free(p);
+    free(u);
+    return r;
+}
+
+bdl_result bdl_world_vtp_write(const bdl_world *w, const char *path)
+{
+    const bdl_particles *p = &w->particles;
+    long n = p->count;
+    int32_t *id = malloc((size_t)(n > 0 ? n : 1) * sizeof(int32_t));
+    int32_t *coord = malloc((size_t)(n > 0 ? n : 1) * sizeof(int32_t));
+    if (!id || !coord) {
+        free(id);
+        free(coord);
+        return BDL_ERR_NOMEM;
+    }
+    for (long i = 0; i < n; ++i) {
+        id[i] = (int32_t)p->id[i];
+        coord[i] = w->coordination[i];
+    }
+    bdl_vtk_array arrays[] = {
+        {"radius", BDL_VTK_FLOAT64, 1, p->radius}, {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
+        {"omega", BDL_VTK_FLOAT64, 3, p->omega},   {"id", BDL_VTK_INT32, 1, id},
+        {"species", BDL_VTK_INT32, 1, p->species}, {"coordination", BDL_VTK_INT32, 1, coord},
+    };
+    bdl_result r = bdl_vtp_write(path, n, p->pos, arrays, (int)(sizeof arrays / sizeof arrays[0]));
+    free(id);
+    free(coord);
+    return r;
+}
