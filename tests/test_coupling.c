@@ -20,74 +20,69 @@ static double uniform(unsigned *state, double lo, double hi)
 
 static bdl_gas *make_gas(int n0, int n1, int n2, double h, int periodic_x, int outlet)
 {
-    bdl_gas_def d = {0};
+    bdl_gas_def d = bdl_default_gas_def();
     d.n[0] = n0, d.n[1] = n1, d.n[2] = n2;
     d.hi[0] = n0 * h, d.hi[1] = n1 * h, d.hi[2] = n2 * h;
-    d.density = 1.2;
-    d.viscosity = 1.8e-5;
     for (int s = 0; s < 6; ++s)
         d.side[s].type = BDL_SIDE_WALL;
     if (periodic_x)
         d.side[0].type = d.side[1].type = BDL_SIDE_PERIODIC;
     if (outlet)
         d.side[5].type = BDL_SIDE_OUTLET;
-    d.convection = BDL_CONVECTION_VANLEER;
     d.tolerance = 1e-12;
     bdl_gas *g = NULL;
     bdl_gas_create(&d, &g);
     return g;
 }
 
+/// Particles of 2500 kg/m^3 at random in the gas's box, with random velocities and other
+/// accelerations.
 typedef struct cloud {
-    long n;
-    double *pos, *vel, *acc, *radius, *density;
+    bdl_particles p;
+    bdl_vec3 *acc;
 } cloud;
 
 static cloud make_cloud(long n, const bdl_gas *g, unsigned seed)
 {
-    cloud c = {n, malloc(24 * n), malloc(24 * n), malloc(24 * n), malloc(8 * n), malloc(8 * n)};
+    cloud c = {.acc = malloc((size_t)n * sizeof(bdl_vec3))};
     for (long i = 0; i < n; ++i) {
+        double x[3], v[3];
         for (int a = 0; a < 3; ++a) {
             double len = g->grid.n[a] * g->grid.h[a];
-            c.pos[3 * i + a] = uniform(&seed, 0.0, len);
-            c.vel[3 * i + a] = uniform(&seed, -0.5, 0.5);
-            c.acc[3 * i + a] = uniform(&seed, -10.0, 10.0);
+            x[a] = uniform(&seed, 0.0, len);
+            v[a] = uniform(&seed, -0.5, 0.5);
+            bdl_v3_set_comp(&c.acc[i], a, uniform(&seed, -10.0, 10.0));
         }
-        c.radius[i] = uniform(&seed, 0.2e-3, 0.5e-3);
-        c.density[i] = 2500.0;
+        double r = uniform(&seed, 0.2e-3, 0.5e-3);
+        bdl_particles_add(&c.p, bdl_v3(x[0], x[1], x[2]), bdl_v3(v[0], v[1], v[2]), r, 2500.0, 0);
     }
     return c;
 }
 
 static void free_cloud(cloud *c)
 {
-    free(c->pos), free(c->vel), free(c->acc), free(c->radius), free(c->density);
-}
-
-static bdl_coupling_particles view(const cloud *c)
-{
-    return (bdl_coupling_particles){c->n, c->pos, c->vel, c->acc, c->radius, c->density};
+    bdl_particles_free(&c->p);
+    free(c->acc);
 }
 
 static void test_conservation_and_balance(int periodic_x, double width_cells)
 {
     bdl_gas *g = make_gas(8, 6, 10, 2e-3, periodic_x, 1);
     cloud c = make_cloud(400, g, 11);
-    bdl_coupling_def def = {.drag = BDL_DRAG_GIDASPOW,
-                            .drag_params = bdl_drag_default_params(),
-                            .kernel_width = width_cells * 2e-3};
+    const bdl_particles *p = &c.p;
+    bdl_coupling_def def = bdl_default_coupling_def(&g->grid);
+    def.kernel_width = width_cells * 2e-3;
     bdl_coupling k;
     bdl_coupling_init(&k, &def, g);
-    bdl_coupling_particles p = view(&c);
-    CHECK(bdl_coupling_locate(&k, g, c.n, c.pos) == BDL_OK);
-    bdl_coupling_voidage(&k, g, &p);
+    CHECK(bdl_coupling_locate(&k, g, p) == BDL_OK);
+    bdl_coupling_voidage(&k, g, p);
     double solid = 0.0, volume = 0.0, vc = 8e-9;
     for (int kk = 0; kk < 10; ++kk)
         for (int j = 0; j < 6; ++j)
             for (int i = 0; i < 8; ++i)
                 solid += (1.0 - g->eps[bdl_grid_index(&g->grid, i, j, kk)]) * vc;
-    for (long i = 0; i < c.n; ++i)
-        volume += 4.0 / 3.0 * BDL_PI * pow(c.radius[i], 3);
+    for (long i = 0; i < p->count; ++i)
+        volume += 4.0 / 3.0 * BDL_PI * pow(p->radius[i], 3);
     CHECK_CLOSE(solid, volume, 1e-12);
     memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
     // A stirred gas: random face velocities, then a few steps with the particles' drag.
@@ -98,14 +93,15 @@ static void test_conservation_and_balance(int periodic_x, double width_cells)
     double worst = 0.0;
     const double dt = 2e-4;
     for (int step = 0; step < 5; ++step) {
-        bdl_coupling_drag_setup(&k, g, &p, dt);
+        bdl_coupling_drag_setup(&k, g, p, c.acc, dt);
         CHECK(bdl_gas_step(g, dt) == BDL_OK);
-        double *drag = malloc(24 * (size_t)c.n), sum[3] = {0, 0, 0}, gas[3], scale = 0.0;
-        bdl_coupling_forces(&k, g, &p, dt, drag, NULL);
-        for (long i = 0; i < c.n; ++i)
+        bdl_vec3 *drag = malloc((size_t)p->count * sizeof(bdl_vec3));
+        double sum[3] = {0, 0, 0}, gas[3], scale = 0.0;
+        bdl_coupling_forces(&k, g, p, c.acc, dt, drag, NULL);
+        for (long i = 0; i < p->count; ++i)
             for (int a = 0; a < 3; ++a) {
-                sum[a] += drag[3 * i + a];
-                scale += fabs(drag[3 * i + a]);
+                sum[a] += bdl_v3_comp(drag[i], a);
+                scale += fabs(bdl_v3_comp(drag[i], a));
             }
         bdl_coupling_gas_drag(g, gas);
         for (int a = 0; a < 3; ++a)
@@ -124,7 +120,9 @@ static void test_conservation_and_balance(int periodic_x, double width_cells)
 static void test_linear_interpolation(void)
 {
     bdl_gas *g = make_gas(10, 10, 10, 1e-3, 1, 0);
-    bdl_coupling_def def = {.drag = BDL_DRAG_STOKES, .kernel_width = 1e-3};
+    bdl_coupling_def def = bdl_default_coupling_def(&g->grid);
+    def.drag = BDL_DRAG_STOKES;
+    def.kernel_width = 1e-3;
     bdl_coupling k;
     bdl_coupling_init(&k, &def, g);
     double *f = bdl_grid_alloc(&g->grid);
@@ -132,9 +130,11 @@ static void test_linear_interpolation(void)
         for (int j = 0; j < 10; ++j)
             for (int i = 0; i < 10; ++i)
                 f[bdl_grid_index(&g->grid, i, j, kk)] = 1.0 + 2.0 * (j + 0.5) - 0.5 * (kk + 0.5);
-    double pos[3] = {0.0044, 0.0031, 0.0067};
-    CHECK(bdl_coupling_locate(&k, g, 1, pos) == BDL_OK);
+    bdl_particles p = {0};
+    bdl_particles_add(&p, bdl_v3(0.0044, 0.0031, 0.0067), bdl_v3_zero(), 1e-4, 2500.0, 0);
+    CHECK(bdl_coupling_locate(&k, g, &p) == BDL_OK);
     CHECK_CLOSE(bdl_coupling_interpolate(&k, 0, f), 1.0 + 2.0 * 3.1 - 0.5 * 6.7, 1e-12);
+    bdl_particles_free(&p);
     free(f);
     bdl_coupling_free(&k);
     bdl_gas_destroy(g);
@@ -154,27 +154,31 @@ static void test_terminal(double d, double rho_p, bdl_drag_law law)
 /// A coupled step sequence on 1 and 2 threads: the same bits in the gas and the forces.
 static void test_threads(void)
 {
-    double *u1 = NULL, *f1 = NULL;
+    double *u1 = NULL;
+    bdl_vec3 *f1 = NULL;
     long size = 0;
     for (int threads = 1; threads <= 2; ++threads) {
         omp_set_num_threads(threads);
         bdl_gas *g = make_gas(8, 6, 10, 2e-3, 1, 1);
         cloud c = make_cloud(300, g, 3);
-        bdl_coupling_def def = {.drag = BDL_DRAG_BEETSTRA, .kernel_width = 3e-3};
+        bdl_particles *p = &c.p;
+        bdl_coupling_def def = bdl_default_coupling_def(&g->grid);
+        def.drag = BDL_DRAG_BEETSTRA;
+        def.kernel_width = 3e-3;
         bdl_coupling k;
         bdl_coupling_init(&k, &def, g);
-        bdl_coupling_particles p = view(&c);
-        double *f = malloc(24 * (size_t)c.n);
+        k.parallel_min = 0; // the parallel loops, even for these few particles
+        bdl_vec3 *f = malloc((size_t)p->count * sizeof(bdl_vec3));
         for (int step = 0; step < 5; ++step) {
-            bdl_coupling_locate(&k, g, c.n, c.pos);
-            bdl_coupling_voidage(&k, g, &p);
+            bdl_coupling_locate(&k, g, p);
+            bdl_coupling_voidage(&k, g, p);
             if (step == 0)
                 memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
-            bdl_coupling_drag_setup(&k, g, &p, 1e-4);
+            bdl_coupling_drag_setup(&k, g, p, c.acc, 1e-4);
             CHECK(bdl_gas_step(g, 1e-4) == BDL_OK);
-            bdl_coupling_forces(&k, g, &p, 1e-4, f, NULL);
-            for (long i = 0; i < 3 * c.n; ++i)
-                c.pos[i] += 1e-4 * c.vel[i];
+            bdl_coupling_forces(&k, g, p, c.acc, 1e-4, f, NULL);
+            for (long i = 0; i < p->count; ++i)
+                p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], 1e-4);
         }
         size = g->grid.size;
         if (threads == 1) {
@@ -183,7 +187,7 @@ static void test_threads(void)
             f1 = f;
         } else {
             CHECK(memcmp(u1, g->u[2], (size_t)size * sizeof(double)) == 0);
-            CHECK(memcmp(f1, f, 24 * (size_t)c.n) == 0);
+            CHECK(memcmp(f1, f, (size_t)p->count * sizeof(bdl_vec3)) == 0);
             free(f);
         }
         bdl_coupling_free(&k);

@@ -37,15 +37,12 @@ static void test_poiseuille(void)
 /// A closed box under gravity: the gas stays at rest and the pressure is hydrostatic.
 static void test_hydrostatic(void)
 {
-    bdl_gas_def d = {0};
+    bdl_gas_def d = bdl_default_gas_def();
     d.n[0] = 8, d.n[1] = 16, d.n[2] = 4;
     d.hi[0] = 0.1, d.hi[1] = 0.2, d.hi[2] = 0.05;
-    d.density = 1.2;
-    d.viscosity = 1.8e-5;
     d.gravity[1] = -9.81;
     for (int s = 0; s < 6; ++s)
         d.side[s].type = BDL_SIDE_WALL;
-    d.convection = BDL_CONVECTION_VANLEER;
     d.tolerance = 1e-12;
     bdl_gas *g = NULL;
     CHECK(bdl_gas_create(&d, &g) == BDL_OK);
@@ -72,17 +69,14 @@ static void test_hydrostatic(void)
 /// interstitial velocity U / eps, here with a voidage that varies with height.
 static void test_plug_flow(void)
 {
-    bdl_gas_def d = {0};
+    bdl_gas_def d = bdl_default_gas_def();
     d.n[0] = 6, d.n[1] = 12, d.n[2] = 1;
     d.hi[0] = 0.06, d.hi[1] = 0.12, d.hi[2] = 0.01;
-    d.density = 1.2;
-    d.viscosity = 1.8e-5;
     d.side[0].type = d.side[1].type = BDL_SIDE_SLIP;
     d.side[2].type = BDL_SIDE_INLET;
     d.side[2].inflow = 0.3;
     d.side[3].type = BDL_SIDE_OUTLET;
     d.side[4].type = d.side[5].type = BDL_SIDE_PERIODIC;
-    d.convection = BDL_CONVECTION_VANLEER;
     d.tolerance = 1e-12;
     bdl_gas *g = NULL;
     CHECK(bdl_gas_create(&d, &g) == BDL_OK);
@@ -108,11 +102,9 @@ static void test_plug_flow(void)
 /// box): the gas volume balance holds in every cell to the solver's tolerance.
 static void test_volume_conservation(void)
 {
-    bdl_gas_def d = {0};
+    bdl_gas_def d = bdl_default_gas_def();
     d.n[0] = 16, d.n[1] = 16, d.n[2] = 2;
     d.hi[0] = 0.04, d.hi[1] = 0.04, d.hi[2] = 0.005;
-    d.density = 1.2;
-    d.viscosity = 1.8e-5;
     d.side[0].type = d.side[1].type = BDL_SIDE_PERIODIC;
     d.side[2].type = BDL_SIDE_WALL;
     d.side[3].type = BDL_SIDE_OUTLET;

@@ -17,9 +17,28 @@ static int periodic_axis(const bdl_gas *g, int a)
     return g->def.side[2 * a].type == BDL_SIDE_PERIODIC;
 }
 
+bdl_gas_def bdl_default_gas_def(void)
+{
+    bdl_gas_def d;
+    memset(&d, 0, sizeof d);
+    for (int a = 0; a < 3; ++a) {
+        d.n[a] = 1;
+        d.hi[a] = 1.0;
+    }
+    d.density = 1.2; // air at 20 C
+    d.viscosity = 1.8e-5;
+    d.convection = BDL_CONVECTION_VANLEER;
+    d.tolerance = 1e-8;
+    d.max_iterations = 200;
+    return d; // every side a no-slip wall, no gravity
+}
+
 bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
 {
     *out = NULL;
+    if (!(def->tolerance > 0.0) || def->max_iterations < 1 || !(def->density > 0.0) ||
+        !(def->viscosity > 0.0))
+        return BDL_ERR_ARGS;
     int periodic[3];
     for (int a = 0; a < 3; ++a) {
         int lo = def->side[2 * a].type == BDL_SIDE_PERIODIC;
@@ -63,10 +82,6 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
     }
     for (long i = 0; i < g->grid.size; ++i)
         g->eps[i] = g->eps_old[i] = 1.0;
-    if (g->def.max_iterations <= 0)
-        g->def.max_iterations = 200;
-    if (!(g->def.tolerance > 0.0))
-        g->def.tolerance = 1e-8;
     *out = g;
     return BDL_OK;
 }
@@ -465,6 +480,20 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     g->time += dt;
     g->steps++;
     return converged && finite ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+void bdl_gas_set_inflow(bdl_gas *g, double inflow, double jet_inflow)
+{
+    for (int s = 0; s < 6; ++s) {
+        g->def.side[s].inflow = inflow;
+        g->def.side[s].jet_inflow = jet_inflow;
+    }
+}
+
+void bdl_gas_set_gravity(bdl_gas *g, const double gravity[3])
+{
+    for (int a = 0; a < 3; ++a)
+        g->def.gravity[a] = gravity[a];
 }
 
 double bdl_gas_stable_dt(const bdl_gas *g)

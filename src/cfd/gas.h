@@ -87,8 +87,13 @@ typedef struct bdl_gas {
     double mass_imbalance; ///< max over cells of |d eps/dt + div(eps u)| dt after the last step
 } bdl_gas;
 
+/// The defaults: one cell over the unit cube, air (1.2 kg/m^3, 1.8e-5 Pa s), no-slip walls on
+/// every side, no gravity, van Leer convection, pressure tolerance 1e-8 within 200 iterations.
+bdl_gas_def bdl_default_gas_def(void);
+
 /// Allocates the gas at rest (eps = 1, p = 0 plus the hydrostatic profile is not imposed).
-/// BDL_ERR_NOMEM or BDL_ERR_ARGS (a periodic side paired with a non-periodic one).
+/// BDL_ERR_NOMEM, or BDL_ERR_ARGS for a definition that cannot be solved (a periodic side paired
+/// with a non-periodic one, no cells, a tolerance, iteration count, density or viscosity <= 0).
 bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out);
 void bdl_gas_destroy(bdl_gas *g);
 
@@ -96,6 +101,14 @@ void bdl_gas_destroy(bdl_gas *g);
 /// voidage of the previous step; it is updated at the end). Returns BDL_ERR_UNSTABLE if the
 /// pressure solver did not converge or a velocity is not finite.
 bdl_result bdl_gas_step(bdl_gas *g, double dt);
+
+/// Sets the superficial velocity of every inlet side and of its jet patch [m/s] (live changes:
+/// a velocity sweep, a command).
+void bdl_gas_set_inflow(bdl_gas *g, double inflow, double jet_inflow);
+
+/// Sets the acceleration the gas feels [m/s^2] (gravity, plus a vibrating container's inertial
+/// acceleration in its frame).
+void bdl_gas_set_gravity(bdl_gas *g, const double gravity[3]);
 
 /// The largest stable time step of the explicit terms: CFL 0.5 on the convection, and the
 /// viscous limit.

@@ -8,12 +8,19 @@
 
 #include "core/vec3.h"
 
+bdl_coupling_def bdl_default_coupling_def(const bdl_grid *grid)
+{
+    const double h = fmax(fmax(grid->h[0], grid->h[1]), grid->h[2]);
+    return (bdl_coupling_def){.drag = BDL_DRAG_GIDASPOW,
+                              .drag_params = bdl_drag_default_params(),
+                              .kernel_width = 1.5 * h,
+                              .max_solids = 0.7};
+}
+
 bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const bdl_gas *gas)
 {
     *c = (bdl_coupling){0};
     c->def = *def;
-    if (!(c->def.max_solids > 0.0))
-        c->def.max_solids = 0.7;
     c->parallel_min = BDL_COUPLING_PARALLEL_MIN;
     for (int a = 0; a < 3; ++a) {
         double h = gas->grid.h[a];
@@ -36,6 +43,9 @@ void bdl_coupling_free(bdl_coupling *c)
         free(c->grad[a]);
     free(c->weight);
     free(c->factor);
+    free(c->accel);
+    free(c->drag);
+    free(c->pressure);
     *c = (bdl_coupling){0};
 }
 
@@ -56,7 +66,16 @@ static bdl_result reserve(bdl_coupling *c, long n)
     double *f = realloc(c->factor, (size_t)cap * sizeof(double));
     if (f)
         c->factor = f;
-    if (!offset || !span || !w || !f)
+    bdl_vec3 *accel = realloc(c->accel, (size_t)cap * sizeof(bdl_vec3));
+    if (accel)
+        c->accel = accel;
+    bdl_vec3 *drag = realloc(c->drag, (size_t)cap * sizeof(bdl_vec3));
+    if (drag)
+        c->drag = drag;
+    bdl_vec3 *pressure = realloc(c->pressure, (size_t)cap * sizeof(bdl_vec3));
+    if (pressure)
+        c->pressure = pressure;
+    if (!offset || !span || !w || !f || !accel || !drag || !pressure)
         return BDL_ERR_NOMEM;
     c->capacity = cap;
     return BDL_OK;
@@ -131,8 +150,10 @@ static int wrap(int m, int n)
     return m < 0 ? m + n : m;
 }
 
-bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, const double *pos)
+bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p)
 {
+    const long count = p->count;
+    const bdl_vec3 *pos = p->pos;
     if (reserve(c, count) != BDL_OK)
         return BDL_ERR_NOMEM;
     int flo[3], fhi[3];
@@ -146,11 +167,11 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, 
                 const long at = 6 * i + slot;
                 int first;
                 if (slot < 3)
-                    axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, pos[3 * i + a], &first, &c->span[at],
-                                 &c->weight[at * BDL_KERNEL_MAX]);
+                    axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, bdl_v3_comp(pos[i], a), &first,
+                                 &c->span[at], &c->weight[at * BDL_KERNEL_MAX]);
                 else
-                    axis_weights(c, g, a, 0.0, flo[a], fhi[a], pos[3 * i + a], &first, &c->span[at],
-                                 &c->weight[at * BDL_KERNEL_MAX]);
+                    axis_weights(c, g, a, 0.0, flo[a], fhi[a], bdl_v3_comp(pos[i], a), &first,
+                                 &c->span[at], &c->weight[at * BDL_KERNEL_MAX]);
                 int *off = &c->offset[at * BDL_KERNEL_MAX];
                 for (int m = 0; m < c->span[at]; ++m) {
                     int pt = first + m;
@@ -199,7 +220,13 @@ static double cell_volume(const bdl_grid *g) { return g->h[0] * g->h[1] * g->h[2
 
 static double sphere_volume(double r) { return 4.0 / 3.0 * BDL_PI * r * r * r; }
 
-void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_coupling_particles *p)
+/// Density of particle i from its mass and volume [kg/m^3].
+static double particle_density(const bdl_particles *p, long i)
+{
+    return 1.0 / (p->inv_mass[i] * sphere_volume(p->radius[i]));
+}
+
+void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p)
 {
     const bdl_grid *g = &gas->grid;
     const double vc = cell_volume(g);
@@ -235,8 +262,8 @@ static void gas_velocity_at(const bdl_coupling *c, const bdl_gas *gas, long i, d
     }
 }
 
-void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_particles *p,
-                             double dt)
+void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
+                             const bdl_vec3 *accel, double dt)
 {
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
@@ -244,13 +271,14 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_p
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             double u[3];
             gas_velocity_at(c, gas, i, u);
-            const double *v = &p->vel[3 * i];
+            const double v[3] = {p->vel[i].x, p->vel[i].y, p->vel[i].z};
             double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
                                (u[2] - v[2]) * (u[2] - v[2]));
             double eps = bdl_coupling_interpolate(c, i, gas->eps);
             double d = 2.0 * p->radius[i];
             double K = bdl_drag_per_volume(c->def.drag, &c->def.drag_params, eps, d, slip, rho, mu);
-            double D = K / p->density[i], m = p->density[i] * sphere_volume(p->radius[i]);
+            const double density = particle_density(p, i);
+            double D = K / density, m = density * sphere_volume(p->radius[i]);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
     for (int a = 0; a < 3; ++a) {
@@ -261,7 +289,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_p
         const double f = c->factor[i] / vc;
         double target[3];
         for (int a = 0; a < 3; ++a)
-            target[a] = p->vel[3 * i + a] + dt * (p->accel ? p->accel[3 * i + a] : 0.0);
+            target[a] = bdl_v3_comp(p->vel[i], a) + dt * (accel ? bdl_v3_comp(accel[i], a) : 0.0);
         for (int a = 0; a < 3; ++a)
             FOR_FACE_KERNEL(c, i, a, {
                 gas->beta[a][idx] += w * f;
@@ -295,8 +323,8 @@ static double pressure_gradient(const bdl_gas *gas, int a, int m, long idx)
     return span > 0.0 ? (above - below) / span : 0.0;
 }
 
-void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_coupling_particles *p,
-                         double dt, double *drag, double *pressure)
+void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                         const bdl_vec3 *accel, double dt, bdl_vec3 *drag, bdl_vec3 *pressure)
 {
     const bdl_grid *g = &gas->grid;
     if (pressure) // the cell-centred pressure gradient, into the coupling's scratch fields
@@ -311,11 +339,12 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_co
     BDL_PARALLEL_FOR(
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             if (drag) {
-                double u[3];
+                double u[3], f[3];
                 gas_velocity_at(c, gas, i, u);
                 for (int a = 0; a < 3; ++a)
-                    drag[3 * i + a] = c->factor[i] * (u[a] - p->vel[3 * i + a] -
-                                                      dt * (p->accel ? p->accel[3 * i + a] : 0.0));
+                    f[a] = c->factor[i] * (u[a] - bdl_v3_comp(p->vel[i], a) -
+                                           dt * (accel ? bdl_v3_comp(accel[i], a) : 0.0));
+                drag[i] = (bdl_vec3){f[0], f[1], f[2]};
             }
             if (pressure) {
                 double grad[3] = {0, 0, 0};
@@ -325,8 +354,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_co
                     grad[2] += w * c->grad[2][idx];
                 });
                 const double v = sphere_volume(p->radius[i]);
-                for (int a = 0; a < 3; ++a)
-                    pressure[3 * i + a] = -v * grad[a];
+                pressure[i] = (bdl_vec3){-v * grad[0], -v * grad[1], -v * grad[2]};
             }
         });
 }

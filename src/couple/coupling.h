@@ -1,5 +1,6 @@
-// bedlam — two-way coupling of particles and gas (seed 001's semi-implicit scheme, on the
-// staggered grid).
+// bedlam — two-way coupling of particles and gas: the semi-implicit scheme of Patankar & Joseph
+// (2001), "Modeling and numerical simulation of particulate flows by the Eulerian-Lagrangian
+// approach", Int. J. Multiphase Flow 27, on the staggered grid.
 //
 // Every particle spreads over the points near it with a tent kernel of half-width w (at least one
 // cell): weight prod_a max(0, 1 - |x_p,a - x_a| / w_a), normalised per particle. Volume goes to
@@ -8,7 +9,7 @@
 // inlets), and the gas velocity at the particle is interpolated from the same faces with the same
 // weights, so what one side gives, the other receives.
 //
-// One macro step of length dt:
+// One macro step of length dt (bdl_coupling_step):
 //  1. voidage: eps_c = 1 - sum_i W_ic V_i / V_c (solids fraction capped at max_solids);
 //  2. drag set-up with the gas velocity u^n: per particle the drag law's K_i (= beta/phi) at the
 //     particle's voidage and slip, D_i = K_i / rho_p, and the implicit factor
@@ -25,8 +26,9 @@
 #define BDL_COUPLING_H
 
 #include "cfd/gas.h"
-#include "couple/drag.h"
 #include "core/error.h"
+#include "couple/drag.h"
+#include "dem/particles.h"
 
 #define BDL_KERNEL_MAX 8 ///< cells per axis a particle may touch (w <= 4 cells)
 
@@ -38,8 +40,12 @@ typedef struct bdl_coupling_def {
     bdl_drag_law drag;
     bdl_drag_params drag_params;
     double kernel_width; ///< tent half-width [m]; raised to one cell, lowered to four
-    double max_solids;   ///< cap on the deposited solids fraction (0.7 when 0)
+    double max_solids;   ///< cap on the deposited solids fraction
 } bdl_coupling_def;
+
+/// The defaults on a grid: Gidaspow's drag with the Syamlal-O'Brien defaults, a kernel half-width
+/// of 1.5 of the grid's largest cell size, solids fraction capped at 0.7.
+bdl_coupling_def bdl_default_coupling_def(const bdl_grid *grid);
 
 typedef struct bdl_coupling {
     bdl_coupling_def def;
@@ -55,34 +61,62 @@ typedef struct bdl_coupling {
     double reach[3];   ///< half-width in cells per axis
     long parallel_min; ///< per-particle loops go parallel from this many particles
     double *grad[3];   ///< scratch: cell-centred pressure gradient (padded grid fields)
+    // Per particle, for one coupling step:
+    bdl_vec3 *accel;    ///< acceleration other than the drag over the last step [m/s^2]
+    bdl_vec3 *drag;     ///< drag force for the coming step [N]
+    bdl_vec3 *pressure; ///< pressure force for the coming step [N]
 } bdl_coupling;
 
-typedef struct bdl_coupling_particles {
-    long count;
-    const double *pos;     ///< xyz [m]
-    const double *vel;     ///< xyz [m/s]
-    const double *accel;   ///< xyz: acceleration other than drag over the last step [m/s^2]
-    const double *radius;  ///< [m]
-    const double *density; ///< [kg/m^3]
-} bdl_coupling_particles;
+/// One coupling step: its length, the last one's, and the acceleration both phases feel.
+typedef struct bdl_coupling_step_def {
+    double dt;        ///< this gas step [s]
+    double dt_last;   ///< the previous gas step [s]; 0 for the first
+    bdl_vec3 gravity; ///< at mid-step: gravity, and in a vibrating container its inertia [m/s^2]
+} bdl_coupling_step_def;
+
+/// What a coupling step did, for the balances and the timing.
+typedef struct bdl_coupling_report {
+    double particle_drag[3]; ///< drag on all particles for the coming step [N]
+    double gas_drag[3];      ///< drag of the particles on the gas [N]
+    double work;             ///< work of the gas's forces over the previous step [J]
+    double stable_dt;        ///< the gas's stable step after this one [s]; 0 if it failed
+    double gas_seconds;      ///< wall time of the gas step [s]
+    double coupling_seconds; ///< wall time of deposition, interpolation and forces [s]
+} bdl_coupling_report;
 
 bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const bdl_gas *gas);
 void bdl_coupling_free(bdl_coupling *c);
 
+/// One macro step of length def->dt: the voidage, the drag set-up, the gas step, and the drag
+/// and pressure forces the particles carry until the next one (p->fluid_accel, p->drag_accel,
+/// with p->vel_mark their velocity now). BDL_ERR_UNSTABLE when the gas step failed
+/// (report->stable_dt 0: the pressure solver did not converge or a velocity is not finite) or
+/// went beyond twice its stable step (report->stable_dt says it); the particles are untouched
+/// then.
+bdl_result bdl_coupling_step(bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
+                             const bdl_coupling_step_def *def, bdl_coupling_report *report);
+
+/// Work of the gas's forces on particle i over the first `span` seconds of the current gas step,
+/// as the next coupling step will book it [J].
+double bdl_coupling_work(const bdl_particles *p, long i, double span);
+
+/// The steps one by one (bdl_coupling_step runs them in order).
+
 /// Kernel weights of every particle at its current position.
-bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, long count, const double *pos);
+bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p);
 
 /// Sets gas->eps from the particle volumes (gas->eps_old is left alone).
-void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_coupling_particles *p);
+void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p);
 
-/// Drag coefficients for a macro step of length dt: fills gas->beta and gas->bv.
-void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_coupling_particles *p,
-                             double dt);
+/// Drag coefficients for a macro step of length dt: fills gas->beta and gas->bv. `accel`: each
+/// particle's acceleration other than drag (NULL: none).
+void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
+                             const bdl_vec3 *accel, double dt);
 
-/// After the gas step: drag and pressure force on every particle (xyz, [N]) for the macro step.
-/// NULL outputs are skipped.
-void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_coupling_particles *p,
-                         double dt, double *drag, double *pressure);
+/// After the gas step: drag and pressure force on every particle [N] for the macro step. NULL
+/// outputs are skipped.
+void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                         const bdl_vec3 *accel, double dt, bdl_vec3 *drag, bdl_vec3 *pressure);
 
 /// Total drag force on the gas [N] after its step: sum over the gas's momentum faces of
 /// ((beta v) - beta u) V_cell.

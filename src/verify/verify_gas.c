@@ -15,7 +15,7 @@
 
 double bdl_verify_poiseuille(int cells, double *cross, long *steps)
 {
-    bdl_gas_def d = {0};
+    bdl_gas_def d = bdl_default_gas_def();
     d.n[0] = 4, d.n[1] = cells, d.n[2] = 1;
     d.hi[0] = 0.5, d.hi[1] = 1.0, d.hi[2] = 0.1;
     d.density = 1.0;
@@ -89,7 +89,7 @@ static double along(const double *f, int n, double s, double w0, double w1)
 double bdl_verify_cavity(int n, int scheme, double *worst_u, double *worst_v, int table,
                          long *steps)
 {
-    bdl_gas_def d = {0};
+    bdl_gas_def d = bdl_default_gas_def();
     d.n[0] = d.n[1] = n, d.n[2] = 1;
     d.hi[0] = d.hi[1] = 1.0, d.hi[2] = 1.0 / n;
     d.density = 1.0;
@@ -173,7 +173,7 @@ bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_la
 {
     const double rho = 1.2, mu = 1.8e-5, h = 24.0 * d / cells;
     bdl_verify_terminal res = {NAN, NAN, NAN, NAN, NAN, 0};
-    bdl_gas_def gd = {0};
+    bdl_gas_def gd = bdl_default_gas_def();
     gd.n[0] = gd.n[1] = cells, gd.n[2] = cells * 4 / 3;
     gd.hi[0] = gd.hi[1] = 24.0 * d, gd.hi[2] = gd.n[2] * h;
     gd.density = rho;
@@ -185,45 +185,50 @@ bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_la
     bdl_gas *g = NULL;
     if (bdl_gas_create(&gd, &g) != BDL_OK)
         return res;
-    bdl_coupling_def def = {.drag = law, .kernel_width = 6.0 * d};
+    bdl_coupling_def def = bdl_default_coupling_def(&g->grid);
+    def.drag = law;
+    def.kernel_width = 6.0 * d;
     bdl_coupling k;
-    if (bdl_coupling_init(&k, &def, g) != BDL_OK) {
+    bdl_particles p = {0};
+    if (bdl_coupling_init(&k, &def, g) != BDL_OK ||
+        bdl_particles_add(&p, bdl_v3(12.4 * d, 11.6 * d, 0.75 * gd.hi[2]), bdl_v3_zero(), 0.5 * d,
+                          rho_p, 0) < 0) {
+        bdl_particles_free(&p);
         bdl_gas_destroy(g);
         return res;
     }
-    double pos[3] = {12.4 * d, 11.6 * d, 0.75 * gd.hi[2]}, vel[3] = {0, 0, 0}, acc[3] = {0, 0, 0};
-    double radius = 0.5 * d, density = rho_p;
     const double m = rho_p * BDL_PI / 6.0 * d * d * d, gz = -9.81 * (1.0 - rho / rho_p);
     const double vt = bdl_verify_implied_slip(law, 1.0, d, rho, mu, (rho_p - rho) * 9.81, 100.0);
     const double tau = vt / 9.81; // time to terminal scale
     double dt = fmin(fmin(0.5 * h / vt, 0.2 * tau), 0.9 * bdl_gas_stable_dt(g));
     const long steps = (long)(6.0 * tau / dt) + 1;
-    bdl_coupling_particles p = {1, pos, vel, acc, &radius, &density};
     double slip_sum = 0.0, eps_sum = 0.0, u[3];
     long averaged = 0;
-    double *src = g->source[2], drag[3], pres[3];
+    double *src = g->source[2];
+    bdl_vec3 acc = bdl_v3_zero(), drag, pres;
     const double vbox = gd.hi[0] * gd.hi[1] * gd.hi[2];
     for (long step = 0; step < steps; ++step) {
         dt = fmin(dt, 0.9 * bdl_gas_stable_dt(g));
-        bdl_coupling_locate(&k, g, 1, pos);
+        bdl_coupling_locate(&k, g, &p);
         bdl_coupling_voidage(&k, g, &p);
         if (step == 0)
             memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
-        bdl_coupling_drag_setup(&k, g, &p, dt);
+        bdl_coupling_drag_setup(&k, g, &p, &acc, dt);
         if (bdl_gas_step(g, dt) != BDL_OK)
             break;
         ++res.steps;
-        bdl_coupling_forces(&k, g, &p, dt, drag, pres);
+        bdl_coupling_forces(&k, g, &p, &acc, dt, &drag, &pres);
         // The box's weight is carried by a uniform body force on the gas equal to the total
         // drag, as a container's base would.
         for (long i = 0; i < g->grid.size; ++i)
-            src[i] = drag[2] / vbox;
+            src[i] = drag.z / vbox;
         for (int a = 0; a < 3; ++a) {
-            double a_other = (a == 2 ? gz : 0.0) + pres[a] / m;
-            vel[a] += dt * (a_other + drag[a] / m);
-            acc[a] = a_other;
-            pos[a] += dt * vel[a];
-            pos[a] = fmod(fmod(pos[a], gd.hi[a]) + gd.hi[a], gd.hi[a]);
+            double a_other = (a == 2 ? gz : 0.0) + bdl_v3_comp(pres, a) / m;
+            double v = bdl_v3_comp(p.vel[0], a) + dt * (a_other + bdl_v3_comp(drag, a) / m);
+            double x = bdl_v3_comp(p.pos[0], a) + dt * v;
+            bdl_v3_set_comp(&p.vel[0], a, v);
+            bdl_v3_set_comp(&acc, a, a_other);
+            bdl_v3_set_comp(&p.pos[0], a, fmod(fmod(x, gd.hi[a]) + gd.hi[a], gd.hi[a]));
         }
         if (step <= 2 * steps / 3)
             continue;
@@ -234,10 +239,10 @@ bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_la
                     for (int i = 0; i < gd.n[0]; ++i)
                         cell_u[bdl_grid_index(&g->grid, i, j, kk)] =
                             bdl_gas_cell_velocity(g, a, i, j, kk);
-            bdl_coupling_locate(&k, g, 1, pos);
+            bdl_coupling_locate(&k, g, &p);
             u[a] = bdl_coupling_interpolate(&k, 0, cell_u);
         }
-        slip_sum += u[2] - vel[2];
+        slip_sum += u[2] - p.vel[0].z;
         eps_sum += bdl_coupling_interpolate(&k, 0, g->eps);
         averaged++;
     }
@@ -247,8 +252,9 @@ bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_la
         res.expected =
             bdl_verify_implied_slip(law, res.voidage, d, rho, mu, (rho_p - rho) * 9.81, 100.0);
         res.re = rho * d * res.slip / mu;
-        res.gas_speed = res.slip + vel[2];
+        res.gas_speed = res.slip + p.vel[0].z;
     }
+    bdl_particles_free(&p);
     bdl_coupling_free(&k);
     bdl_gas_destroy(g);
     return res;

@@ -138,10 +138,8 @@ void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
 void bdl_world_apply_live(bdl_world *w)
 {
     if (w->gas) // inlet and jet velocities of every inlet side, as a factor on the scene's
-        for (int s = 0; s < 6; ++s) {
-            w->gas->def.side[s].inflow = bdl_world_inlet_velocity(w, w->time);
-            w->gas->def.side[s].jet_inflow = w->live.inlet_scale * w->scene.gas.jet_velocity;
-        }
+        bdl_gas_set_inflow(w->gas, bdl_world_inlet_velocity(w, w->time),
+                           w->live.inlet_scale * w->scene.gas.jet_velocity);
     for (int k = 0; k < w->scene.wall_count; ++k) {
         const bdl_wall_def *d = &w->scene.walls[k];
         if (d->motion != BDL_MOTION_VIBRATE || d->frame == BDL_FRAME_CONTAINER)

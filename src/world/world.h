@@ -75,14 +75,12 @@ typedef struct bdl_world {
     // chosen anew before every gas step from the gas's speed unless [gas] dt fixes it.
     struct bdl_gas *gas;
     struct bdl_coupling *coupling;
-    long gas_every;     ///< particle steps in the current gas step
-    long gas_every_max; ///< at most this many (the fixed count when gas_fixed)
-    int gas_fixed;      ///< [gas] dt given: every gas step spans gas_every particle steps
-    long gas_next;      ///< particle step at which the next gas step starts
-    double gas_stable;  ///< the stable gas step after the last one (CFL 1/2, viscous) [s]
-    long gas_steps;     ///< gas steps taken
-    double *gas_buffer; ///< the coupling's particle data and forces (17 doubles per particle)
-    long gas_buffer_capacity;
+    long gas_every;          ///< particle steps in the current gas step
+    long gas_every_max;      ///< at most this many (the fixed count when gas_fixed)
+    int gas_fixed;           ///< [gas] dt given: every gas step spans gas_every particle steps
+    long gas_next;           ///< particle step at which the next gas step starts
+    double gas_stable;       ///< the stable gas step after the last one (CFL 1/2, viscous) [s]
+    long gas_steps;          ///< gas steps taken
     double particle_drag[3]; ///< drag of the gas on all particles over the last gas step [N]
     double gas_drag[3];      ///< drag of the particles on the gas over the last gas step [N]
     double gas_work;         ///< work of the gas's forces on the particles since the start [J]
