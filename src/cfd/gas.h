@@ -1,6 +1,8 @@
-// bedlam — the gas phase: incompressible, volume-averaged continuity and momentum (seed 002
-// eqs. 3-4, "model A": the gas carries -eps grad p, the particles the rest of the pressure force)
-// on the staggered grid, advanced by a projection method with the interphase drag implicit:
+// bedlam — the gas phase: incompressible, volume-averaged continuity and momentum ("model A" as
+// in Sanghishetty et al. 2024, "Structured bubbling in vibrated gas-fluidized beds of binary
+// granular particles", Soft Matter, supplement eqs. 3-4: the gas carries -eps grad p, the
+// particles the rest of the pressure force) on the staggered grid, advanced by a projection
+// method with the interphase drag implicit:
 //
 //   (rho eps^{n+1}/dt + beta) u* = rho eps^n u^n/dt - rho div(eps u u)^n + eps mu lap(u^n)
 //                                  + eps^{n+1} rho g + (beta v_p) + s

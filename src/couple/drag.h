@@ -6,7 +6,7 @@
 // particle velocity v, gas density rho and viscosity mu. The force on one particle of volume
 // V_p is then beta V_p / phi (u - v); bdl_drag_per_volume returns beta / phi, finite as phi -> 0,
 // so a single particle in a large cell is handled without dividing zero by zero.
-// Pressure-gradient (buoyancy) forces are separate ("model A", seed 002 eq. 4).
+// Pressure-gradient (buoyancy) forces are separate ("model A" of Sanghishetty et al. 2024, supplement, eq. 4).
 #ifndef BDL_DRAG_H
 #define BDL_DRAG_H
 
@@ -33,7 +33,7 @@ extern const char *const bdl_drag_law_texts[];
 
 typedef struct bdl_drag_params {
     double syamlal_c,
-        syamlal_d; ///< Syamlal-O'Brien C and D (default 0.8, 2.65; seed 000 table 4.3)
+        syamlal_d; ///< Syamlal-O'Brien C and D (default 0.8, 2.65; Sun 2007, table 4.3)
 } bdl_drag_params;
 
 /// The defaults: C = 0.8, D = 2.65.

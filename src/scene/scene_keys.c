@@ -527,7 +527,7 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(COUPLING), "max_solids", NUM, "-", IN_COUPLING(max_solids), .def = {0.7}, GT(0), LT(1),
      .doc = "cap on the solids fraction deposited in a cell"},
     {S(COUPLING), "syamlal_c", NUM, "-", IN_COUPLING(syamlal_c), .def = {0.8}, GT(0),
-     .doc = "Syamlal-O'Brien C (seed 000 table 4.3: 0.8, 0.7, 0.64)"},
+     .doc = "Syamlal-O'Brien C (Sun 2007, table 4.3: 0.8, 0.7, 0.64)"},
     {S(COUPLING), "syamlal_d", NUM, "-", IN_COUPLING(syamlal_d), .def = {2.65}, GT(0),
      .doc = "Syamlal-O'Brien D (2.65, 3.44, 4.03 with the C above)"},
 
