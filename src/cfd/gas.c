@@ -349,24 +349,23 @@ static double volume_change(const bdl_gas *g, double *const u[3], long idx, doub
     return div;
 }
 
-bdl_result bdl_gas_step(bdl_gas *g, double dt)
+/// Volume fluxes eps u on every face (ghosts included), for the convection.
+static void face_fluxes(bdl_gas *g, double *q[3])
 {
     const bdl_grid *gr = &g->grid;
-    const double rho = g->def.density, mu = g->def.viscosity;
-    cell_ghosts(g, g->eps);
-    cell_ghosts(g, g->eps_old);
-    for (int a = 0; a < 3; ++a) {
-        velocity_ghosts(g, a, g->u[a], g->eps_old);
-    }
-    // Volume fluxes eps u on every face (ghosts included) for the convection.
-    double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
         BDL_PARALLEL_FOR(gr->size >= BDL_GRID_PARALLEL_MIN,
                          for (long idx = s; idx < gr->size; ++idx) q[a][idx] =
                              0.5 * (g->eps_old[idx] + g->eps_old[idx - s]) * g->u[a][idx];);
     }
-    // Predictor.
+}
+
+/// Predictor u* with the drag implicit, and d = eps / (rho eps / dt + beta), on the unknown faces.
+static void predict(bdl_gas *g, double *const q[3], double dt)
+{
+    const bdl_grid *gr = &g->grid;
+    const double rho = g->def.density, mu = g->def.viscosity;
     for (int a = 0; a < 3; ++a) {
         int flo, fhi;
         unknown_faces(g, a, &flo, &fhi);
@@ -383,12 +382,23 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
             d[idx] = e1 / A;
         });
     }
-    // Boundary faces: prescribed, or (outlets) extrapolated.
+}
+
+/// u* on the boundary faces: prescribed, or (outlets) extrapolated; periodic images copied.
+static void boundary_faces(bdl_gas *g, double dt)
+{
+    const bdl_grid *gr = &g->grid;
+    const double rho = g->def.density;
     for (int a = 0; a < 3; ++a) {
-        if (periodic_axis(g, a))
-            continue;
         const long s = gr->stride[a];
         const int n = gr->n[a];
+        if (periodic_axis(g, a)) {
+            FOR_PLANE(gr, a, 0, {
+                g->ustar[a][idx + n * s] = g->ustar[a][idx];
+                g->d[a][idx + n * s] = g->d[a][idx];
+            });
+            continue;
+        }
         for (int side = 0; side < 2; ++side) {
             const bdl_gas_side *sd = &g->def.side[2 * a + side];
             double *us = g->ustar[a], *d = g->d[a];
@@ -407,16 +417,13 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
             });
         }
     }
-    for (int a = 0; a < 3; ++a)
-        if (periodic_axis(g, a)) {
-            const long s = gr->stride[a];
-            const int n = gr->n[a];
-            FOR_PLANE(gr, a, 0, {
-                g->ustar[a][idx + n * s] = g->ustar[a][idx];
-                g->d[a][idx + n * s] = g->d[a][idx];
-            });
-        }
-    // Pressure equation: div(c grad p) = div(eps u*) + d eps / dt.
+}
+
+/// The pressure equation div(c grad p) = div(eps u*) + d eps / dt, c = eps d; returns whether
+/// the solver converged.
+static int solve_pressure(bdl_gas *g, double dt, const double p_side[6])
+{
+    const bdl_grid *gr = &g->grid;
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
         double *c = g->coef[a];
@@ -432,14 +439,16 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
             const long idx = bdl_grid_index(gr, i, j, k);
             g->rhs[idx] = volume_change(g, g->ustar, idx, dt);
         });
-    double p_side[6];
-    for (int s = 0; s < 6; ++s)
-        p_side[s] = g->def.side[s].pressure;
     int converged = bdl_poisson_solve(g->poisson, g->p, g->rhs, p_side, g->def.tolerance,
                                       g->def.max_iterations, &g->last_solve);
     bdl_grid_wrap_cells(gr, g->p);
-    // Correction.
-    int finite = 1;
+    return converged;
+}
+
+/// u = u* - d grad p on the unknown faces; prescribed boundary faces keep u*.
+static void correct(bdl_gas *g, const double p_side[6])
+{
+    const bdl_grid *gr = &g->grid;
     for (int a = 0; a < 3; ++a) {
         int flo, fhi;
         unknown_faces(g, a, &flo, &fhi);
@@ -449,7 +458,6 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
         const int periodic = periodic_axis(g, a);
         double *u = g->u[a];
         const double *us = g->ustar[a], *d = g->d[a], *p = g->p;
-        // Prescribed boundary faces take u*; unknown ones are corrected.
         memcpy(u, us, (size_t)gr->size * sizeof(double));
         FOR_FACES(gr, a, flo, fhi, {
             const int ia = a == 0 ? i : a == 1 ? j : k;
@@ -465,7 +473,14 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
         if (periodic)
             FOR_PLANE(gr, a, 0, { u[idx + n * s] = u[idx]; });
     }
-    // Volume balance of the gas in every cell after the step.
+}
+
+/// The volume balance of the gas in every cell after the step (into mass_imbalance); returns
+/// whether every velocity is finite.
+static int check_balance(bdl_gas *g, double dt)
+{
+    const bdl_grid *gr = &g->grid;
+    int finite = 1;
     double worst = 0.0;
     for (int k = 0; k < gr->n[2]; ++k)
         for (int j = 0; j < gr->n[1]; ++j)
@@ -476,7 +491,26 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
                 worst = fmax(worst, fabs(volume_change(g, g->u, idx, dt)) * dt);
             }
     g->mass_imbalance = worst;
-    memcpy(g->eps_old, g->eps, (size_t)gr->size * sizeof(double));
+    return finite;
+}
+
+bdl_result bdl_gas_step(bdl_gas *g, double dt)
+{
+    cell_ghosts(g, g->eps);
+    cell_ghosts(g, g->eps_old);
+    for (int a = 0; a < 3; ++a)
+        velocity_ghosts(g, a, g->u[a], g->eps_old);
+    double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
+    face_fluxes(g, q);
+    predict(g, q, dt);
+    boundary_faces(g, dt);
+    double p_side[6];
+    for (int s = 0; s < 6; ++s)
+        p_side[s] = g->def.side[s].pressure;
+    const int converged = solve_pressure(g, dt, p_side);
+    correct(g, p_side);
+    const int finite = check_balance(g, dt);
+    memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
     g->time += dt;
     g->steps++;
     return converged && finite ? BDL_OK : BDL_ERR_UNSTABLE;
