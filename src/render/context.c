@@ -125,6 +125,4 @@ void bdl_context_drawable_size(bdl_context *c, int *width, int *height)
 
 bdl_gl_backend bdl_context_backend(const bdl_context *c) { return c->backend; }
 
-int bdl_context_headless(const bdl_context *c) { return c->backend != BDL_GL_SDL; }
-
 void *bdl_context_window(const bdl_context *c) { return c->window; }

@@ -63,9 +63,6 @@ bdl_result bdl_renderer_read_window(bdl_renderer *r, uint8_t *rgb, int width, in
 /// Particles drawn in the last frame (the others were hidden, clipped or off screen).
 long bdl_renderer_drawn(const bdl_renderer *r);
 
-/// The colour range of the last frame (the automatic one, or the fixed one).
-void bdl_renderer_last_range(const bdl_renderer *r, float range[2]);
-
 /// Colour of one particle as the renderer draws it (sRGB bytes) for a given range: the
 /// reference the golden-image tests predict pixels with.
 void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, float voidage,

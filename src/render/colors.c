@@ -1,0 +1,165 @@
+// bedlam — the colour of each particle: the field a colour mode shows, mapped through the
+// categorical, sequential or diverging map over the frame's range (fixed by the view, else the
+// data's), and the voidage around each particle when that is the field.
+#include <math.h>
+#include <stdlib.h>
+
+#include "render/colormap.h"
+#include "render/renderer_internal.h"
+
+const char *bdl_color_mode_label(bdl_color_mode mode)
+{
+    return (unsigned)mode < BDL_COLOR_MODE_COUNT ? bdl_color_mode_labels[mode] : "?";
+}
+
+const char *bdl_color_mode_unit(bdl_color_mode mode)
+{
+    return (unsigned)mode < BDL_COLOR_MODE_COUNT ? bdl_color_mode_units[mode] : "";
+}
+
+int bdl_color_mode_diverging(bdl_color_mode mode)
+{
+    return mode == BDL_COLOR_VX || mode == BDL_COLOR_VY || mode == BDL_COLOR_VZ;
+}
+
+/// The scalar a mode maps through the colour map.
+static float field_value(bdl_color_mode mode, const bdl_snapshot *s, long i, float voidage)
+{
+    const float *v = &s->vel[3 * i];
+    switch (mode) {
+    case BDL_COLOR_COORDINATION:
+        return (float)s->coordination[i];
+    case BDL_COLOR_SPEED:
+        return sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    case BDL_COLOR_VX:
+    case BDL_COLOR_VY:
+    case BDL_COLOR_VZ:
+        return v[mode - BDL_COLOR_VX];
+    case BDL_COLOR_VOIDAGE:
+        return voidage;
+    default:
+        return 0.0f;
+    }
+}
+
+uint8_t bdl_color_byte(float c)
+{
+    c = c < 0.0f ? 0.0f : (c > 1.0f ? 1.0f : c);
+    return (uint8_t)lrintf(255.0f * c);
+}
+
+void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, float voidage,
+                        const float range[2], uint8_t rgb[3])
+{
+    float c[3];
+    if (mode == BDL_COLOR_SPECIES) {
+        bdl_category_color(snap->species[i], c);
+    } else {
+        float x = field_value(mode, snap, i, voidage);
+        float span = range[1] - range[0];
+        float t = span > 0.0f ? (x - range[0]) / span : 0.5f;
+        bdl_colormap_eval(bdl_color_mode_diverging(mode) ? BDL_CMAP_DIVERGING : BDL_CMAP_SEQUENTIAL,
+                          t, c);
+    }
+    for (int k = 0; k < 3; ++k)
+        rgb[k] = bdl_color_byte(c[k]);
+}
+
+/// The data's range for automatic colouring: speeds from 0, velocity components symmetric about
+/// 0, coordination numbers from 0 in whole steps.
+static void auto_range(const bdl_render_colors *c, bdl_color_mode mode, const bdl_snapshot *s,
+                       float range[2])
+{
+    float lo = INFINITY, hi = -INFINITY;
+    for (long i = 0; i < s->count; ++i) {
+        float x = field_value(mode, s, i, c->voidage_at ? c->voidage_at[i] : 1.0f);
+        lo = fminf(lo, x);
+        hi = fmaxf(hi, x);
+    }
+    if (s->count == 0)
+        lo = hi = 0.0f;
+    switch (mode) {
+    case BDL_COLOR_COORDINATION:
+        range[0] = 0.0f;
+        range[1] = fmaxf(hi, 1.0f);
+        break;
+    case BDL_COLOR_SPEED:
+        range[0] = 0.0f;
+        range[1] = hi > 0.0f ? hi : 1.0f;
+        break;
+    case BDL_COLOR_VX:
+    case BDL_COLOR_VY:
+    case BDL_COLOR_VZ: {
+        float m = fmaxf(fabsf(lo), fabsf(hi));
+        range[0] = m > 0.0f ? -m : -1.0f;
+        range[1] = m > 0.0f ? m : 1.0f;
+        break;
+    }
+    default:
+        range[0] = lo;
+        range[1] = hi > lo ? hi : lo + 1.0f;
+        break;
+    }
+}
+
+/// The grid is made on first use, from the scene's domain and its largest particle.
+static int voidage_grid_ready(bdl_render_colors *c, const bdl_scene *scene)
+{
+    if (c->voidage_ready)
+        return 1;
+    double lo[3] = {scene->domain_min.x, scene->domain_min.y, scene->domain_min.z};
+    double hi[3] = {scene->domain_max.x, scene->domain_max.y, scene->domain_max.z};
+    double d = 0.0;
+    for (int k = 0; k < scene->species_count; ++k)
+        d = fmax(d, fmax(scene->species[k].diameter, scene->species[k].diameter_max));
+    // Cells of three diameters: enough particles per cell for a mean, small enough to
+    // resolve bubbles and the free surface.
+    if (bdl_voidage_grid_init(&c->voidage, lo, hi, 3.0 * d, scene->periodic) != BDL_OK)
+        return 0;
+    c->voidage_ready = 1;
+    return 1;
+}
+
+static void compute_voidage(bdl_render_colors *c, const bdl_scene *scene, const bdl_snapshot *s)
+{
+    if (!voidage_grid_ready(c, scene))
+        return;
+    if (s->count > c->voidage_capacity) {
+        float *a = realloc(c->voidage_at, (size_t)s->count * sizeof(float));
+        if (!a)
+            return;
+        c->voidage_at = a;
+        c->voidage_capacity = s->count;
+    }
+    bdl_voidage_deposit(&c->voidage, s->count, s->pos, s->radius);
+    for (long i = 0; i < s->count; ++i)
+        c->voidage_at[i] = bdl_voidage_at(&c->voidage, &s->pos[3 * i]);
+}
+
+void bdl_render_colors_prepare(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v)
+{
+    bdl_render_colors *c = &r->colors;
+    if (v->color == BDL_COLOR_VOIDAGE)
+        compute_voidage(c, &r->scene, s);
+    if (v->range_fixed) {
+        c->range[0] = v->range[0];
+        c->range[1] = v->range[1];
+    } else if (v->color != BDL_COLOR_SPECIES) {
+        auto_range(c, v->color, s, c->range);
+    }
+}
+
+void bdl_render_colors_particle(const bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
+                                long i, uint8_t rgb[3])
+{
+    const bdl_render_colors *c = &r->colors;
+    float voidage = c->voidage_at && v->color == BDL_COLOR_VOIDAGE ? c->voidage_at[i] : 1.0f;
+    bdl_particle_color(v->color, s, i, voidage, c->range, rgb);
+}
+
+void bdl_render_colors_destroy(bdl_renderer *r)
+{
+    if (r->colors.voidage_ready)
+        bdl_voidage_grid_free(&r->colors.voidage);
+    free(r->colors.voidage_at);
+}

@@ -1,0 +1,71 @@
+// bedlam — GL helpers the parts of the renderer share: programs from the embedded shaders and
+// byte textures.
+#include <stdio.h>
+
+#include "render/renderer_internal.h"
+
+const char *bdl_shader_source(const char *name); // generated from shaders/
+
+static GLuint compile(GLenum kind, const char *name, char *why, size_t why_len)
+{
+    const char *source = bdl_shader_source(name);
+    if (!source) {
+        snprintf(why, why_len, "shader %s is not embedded", name);
+        return 0;
+    }
+    GLuint s = glCreateShader(kind);
+    glShaderSource(s, 1, &source, NULL);
+    glCompileShader(s);
+    GLint ok = 0;
+    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetShaderInfoLog(s, sizeof log, NULL, log);
+        snprintf(why, why_len, "shader %s does not compile: %s", name, log);
+        glDeleteShader(s);
+        return 0;
+    }
+    return s;
+}
+
+GLuint bdl_gl_program(const char *vert, const char *frag, char *why, size_t why_len)
+{
+    GLuint v = compile(GL_VERTEX_SHADER, vert, why, why_len);
+    GLuint f = v ? compile(GL_FRAGMENT_SHADER, frag, why, why_len) : 0;
+    if (!f) {
+        if (v)
+            glDeleteShader(v);
+        return 0;
+    }
+    GLuint p = glCreateProgram();
+    glAttachShader(p, v);
+    glAttachShader(p, f);
+    glLinkProgram(p);
+    glDeleteShader(v);
+    glDeleteShader(f);
+    GLint ok = 0;
+    glGetProgramiv(p, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[1024] = "";
+        glGetProgramInfoLog(p, sizeof log, NULL, log);
+        snprintf(why, why_len, "shaders %s + %s do not link: %s", vert, frag, log);
+        glDeleteProgram(p);
+        return 0;
+    }
+    return p;
+}
+
+GLuint bdl_gl_texture_2d(GLenum internal, int w, int h, GLenum format, const void *data,
+                         GLint filter)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glBindTexture(GL_TEXTURE_2D, t);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, w, h, 0, format, GL_UNSIGNED_BYTE, data);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return t;
+}
