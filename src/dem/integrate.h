@@ -28,10 +28,9 @@ typedef struct bdl_force_def {
     int loads_cleared; ///< force and torque are zero already (bdl_dem_kick_drift cleared them)
 } bdl_force_def;
 
-/// Below this many particles a parallel region costs more than it saves. (Measured on the
-/// two-core CI machine: a dense bed of 1000-2000 particles runs about as fast on two threads as
-/// on one; the pseudo-2D fluidized bed of 800 ran 1.4x faster on two at best, but in the spells
-/// when the virtual machine's parallel regions take twice as long, 1.7x slower than on one.)
+/// Below this many particles a parallel region costs more than it saves: small beds gain little
+/// from a second thread, and in the spells when the machine's parallel regions slow down they
+/// lose (figures: docs/performance.md, "Why these thresholds").
 #define BDL_PARALLEL_MIN 4096
 
 #define BDL_MAX_FORCE_THREADS 256
