@@ -1,10 +1,11 @@
 // bedlam — loops that go parallel only when they are worth it.
 //
-// An OpenMP `if (0)` clause still enters the runtime: every such region costs a futex call
-// (about 0.4 us measured on the CI machine), and a small gas grid runs hundreds of regions per
-// step. BDL_PARALLEL_FOR(cond, loop) runs `loop` under `omp parallel for schedule(static)` when
-// `cond` holds and as plain C otherwise. The loop's results must not depend on which: the fixed
-// static partition and per-chunk partial sums (see poisson.c's CHUNKS) keep them bit-identical.
+// An OpenMP `if (0)` clause still enters the runtime: every such region costs a futex call, and a
+// small gas grid runs hundreds of regions per step (figures: docs/performance.md, "Why these
+// thresholds"). BDL_PARALLEL_FOR(cond, loop) runs `loop` under `omp parallel for schedule(static)`
+// when `cond` holds and as plain C otherwise. The loop's results must not depend on which: the
+// fixed static partition and per-chunk partial sums (see poisson.c's CHUNKS) keep them
+// bit-identical.
 #ifndef BDL_PARALLEL_H
 #define BDL_PARALLEL_H
 

@@ -1,4 +1,4 @@
-// bedlam — DEM forces and the velocity-Verlet integrator.
+// bedlam — the velocity-Verlet integrator of the particles.
 //
 //   v(t + dt/2) = v(t) + dt/2 (F(t)/m + g)         w(t + dt/2) = w(t) + dt/2 T(t)/I
 //   x(t + dt)   = x(t) + dt v(t + dt/2)
@@ -7,70 +7,15 @@
 //
 // Velocity-dependent forces (dashpots, friction, background damping) use the half-step
 // velocity, as in LAMMPS and LIGGGHTS; the scheme is second order for conservative forces.
-// Spheres need no orientation, only the spin w.
+// Spheres need no orientation, only the spin w. The forces and the closing half kick are one pass
+// over the particles, bdl_dem_forces (contact_force.h); the opening half kick and the drift are
+// the other.
 #ifndef BDL_INTEGRATE_H
 #define BDL_INTEGRATE_H
 
-#include "dem/material.h"
 #include "dem/neighbor.h"
 #include "dem/particles.h"
 #include "dem/walls.h"
-
-typedef struct bdl_force_def {
-    const bdl_contact_params *pair_params; ///< species_count^2 table
-    const bdl_contact_params *wall_params; ///< wall_count * species_count table
-    int species_count;
-    const double *background_damping; ///< per species [1/s]
-    bdl_vec3 gravity;                 ///< [m/s^2]
-    int hertz, friction, rolling;
-    double dt;         ///< [s] (tangential spring increment)
-    long parallel_min; ///< fewer particles than this: one thread
-    int loads_cleared; ///< force and torque are zero already (bdl_dem_kick_drift cleared them)
-} bdl_force_def;
-
-/// Below this many particles a parallel region costs more than it saves. (Measured on the
-/// two-core CI machine: a dense bed of 1000-2000 particles runs about as fast on two threads as
-/// on one; the pseudo-2D fluidized bed of 800 ran 1.4x faster on two at best, but in the spells
-/// when the virtual machine's parallel regions take twice as long, 1.7x slower than on one.)
-#define BDL_PARALLEL_MIN 4096
-
-#define BDL_MAX_FORCE_THREADS 256
-
-/// Per-step bookkeeping of the parallel force pass (see integrate.c): the particle range of each
-/// thread and the boundary pairs between ranges. Rebuilt when the lists or the thread count
-/// change; a steady-state step allocates nothing.
-typedef struct bdl_force_work {
-    int threads;
-    long version; ///< neighbour list version it was built for
-    long count;   ///< particle count it was built for
-    long range[BDL_MAX_FORCE_THREADS + 1];
-    long out_start[BDL_MAX_FORCE_THREADS + 1]; ///< boundary pairs by source thread
-    long in_start[BDL_MAX_FORCE_THREADS + 1];  ///< entries by target thread
-    int32_t *pair;                             ///< pair index of each boundary entry
-    int32_t *pair_i;                           ///< its first particle
-    int32_t *owner;                            ///< first particle of every listed pair
-    int32_t owner_count;                       ///< listed pairs
-    long owner_capacity;
-    int32_t *target;                ///< boundary entries ordered by target thread
-    struct bdl_pair_result *result; ///< evaluated boundary pairs
-    long capacity;
-    struct bdl_pair_batch *batch[BDL_MAX_FORCE_THREADS]; ///< per-thread pair batches
-    int uniform;     ///< every particle has the same species, radius and mass (these:)
-    int species;     ///< species of particle 0
-    double radius;   ///< radius of particle 0 [m]
-    double inv_mass; ///< 1/m of particle 0 [1/kg]
-} bdl_force_work;
-
-void bdl_force_work_free(bdl_force_work *fw);
-long bdl_force_work_bytes(const bdl_force_work *fw);
-
-/// Evaluates all contacts in one pass over the particles: pair forces (each pair once), wall
-/// contacts and background damping (gravity is applied in the kicks), counts particle contacts
-/// into `coordination`, and with kick h > 0 applies the closing half kick v += h (F/m + g),
-/// w += h T/I. The sums do not depend on the thread count.
-bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                          const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
-                          double kick);
 
 /// The opening half of a step in one pass: v += h (F/m + g), w += h T/I, x += dt v; then clears
 /// F and T for the force pass (which may skip clearing them: bdl_force_def.loads_cleared). Returns

@@ -77,8 +77,6 @@ double bdl_contact_duration_ratio(int hertz, double c)
     return damped / elastic;
 }
 
-double bdl_hertz_restitution_of(double c) { return bdl_restitution_of(1, c); }
-
 /// Damping coefficient (zeta or c) that realises restitution e with the clamped force: e(c) is
 /// smooth and decreasing, so a bracketing secant (Illinois) search converges in a few dozen
 /// impacts.
@@ -119,9 +117,6 @@ static double damping_exact(int hertz, double restitution)
     }
     return mid;
 }
-
-double bdl_hertz_damping_exact(double restitution) { return damping_exact(1, restitution); }
-double bdl_linear_damping_exact(double restitution) { return damping_exact(0, restitution); }
 
 static double mean2(double a, double b) { return 0.5 * (a + b); }
 

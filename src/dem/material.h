@@ -78,16 +78,12 @@ double bdl_linear_damping_ratio(double restitution);
 /// The closed form used by LIGGGHTS/EDEM for Hertz: c = sqrt(5) zeta(e).
 double bdl_hertz_damping_closed_form(double restitution);
 
-/// Damping coefficients that realise restitution e exactly with the normal force clamped at zero
-/// (no attraction): solved numerically on the dimensionless impact (see material.c).
-double bdl_linear_damping_exact(double restitution);
-double bdl_hertz_damping_exact(double restitution);
-
-/// Restitution realised by a contact with damping coefficient c (zeta for linear) and the clamp.
+/// Restitution realised by a contact with damping coefficient c (zeta for linear) and the normal
+/// force clamped at zero (no attraction). With BDL_DAMPING_EXACT, bdl_contact_table_build inverts
+/// it numerically for the damping that realises the configured e (see material.c).
 double bdl_restitution_of(int hertz, double c);
 /// Duration of the damped, clamped impact relative to the elastic one.
 double bdl_contact_duration_ratio(int hertz, double c);
-double bdl_hertz_restitution_of(double c);
 
 /// What the table of contact parameters is mixed from.
 typedef struct bdl_contact_table_def {

@@ -6,7 +6,7 @@
 // skin/2 (or a particle plus a wall have moved skin together), so it is rebuilt only then.
 //
 // Tangential history follows each pair across rebuilds and re-sorts (looked up by the particles'
-// previous indices). How forces are summed deterministically is described in integrate.c.
+// previous indices). How forces are summed deterministically is described in contact_force.c.
 #ifndef BDL_NEIGHBOR_H
 #define BDL_NEIGHBOR_H
 

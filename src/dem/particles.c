@@ -1,46 +1,74 @@
 #include "dem/particles.h"
 #include "core/memory.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
+
+/// When a per-particle array exists.
+typedef enum array_when {
+    ALWAYS,
+    WITH_GAS, ///< only when bdl_particles.fluid is set
+} array_when;
+
+/// One per-particle array of bdl_particles: where its pointer lives and how many bytes each
+/// particle takes in it.
+typedef struct particle_array {
+    size_t offset; ///< of the pointer in bdl_particles
+    size_t elem;   ///< bytes per particle
+    array_when when;
+} particle_array;
+
+// clang-format off
+#define ARRAY(field, when) \
+    {offsetof(bdl_particles, field), sizeof *((bdl_particles *)0)->field, when}
+
+/// Every per-particle array, in the order they are grown, permuted and counted (see particles.h).
+static const particle_array arrays[] = {
+    ARRAY(pos,          ALWAYS),
+    ARRAY(vel,          ALWAYS),
+    ARRAY(omega,        ALWAYS),
+    ARRAY(load,         ALWAYS),
+    ARRAY(pos_at_build, ALWAYS),
+    ARRAY(radius,       ALWAYS),
+    ARRAY(inv_mass,     ALWAYS),
+    ARRAY(species,      ALWAYS),
+    ARRAY(id,           ALWAYS),
+    ARRAY(fluid_accel,  WITH_GAS),
+    ARRAY(vel_mark,     WITH_GAS),
+    ARRAY(drag_accel,   WITH_GAS),
+};
+// clang-format on
+
+#define ARRAY_COUNT ((int)(sizeof arrays / sizeof arrays[0]))
+
+/// The pointer of array a in p.
+static void **array_pointer(bdl_particles *p, const particle_array *a)
+{
+    return (void **)((char *)p + a->offset);
+}
+
+static int has_array(const bdl_particles *p, const particle_array *a)
+{
+    return a->when == ALWAYS || p->fluid;
+}
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)
 {
     if (capacity <= p->capacity)
         return BDL_OK;
-    int ok = bdl_grow((void **)&p->pos, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->vel, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->omega, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->load, capacity, sizeof(bdl_wrench)) &&
-             bdl_grow((void **)&p->pos_at_build, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->radius, capacity, sizeof(double)) &&
-             bdl_grow((void **)&p->inv_mass, capacity, sizeof(double)) &&
-             bdl_grow((void **)&p->species, capacity, sizeof(int32_t)) &&
-             bdl_grow((void **)&p->id, capacity, sizeof(uint32_t));
-    if (ok && p->fluid)
-        ok = bdl_grow((void **)&p->fluid_accel, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->vel_mark, capacity, sizeof(bdl_vec3)) &&
-             bdl_grow((void **)&p->drag_accel, capacity, sizeof(bdl_vec3));
-    if (!ok)
-        return BDL_ERR_NOMEM;
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        if (has_array(p, &arrays[a]) &&
+            !bdl_grow(array_pointer(p, &arrays[a]), capacity, arrays[a].elem))
+            return BDL_ERR_NOMEM;
     p->capacity = capacity;
     return BDL_OK;
 }
 
 void bdl_particles_free(bdl_particles *p)
 {
-    free(p->pos);
-    free(p->vel);
-    free(p->omega);
-    free(p->load);
-    free(p->pos_at_build);
-    free(p->radius);
-    free(p->inv_mass);
-    free(p->species);
-    free(p->id);
-    free(p->fluid_accel);
-    free(p->vel_mark);
-    free(p->drag_accel);
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        free(*array_pointer(p, &arrays[a]));
     memset(p, 0, sizeof *p);
 }
 
@@ -53,65 +81,79 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
             return -1;
     }
     long i = p->count++;
+    // Every array starts at zero, so that an array added to the table needs no line here unless
+    // a new particle's value is not zero.
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        if (has_array(p, &arrays[a]))
+            memset((char *)*array_pointer(p, &arrays[a]) + (size_t)i * arrays[a].elem, 0,
+                   arrays[a].elem);
     double mass = density * (4.0 / 3.0) * 3.14159265358979323846 * radius * radius * radius;
     p->pos[i] = pos;
     p->vel[i] = vel;
-    p->omega[i] = bdl_v3_zero();
-    p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()};
     p->pos_at_build[i] = pos;
     p->radius[i] = radius;
     p->inv_mass[i] = 1.0 / mass;
     p->species[i] = species;
     p->id[i] = p->next_id++;
-    if (p->fluid) {
-        p->fluid_accel[i] = bdl_v3_zero();
+    if (p->fluid)
         p->vel_mark[i] = vel;
-        p->drag_accel[i] = bdl_v3_zero();
-    }
     return i;
 }
 
-static void permute_array(void *array, size_t elem, long n, const int32_t *perm, void *scratch)
+/// Bytes per particle of the scratch that bdl_particles_permute is given.
+#define SCRATCH_ELEM sizeof(bdl_vec3)
+
+/// Permutes one array a column at a time, a column being as wide as the scratch element: a record
+/// wider than that (the force-torque record) is moved in several columns.
+static inline void permute_columns(char *array, size_t elem, long n, const int32_t *perm,
+                                   char *scratch)
 {
-    char *src = array, *dst = scratch;
-    for (long k = 0; k < n; ++k)
-        memcpy(dst + (size_t)k * elem, src + (size_t)perm[k] * elem, elem);
-    memcpy(array, scratch, (size_t)n * elem);
+    for (size_t at = 0; at < elem; at += SCRATCH_ELEM) {
+        size_t width = elem - at < SCRATCH_ELEM ? elem - at : SCRATCH_ELEM;
+        for (long k = 0; k < n; ++k)
+            memcpy(scratch + (size_t)k * width, array + (size_t)perm[k] * elem + at, width);
+        if (width == elem) {
+            memcpy(array, scratch, (size_t)n * elem);
+            continue;
+        }
+        for (long k = 0; k < n; ++k)
+            memcpy(array + (size_t)k * elem + at, scratch + (size_t)k * width, width);
+    }
 }
 
-/// Permutes the force-torque records with scratch for one vector per particle: the forces go to
-/// scratch, the torques to the freed force slots, then both to their places.
-static void permute_load(bdl_wrench *load, long n, const int32_t *perm, bdl_vec3 *scratch)
+/// The sizes in use are spelled out so that each element is copied with a move or two instead of
+/// a call.
+static void permute_array(char *array, size_t elem, long n, const int32_t *perm, char *scratch)
 {
-    for (long k = 0; k < n; ++k)
-        scratch[k] = load[perm[k]].force;
-    for (long k = 0; k < n; ++k)
-        load[k].force = load[perm[k]].torque;
-    for (long k = 0; k < n; ++k)
-        load[k] = (bdl_wrench){scratch[k], load[k].force};
+    switch (elem) {
+    case sizeof(int32_t):
+        permute_columns(array, sizeof(int32_t), n, perm, scratch);
+        break;
+    case sizeof(double):
+        permute_columns(array, sizeof(double), n, perm, scratch);
+        break;
+    case sizeof(bdl_vec3):
+        permute_columns(array, sizeof(bdl_vec3), n, perm, scratch);
+        break;
+    case sizeof(bdl_wrench):
+        permute_columns(array, sizeof(bdl_wrench), n, perm, scratch);
+        break;
+    default:
+        permute_columns(array, elem, n, perm, scratch);
+    }
 }
 
 void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
 {
-    long n = p->count;
-    permute_array(p->pos, sizeof(bdl_vec3), n, perm, scratch);
-    permute_array(p->vel, sizeof(bdl_vec3), n, perm, scratch);
-    permute_array(p->omega, sizeof(bdl_vec3), n, perm, scratch);
-    permute_load(p->load, n, perm, scratch);
-    permute_array(p->pos_at_build, sizeof(bdl_vec3), n, perm, scratch);
-    permute_array(p->radius, sizeof(double), n, perm, scratch);
-    permute_array(p->inv_mass, sizeof(double), n, perm, scratch);
-    permute_array(p->species, sizeof(int32_t), n, perm, scratch);
-    permute_array(p->id, sizeof(uint32_t), n, perm, scratch);
-    if (p->fluid) {
-        permute_array(p->fluid_accel, sizeof(bdl_vec3), n, perm, scratch);
-        permute_array(p->vel_mark, sizeof(bdl_vec3), n, perm, scratch);
-        permute_array(p->drag_accel, sizeof(bdl_vec3), n, perm, scratch);
-    }
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        if (has_array(p, &arrays[a]))
+            permute_array(*array_pointer(p, &arrays[a]), arrays[a].elem, p->count, perm, scratch);
 }
 
 long bdl_particles_bytes(const bdl_particles *p)
 {
-    return p->capacity * (long)((6 + (p->fluid ? 3 : 0)) * sizeof(bdl_vec3) + 2 * sizeof(double) +
-                                sizeof(int32_t) + sizeof(uint32_t));
+    long per_particle = 0;
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        per_particle += has_array(p, &arrays[a]) ? (long)arrays[a].elem : 0;
+    return p->capacity * per_particle;
 }

@@ -3,6 +3,13 @@
 // Hot state (position, velocity, spin, force and torque) lives in separate arrays from cold
 // metadata (species, id). Particles may be re-ordered for locality at neighbour-list rebuilds;
 // `id` is stable for a particle's lifetime and is what output and checkpoints use.
+//
+// Adding a per-particle array (an orientation, a parcel's particle count, what a migration
+// between processes carries): declare its pointer in bdl_particles and add one row to the table
+// `arrays` in particles.c, with the condition under which it exists. Reserve, free, permute and
+// the byte count all walk that table; a new particle starts with zero in it unless
+// bdl_particles_add sets another value. An array that is part of the state must also be saved
+// in checkpoints (output/checkpoint.c lists the file's fields in their file order).
 #ifndef BDL_PARTICLES_H
 #define BDL_PARTICLES_H
 
@@ -52,7 +59,8 @@ static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 }
 
 /// Reorders all particle arrays so that new slot k holds old particle perm[k].
-/// `scratch` must hold count * sizeof(bdl_vec3) bytes.
+/// `scratch` must hold count * sizeof(bdl_vec3) bytes (wider records, as the force-torque record,
+/// are moved a vector's width at a time).
 void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch);
 
 /// Bytes allocated for particle storage.

@@ -7,7 +7,6 @@
 #include "analysis/granular.h"
 #include "cfd/gas.h"
 #include "dem/contact_law.h"
-#include "dem/integrate.h"
 
 const char *const bdl_diagnostics_columns[] = {
     "time",

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "dem/create.h"
+#include "dem/contact_force.h"
 #include "dem/integrate.h"
 
 #define PI 3.14159265358979323846

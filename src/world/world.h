@@ -9,7 +9,7 @@
 #include <stdint.h>
 
 #include "core/rng.h"
-#include "dem/integrate.h"
+#include "dem/contact_force.h"
 #include "dem/material.h"
 #include "dem/neighbor.h"
 #include "dem/particles.h"
