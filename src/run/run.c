@@ -74,7 +74,7 @@ static bdl_result read_scene(run *r)
     // Only the solver thread runs a team (it is told `threads`). The main thread builds the world
     // and then waits on it; a team of its own would leave an idle worker behind, and with more
     // workers than cores libgomp stops spin-waiting, so that every parallel region of the solver
-    // would sleep and wake through the kernel (docs/performance.md, "Threads").
+    // would sleep and wake through the kernel (docs/performance.md, "Why these thresholds").
     omp_set_num_threads(1);
     return BDL_OK;
 }
