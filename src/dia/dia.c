@@ -167,13 +167,11 @@ static void blur(double *img, int w, int h, double sigma)
     free(tmp);
 }
 
-bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long frame,
-                          bdl_dia_image *im)
+/// The image's buffers, every sample empty (no hit, infinitely far).
+static bdl_result allocate_image(const bdl_dia_def *d, int ns, bdl_dia_image *im)
 {
-    const bdl_dia_def *d = &c->def;
-    const int ns = d->samples > 0 ? d->samples : 1;
-    const int sw = d->width * ns, sh = d->height * ns;
-    const size_t npx = (size_t)d->width * (size_t)d->height, nsm = (size_t)sw * (size_t)sh;
+    const size_t npx = (size_t)d->width * (size_t)d->height;
+    const size_t nsm = npx * (size_t)ns * (size_t)ns;
     memset(im, 0, sizeof *im);
     im->width = d->width, im->height = d->height, im->samples = ns;
     im->value = malloc(npx * sizeof(float));
@@ -188,7 +186,14 @@ bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long 
         im->hit[k] = -1;
         im->depth[k] = FLT_MAX;
     }
-    // Each sphere writes the samples of its pixel box where it is the nearest hit so far.
+    return BDL_OK;
+}
+
+/// Each sphere writes the samples of its pixel box where it is the nearest hit so far.
+static void cast_rays(const bdl_dia_camera *c, const bdl_dia_scene *s, bdl_dia_image *im)
+{
+    const bdl_dia_def *d = &c->def;
+    const int ns = im->samples, sw = d->width * ns;
     for (long i = 0; i < s->count; ++i) {
         int box[4];
         const bdl_vec3 x = s->pos[i];
@@ -215,32 +220,32 @@ bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long 
                 }
             }
     }
-    // Shading: each pixel is the mean of its samples.
-    for (int y = 0; y < d->height; ++y)
-        for (int x = 0; x < d->width; ++x) {
-            double sum = 0.0;
-            for (int sy = 0; sy < ns; ++sy)
-                for (int sx = 0; sx < ns; ++sx) {
-                    int px = x * ns + sx, py = y * ns + sy;
-                    size_t k = (size_t)py * (size_t)sw + (size_t)px;
-                    int32_t hit = im->hit[k];
-                    if (hit < 0) {
-                        sum += d->lighting == BDL_DIA_BACK_LIT ? d->bright : d->dark;
-                        continue;
-                    }
-                    bdl_vec3 o, dir;
-                    sample_ray(c, (px + 0.5) / ns, (py + 0.5) / ns, &o, &dir);
-                    bdl_vec3 oc = bdl_v3_sub(o, s->pos[hit]);
-                    double b = bdl_v3_dot(oc, dir);
-                    double disc = b * b - bdl_v3_dot(oc, oc) + s->radius[hit] * s->radius[hit];
-                    double t = -b - sqrt(disc > 0.0 ? disc : 0.0);
-                    bdl_vec3 p = bdl_v3_madd(o, dir, t);
-                    bdl_vec3 n = bdl_v3_scale(bdl_v3_sub(p, s->pos[hit]), 1.0 / s->radius[hit]);
-                    sum += shade(c, p, n);
-                }
-            im->value[(size_t)y * d->width + x] = (float)(sum / (ns * ns));
-        }
-    // Optics and sensor: defocus, gamma, noise.
+}
+
+/// The light a sample at (px, py) receives: the background, or the shaded sphere it hits.
+static double sample_light(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
+                           int px, int py)
+{
+    const bdl_dia_def *d = &c->def;
+    const int ns = im->samples;
+    const int32_t hit = im->hit[(size_t)py * (size_t)(d->width * ns) + (size_t)px];
+    if (hit < 0)
+        return d->lighting == BDL_DIA_BACK_LIT ? d->bright : d->dark;
+    bdl_vec3 o, dir;
+    sample_ray(c, (px + 0.5) / ns, (py + 0.5) / ns, &o, &dir);
+    bdl_vec3 oc = bdl_v3_sub(o, s->pos[hit]);
+    double b = bdl_v3_dot(oc, dir);
+    double disc = b * b - bdl_v3_dot(oc, oc) + s->radius[hit] * s->radius[hit];
+    double t = -b - sqrt(disc > 0.0 ? disc : 0.0);
+    bdl_vec3 p = bdl_v3_madd(o, dir, t);
+    bdl_vec3 n = bdl_v3_scale(bdl_v3_sub(p, s->pos[hit]), 1.0 / s->radius[hit]);
+    return shade(c, p, n);
+}
+
+/// Optics and sensor: defocus, gamma, noise (seeded per frame), clipped to [0, 1].
+static void expose(const bdl_dia_def *d, long frame, bdl_dia_image *im)
+{
+    const size_t npx = (size_t)d->width * (size_t)d->height;
     for (size_t k = 0; k < npx; ++k)
         im->final[k] = im->value[k];
     if (d->blur > 0.0)
@@ -255,6 +260,27 @@ bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long 
             g += d->noise * bdl_rng_normal(&rng);
         im->final[k] = g < 0.0 ? 0.0 : g > 1.0 ? 1.0 : g;
     }
+}
+
+bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long frame,
+                          bdl_dia_image *im)
+{
+    const bdl_dia_def *d = &c->def;
+    const int ns = d->samples > 0 ? d->samples : 1;
+    bdl_result r = allocate_image(d, ns, im);
+    if (r != BDL_OK)
+        return r;
+    cast_rays(c, s, im);
+    // Shading: each pixel is the mean of its samples.
+    for (int y = 0; y < d->height; ++y)
+        for (int x = 0; x < d->width; ++x) {
+            double sum = 0.0;
+            for (int sy = 0; sy < ns; ++sy)
+                for (int sx = 0; sx < ns; ++sx)
+                    sum += sample_light(c, s, im, x * ns + sx, y * ns + sy);
+            im->value[(size_t)y * d->width + x] = (float)(sum / (ns * ns));
+        }
+    expose(d, frame, im);
     return BDL_OK;
 }
 
@@ -398,19 +424,14 @@ double bdl_dia_sphere_box_volume(bdl_vec3 x, double r, bdl_vec3 lo, bdl_vec3 hi)
     return volume;
 }
 
-bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
-                         const bdl_dia_truth_def *t, bdl_dia_cell_truth *cells, long *visible)
+/// Visible area and velocity per cell: every sample belongs to the cell its centre falls in;
+/// velocities become image-plane velocities at the scale of the bed's mid depth.
+static bdl_result visible_truth(const bdl_dia_camera *c, const bdl_dia_scene *s,
+                                const bdl_dia_image *im, const bdl_dia_truth_def *t,
+                                bdl_dia_cell_truth *cells)
 {
     const int ns = im->samples, sw = im->width * ns, sh = im->height * ns;
     const int nx = t->cells[0], ny = t->cells[1];
-    if (visible) {
-        memset(visible, 0, (size_t)s->count * sizeof(long));
-        for (size_t k = 0; k < (size_t)sw * (size_t)sh; ++k)
-            if (im->hit[k] >= 0)
-                visible[im->hit[k]]++;
-    }
-    if (!cells)
-        return BDL_OK;
     double *weight = calloc((size_t)nx * ny, sizeof(double));
     long *seen = calloc((size_t)s->count, sizeof(long));
     if (!weight || !seen) {
@@ -418,14 +439,6 @@ bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const 
         free(seen);
         return BDL_ERR_NOMEM;
     }
-    for (int cy = 0; cy < ny; ++cy)
-        for (int cx = 0; cx < nx; ++cx) {
-            bdl_dia_cell_truth *ct = &cells[cy * nx + cx];
-            memset(ct, 0, sizeof *ct);
-            ct->u0 = (double)cx * im->width / nx, ct->u1 = (double)(cx + 1) * im->width / nx;
-            ct->v0 = (double)cy * im->height / ny, ct->v1 = (double)(cy + 1) * im->height / ny;
-        }
-    // Visible area and velocity: every sample belongs to the cell its centre falls in.
     for (int py = 0; py < sh; ++py) {
         int cy = (int)((long)py * ny / sh);
         for (int px = 0; px < sw; ++px) {
@@ -443,8 +456,7 @@ bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const 
             }
         }
     }
-    // Image-plane velocities and the solids boxes at the scale of the bed's mid depth.
-    const double mid = 0.5 * (t->front + t->back), scale = bdl_dia_scale(c, mid);
+    const double scale = bdl_dia_scale(c, 0.5 * (t->front + t->back));
     for (int k = 0; k < nx * ny; ++k) {
         bdl_dia_cell_truth *ct = &cells[k];
         if (ct->area_fraction > 0.0)
@@ -453,9 +465,19 @@ bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const 
         ct->du = bdl_v3_dot(ct->velocity, c->right) / scale;
         ct->dv = bdl_v3_dot(ct->velocity, c->down) / scale;
     }
-    // Solids fractions: each particle's volume inside each cell's box, in camera coordinates
-    // (right, down, forward from the camera position); the box's cross-section is the cell at
-    // the mid depth of the bed (exact for orthographic views).
+    free(weight);
+    free(seen);
+    return BDL_OK;
+}
+
+/// Solids fractions: each particle's volume inside each cell's box, in camera coordinates
+/// (right, down, forward from the camera position); the box's cross-section is the cell at the
+/// mid depth of the bed (exact for orthographic views).
+static void solids_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
+                         const bdl_dia_truth_def *t, bdl_dia_cell_truth *cells)
+{
+    const int nx = t->cells[0], ny = t->cells[1];
+    const double scale = bdl_dia_scale(c, 0.5 * (t->front + t->back));
     const double cw = scale * im->width / nx, chh = scale * im->height / ny;
     const double a0 = -0.5 * im->width * scale, b0 = -0.5 * im->height * scale;
     for (long i = 0; i < s->count; ++i) {
@@ -478,7 +500,30 @@ bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const 
         cells[k].solids_depth /= cw * chh * (t->back - t->front);
         cells[k].solids_layer /= cw * chh * t->layer;
     }
-    free(weight);
-    free(seen);
-    return BDL_OK;
+}
+
+bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
+                         const bdl_dia_truth_def *t, bdl_dia_cell_truth *cells, long *visible)
+{
+    const int ns = im->samples, sw = im->width * ns, sh = im->height * ns;
+    const int nx = t->cells[0], ny = t->cells[1];
+    if (visible) {
+        memset(visible, 0, (size_t)s->count * sizeof(long));
+        for (size_t k = 0; k < (size_t)sw * (size_t)sh; ++k)
+            if (im->hit[k] >= 0)
+                visible[im->hit[k]]++;
+    }
+    if (!cells)
+        return BDL_OK;
+    for (int cy = 0; cy < ny; ++cy)
+        for (int cx = 0; cx < nx; ++cx) {
+            bdl_dia_cell_truth *ct = &cells[cy * nx + cx];
+            memset(ct, 0, sizeof *ct);
+            ct->u0 = (double)cx * im->width / nx, ct->u1 = (double)(cx + 1) * im->width / nx;
+            ct->v0 = (double)cy * im->height / ny, ct->v1 = (double)(cy + 1) * im->height / ny;
+        }
+    bdl_result r = visible_truth(c, s, im, t, cells);
+    if (r == BDL_OK)
+        solids_truth(c, s, im, t, cells);
+    return r;
 }

@@ -169,6 +169,40 @@ double bdl_verify_implied_slip(bdl_drag_law law, double eps, double d, double rh
     return 0.5 * (lo + hi);
 }
 
+/// The gas velocity at the one particle: the cell-centre velocities interpolated with the
+/// particle's kernel.
+static void gas_velocity_at(bdl_coupling *k, bdl_gas *g, const bdl_particles *p, double u[3])
+{
+    const int *n = g->grid.n;
+    for (int a = 0; a < 3; ++a) {
+        double *cell_u = g->rhs; // scratch: cell-centre velocity of component a
+        for (int kk = 0; kk < n[2]; ++kk)
+            for (int j = 0; j < n[1]; ++j)
+                for (int i = 0; i < n[0]; ++i)
+                    cell_u[bdl_grid_index(&g->grid, i, j, kk)] =
+                        bdl_gas_cell_velocity(g, a, i, j, kk);
+        bdl_coupling_locate(k, g, p);
+        u[a] = bdl_coupling_interpolate(k, 0, cell_u);
+    }
+}
+
+/// Explicit Euler step of the one particle of mass m under drag, pressure force and buoyant
+/// gravity gz, wrapped into the periodic box [0, hi); returns its acceleration other than drag.
+static bdl_vec3 push(bdl_particles *p, bdl_vec3 drag, bdl_vec3 pres, double m, double gz, double dt,
+                     const double hi[3])
+{
+    bdl_vec3 other;
+    for (int a = 0; a < 3; ++a) {
+        double a_other = (a == 2 ? gz : 0.0) + bdl_v3_comp(pres, a) / m;
+        double v = bdl_v3_comp(p->vel[0], a) + dt * (a_other + bdl_v3_comp(drag, a) / m);
+        double x = bdl_v3_comp(p->pos[0], a) + dt * v;
+        bdl_v3_set_comp(&p->vel[0], a, v);
+        bdl_v3_set_comp(&other, a, a_other);
+        bdl_v3_set_comp(&p->pos[0], a, fmod(fmod(x, hi[a]) + hi[a], hi[a]));
+    }
+    return other;
+}
+
 bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_law law, int cells)
 {
     const double rho = 1.2, mu = 1.8e-5, h = 24.0 * d / cells;
@@ -222,26 +256,10 @@ bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_la
         // drag, as a container's base would.
         for (long i = 0; i < g->grid.size; ++i)
             src[i] = drag.z / vbox;
-        for (int a = 0; a < 3; ++a) {
-            double a_other = (a == 2 ? gz : 0.0) + bdl_v3_comp(pres, a) / m;
-            double v = bdl_v3_comp(p.vel[0], a) + dt * (a_other + bdl_v3_comp(drag, a) / m);
-            double x = bdl_v3_comp(p.pos[0], a) + dt * v;
-            bdl_v3_set_comp(&p.vel[0], a, v);
-            bdl_v3_set_comp(&acc, a, a_other);
-            bdl_v3_set_comp(&p.pos[0], a, fmod(fmod(x, gd.hi[a]) + gd.hi[a], gd.hi[a]));
-        }
+        acc = push(&p, drag, pres, m, gz, dt, gd.hi);
         if (step <= 2 * steps / 3)
             continue;
-        for (int a = 0; a < 3; ++a) {
-            double *cell_u = g->rhs; // scratch: cell-centre velocity of component a
-            for (int kk = 0; kk < gd.n[2]; ++kk)
-                for (int j = 0; j < gd.n[1]; ++j)
-                    for (int i = 0; i < gd.n[0]; ++i)
-                        cell_u[bdl_grid_index(&g->grid, i, j, kk)] =
-                            bdl_gas_cell_velocity(g, a, i, j, kk);
-            bdl_coupling_locate(&k, g, &p);
-            u[a] = bdl_coupling_interpolate(&k, 0, cell_u);
-        }
+        gas_velocity_at(&k, g, &p, u);
         slip_sum += u[2] - p.vel[0].z;
         eps_sum += bdl_coupling_interpolate(&k, 0, g->eps);
         averaged++;
