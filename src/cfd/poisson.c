@@ -297,7 +297,9 @@ static void apply(const bdl_poisson *p, const level *L, const double *x, double 
         });
 }
 
-static double dot(const double *a, const double *b, long n)
+/// Sum of a[i] b[i] (b NULL: of a[i]) in CHUNKS fixed chunks added in order, so the result does
+/// not depend on the thread count.
+static double chunked_sum(const double *a, const double *b, long n)
 {
     double partial[CHUNKS];
     BDL_PARALLEL_FOR(
@@ -305,7 +307,7 @@ static double dot(const double *a, const double *b, long n)
             long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
             double s = 0.0;
             for (long i = lo; i < hi; ++i)
-                s += a[i] * b[i];
+                s += b ? a[i] * b[i] : a[i];
             partial[c] = s;
         });
     double s = 0.0;
@@ -314,21 +316,11 @@ static double dot(const double *a, const double *b, long n)
     return s;
 }
 
+static double dot(const double *a, const double *b, long n) { return chunked_sum(a, b, n); }
+
 static void remove_mean(double *a, long n)
 {
-    double partial[CHUNKS];
-    BDL_PARALLEL_FOR(
-        n >= BDL_GRID_PARALLEL_MIN, for (int c = 0; c < CHUNKS; ++c) {
-            long lo = n * c / CHUNKS, hi = n * (c + 1) / CHUNKS;
-            double s = 0.0;
-            for (long i = lo; i < hi; ++i)
-                s += a[i];
-            partial[c] = s;
-        });
-    double s = 0.0;
-    for (int c = 0; c < CHUNKS; ++c)
-        s += partial[c];
-    double mean = s / (double)n;
+    double mean = chunked_sum(a, NULL, n) / (double)n;
     BDL_PARALLEL_FOR(n >= BDL_GRID_PARALLEL_MIN, for (long i = 0; i < n; ++i) a[i] -= mean;);
 }
 

@@ -245,10 +245,7 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
                                  bdl_particles *p, char *why, size_t why_len)
 {
     const bdl_species_def *s = &ctx->species[c->species];
-    const bdl_walls *walls = ctx->walls;
-    bdl_rng *rng = ctx->rng;
-    double r_max = largest_radius(ctx);
-    double d_species = bdl_species_max_diameter(s);
+    const double r_max = largest_radius(ctx), d_species = bdl_species_max_diameter(s);
     double h = c->spacing > 0.0 ? c->spacing : 1.0001 * d_species;
     placement_grid g;
     if (!grid_for_region(&g, p, c->region_min, c->region_max, r_max))
@@ -262,12 +259,14 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
     for (int k = 0; k < nz && placed != limit; ++k)
         for (int j = 0; j < ny && placed != limit; ++j)
             for (int i = 0; i < nx && placed != limit; ++i) {
-                double d = bdl_species_draw_diameter(s, rng);
+                double d = bdl_species_draw_diameter(s, ctx->rng);
                 bdl_vec3 x = bdl_v3(lo.x + 0.5 * d_species + i * h, lo.y + 0.5 * d_species + j * h,
                                     lo.z + 0.5 * d_species + k * h);
-                if (!inside_walls(walls, x, 0.5 * d) || grid_overlaps(&g, p, x, 0.5 * d, r_max))
+                if (!inside_walls(ctx->walls, x, 0.5 * d) ||
+                    grid_overlaps(&g, p, x, 0.5 * d, r_max))
                     continue;
-                if (add_checked(p, &g, x, draw_velocity(c, rng), 0.5 * d, ctx, c->species) < 0) {
+                if (add_checked(p, &g, x, draw_velocity(c, ctx->rng), 0.5 * d, ctx, c->species) <
+                    0) {
                     grid_free(&g);
                     return BDL_ERR_NOMEM;
                 }

@@ -1,5 +1,6 @@
 #include "render/context_internal.h"
 
+#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,13 @@ int bdl_gl_backend_parse(const char *text, bdl_gl_backend *out)
             return 1;
         }
     return 0;
+}
+
+int bdl_context_symbol(void *library, const char *name, void *slot)
+{
+    void *p = dlsym(library, name);
+    memcpy(slot, &p, sizeof p); // a data pointer into a function pointer, as dlsym must
+    return p != NULL;
 }
 
 bdl_result bdl_context_finish(bdl_context *c, bdl_gl_lookup lookup, char *why, size_t why_len)

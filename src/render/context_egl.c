@@ -26,13 +26,6 @@ typedef struct egl_api {
 
 static egl_api egl;
 
-static int load_symbol(void *library, const char *name, void *slot)
-{
-    void *p = dlsym(library, name);
-    memcpy(slot, &p, sizeof p);
-    return p != NULL;
-}
-
 static bdl_gl_proc lookup(const char *name)
 {
     __eglMustCastToProperFunctionPointerType p = egl.GetProcAddress(name);
@@ -102,16 +95,16 @@ static int load_api(char *why, size_t why_len, void **library)
         return 0;
     }
     *library = lib;
-    int ok = load_symbol(lib, "eglGetProcAddress", &egl.GetProcAddress) &&
-             load_symbol(lib, "eglQueryString", &egl.QueryString) &&
-             load_symbol(lib, "eglGetDisplay", &egl.GetDisplay) &&
-             load_symbol(lib, "eglInitialize", &egl.Initialize) &&
-             load_symbol(lib, "eglBindAPI", &egl.BindAPI) &&
-             load_symbol(lib, "eglChooseConfig", &egl.ChooseConfig) &&
-             load_symbol(lib, "eglCreateContext", &egl.CreateContext) &&
-             load_symbol(lib, "eglDestroyContext", &egl.DestroyContext) &&
-             load_symbol(lib, "eglMakeCurrent", &egl.MakeCurrent) &&
-             load_symbol(lib, "eglGetError", &egl.GetError);
+    int ok = bdl_context_symbol(lib, "eglGetProcAddress", &egl.GetProcAddress) &&
+             bdl_context_symbol(lib, "eglQueryString", &egl.QueryString) &&
+             bdl_context_symbol(lib, "eglGetDisplay", &egl.GetDisplay) &&
+             bdl_context_symbol(lib, "eglInitialize", &egl.Initialize) &&
+             bdl_context_symbol(lib, "eglBindAPI", &egl.BindAPI) &&
+             bdl_context_symbol(lib, "eglChooseConfig", &egl.ChooseConfig) &&
+             bdl_context_symbol(lib, "eglCreateContext", &egl.CreateContext) &&
+             bdl_context_symbol(lib, "eglDestroyContext", &egl.DestroyContext) &&
+             bdl_context_symbol(lib, "eglMakeCurrent", &egl.MakeCurrent) &&
+             bdl_context_symbol(lib, "eglGetError", &egl.GetError);
     if (!ok) {
         snprintf(why, why_len, "egl: libEGL.so.1 lacks EGL 1.4 functions");
         return 0;

@@ -23,6 +23,9 @@ bdl_result bdl_context_open_osmesa(bdl_context *c, char *why, size_t why_len);
 bdl_result bdl_context_open_sdl(bdl_context *c, const bdl_context_def *def, char *why,
                                 size_t why_len);
 
+/// Looks up `name` in a dlopen'ed library into the function pointer at `slot`; 0 if missing.
+int bdl_context_symbol(void *library, const char *name, void *slot);
+
 /// Loads the GL table and checks the version; on failure writes why.
 bdl_result bdl_context_finish(bdl_context *c, bdl_gl_lookup lookup, char *why, size_t why_len);
 

@@ -33,13 +33,6 @@ static struct {
     get_proc_fn GetProcAddress;
 } osm;
 
-static int load_symbol(void *library, const char *name, void *slot)
-{
-    void *p = dlsym(library, name);
-    memcpy(slot, &p, sizeof p);
-    return p != NULL;
-}
-
 static bdl_gl_proc lookup(const char *name)
 {
     OSMESAproc p = osm.GetProcAddress(name);
@@ -65,10 +58,10 @@ bdl_result bdl_context_open_osmesa(bdl_context *c, char *why, size_t why_len)
         return BDL_ERR_GL;
     }
     c->library = lib;
-    if (!load_symbol(lib, "OSMesaCreateContextAttribs", &osm.CreateContextAttribs) ||
-        !load_symbol(lib, "OSMesaMakeCurrent", &osm.MakeCurrent) ||
-        !load_symbol(lib, "OSMesaDestroyContext", &osm.DestroyContext) ||
-        !load_symbol(lib, "OSMesaGetProcAddress", &osm.GetProcAddress)) {
+    if (!bdl_context_symbol(lib, "OSMesaCreateContextAttribs", &osm.CreateContextAttribs) ||
+        !bdl_context_symbol(lib, "OSMesaMakeCurrent", &osm.MakeCurrent) ||
+        !bdl_context_symbol(lib, "OSMesaDestroyContext", &osm.DestroyContext) ||
+        !bdl_context_symbol(lib, "OSMesaGetProcAddress", &osm.GetProcAddress)) {
         snprintf(why, why_len,
                  "osmesa: libOSMesa lacks OSMesaCreateContextAttribs (Mesa >= 11.2 "
                  "needed)");

@@ -69,3 +69,27 @@ GLuint bdl_gl_texture_2d(GLenum internal, int w, int h, GLenum format, const voi
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return t;
 }
+
+int bdl_gl_mesh_create(bdl_gl_mesh *m, const char *vert, const char *frag, char *why,
+                       size_t why_len)
+{
+    m->program = bdl_gl_program(vert, frag, why, why_len);
+    if (!m->program)
+        return 0;
+    glGenVertexArrays(1, &m->vao);
+    glBindVertexArray(m->vao);
+    glGenBuffers(1, &m->vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, m->vbo);
+    return 1;
+}
+
+void bdl_gl_mesh_destroy(bdl_gl_mesh *m)
+{
+    if (m->program)
+        glDeleteProgram(m->program);
+    if (m->vao) {
+        glDeleteBuffers(1, &m->vbo);
+        glDeleteVertexArrays(1, &m->vao);
+    }
+    *m = (bdl_gl_mesh){0};
+}

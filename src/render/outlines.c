@@ -167,13 +167,8 @@ void bdl_render_outlines_build(bdl_renderer *r)
 int bdl_render_outlines_create(bdl_renderer *r, char *why, size_t why_len)
 {
     bdl_render_outlines *o = &r->outlines;
-    o->program = bdl_gl_program("line.vert", "line.frag", why, why_len);
-    if (!o->program)
+    if (!bdl_gl_mesh_create(&o->mesh, "line.vert", "line.frag", why, why_len))
         return 0;
-    glGenVertexArrays(1, &o->vao);
-    glBindVertexArray(o->vao);
-    glGenBuffers(1, &o->vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, o->vbo);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)o->line_count * 3 * (GLsizeiptr)sizeof(float),
                  o->lines, GL_STATIC_DRAW);
     glEnableVertexAttribArray(0);
@@ -184,12 +179,7 @@ int bdl_render_outlines_create(bdl_renderer *r, char *why, size_t why_len)
 void bdl_render_outlines_destroy(bdl_renderer *r)
 {
     bdl_render_outlines *o = &r->outlines;
-    if (o->program)
-        glDeleteProgram(o->program);
-    if (o->vao) {
-        glDeleteBuffers(1, &o->vbo);
-        glDeleteVertexArrays(1, &o->vao);
-    }
+    bdl_gl_mesh_destroy(&o->mesh);
     free(o->lines);
 }
 
@@ -199,10 +189,10 @@ void bdl_render_outlines_draw(bdl_renderer *r, const bdl_snapshot *s, const bdl_
     const bdl_render_outlines *o = &r->outlines;
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glUseProgram(o->program);
-    glBindVertexArray(o->vao);
-    GLint offset_at = glGetUniformLocation(o->program, "u_view_proj");
-    GLint color_at = glGetUniformLocation(o->program, "u_color");
+    glUseProgram(o->mesh.program);
+    glBindVertexArray(o->mesh.vao);
+    GLint offset_at = glGetUniformLocation(o->mesh.program, "u_view_proj");
+    GLint color_at = glGetUniformLocation(o->mesh.program, "u_color");
     float light = v->background[0] + v->background[1] + v->background[2] < 1.5f;
     for (int g = 0; g < o->group_count; ++g) {
         const bdl_line_group *lg = &o->groups[g];

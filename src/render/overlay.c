@@ -39,13 +39,8 @@ int bdl_render_overlay_init(bdl_renderer *r, const char *font_path)
 int bdl_render_overlay_create(bdl_renderer *r, char *why, size_t why_len)
 {
     bdl_render_overlay *o = &r->overlay;
-    o->program = bdl_gl_program("overlay.vert", "overlay.frag", why, why_len);
-    if (!o->program)
+    if (!bdl_gl_mesh_create(&o->mesh, "overlay.vert", "overlay.frag", why, why_len))
         return 0;
-    glGenVertexArrays(1, &o->vao);
-    glBindVertexArray(o->vao);
-    glGenBuffers(1, &o->vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, o->vbo);
     const GLsizei stride = sizeof(bdl_overlay_vertex);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, (void *)0);
@@ -72,14 +67,11 @@ int bdl_render_overlay_create(bdl_renderer *r, char *why, size_t why_len)
 void bdl_render_overlay_destroy(bdl_renderer *r)
 {
     bdl_render_overlay *o = &r->overlay;
-    if (o->program)
-        glDeleteProgram(o->program);
-    if (o->vao) {
-        glDeleteBuffers(1, &o->vbo);
-        glDeleteVertexArrays(1, &o->vao);
+    if (o->mesh.vao) {
         GLuint textures[3] = {o->font_texture, o->colormap_texture[0], o->colormap_texture[1]};
         glDeleteTextures(3, textures);
     }
+    bdl_gl_mesh_destroy(&o->mesh);
     if (o->font)
         bdl_font_destroy(o->font);
     for (int k = 0; k < BDL_OVERLAY_MODES; ++k)
@@ -281,11 +273,11 @@ static void draw_batches(const bdl_render_overlay *o, int width, int height)
     glDisable(GL_DEPTH_TEST);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glUseProgram(o->program);
-    glUniform2f(glGetUniformLocation(o->program, "u_viewport"), (float)width, (float)height);
-    glUniform1i(glGetUniformLocation(o->program, "u_texture"), 0);
-    glBindVertexArray(o->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, o->vbo);
+    glUseProgram(o->mesh.program);
+    glUniform2f(glGetUniformLocation(o->mesh.program, "u_viewport"), (float)width, (float)height);
+    glUniform1i(glGetUniformLocation(o->mesh.program, "u_texture"), 0);
+    glBindVertexArray(o->mesh.vao);
+    glBindBuffer(GL_ARRAY_BUFFER, o->mesh.vbo);
     glActiveTexture(GL_TEXTURE0);
     // Flat shapes first, then the colour map, then text on top.
     static const int order[BDL_OVERLAY_MODES] = {BDL_OVERLAY_FLAT, BDL_OVERLAY_COLORMAP,
@@ -298,7 +290,7 @@ static void draw_batches(const bdl_render_overlay *o, int width, int height)
             glBindTexture(GL_TEXTURE_2D, o->font_texture);
         if (mode == BDL_OVERLAY_COLORMAP)
             glBindTexture(GL_TEXTURE_2D, o->colormap_texture[o->bar_diverging]);
-        glUniform1i(glGetUniformLocation(o->program, "u_mode"), mode);
+        glUniform1i(glGetUniformLocation(o->mesh.program, "u_mode"), mode);
         GLsizeiptr bytes =
             (GLsizeiptr)o->quad_count[mode] * 6 * (GLsizeiptr)sizeof(bdl_overlay_vertex);
         glBufferData(GL_ARRAY_BUFFER, bytes, o->quads[mode], GL_STREAM_DRAW);

@@ -29,13 +29,8 @@ static void instance_attributes(GLuint divisor)
 int bdl_render_particles_create(bdl_renderer *r, char *why, size_t why_len)
 {
     bdl_render_particles *p = &r->particles;
-    p->program = bdl_gl_program("sphere.vert", "sphere.frag", why, why_len);
-    if (!p->program)
+    if (!bdl_gl_mesh_create(&p->mesh, "sphere.vert", "sphere.frag", why, why_len))
         return 0;
-    glGenVertexArrays(1, &p->vao);
-    glBindVertexArray(p->vao);
-    glGenBuffers(1, &p->vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, p->vbo);
     instance_attributes(1);
     // The same buffer as one point per particle.
     glGenVertexArrays(1, &p->point_vao);
@@ -50,13 +45,9 @@ int bdl_render_particles_create(bdl_renderer *r, char *why, size_t why_len)
 void bdl_render_particles_destroy(bdl_renderer *r)
 {
     bdl_render_particles *p = &r->particles;
-    if (p->program)
-        glDeleteProgram(p->program);
-    if (p->vao) {
-        glDeleteBuffers(1, &p->vbo);
-        GLuint arrays[2] = {p->vao, p->point_vao};
-        glDeleteVertexArrays(2, arrays);
-    }
+    if (p->point_vao)
+        glDeleteVertexArrays(1, &p->point_vao);
+    bdl_gl_mesh_destroy(&p->mesh);
     bdl_cull_free(&p->cull);
     free(p->visible);
     free(p->instances);
@@ -186,8 +177,8 @@ static void draw_spheres(bdl_render_particles *p, const bdl_snapshot *s, long co
                          const bdl_view *v, const bdl_render_frame *f)
 {
     int points = points_fit(p, s, v, f->view, f->height);
-    set_uniforms(p->program, v, f, points);
-    glBindBuffer(GL_ARRAY_BUFFER, p->vbo);
+    set_uniforms(p->mesh.program, v, f, points);
+    glBindBuffer(GL_ARRAY_BUFFER, p->mesh.vbo);
     // Storage is reallocated only when the particles outgrow it: a fresh allocation each frame
     // costs page faults in a software driver.
     if (count > p->vbo_capacity) {
@@ -201,7 +192,7 @@ static void draw_spheres(bdl_render_particles *p, const bdl_snapshot *s, long co
         glBindVertexArray(p->point_vao);
         glDrawArrays(GL_POINTS, 0, (GLsizei)count);
     } else {
-        glBindVertexArray(p->vao);
+        glBindVertexArray(p->mesh.vao);
         glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, (GLsizei)count);
     }
 }

@@ -24,6 +24,11 @@
 #include "render/gl.h"
 #include "render/renderer.h"
 
+/// A shader program with its vertex array and vertex buffer.
+typedef struct bdl_gl_mesh {
+    GLuint program, vao, vbo;
+} bdl_gl_mesh;
+
 /// The matrices and size of the frame being drawn.
 typedef struct bdl_render_frame {
     float view[16], proj[16], view_proj[16]; ///< column-major
@@ -32,7 +37,8 @@ typedef struct bdl_render_frame {
 
 /// Sphere impostors (particles.c).
 typedef struct bdl_render_particles {
-    GLuint program, vao, point_vao, vbo;
+    bdl_gl_mesh mesh;   ///< the sphere program; its vertex array takes one instance per particle
+    GLuint point_vao;   ///< the same buffer as one point per particle
     float point_max;    ///< largest point size the driver draws [px]
     float max_radius;   ///< of the last snapshot [m]
     long vbo_capacity;  ///< particles the sphere buffer holds
@@ -59,7 +65,7 @@ typedef struct bdl_line_group {
 
 /// Domain and wall outlines (outlines.c).
 typedef struct bdl_render_outlines {
-    GLuint program, vao, vbo;
+    bdl_gl_mesh mesh;
     bdl_line_group groups[BDL_MAX_WALLS + 1];
     int group_count;
     float *lines; ///< xyz per vertex
@@ -68,7 +74,8 @@ typedef struct bdl_render_outlines {
 
 /// The gas-field slice (slice.c).
 typedef struct bdl_render_slice {
-    GLuint program, vao, vbo, texture;
+    bdl_gl_mesh mesh;
+    GLuint texture;
     uint8_t *rgb; ///< the slice's cells as colours
     long rgb_capacity;
     float range[2]; ///< value range of the last slice drawn
@@ -86,7 +93,8 @@ enum { BDL_OVERLAY_FLAT, BDL_OVERLAY_TEXT, BDL_OVERLAY_COLORMAP, BDL_OVERLAY_MOD
 
 /// Text and colour bar (overlay.c).
 typedef struct bdl_render_overlay {
-    GLuint program, vao, vbo, font_texture, colormap_texture[2];
+    bdl_gl_mesh mesh;
+    GLuint font_texture, colormap_texture[2];
     bdl_font *font; ///< NULL: no text
     bdl_overlay_vertex *quads[BDL_OVERLAY_MODES];
     int quad_count[BDL_OVERLAY_MODES];
@@ -148,6 +156,13 @@ void bdl_render_overlay_destroy(bdl_renderer *r);
 
 /// A program linked from two embedded shaders (shaders/NAME); 0 with a sentence in `why`.
 GLuint bdl_gl_program(const char *vert, const char *frag, char *why, size_t why_len);
+
+/// The program, vertex array and vertex buffer of a part of the renderer: created with the
+/// program linked and the array and buffer bound (0 with a sentence in `why`); destroying one
+/// that was never created is fine.
+int bdl_gl_mesh_create(bdl_gl_mesh *m, const char *vert, const char *frag, char *why,
+                       size_t why_len);
+void bdl_gl_mesh_destroy(bdl_gl_mesh *m);
 /// A 2D texture of bytes, clamped at the edges.
 GLuint bdl_gl_texture_2d(GLenum internal, int w, int h, GLenum format, const void *data,
                          GLint filter);

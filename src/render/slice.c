@@ -10,14 +10,9 @@
 int bdl_render_slice_create(bdl_renderer *r, char *why, size_t why_len)
 {
     bdl_render_slice *sl = &r->slice;
-    sl->program = bdl_gl_program("slice.vert", "slice.frag", why, why_len);
-    if (!sl->program)
+    if (!bdl_gl_mesh_create(&sl->mesh, "slice.vert", "slice.frag", why, why_len))
         return 0;
     // 6 vertices of xyz and uv.
-    glGenVertexArrays(1, &sl->vao);
-    glBindVertexArray(sl->vao);
-    glGenBuffers(1, &sl->vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, sl->vbo);
     glEnableVertexAttribArray(0);
     glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 20, (void *)0);
     glEnableVertexAttribArray(1);
@@ -28,12 +23,7 @@ int bdl_render_slice_create(bdl_renderer *r, char *why, size_t why_len)
 void bdl_render_slice_destroy(bdl_renderer *r)
 {
     bdl_render_slice *sl = &r->slice;
-    if (sl->program)
-        glDeleteProgram(sl->program);
-    if (sl->vao) {
-        glDeleteBuffers(1, &sl->vbo);
-        glDeleteVertexArrays(1, &sl->vao);
-    }
+    bdl_gl_mesh_destroy(&sl->mesh);
     if (sl->texture)
         glDeleteTextures(1, &sl->texture);
     free(sl->rgb);
@@ -90,13 +80,14 @@ static void slice_quad(const bdl_snapshot *s, float quad[6][5])
 
 static void draw_quad(bdl_render_slice *sl, float quad[6][5], float opacity, const float *view_proj)
 {
-    glUseProgram(sl->program);
-    glUniformMatrix4fv(glGetUniformLocation(sl->program, "u_view_proj"), 1, GL_FALSE, view_proj);
-    glUniform1f(glGetUniformLocation(sl->program, "u_alpha"), opacity);
-    glUniform1i(glGetUniformLocation(sl->program, "u_cells"), 0);
+    glUseProgram(sl->mesh.program);
+    glUniformMatrix4fv(glGetUniformLocation(sl->mesh.program, "u_view_proj"), 1, GL_FALSE,
+                       view_proj);
+    glUniform1f(glGetUniformLocation(sl->mesh.program, "u_alpha"), opacity);
+    glUniform1i(glGetUniformLocation(sl->mesh.program, "u_cells"), 0);
     glActiveTexture(GL_TEXTURE0);
-    glBindVertexArray(sl->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, sl->vbo);
+    glBindVertexArray(sl->mesh.vao);
+    glBindBuffer(GL_ARRAY_BUFFER, sl->mesh.vbo);
     glBufferData(GL_ARRAY_BUFFER, 6 * 5 * sizeof(float), quad, GL_STREAM_DRAW);
     glEnable(GL_BLEND);
     glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
