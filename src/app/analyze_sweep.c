@@ -46,7 +46,10 @@ static bdl_result write_sweep(const char *out, const bdl_sweep_stage *st, int ns
                 st[k].ratio);
     fprintf(af.file, "# U_mf increasing %.6g m/s, decreasing %.6g m/s; plateau %.6g / %.6g Pa\n",
             br[0].fit.umf, br[1].fit.umf, br[0].fit.plateau, br[1].fit.plateau);
-    bdl_atomic_commit(&af);
+    if (bdl_atomic_commit(&af) != BDL_OK) {
+        fprintf(stderr, "error: cannot write %s\n", path);
+        return BDL_ERR_OUTPUT_DIR;
+    }
     return BDL_OK;
 }
 

@@ -1,13 +1,13 @@
 // bedlam analyze WHAT RUN — the analyses of a finished run: the command line, the output
 // folder, and the call of the analysis asked for (app/analyze.h).
 #include <math.h>
-#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app/analyze.h"
 #include "app/app.h"
+#include "app/options.h"
 #include "core/file.h"
 
 static const char analyze_usage[] =
@@ -59,75 +59,42 @@ static const char analyze_usage[] =
     "codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
 
-/// An option with a value (or a flag) and the field of bdl_analyze_opts it sets.
-typedef enum option_kind {
-    OPTION_TEXT,
-    OPTION_NUMBER,
-    OPTION_LONG,
-    OPTION_INT,
-    OPTION_OFF
-} option_kind;
-
-typedef struct option {
-    const char *name;
-    option_kind kind;
-    size_t field; ///< offsetof in bdl_analyze_opts
-} option;
-
-static const option options[] = {
-    {"--column", OPTION_TEXT, offsetof(bdl_analyze_opts, column)},
-    {"--from", OPTION_NUMBER, offsetof(bdl_analyze_opts, from)},
-    {"--to", OPTION_NUMBER, offsetof(bdl_analyze_opts, to)},
-    {"--fmin", OPTION_NUMBER, offsetof(bdl_analyze_opts, fmin)},
-    {"--fmax", OPTION_NUMBER, offsetof(bdl_analyze_opts, fmax)},
-    {"--file", OPTION_TEXT, offsetof(bdl_analyze_opts, file)},
-    {"--period", OPTION_NUMBER, offsetof(bdl_analyze_opts, period)},
-    {"--start", OPTION_NUMBER, offsetof(bdl_analyze_opts, start)},
-    {"--below", OPTION_NUMBER, offsetof(bdl_analyze_opts, below)},
-    {"--from-cycle", OPTION_LONG, offsetof(bdl_analyze_opts, from_cycle)},
-    {"--to-cycle", OPTION_LONG, offsetof(bdl_analyze_opts, to_cycle)},
-    {"--bins", OPTION_INT, offsetof(bdl_analyze_opts, bins)},
-    {"--out", OPTION_TEXT, offsetof(bdl_analyze_opts, out)},
-    {"--no-plots", OPTION_OFF, offsetof(bdl_analyze_opts, plots)},
+static const bdl_option options[] = {
+    {"--column", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, column)},
+    {"--from", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, from)},
+    {"--to", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, to)},
+    {"--fmin", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, fmin)},
+    {"--fmax", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, fmax)},
+    {"--file", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, file)},
+    {"--period", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, period)},
+    {"--start", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, start)},
+    {"--below", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, below)},
+    {"--from-cycle", BDL_OPTION_LONG, offsetof(bdl_analyze_opts, from_cycle)},
+    {"--to-cycle", BDL_OPTION_LONG, offsetof(bdl_analyze_opts, to_cycle)},
+    {"--bins", BDL_OPTION_INT, offsetof(bdl_analyze_opts, bins)},
+    {"--out", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, out)},
+    {"--no-plots", BDL_OPTION_CLEAR, offsetof(bdl_analyze_opts, plots)},
 };
 
-/// Sets the option `name` from `value` (NULL when the command line has none left). Returns the
-/// arguments it took (2 with a value, 1 a flag), 0 when there is no such option or its value is
-/// missing.
-static int set_option(bdl_analyze_opts *o, const char *name, const char *value)
+/// The run folder (or contact file): one, and no unknown option.
+static int take_run(void *opts, int argc, char **argv, int i)
 {
-    for (size_t k = 0; k < sizeof options / sizeof options[0]; ++k) {
-        const option *opt = &options[k];
-        if (strcmp(name, opt->name) != 0)
-            continue;
-        if (opt->kind != OPTION_OFF && !value)
-            return 0;
-        void *field = (char *)o + opt->field;
-        switch (opt->kind) {
-        case OPTION_TEXT:
-            *(const char **)field = value;
-            break;
-        case OPTION_NUMBER:
-            *(double *)field = atof(value);
-            break;
-        case OPTION_LONG:
-            *(long *)field = atol(value);
-            break;
-        case OPTION_INT:
-            *(int *)field = atoi(value);
-            break;
-        case OPTION_OFF:
-            *(int *)field = 0;
-            return 1;
-        }
-        return 2;
+    (void)argc;
+    bdl_analyze_opts *o = opts;
+    const char *a = argv[i];
+    if (a[0] == '-' || o->run) {
+        fprintf(stderr, "error: unexpected argument '%s'\n\n%s", a, analyze_usage);
+        return 0;
     }
-    return 0;
+    o->run = a;
+    return 1;
 }
 
 /// Reads argv[2..] into *o; *help when --help was printed.
 static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int *help)
 {
+    static const bdl_option_parser parser = {options, BDL_OPTION_COUNT(options), analyze_usage, 1,
+                                             take_run};
     *o = (bdl_analyze_opts){.what = argv[1],
                             .column = "pressure_drop",
                             .file = "diagnostics.csv",
@@ -140,23 +107,7 @@ static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int 
                             .to_cycle = 1L << 40,
                             .bins = -1,
                             .plots = 1};
-    *help = 0;
-    for (int i = 2, used; i < argc; ++i) {
-        const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
-        if (strcmp(a, "--help") == 0) {
-            fputs(analyze_usage, stdout);
-            *help = 1;
-            return BDL_OK;
-        } else if ((used = set_option(o, a, value)) > 0) {
-            i += used - 1;
-        } else if (a[0] == '-' || o->run) {
-            fprintf(stderr, "error: unexpected argument '%s'\n\n%s", a, analyze_usage);
-            return BDL_ERR_ARGS;
-        } else {
-            o->run = a;
-        }
-    }
-    return BDL_OK;
+    return bdl_option_parse(&parser, argc, argv, 2, o, help);
 }
 
 /// The defaults that depend on the analysis, and the checks of the options every analysis but
