@@ -1,6 +1,7 @@
 // Analyses on constructed inputs with known answers: the dominant frequency of a noisy sinusoid,
-// the spectrum's normalisation (Parseval), and U_mf from a sweep built from Ergun's packed
-// branch and a flat fluidized plateau.
+// the spectrum's normalisation (Parseval), U_mf from a sweep built from Ergun's packed branch
+// and a flat fluidized plateau, and the stages and branches of such a sweep read from a time
+// series as a run writes it.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -65,9 +66,61 @@ static void test_umf(void)
     CHECK_CLOSE(r.umf, umf, 0.01); // the plateau's scatter moves it a little
 }
 
+/// The sweep of test_umf as a run's time series: 10 rows a stage 0.01 s apart, the first half of
+/// each a transient (the pressure drop off by 50 Pa), the second half -2, -1, 0, 1, 2 Pa about the
+/// stage's value; a stage of no gas before the sweep, which is left out.
+static void test_sweep_stages(void)
+{
+    const double umf = 1.04, weight = 771.0, b = 150.0, a = (weight - b * umf * umf) / umf;
+    enum { STAGES = 1 + 13 + 12, ROWS = 10 * STAGES };
+    double t[ROWS], u[ROWS], dp[ROWS], ratio[ROWS], su[STAGES];
+    for (int k = 0; k < STAGES; ++k) // 0, then 0.2 ... 2.6 m/s up, 2.4 ... 0.2 m/s down
+        su[k] = k == 0 ? 0.0 : k <= 13 ? 0.2 * k : 0.2 * (26 - k);
+    for (int i = 0; i < ROWS; ++i) {
+        const double v = su[i / 10];
+        const double p = v < umf ? a * v + b * v * v : weight;
+        t[i] = 0.01 * i;
+        u[i] = v;
+        dp[i] = i % 10 < 5 ? p + 50.0 : p + (double)(i % 10 - 7);
+        ratio[i] = dp[i] / weight;
+    }
+    bdl_sweep_stage st[ROWS];
+    const int ns = bdl_sweep_stages(t, u, dp, ratio, ROWS, st);
+    CHECK(ns == STAGES - 1);
+    for (int k = 0; k < ns; ++k) {
+        const double v = su[k + 1], p = v < umf ? a * v + b * v * v : weight;
+        CHECK_CLOSE(st[k].u, v, 1e-15);
+        CHECK_CLOSE(st[k].dp, p, 1e-12);
+        CHECK_CLOSE(st[k].dp_std, sqrt(2.0), 1e-6);
+        CHECK_CLOSE(st[k].ratio, p / weight, 1e-12);
+        CHECK(st[k].branch == (k < 13 ? 1 : -1));
+    }
+    // The decreasing branch: the same fit as its stages given directly, and the plateau's
+    // stages (above U_mf) carry the bed's weight.
+    bdl_sweep_branch down;
+    CHECK(bdl_sweep_branch_fit(st, ns, -1, &down) == BDL_OK);
+    double du[12], ddp[12];
+    for (int k = 0; k < 12; ++k)
+        du[k] = st[13 + k].u, ddp[k] = st[13 + k].dp;
+    const bdl_umf_result direct = bdl_umf_from_sweep(du, ddp, 12);
+    printf("sweep stages: %d, decreasing branch %d stages, U_mf %.4f m/s (1.04), plateau ratio "
+           "%.4f (1)\n",
+           ns, down.stages, down.fit.umf, down.plateau_ratio);
+    CHECK(down.stages == 12);
+    CHECK(down.fit.umf == direct.umf && down.fit.packed == direct.packed);
+    CHECK_CLOSE(down.fit.umf, umf, 1e-6);
+    CHECK_CLOSE(down.plateau_ratio, 1.0, 1e-12);
+    // A single stage is on the decreasing branch (nothing follows it); no stage, no fit.
+    CHECK(bdl_sweep_stages(t + 20, u + 20, dp + 20, ratio + 20, 10, st) == 1);
+    CHECK(st[0].branch == -1);
+    CHECK(bdl_sweep_branch_fit(st, 0, 1, &down) == BDL_OK && down.stages == 0);
+    CHECK(isnan(down.fit.umf) && isnan(down.plateau_ratio));
+}
+
 int main(void)
 {
     test_spectrum();
     test_umf();
+    test_sweep_stages();
     return bdl_test_summary("test_analysis");
 }

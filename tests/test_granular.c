@@ -1,5 +1,6 @@
 // Granular analyses on constructed inputs with known answers: coordination and the
-// multi-contact ratio, the bed-height quantile, Lacey's index of segregated, random and
+// multi-contact ratio, the normal forces and contact counts of a contact list, the bed-height
+// quantile, Lacey's index of segregated, random and
 // perfectly ordered mixtures, force networks of a chain and a lattice (and their independence
 // from the contacts' order), and the fit of the force distribution to samples drawn from it.
 #include <math.h>
@@ -17,8 +18,37 @@ static void test_coordination(void)
     CHECK_CLOSE(s.mean, 7.0 / 6.0, 1e-15);
     CHECK(s.in_contact == 4);
     CHECK_CLOSE(s.multi_contact_ratio, 0.5, 1e-15);
+    CHECK_CLOSE(s.mean_touching, 7.0 / 4.0, 1e-15);
     s = bdl_coordination(count, 1); // one particle, no contact
-    CHECK(s.mean == 0.0 && s.multi_contact_ratio == 0.0);
+    CHECK(s.mean == 0.0 && s.multi_contact_ratio == 0.0 && s.mean_touching == 0.0);
+}
+
+static void test_contact_forces(void)
+{
+    // A chain 0-1-2 pressed, 0-2 touching without force, 3-4 apart, one wall contact.
+    const bdl_contact_rec c[] = {{0, 1, 2.0}, {1, 2, 4.0}, {2, -1, 3.0}, {0, 2, 0.0}, {3, 4, 6.0}};
+    double fn[5];
+    uint8_t count[6] = {0};
+    bdl_contact_forces s = bdl_contact_forces_of(c, 5, fn, count);
+    CHECK(s.walls == 1 && s.pairs == 3);
+    CHECK_CLOSE(s.mean, 4.0, 1e-15);
+    CHECK(fn[0] == 2.0 && fn[1] == 4.0 && fn[2] == 6.0);
+    CHECK(count[0] == 1 && count[1] == 2 && count[2] == 1 && count[3] == 1 && count[4] == 1);
+    CHECK(count[5] == 0);
+    const bdl_coordination_stats z = bdl_coordination(count, 6);
+    CHECK(z.in_contact == 5);
+    CHECK_CLOSE(z.mean_touching, 6.0 / 5.0, 1e-15);
+    // A particle pressed by 300 others: its count stops at 255, what a uint8_t holds.
+    enum { MANY = 300 };
+    static bdl_contact_rec star[MANY];
+    static double star_fn[MANY];
+    static uint8_t star_count[MANY + 1];
+    for (int k = 0; k < MANY; ++k)
+        star[k] = (bdl_contact_rec){0, k + 1, 1.0};
+    s = bdl_contact_forces_of(star, MANY, star_fn, star_count);
+    CHECK(s.pairs == MANY && star_count[0] == 255 && star_count[MANY] == 1);
+    s = bdl_contact_forces_of(c, 0, fn, count); // no contacts
+    CHECK(s.walls == 0 && s.pairs == 0 && s.mean == 0.0);
 }
 
 static void test_height_quantile(void)
@@ -229,6 +259,7 @@ static void test_force_pdf(void)
 int main(void)
 {
     test_coordination();
+    test_contact_forces();
     test_height_quantile();
     test_lacey();
     test_networks_chain();

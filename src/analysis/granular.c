@@ -15,6 +15,27 @@ bdl_coordination_stats bdl_coordination(const uint8_t *count, long n)
     }
     s.mean = n > 0 ? (double)sum / (double)n : 0.0;
     s.multi_contact_ratio = s.in_contact > 0 ? (double)multi / (double)s.in_contact : 0.0;
+    s.mean_touching = s.in_contact > 0 ? s.mean * (double)n / (double)s.in_contact : 0.0;
+    return s;
+}
+
+bdl_contact_forces bdl_contact_forces_of(const bdl_contact_rec *c, long nc, double *fn,
+                                         uint8_t *count)
+{
+    bdl_contact_forces s = {0, 0, 0.0};
+    for (long k = 0; k < nc; ++k) {
+        if (c[k].j < 0) {
+            s.walls++;
+            continue;
+        }
+        if (c[k].fn > 0.0) {
+            fn[s.pairs++] = c[k].fn;
+            s.mean += c[k].fn;
+            count[c[k].i] += count[c[k].i] < 255;
+            count[c[k].j] += count[c[k].j] < 255;
+        }
+    }
+    s.mean = s.pairs > 0 ? s.mean / (double)s.pairs : 0.0;
     return s;
 }
 

@@ -18,7 +18,8 @@
 typedef struct bdl_coordination_stats {
     double mean;
     double multi_contact_ratio;
-    long in_contact; ///< particles with at least one contact
+    long in_contact;      ///< particles with at least one contact
+    double mean_touching; ///< contacts per particle over those with at least one (0 when none)
 } bdl_coordination_stats;
 
 bdl_coordination_stats bdl_coordination(const uint8_t *count, long n);
@@ -45,6 +46,20 @@ typedef struct bdl_contact_rec {
     int32_t i, j;
     double fn;
 } bdl_contact_rec;
+
+/// The normal forces of a contact list: the contacts with walls, the particle pairs that press
+/// on each other (fn > 0) and their mean force [N] (0 when none).
+typedef struct bdl_contact_forces {
+    long walls;
+    long pairs;
+    double mean;
+} bdl_contact_forces;
+
+/// Counts the contacts c[0..nc): fn[] gets the positive pair forces in the list's order (room
+/// for nc), count[] (one per particle id, zeroed by the caller) each particle's pair contacts with
+/// a positive force, at most 255, as bdl_coordination takes them.
+bdl_contact_forces bdl_contact_forces_of(const bdl_contact_rec *c, long nc, double *fn,
+                                         uint8_t *count);
 
 /// Force networks (Sun 2007, ch. 6): sets of particles each in contact, with a nonzero normal
 /// force, with at least one other of the set: the connected components of the graph of the

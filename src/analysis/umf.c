@@ -79,3 +79,72 @@ bdl_umf_result bdl_umf_from_sweep(const double *u, const double *dp, int n)
     free(use);
     return r;
 }
+
+/// Averages rows [i, j) of one stage over its second half in time; 0 when no row is there.
+static int stage_average(const double *t, const double *dp, const double *ratio, long i, long j,
+                         bdl_sweep_stage *g)
+{
+    const double mid = 0.5 * (t[i] + t[j - 1]);
+    double s = 0, s2 = 0, r = 0;
+    long c = 0;
+    for (long k = i; k < j; ++k)
+        if (t[k] >= mid) {
+            s += dp[k], s2 += dp[k] * dp[k], r += ratio[k], ++c;
+        }
+    if (c == 0)
+        return 0;
+    g->dp = s / c;
+    g->dp_std = sqrt(fmax(0.0, s2 / c - g->dp * g->dp));
+    g->ratio = r / c;
+    return 1;
+}
+
+int bdl_sweep_stages(const double *t, const double *u, const double *dp, const double *ratio,
+                     long n, bdl_sweep_stage *out)
+{
+    int count = 0;
+    for (long i = 0; i < n;) {
+        long j = i;
+        while (j < n && fabs(u[j] - u[i]) < 1e-9)
+            ++j;
+        bdl_sweep_stage *g = &out[count];
+        if (u[i] > 0.0 && stage_average(t, dp, ratio, i, j, g))
+            g->u = u[i], ++count;
+        i = j;
+    }
+    for (int k = 0; k < count; ++k) {
+        const double prev = k > 0 ? out[k - 1].u : NAN, next = k + 1 < count ? out[k + 1].u : NAN;
+        out[k].branch = k > 0 ? (out[k].u > prev ? 1 : -1) : (next > out[k].u ? 1 : -1);
+    }
+    return count;
+}
+
+bdl_result bdl_sweep_branch_fit(const bdl_sweep_stage *stages, int count, int branch,
+                                bdl_sweep_branch *out)
+{
+    const size_t size = (size_t)(count > 0 ? count : 1);
+    double *u = calloc(size, sizeof(double)), *dp = calloc(size, sizeof(double));
+    double *ratio = calloc(size, sizeof(double));
+    if (!u || !dp || !ratio) {
+        free(u), free(dp), free(ratio);
+        return BDL_ERR_NOMEM;
+    }
+    int c = 0;
+    for (int k = 0; k < count; ++k)
+        if (stages[k].branch == branch) {
+            u[c] = stages[k].u, dp[c] = stages[k].dp, ratio[c] = stages[k].ratio;
+            ++c;
+        }
+    out->stages = c;
+    out->fit = bdl_umf_from_sweep(u, dp, c);
+    double sum = 0.0;
+    int plateau = 0;
+    for (int k = 0; k < c; ++k)
+        if (isfinite(out->fit.umf) && u[k] > out->fit.umf) {
+            sum += ratio[k];
+            ++plateau;
+        }
+    out->plateau_ratio = plateau ? sum / plateau : NAN;
+    free(u), free(dp), free(ratio);
+    return BDL_OK;
+}

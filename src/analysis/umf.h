@@ -7,6 +7,8 @@
 #ifndef BDL_UMF_H
 #define BDL_UMF_H
 
+#include "core/error.h"
+
 /// Least-squares a U + b U^2 through the points u[k], dp[k] with use[k] set; the U where it equals
 /// `plateau` (*a, *b get the fit). NAN with fewer than two points.
 double bdl_umf_fit(const double *u, const double *dp, const int *use, int n, double plateau,
@@ -24,5 +26,35 @@ typedef struct bdl_umf_result {
 /// split velocity and the plateau (their mean) at and above it, the split chosen for the least
 /// squared residual; U_mf where the two meet.
 bdl_umf_result bdl_umf_from_sweep(const double *u, const double *dp, int n);
+
+/// One stage of a sweep: the rows of a run during which the inlet velocity stays the same.
+typedef struct bdl_sweep_stage {
+    double u;      ///< inlet velocity [m/s]
+    double dp;     ///< mean pressure drop over the stage's second half [Pa]
+    double dp_std; ///< its standard deviation [Pa]
+    double ratio;  ///< mean pressure drop over the bed's weight per area, same rows
+    int branch;    ///< +1 increasing, -1 decreasing: the way the velocity moved to get here
+} bdl_sweep_stage;
+
+/// The stages of a sweep from a run's time series (time t, inlet velocity u, pressure drop dp,
+/// weight ratio; n rows): stretches of consecutive rows whose velocity differs from the
+/// stretch's first by less than 1e-9 m/s, each averaged over its rows from the middle of its time
+/// span on (the first half is the transient after the step), those with u > 0 kept. The first
+/// stage's branch is the way the velocity goes next. `out` has room for n stages; returns their
+/// number.
+int bdl_sweep_stages(const double *t, const double *u, const double *dp, const double *ratio,
+                     long n, bdl_sweep_stage *out);
+
+/// U_mf of one branch of a sweep, and the weight ratio of its fluidized plateau.
+typedef struct bdl_sweep_branch {
+    int stages;           ///< stages on the branch
+    bdl_umf_result fit;   ///< bdl_umf_from_sweep of them
+    double plateau_ratio; ///< mean weight ratio of its stages above U_mf (NAN when none)
+} bdl_sweep_branch;
+
+/// The fit of the stages with the given branch (+1 or -1) of `count` stages. BDL_ERR_NOMEM when
+/// the branch's arrays cannot be allocated.
+bdl_result bdl_sweep_branch_fit(const bdl_sweep_stage *stages, int count, int branch,
+                                bdl_sweep_branch *out);
 
 #endif

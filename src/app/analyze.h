@@ -1,31 +1,31 @@
-// bedlam analyze — shared pieces of the analysis subcommands.
+// bedlam analyze — the analyses of a finished run, one function each, and the options they share.
+// cmd_analyze.c parses the command line and calls them; the arithmetic is in analysis/.
 #ifndef BDL_ANALYZE_H
 #define BDL_ANALYZE_H
 
-/// Reads one column of RUN/FILE (a CSV with a header) into a malloc'ed array; prints an error
-/// and returns 0 when it is missing or empty.
-int bdl_analyze_read_column(const char *run, const char *file, const char *column, double **out,
-                            long *n);
+#include "core/error.h"
 
-/// Runs gnuplot on a script, then deletes the script; warns when gnuplot is missing.
-void bdl_analyze_gnuplot(const char *script_path);
-
-typedef struct bdl_phase_opts {
-    const char *file, *column, *out;
-    double period, start, below;
+typedef struct bdl_analyze_opts {
+    const char *what;   ///< the analysis: sweep, spectrum, mean, phase, profile or networks
+    const char *run;    ///< the run folder (networks: the contact file)
+    const char *out;    ///< the folder the files go to
+    const char *file;   ///< the run's CSV file (spectrum, mean, phase)
+    const char *column; ///< its column
+    double from, to;    ///< time window [s]
+    double fmin, fmax;  ///< spectrum: band of the dominant frequency [Hz]; networks: fmax is F
+    double period;      ///< phase: of the cycle [s]
+    double start;       ///< phase: time the first cycle starts [s]
+    double below;       ///< phase: threshold of the intervals reported (NAN: none)
     long from_cycle, to_cycle;
-    int bins, plots;
-} bdl_phase_opts;
+    int bins;  ///< phase bins, or force bins of networks
+    int plots; ///< run gnuplot
+} bdl_analyze_opts;
 
-/// `analyze phase`: the column folded over the vibration cycle.
-bdl_result bdl_analyze_phase(const char *run, const bdl_phase_opts *o);
-
-/// `analyze networks`: force networks and the force distribution of a contact file.
-bdl_result bdl_analyze_networks(const char *file, const char *out, int bins, double fmax,
-                                int plots);
-
-/// `analyze profile`: the run's profile.csv (solids fraction of each gas cell layer) averaged
-/// over [from, to].
-bdl_result bdl_analyze_profile(const char *run, const char *out, double from, double to, int plots);
+bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);
+bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o);
+bdl_result bdl_analyze_mean(const bdl_analyze_opts *o);
+bdl_result bdl_analyze_phase(const bdl_analyze_opts *o);
+bdl_result bdl_analyze_profile(const bdl_analyze_opts *o);
+bdl_result bdl_analyze_networks(const bdl_analyze_opts *o);
 
 #endif

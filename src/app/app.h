@@ -45,4 +45,10 @@ typedef struct bdl_scene_opts {
 
 bdl_result bdl_parse_scene_opts(int argc, char **argv, const char *usage, bdl_scene_opts *opts);
 
+typedef struct bdl_world bdl_world;
+
+/// The world of the scene file at `path` with its --set overrides; prints why there is none.
+bdl_result bdl_load_world(const char *path, const char *const *overrides, int override_count,
+                          bdl_world **w);
+
 #endif

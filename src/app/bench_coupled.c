@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/options.h"
 #include "cfd/gas.h"
 #include "core/timer.h"
 #include "world/world.h"
@@ -35,19 +36,13 @@ typedef struct timing {
     int cells[3];
 } timing;
 
-/// Builds the world, runs the warm-up, times the window. Returns 0 on success, else an exit code.
+/// Builds the world, runs the warm-up, times the window; what stopped it otherwise (printed).
 static bdl_result time_window(const char *path, double warmup, double timed, timing *t)
 {
-    bdl_scene *scene = calloc(1, sizeof *scene);
-    bdl_scene_error err;
     bdl_world *w = NULL;
-    if (!scene || bdl_scene_load(path, NULL, 0, scene, &err) != BDL_OK ||
-        bdl_world_create(scene, &w, &err) != BDL_OK) {
-        fprintf(stderr, "error: %s\n", scene ? err.message : "out of memory");
-        free(scene);
-        return scene ? BDL_ERR_SCENE : BDL_ERR_NOMEM;
-    }
-    bdl_result code = BDL_OK;
+    bdl_result code = bdl_load_world(path, NULL, 0, &w);
+    if (code != BDL_OK)
+        return code;
     if (!w->gas) {
         fprintf(stderr, "error: %s has no [gas] section\n", path);
         code = BDL_ERR_SCENE;
@@ -74,7 +69,6 @@ static bdl_result time_window(const char *path, double warmup, double timed, tim
         memcpy(t->cells, w->gas->grid.n, sizeof t->cells);
     }
     bdl_world_destroy(w);
-    free(scene);
     return code;
 }
 
@@ -84,45 +78,50 @@ static int compare_wall(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-bdl_result bdl_bench_coupled(int argc, char **argv)
+typedef struct coupled_opts {
+    const char *path;
+    double warmup, time;
+    int threads, repeat;
+} coupled_opts;
+
+static const bdl_option coupled_options[] = {
+    {"--warmup", BDL_OPTION_NUMBER, offsetof(coupled_opts, warmup)},
+    {"--time", BDL_OPTION_NUMBER, offsetof(coupled_opts, time)},
+    {"--repeat", BDL_OPTION_INT, offsetof(coupled_opts, repeat)},
+    {"--threads", BDL_OPTION_INT, offsetof(coupled_opts, threads)},
+};
+
+/// The scene: any argument that is not an option.
+static int take_scene(void *opts, int argc, char **argv, int i)
 {
-    const char *path = "scenes/fluidized_bed.ini";
-    double warmup = 0.5, timed = 0.5;
-    int threads = 0, repeat = 1;
-    for (int k = 1; k < argc; ++k) {
-        const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage, stdout);
-            return BDL_OK;
-        } else if (v && strcmp(a, "--warmup") == 0) {
-            warmup = atof(v), ++k;
-        } else if (v && strcmp(a, "--time") == 0) {
-            timed = atof(v), ++k;
-        } else if (v && strcmp(a, "--repeat") == 0) {
-            repeat = atoi(v), ++k;
-        } else if (v && strcmp(a, "--threads") == 0) {
-            threads = atoi(v), ++k;
-        } else if (a[0] != '-') {
-            path = a;
-        } else {
-            fprintf(stderr, "error: bench coupled: bad option '%s'\n\n%s", a, usage);
-            return BDL_ERR_ARGS;
-        }
+    (void)argc;
+    if (argv[i][0] != '-') {
+        ((coupled_opts *)opts)->path = argv[i];
+        return 1;
     }
-    if (!(warmup >= 0.0) || !(timed > 0.0) || threads < 0 || repeat < 1 || repeat > 100) {
+    fprintf(stderr, "error: bench coupled: bad option '%s'\n\n%s", argv[i], usage);
+    return 0;
+}
+
+/// Reads the options into *o; *help when --help was printed.
+static bdl_result parse_coupled(int argc, char **argv, coupled_opts *o, int *help)
+{
+    static const bdl_option_parser parser = {coupled_options, BDL_OPTION_COUNT(coupled_options),
+                                             usage, 0, take_scene};
+    bdl_result r = bdl_option_parse(&parser, argc, argv, 1, o, help);
+    if (r != BDL_OK || *help)
+        return r;
+    if (!(o->warmup >= 0.0) || !(o->time > 0.0) || o->threads < 0 || o->repeat < 1 ||
+        o->repeat > 100) {
         fprintf(stderr, "error: bench coupled: --warmup >= 0, --time > 0, --repeat 1..100, "
                         "--threads >= 0\n");
         return BDL_ERR_ARGS;
     }
-    if (threads > 0)
-        omp_set_num_threads(threads);
-    timing runs[100];
-    for (int r = 0; r < repeat; ++r) {
-        bdl_result code = time_window(path, warmup, timed, &runs[r]);
-        if (code != BDL_OK)
-            return code;
-    }
-    qsort(runs, (size_t)repeat, sizeof runs[0], compare_wall);
+    return BDL_OK;
+}
+
+static void report(const char *path, const timing *runs, int repeat)
+{
     const timing *t = &runs[0];
     const double median = runs[repeat / 2].wall;
     const double dem = t->wall - t->gas - t->coupling;
@@ -142,5 +141,22 @@ bdl_result bdl_bench_coupled(int argc, char **argv)
            100.0 * (t->gas + t->coupling) / t->wall);
     printf("pressure solver: %d iterations in the last gas step (relative residual %.2g)\n",
            t->iterations, t->residual);
+}
+
+bdl_result bdl_bench_coupled(int argc, char **argv)
+{
+    coupled_opts o = {"scenes/fluidized_bed.ini", 0.5, 0.5, 0, 1};
+    int help;
+    bdl_result code = parse_coupled(argc, argv, &o, &help);
+    if (code != BDL_OK || help)
+        return code;
+    if (o.threads > 0)
+        omp_set_num_threads(o.threads);
+    timing runs[100];
+    for (int r = 0; r < o.repeat; ++r)
+        if ((code = time_window(o.path, o.warmup, o.time, &runs[r])) != BDL_OK)
+            return code;
+    qsort(runs, (size_t)o.repeat, sizeof runs[0], compare_wall);
+    report(o.path, runs, o.repeat);
     return BDL_OK;
 }

@@ -20,6 +20,8 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/options.h"
+#include "dem/material.h"
 #include "core/rng.h"
 #include "core/timer.h"
 #include "io/png.h"
@@ -57,7 +59,7 @@ typedef struct render_opts {
 static const char bed_scene[] =
     "[run]\nend_time = 100\n"
     "[domain]\nmin = 0 0 0\nmax = %.17g %.17g %.17g\n"
-    "[contact]\nlaw = hertz\n"
+    "[contact]\nlaw = %s\n"
     "[species glass]\ndiameter = 0.001\ndensity = 2500\nyoungs_modulus = 1e7\n"
     "poisson_ratio = 0.25\nrestitution = 0.5\nfriction = 0.5\n"
     "[wall floor]\ntype = box\nmin = 0 0 0\nmax = %.17g %.17g %.17g\n"
@@ -70,8 +72,9 @@ static int load_scene(bdl_scene *scene, long n, const render_opts *o)
     // A cube holding n spheres at solids fraction 0.3, twice as tall.
     double side = cbrt((double)n * BDL_PI / 6.0 * 1e-9 / 0.3);
     char text[2048];
-    snprintf(text, sizeof text, bed_scene, side, side, 2.0 * side, side, side, 2.0 * side, side,
-             side, side, n, o->width, o->height, o->samples);
+    snprintf(text, sizeof text, bed_scene, side, side, 2.0 * side,
+             bdl_normal_law_names[BDL_LAW_HERTZ], side, side, 2.0 * side, side, side, side, n,
+             o->width, o->height, o->samples);
     bdl_scene_error err;
     if (bdl_scene_load_string(text, "bench-render", NULL, 0, scene, &err) != BDL_OK) {
         fprintf(stderr, "bench render: %s\n", err.message);
@@ -273,44 +276,55 @@ static void solver_cost(const render_opts *o, bdl_scene *scene)
         dump_cost(o, scene, o->solver, 0.0);
 }
 
-bdl_result bdl_bench_render(int argc, char **argv)
+static const bdl_option render_options[] = {
+    {"--samples", BDL_OPTION_INT, offsetof(render_opts, samples)},
+    {"--max", BDL_OPTION_LONG, offsetof(render_opts, max)},
+    {"--solver", BDL_OPTION_LONG, offsetof(render_opts, solver)},
+    {"--video", BDL_OPTION_LONG, offsetof(render_opts, video)},
+    {"--threads", BDL_OPTION_INT, offsetof(render_opts, threads)},
+};
+
+/// --gl (not sdl: frames are headless) and --size WxH, which the table cannot hold.
+static int take_gl_size(void *opts, int argc, char **argv, int i)
 {
-    render_opts o = {BDL_GL_AUTO, 1280, 720, 4, 0, 1000000, 20000, 2000};
-    for (int k = 1; k < argc; ++k) {
-        const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(usage, stdout);
-            return BDL_OK;
-        } else if (v && strcmp(a, "--gl") == 0 && bdl_gl_backend_parse(v, &o.backend) &&
-                   o.backend != BDL_GL_SDL) {
-            ++k;
-        } else if (v && strcmp(a, "--size") == 0 && sscanf(v, "%dx%d", &o.width, &o.height) == 2) {
-            ++k;
-        } else if (v && strcmp(a, "--samples") == 0) {
-            o.samples = atoi(v), ++k;
-        } else if (v && strcmp(a, "--max") == 0) {
-            o.max = atol(v), ++k;
-        } else if (v && strcmp(a, "--solver") == 0) {
-            o.solver = atol(v), ++k;
-        } else if (v && strcmp(a, "--video") == 0) {
-            o.video = atol(v), ++k;
-        } else if (v && strcmp(a, "--threads") == 0) {
-            o.threads = atoi(v), ++k;
-        } else {
-            fprintf(stderr, "error: bench render: bad option '%s'\n\n%s", a, usage);
-            return BDL_ERR_ARGS;
-        }
-    }
-    if (o.width < 16 || o.height < 16 || o.width > 8192 || o.height > 8192 || o.samples < 0 ||
-        o.samples > 16 || o.max < 1 || o.solver < 0 || o.video < 0 || o.threads < 0) {
+    render_opts *o = opts;
+    const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
+    if (v && strcmp(a, "--gl") == 0 && bdl_gl_backend_parse(v, &o->backend) &&
+        o->backend != BDL_GL_SDL)
+        return 2;
+    if (v && strcmp(a, "--size") == 0 && sscanf(v, "%dx%d", &o->width, &o->height) == 2)
+        return 2;
+    fprintf(stderr, "error: bench render: bad option '%s'\n\n%s", a, usage);
+    return 0;
+}
+
+/// Reads the options into *o; *help when --help was printed.
+static bdl_result parse_render(int argc, char **argv, render_opts *o, int *help)
+{
+    static const bdl_option_parser parser = {render_options, BDL_OPTION_COUNT(render_options),
+                                             usage, 0, take_gl_size};
+    bdl_result r = bdl_option_parse(&parser, argc, argv, 1, o, help);
+    if (r != BDL_OK || *help)
+        return r;
+    if (o->width < 16 || o->height < 16 || o->width > 8192 || o->height > 8192 || o->samples < 0 ||
+        o->samples > 16 || o->max < 1 || o->solver < 0 || o->video < 0 || o->threads < 0) {
         fprintf(stderr, "error: bench render: size 16..8192, samples 0..16, --max >= 1\n");
         return BDL_ERR_ARGS;
     }
+    return BDL_OK;
+}
+
+bdl_result bdl_bench_render(int argc, char **argv)
+{
+    render_opts o = {BDL_GL_AUTO, 1280, 720, 4, 0, 1000000, 20000, 2000};
+    int help;
+    bdl_result r = parse_render(argc, argv, &o, &help);
+    if (r != BDL_OK || help)
+        return r;
     char why[1024];
     bdl_context *ctx = NULL;
     bdl_context_def cd = {.backend = o.backend, .width = o.width, .height = o.height};
-    bdl_result r = bdl_context_create(&cd, &ctx, why, sizeof why);
-    if (r != BDL_OK) {
+    if ((r = bdl_context_create(&cd, &ctx, why, sizeof why)) != BDL_OK) {
         fprintf(stderr, "error: %s\n", why);
         return r;
     }

@@ -15,8 +15,10 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/options.h"
 #include "core/timer.h"
 #include "core/file.h"
+#include "dem/material.h"
 #include "output/checkpoint.h"
 #include "world/world.h"
 
@@ -127,22 +129,22 @@ static double max_overlap(const bdl_world *w)
     return most;
 }
 
-static int steps(bdl_world *w, long count)
+static bdl_result steps(bdl_world *w, long count)
 {
-    for (long s = 0; s < count; ++s)
-        if (bdl_world_step(w) != BDL_OK)
-            return 0;
-    return 1;
+    bdl_result r = BDL_OK;
+    for (long s = 0; r == BDL_OK && s < count; ++s)
+        r = bdl_world_step(w);
+    return r;
 }
 
 /// Brings a freshly filled bed to rest at 1 g (the protocol at the top of the file).
-static int settle(bdl_world *w, long n, const bench_opts *o, double tc, double mgd)
+static bdl_result settle(bdl_world *w, long n, const bench_opts *o, double tc, double mgd)
 {
     // Fall and compact at 5 g until the kinetic energy has died down.
     long fall = 0;
-    int ok = 1;
-    while (ok && fall < BED_FALL_MAX) {
-        ok = steps(w, 250);
+    bdl_result r = BDL_OK;
+    while (r == BDL_OK && fall < BED_FALL_MAX) {
+        r = steps(w, 250);
         fall += 250;
         double ke = kinetic_energy(w) / (BED_COMPACT_G * mgd);
         if (!o->quiet)
@@ -154,75 +156,74 @@ static int settle(bdl_world *w, long n, const bench_opts *o, double tc, double m
     // Unload to 1 g slowly under strong damping, so that the stored elastic energy does not
     // throw the bed up; hold; relax without damping at the timed time step.
     w->background_damping[0] = BED_UNLOAD_DAMP;
-    for (long s = 0; ok && s < BED_UNLOAD; ++s) {
+    for (long s = 0; r == BDL_OK && s < BED_UNLOAD; ++s) {
         double g = BED_COMPACT_G + (1.0 - BED_COMPACT_G) * (double)(s + 1) / BED_UNLOAD;
         w->scene.gravity = bdl_v3(0.0, 0.0, -g * BED_G);
-        ok = bdl_world_step(w) == BDL_OK;
+        r = bdl_world_step(w);
     }
-    ok = ok && steps(w, BED_HOLD1);
+    r = r == BDL_OK ? steps(w, BED_HOLD1) : r;
     w->background_damping[0] = BED_HOLD_DAMP;
-    ok = ok && steps(w, BED_HOLD2);
+    r = r == BDL_OK ? steps(w, BED_HOLD2) : r;
     w->background_damping[0] = 0.0;
     w->dt = BED_RUN_DT * tc;
     w->contact_time_dt_ratio = w->dt / tc;
-    ok = ok && steps(w, BED_RELAX);
-    if (!ok)
+    r = r == BDL_OK ? steps(w, BED_RELAX) : r;
+    if (r != BDL_OK)
         fprintf(stderr, "bench: a settling step failed\n");
-    return ok;
+    return r;
 }
 
-/// A settled, dense bed of n spheres (see the top of the file).
-static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
+/// The scene of the bed of n spheres: a box `side` wide, filled to `fill` (see the top of the
+/// file).
+static void bed_scene(long n, const bench_opts *o, char *text, size_t len, double *side)
 {
-    double t0 = bdl_wall_seconds();
-    double d = BED_D;
-    double solid = (double)n * 3.14159265358979323846 / 6.0 * d * d * d;
-    double side = sqrt(solid / BED_PHI / (o->height * d));
+    const double d = BED_D;
+    const double solid = (double)n * 3.14159265358979323846 / 6.0 * d * d * d;
+    *side = sqrt(solid / BED_PHI / (o->height * d));
     // The fill region's height gives the fill solids fraction in the volume the centres can
     // reach (the region less a radius at each side), which matters for small beds.
-    double fill =
-        o->height * d * BED_PHI / BED_FILL_PHI * (side * side) / ((side - d) * (side - d)) + d;
+    const double fill =
+        o->height * d * BED_PHI / BED_FILL_PHI * (*side * *side) / ((*side - d) * (*side - d)) + d;
     char skin[64] = "";
     if (o->skin > 0.0)
         snprintf(skin, sizeof skin, "skin = %.17g\n", o->skin);
-    char text[4096];
-    snprintf(text, sizeof text,
+    snprintf(text, len,
              "[run]\nend_time = 1\ngravity = 0 0 %.17g\nseed = 3\n"
              "[domain]\nmin = 0 0 0\nmax = %.17g %.17g %.17g\nperiodic = x y\n"
-             "[contact]\nlaw = hertz\n%s"
+             "[contact]\nlaw = %s\n%s"
              "[species glass]\ndiameter = %.17g\ndensity = 2500\nyoungs_modulus = 1e7\n"
              "poisson_ratio = 0.25\nrestitution = 0.5\nfriction = 0.5\nbackground_damping = %g\n"
              "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
              "[create bed]\ntype = random\nspecies = glass\nregion_min = 0 0 0\n"
              "region_max = %.17g %.17g %.17g\ncount = %ld\n",
-             -BED_COMPACT_G * BED_G, side, side, fill + 4.0 * d, skin, d, BED_FALL_DAMP, side, side,
-             fill, n);
+             -BED_COMPACT_G * BED_G, *side, *side, fill + 4.0 * d,
+             bdl_normal_law_names[BDL_LAW_HERTZ], skin, d, BED_FALL_DAMP, *side, *side, fill, n);
+}
+
+/// The world of a scene text; prints why there is none.
+static bdl_result bed_world(const char *text, bdl_world **w)
+{
     bdl_scene *scene = calloc(1, sizeof *scene);
+    if (!scene)
+        return BDL_ERR_NOMEM;
     bdl_scene_error err;
-    bdl_world *w = NULL;
-    if (scene && bdl_scene_load_string(text, "bench-dem", NULL, 0, scene, &err) == BDL_OK) {
-        if (bdl_world_create(scene, &w, &err) != BDL_OK) {
-            fprintf(stderr, "bench: %s\n", err.message);
-            w = NULL;
-        }
-    } else if (scene) {
-        fprintf(stderr, "bench: %s\n", err.message);
-    }
+    bdl_result r = bdl_scene_load_string(text, "bench-dem", NULL, 0, scene, &err);
+    if (r == BDL_OK)
+        r = bdl_world_create(scene, w, &err);
+    if (r != BDL_OK)
+        fprintf(stderr, "bench: %s\n", r == BDL_ERR_SCENE ? err.message : bdl_result_text(r));
     free(scene);
-    if (!w)
-        return NULL;
-    // The time step is a fixed fraction of the contact time at 1 m/s (not of the world's
-    // reference speed, which grows with the box): the same at every size.
-    double tc = bdl_world_min_contact_time(w, 1.0, NULL, 0);
-    w->contact_time = tc;
-    w->dt = BED_SETTLE_DT * tc;
-    double m = 1.0 / w->particles.inv_mass[0];
-    double mgd = m * BED_G * d * (double)w->particles.count;
-    char cached[1024] = "";
+    return r;
+}
+
+/// Loads the settled bed from the --bed-dir checkpoint when there is one, else settles it and
+/// keeps it there. mgd: m g d summed over the particles.
+static bdl_result settle_or_load(bdl_world *w, long n, const bench_opts *o, double tc, double mgd)
+{
+    char cached[1024] = "", why[256];
     if (o->bed_dir)
         snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g.chk", o->bed_dir, n, o->height,
                  o->skin);
-    char why[256];
     FILE *exists = cached[0] ? fopen(cached, "rb") : NULL;
     int loaded = 0;
     if (exists) {
@@ -236,13 +237,17 @@ static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
         w->background_damping[0] = 0.0;
         if (!o->quiet)
             printf("  settled bed loaded from %s\n", cached);
-    } else if (!settle(w, n, o, tc, mgd)) {
-        bdl_world_destroy(w);
-        return NULL;
+        return BDL_OK;
     }
-    if (cached[0] && !loaded && bdl_checkpoint_save(w, cached) != BDL_OK)
+    bdl_result r = settle(w, n, o, tc, mgd);
+    if (r == BDL_OK && cached[0] && bdl_checkpoint_save(w, cached) != BDL_OK)
         fprintf(stderr, "bench: cannot save the settled bed to %s (timing goes on)\n", cached);
+    return r;
+}
 
+static void describe_bed(const bdl_world *w, double side, double mgd, double t0, bed_info *info)
+{
+    const double d = BED_D;
     info->setup_seconds = bdl_wall_seconds() - t0;
     info->settle_steps = w->step;
     info->dt = w->dt;
@@ -258,7 +263,35 @@ static bdl_world *make_bed(long n, const bench_opts *o, bed_info *info)
            "steps, %.1f s\n",
            w->particles.count, side / d, side / d, info->depth, info->coordination,
            100.0 * info->max_overlap, info->ke, w->dt, info->settle_steps, info->setup_seconds);
-    return w;
+}
+
+/// A settled, dense bed of n spheres (see the top of the file).
+static bdl_result make_bed(long n, const bench_opts *o, bed_info *info, bdl_world **out)
+{
+    const double t0 = bdl_wall_seconds();
+    char text[4096];
+    double side;
+    bed_scene(n, o, text, sizeof text, &side);
+    bdl_world *w = NULL;
+    bdl_result r = bed_world(text, &w);
+    if (r == BDL_ERR_SCENE) // exit 1 for a bed the bench cannot build, as for any failure of it
+        return BDL_ERR_NOMEM;
+    if (r != BDL_OK)
+        return r;
+    // The time step is a fixed fraction of the contact time at 1 m/s (not of the world's
+    // reference speed, which grows with the box): the same at every size.
+    const double tc = bdl_world_min_contact_time(w, 1.0, NULL, 0);
+    w->contact_time = tc;
+    w->dt = BED_SETTLE_DT * tc;
+    const double m = 1.0 / w->particles.inv_mass[0];
+    const double mgd = m * BED_G * BED_D * (double)w->particles.count;
+    if ((r = settle_or_load(w, n, o, tc, mgd)) != BDL_OK) {
+        bdl_world_destroy(w);
+        return r;
+    }
+    describe_bed(w, side, mgd, t0, info);
+    *out = w;
+    return BDL_OK;
 }
 
 /// How far apart in memory the partners of the listed pairs are: the share of pairs whose
@@ -344,60 +377,119 @@ static long timed_steps(const bench_opts *o, long n)
     return s < 20 ? 20 : s;
 }
 
+static const bdl_option bench_options[] = {
+    {"--scaling", BDL_OPTION_SET, offsetof(bench_opts, scaling)},
+    {"--quiet", BDL_OPTION_SET, offsetof(bench_opts, quiet)},
+    {"--particles", BDL_OPTION_LONG, offsetof(bench_opts, particles)},
+    {"--steps", BDL_OPTION_LONG, offsetof(bench_opts, steps)},
+    {"--repeat", BDL_OPTION_INT, offsetof(bench_opts, repeat)},
+    {"--height", BDL_OPTION_NUMBER, offsetof(bench_opts, height)},
+    {"--skin", BDL_OPTION_NUMBER, offsetof(bench_opts, skin)},
+    {"--bed-dir", BDL_OPTION_TEXT, offsetof(bench_opts, bed_dir)},
+    {"--csv", BDL_OPTION_TEXT, offsetof(bench_opts, csv)},
+};
+
+/// --threads 1,2,4: at most 16 counts.
+static void parse_thread_list(const char *list, bench_opts *o)
+{
+    o->thread_count = 0;
+    char buf[128];
+    snprintf(buf, sizeof buf, "%s", list);
+    for (char *t = strtok(buf, ","); t && o->thread_count < 16; t = strtok(NULL, ","))
+        o->threads[o->thread_count++] = atoi(t);
+}
+
+/// --threads LIST, the one option the table cannot hold.
+static int take_threads(void *opts, int argc, char **argv, int i)
+{
+    if (i + 1 < argc && strcmp(argv[i], "--threads") == 0) {
+        parse_thread_list(argv[i + 1], opts);
+        return 2;
+    }
+    fprintf(stderr, "error: unknown bench option '%s'\n\n%s", argv[i], bench_usage);
+    return 0;
+}
+
+/// Reads argv[k..] (after the case name) into *o; *help when --help was printed.
+static bdl_result parse_bench(int argc, char **argv, int k, bench_opts *o, int *help)
+{
+    static const bdl_option_parser parser = {bench_options, BDL_OPTION_COUNT(bench_options),
+                                             bench_usage, 0, take_threads};
+    bdl_result r = bdl_option_parse(&parser, argc, argv, k, o, help);
+    if (r != BDL_OK || *help)
+        return r;
+    int bad_threads = o->thread_count < 1;
+    for (int t = 0; t < o->thread_count; ++t)
+        bad_threads |= o->threads[t] < 1;
+    if (o->particles < 100 || o->steps < 0 || o->repeat < 1 || bad_threads || !(o->height >= 2.0) ||
+        o->skin < 0.0 || o->skin > 1.0) {
+        fprintf(stderr, "error: bench needs --particles >= 100, --steps >= 1, --repeat >= 1, "
+                        "--threads >= 1, --height >= 2, 0 < --skin <= 1\n");
+        return BDL_ERR_ARGS;
+    }
+    return BDL_OK;
+}
+
+/// The bed of --particles timed on each thread count, with the speed-up against the first.
+static bdl_result time_threads(const bench_opts *o, FILE *csv)
+{
+    bed_info bed;
+    bdl_world *w = NULL;
+    bdl_result r = make_bed(o->particles, o, &bed, &w);
+    if (r != BDL_OK)
+        return r;
+    report_locality(w);
+    long count = timed_steps(o, w->particles.count);
+    printf("timed: %ld steps per repetition\n", count);
+    report_header();
+    double base = 0.0, base_median = 0.0;
+    for (int t = 0; t < o->thread_count; ++t) {
+        bench_result res = time_steps(w, o->threads[t], count, o->repeat);
+        report(&res, &bed, csv);
+        if (t == 0) {
+            base = res.rate;
+            base_median = res.rate_median;
+        } else {
+            printf("  speed-up %d vs %d threads: %.2fx (medians: %.2fx)\n", o->threads[t],
+                   o->threads[0], res.rate / base, res.rate_median / base_median);
+        }
+    }
+    bdl_world_destroy(w);
+    return BDL_OK;
+}
+
+/// Beds of 10^3 to 10^6 particles, each timed on one thread.
+static bdl_result time_scaling(const bench_opts *o, FILE *csv)
+{
+    printf("scaling on one thread (settling on all threads):\n");
+    for (long n = 1000; n <= 1000000; n *= 10) {
+        omp_set_num_threads(omp_get_num_procs());
+        bed_info bed;
+        bdl_world *w = NULL;
+        bdl_result r = make_bed(n, o, &bed, &w);
+        if (r != BDL_OK)
+            return r;
+        report_header();
+        bench_result res = time_steps(w, 1, timed_steps(o, n), o->repeat);
+        report(&res, &bed, csv);
+        bdl_world_destroy(w);
+    }
+    return BDL_OK;
+}
+
 bdl_result bdl_cmd_bench(int argc, char **argv)
 {
     bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL, NULL};
-    int k = 1;
+    int k = 1, help;
     if (k < argc && strcmp(argv[k], "render") == 0)
         return bdl_bench_render(argc - 1, argv + 1);
     if (k < argc && strcmp(argv[k], "coupled") == 0)
         return bdl_bench_coupled(argc - 1, argv + 1);
     if (k < argc && strcmp(argv[k], "dem") == 0)
         ++k;
-    for (; k < argc; ++k) {
-        const char *a = argv[k], *v = k + 1 < argc ? argv[k + 1] : NULL;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(bench_usage, stdout);
-            return BDL_OK;
-        } else if (strcmp(a, "--scaling") == 0) {
-            o.scaling = 1;
-        } else if (strcmp(a, "--quiet") == 0) {
-            o.quiet = 1;
-        } else if (v && strcmp(a, "--particles") == 0) {
-            o.particles = atol(v), ++k;
-        } else if (v && strcmp(a, "--steps") == 0) {
-            o.steps = atol(v), ++k;
-        } else if (v && strcmp(a, "--repeat") == 0) {
-            o.repeat = atoi(v), ++k;
-        } else if (v && strcmp(a, "--height") == 0) {
-            o.height = atof(v), ++k;
-        } else if (v && strcmp(a, "--skin") == 0) {
-            o.skin = atof(v), ++k;
-        } else if (v && strcmp(a, "--bed-dir") == 0) {
-            o.bed_dir = v, ++k;
-        } else if (v && strcmp(a, "--csv") == 0) {
-            o.csv = v, ++k;
-        } else if (v && strcmp(a, "--threads") == 0) {
-            o.thread_count = 0;
-            char buf[128];
-            snprintf(buf, sizeof buf, "%s", v);
-            for (char *t = strtok(buf, ","); t && o.thread_count < 16; t = strtok(NULL, ","))
-                o.threads[o.thread_count++] = atoi(t);
-            ++k;
-        } else {
-            fprintf(stderr, "error: unknown bench option '%s'\n\n%s", a, bench_usage);
-            return BDL_ERR_ARGS;
-        }
-    }
-    int bad_threads = o.thread_count < 1;
-    for (int t = 0; t < o.thread_count; ++t)
-        bad_threads |= o.threads[t] < 1;
-    if (o.particles < 100 || o.steps < 0 || o.repeat < 1 || bad_threads || !(o.height >= 2.0) ||
-        o.skin < 0.0 || o.skin > 1.0) {
-        fprintf(stderr, "error: bench needs --particles >= 100, --steps >= 1, --repeat >= 1, "
-                        "--threads >= 1, --height >= 2, 0 < --skin <= 1\n");
-        return BDL_ERR_ARGS;
-    }
+    bdl_result r = parse_bench(argc, argv, k, &o, &help);
+    if (r != BDL_OK || help)
+        return r;
     if (o.bed_dir && bdl_mkdir_p(o.bed_dir) != BDL_OK) {
         fprintf(stderr, "error: --bed-dir: cannot create the folder '%s'\n", o.bed_dir);
         return BDL_ERR_OUTPUT_DIR;
@@ -408,41 +500,10 @@ bdl_result bdl_cmd_bench(int argc, char **argv)
         return BDL_ERR_OUTPUT_DIR;
     }
     printf("bedlam bench dem: settled frictional Hertz-Mindlin bed, %d repetitions\n", o.repeat);
-    bed_info bed;
-    bdl_world *w = make_bed(o.particles, &o, &bed);
-    if (!w)
-        return BDL_ERR_NOMEM;
-    report_locality(w);
-    long count = timed_steps(&o, w->particles.count);
-    printf("timed: %ld steps per repetition\n", count);
-    report_header();
-    double base = 0.0, base_median = 0.0;
-    for (int t = 0; t < o.thread_count; ++t) {
-        bench_result r = time_steps(w, o.threads[t], count, o.repeat);
-        report(&r, &bed, csv);
-        if (t == 0) {
-            base = r.rate;
-            base_median = r.rate_median;
-        } else {
-            printf("  speed-up %d vs %d threads: %.2fx (medians: %.2fx)\n", o.threads[t],
-                   o.threads[0], r.rate / base, r.rate_median / base_median);
-        }
-    }
-    bdl_world_destroy(w);
-    if (o.scaling) {
-        printf("scaling on one thread (settling on all threads):\n");
-        for (long n = 1000; n <= 1000000; n *= 10) {
-            omp_set_num_threads(omp_get_num_procs());
-            bdl_world *ws = make_bed(n, &o, &bed);
-            if (!ws)
-                return BDL_ERR_NOMEM;
-            report_header();
-            bench_result r = time_steps(ws, 1, timed_steps(&o, n), o.repeat);
-            report(&r, &bed, csv);
-            bdl_world_destroy(ws);
-        }
-    }
+    r = time_threads(&o, csv);
+    if (r == BDL_OK && o.scaling)
+        r = time_scaling(&o, csv);
     if (csv)
         fclose(csv);
-    return BDL_OK;
+    return r;
 }

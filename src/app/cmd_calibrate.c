@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "app/app.h"
+#include "app/options.h"
 #include "dia/analysis.h"
 #include "core/file.h"
 #include "io/png.h"
@@ -86,59 +87,51 @@ static int compare_double(const void *a, const void *b)
 /// Cells with some solids seen or present: the bed, not the empty freeboard.
 #define IN_BED 0.005
 
+/// One image cell: the solids fraction the camera sees and the truth behind it.
+typedef struct cell_point {
+    double f2d, f3d;
+    int frame, cell, test;
+} cell_point;
+
 typedef struct point_set {
     long n, cap;
-    double *f2d, *f3d;
-    int *frame, *cell, *test;
+    cell_point *p;
 } point_set;
 
-static int add_point(point_set *p, double f2d, double f3d, int frame, int cell, int test)
+static int add_point(point_set *s, cell_point point)
 {
-    if (p->n == p->cap) {
-        long c = p->cap ? 2 * p->cap : 4096;
-        double *a = realloc(p->f2d, (size_t)c * sizeof(double));
-        if (a)
-            p->f2d = a;
-        double *b = realloc(p->f3d, (size_t)c * sizeof(double));
-        if (b)
-            p->f3d = b;
-        int *fr = realloc(p->frame, (size_t)c * sizeof(int));
-        if (fr)
-            p->frame = fr;
-        int *ce = realloc(p->cell, (size_t)c * sizeof(int));
-        if (ce)
-            p->cell = ce;
-        int *te = realloc(p->test, (size_t)c * sizeof(int));
-        if (te)
-            p->test = te;
-        if (!a || !b || !fr || !ce || !te)
+    if (s->n == s->cap) {
+        long cap = s->cap ? 2 * s->cap : 4096;
+        cell_point *p = realloc(s->p, (size_t)cap * sizeof *p);
+        if (!p)
             return 0;
-        p->cap = c;
+        s->p = p, s->cap = cap;
     }
-    p->f2d[p->n] = f2d, p->f3d[p->n] = f3d;
-    p->frame[p->n] = frame, p->cell[p->n] = cell, p->test[p->n] = test;
-    p->n++;
+    s->p[s->n++] = point;
     return 1;
 }
 
-/// Thresholds an image and returns its cell fractions (nx x ny, malloc'ed), or NULL.
-static double *image_fractions(const options *o, const char *path, int nx, int ny, int back_lit)
+/// Thresholds an image into its cell fractions (nx x ny, malloc'ed in *out). BDL_ERR_ARGS
+/// (printed) when the image cannot be read.
+static bdl_result image_fractions(const options *o, const char *path, int nx, int ny, int back_lit,
+                                  double **out)
 {
     double *img = NULL;
     int w, h, bits;
+    *out = NULL;
     if (bdl_png_read_gray(path, &img, &w, &h, &bits) != BDL_OK) {
         fprintf(stderr, "error: cannot read the image %s\n", path);
-        return NULL;
+        return BDL_ERR_ARGS;
     }
     unsigned char *mask = malloc((size_t)w * (size_t)h);
     double *f = malloc((size_t)nx * ny * sizeof(double));
     if (mask && f) {
         bdl_dia_threshold(img, w, h, !back_lit, o->adaptive ? o->window : 0, o->offset, mask);
         bdl_dia_cell_fractions(mask, w, h, nx, ny, f);
+        *out = f, f = NULL;
     }
-    free(img);
-    free(mask);
-    return f;
+    free(img), free(mask), free(f);
+    return *out ? BDL_OK : BDL_ERR_NOMEM;
 }
 
 /// Reads the truth column of a cells CSV (solids_depth or solids_layer) into f3d (n values).
@@ -169,10 +162,8 @@ static int read_truth(const char *path, int layer, double *f3d, long n)
     return k == n;
 }
 
-/// Collects (f2D, f3D) from every frame of a run's camera folder; frames with index % holdout ==
-/// holdout - 1 are marked test (holdout 0: none; all_test: every one).
-static int collect(const options *o, const char *dir, int holdout, int all_test, point_set *p,
-                   int *frames)
+/// The cell grid and the lighting of a camera folder (camera.json).
+static bdl_result read_camera(const char *dir, int *nx, int *ny, int *back_lit)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/camera.json", dir);
@@ -180,30 +171,82 @@ static int collect(const options *o, const char *dir, int holdout, int all_test,
     char *json = bdl_read_file(path, &length);
     if (!json) {
         fprintf(stderr, "error: cannot read %s: %s\n", path, strerror(errno));
-        return 0;
+        return BDL_ERR_ARGS;
     }
     char lighting[16];
     json_string(json, "lighting", lighting, sizeof lighting);
+    *back_lit = strcmp(lighting, "back") == 0;
     const char *cells = strstr(json, "\"cells\": [");
-    int nx = 0, ny = 0;
+    *nx = *ny = 0;
     if (cells)
-        sscanf(cells, "\"cells\": [%d, %d]", &nx, &ny);
+        sscanf(cells, "\"cells\": [%d, %d]", nx, ny);
     free(json);
-    if (nx < 1 || ny < 1) {
+    if (*nx < 1 || *ny < 1) {
         fprintf(stderr, "error: %s has no cell grid (\"cells\")\n", path);
-        return 0;
+        return BDL_ERR_ARGS;
     }
-    snprintf(path, sizeof path, "%s/frames.csv", dir);
+    return BDL_OK;
+}
+
+/// A camera folder: its grid and lighting, and what the frames are for.
+typedef struct camera_set {
+    const char *dir;
+    int nx, ny, back_lit;
+    int holdout;  ///< frames with index % holdout == holdout - 1 are test frames (0: none)
+    int all_test; ///< every frame is a test frame
+} camera_set;
+
+/// Adds the cells in the bed of one frame (its image and its truth `cellfile`) to the points.
+static bdl_result add_frame(const options *o, const camera_set *cs, long frame, const char *image,
+                            const char *cellfile, double *truth, point_set *p)
+{
+    const int cells = cs->nx * cs->ny;
+    char full[1300];
+    snprintf(full, sizeof full, "%s/%s", cs->dir, image);
+    double *f2d;
+    bdl_result rc = image_fractions(o, full, cs->nx, cs->ny, cs->back_lit, &f2d);
+    if (rc != BDL_OK)
+        return rc;
+    snprintf(full, sizeof full, "%s/%s", cs->dir, cellfile);
+    if (!read_truth(full, o->layer, truth, cells)) {
+        fprintf(stderr, "error: cannot read the truth %s\n", full);
+        free(f2d);
+        return BDL_ERR_ARGS;
+    }
+    if (o->normalise) { // Mahajan (2019): pixel area scaled to the known solids in the image
+        double s2 = 0.0, s3 = 0.0;
+        for (int c = 0; c < cells; ++c)
+            s2 += f2d[c], s3 += truth[c];
+        for (int c = 0; s2 > 0.0 && c < cells; ++c)
+            f2d[c] *= s3 / s2;
+    }
+    const int test = cs->all_test || (cs->holdout > 0 && frame % cs->holdout == cs->holdout - 1);
+    for (int c = 0; c < cells && rc == BDL_OK; ++c)
+        if (f2d[c] > IN_BED || truth[c] > IN_BED)
+            if (!add_point(p, (cell_point){f2d[c], truth[c], (int)frame, c, test}))
+                rc = BDL_ERR_NOMEM;
+    free(f2d);
+    return rc;
+}
+
+/// Collects (f2D, f3D) from every frame of a camera folder (frames.csv); *frames counts them.
+static bdl_result collect(const options *o, camera_set *cs, point_set *p, int *frames)
+{
+    bdl_result rc = read_camera(cs->dir, &cs->nx, &cs->ny, &cs->back_lit);
+    if (rc != BDL_OK)
+        return rc;
+    char path[1200];
+    snprintf(path, sizeof path, "%s/frames.csv", cs->dir);
     FILE *f = fopen(path, "r");
     if (!f) {
         fprintf(stderr, "error: cannot read %s: %s\n", path, strerror(errno));
-        return 0;
+        return BDL_ERR_ARGS;
     }
     char line[1200];
-    double *truth = malloc((size_t)nx * ny * sizeof(double));
-    int ok = truth && fgets(line, sizeof line, f) != NULL;
+    double *truth = malloc((size_t)cs->nx * cs->ny * sizeof(double));
+    rc = !truth ? BDL_ERR_NOMEM : fgets(line, sizeof line, f) ? BDL_OK : BDL_ERR_ARGS;
     *frames = 0;
-    while (ok && fgets(line, sizeof line, f)) {
+    while (rc == BDL_OK && fgets(line, sizeof line, f)) {
         long frame;
         double time;
         char image[300], parts[300], cellfile[300] = "";
@@ -211,34 +254,12 @@ static int collect(const options *o, const char *dir, int holdout, int all_test,
                             parts, cellfile);
         if (fields < 5 || !cellfile[0])
             continue; // a second PIV frame: its truth is the first's
-        char full[1300];
-        snprintf(full, sizeof full, "%s/%s", dir, image);
-        double *f2d = image_fractions(o, full, nx, ny, strcmp(lighting, "back") == 0);
-        snprintf(full, sizeof full, "%s/%s", dir, cellfile);
-        if (!f2d || !read_truth(full, o->layer, truth, (long)nx * ny)) {
-            if (f2d)
-                fprintf(stderr, "error: cannot read the truth %s\n", full);
-            free(f2d);
-            ok = 0;
-            break;
-        }
-        if (o->normalise) { // Mahajan (2019): pixel area scaled to the known solids in the image
-            double s2 = 0.0, s3 = 0.0;
-            for (int c = 0; c < nx * ny; ++c)
-                s2 += f2d[c], s3 += truth[c];
-            for (int c = 0; s2 > 0.0 && c < nx * ny; ++c)
-                f2d[c] *= s3 / s2;
-        }
-        int test = all_test || (holdout > 0 && frame % holdout == holdout - 1);
-        for (int c = 0; c < nx * ny; ++c)
-            if (f2d[c] > IN_BED || truth[c] > IN_BED)
-                ok = ok && add_point(p, f2d[c], truth[c], (int)frame, c, test);
-        free(f2d);
-        ++*frames;
+        if ((rc = add_frame(o, cs, frame, image, cellfile, truth, p)) == BDL_OK)
+            ++*frames;
     }
     fclose(f);
     free(truth);
-    return ok && *frames > 0;
+    return rc == BDL_OK && *frames == 0 ? BDL_ERR_ARGS : rc;
 }
 
 typedef struct errors {
@@ -251,9 +272,9 @@ static errors evaluate(const bdl_dia_fit *fit, const point_set *p, int test, dou
 {
     errors e = {0, 0.0, 0.0, 0.0};
     for (long k = 0; k < p->n; ++k) {
-        if (p->test[k] != test)
+        if (p->p[k].test != test)
             continue;
-        double d = bdl_dia_fit_apply(fit, p->f2d[k], cap) - p->f3d[k];
+        double d = bdl_dia_fit_apply(fit, p->p[k].f2d, cap) - p->p[k].f3d;
         e.rms += d * d, e.bias += d, e.max_abs = fmax(e.max_abs, fabs(d));
         e.n++;
     }
@@ -297,9 +318,11 @@ static int write_points(const char *path, const point_set *p)
     if (bdl_atomic_open(&af, path) != BDL_OK)
         return 0;
     fprintf(af.file, "frame,cell,f2d,f3d,set\n");
-    for (long k = 0; k < p->n; ++k)
-        fprintf(af.file, "%d,%d,%.6f,%.6f,%s\n", p->frame[k], p->cell[k], p->f2d[k], p->f3d[k],
-                p->test[k] ? "test" : "train");
+    for (long k = 0; k < p->n; ++k) {
+        const cell_point *c = &p->p[k];
+        fprintf(af.file, "%d,%d,%.6f,%.6f,%s\n", c->frame, c->cell, c->f2d, c->f3d,
+                c->test ? "test" : "train");
+    }
     return bdl_atomic_commit(&af) == BDL_OK;
 }
 
@@ -340,8 +363,8 @@ static void plot(const char *out, const bdl_dia_fit *fits, double cap)
     remove(script);
 }
 
-/// --apply: voidage maps of images with a saved fit (no truth needed).
-static bdl_result apply_fit(const options *o)
+/// The rational fit and cap of a fit.json (--cap overrides its cap).
+static bdl_result read_fit(const options *o, bdl_dia_fit *fit, double *cap)
 {
     size_t length;
     char *json = bdl_read_file(o->apply, &length);
@@ -350,129 +373,186 @@ static bdl_result apply_fit(const options *o)
         return BDL_ERR_ARGS;
     }
     const char *rat = strstr(json, "\"rational\":");
-    bdl_dia_fit fit = {BDL_DIA_MODEL_RATIONAL, {NAN, NAN}, 0, 0, 0, 0, 1};
+    *fit = (bdl_dia_fit){BDL_DIA_MODEL_RATIONAL, {NAN, NAN}, 0, 0, 0, 0, 1};
     if (rat) {
-        fit.p[0] = json_number(rat, "p0");
-        fit.p[1] = json_number(rat, "p1");
+        fit->p[0] = json_number(rat, "p0");
+        fit->p[1] = json_number(rat, "p1");
     }
-    double cap = isfinite(o->cap) ? o->cap : json_number(json, "cap");
+    *cap = isfinite(o->cap) ? o->cap : json_number(json, "cap");
     free(json);
-    if (!isfinite(fit.p[0]) || !isfinite(fit.p[1]) || !isfinite(cap)) {
+    if (!isfinite(fit->p[0]) || !isfinite(fit->p[1]) || !isfinite(*cap)) {
         fprintf(stderr, "error: %s holds no rational fit (p0, p1) or cap\n", o->apply);
         return BDL_ERR_ARGS;
-    }
-    const int nx = o->cells[0], ny = o->cells[1];
-    for (int k = 0; k < o->image_count; ++k) {
-        double *f2d = image_fractions(o, o->images[k], nx, ny, o->back_lit);
-        if (!f2d)
-            return BDL_ERR_ARGS;
-        char path[1200];
-        const char *base = strrchr(o->images[k], '/');
-        base = base ? base + 1 : o->images[k];
-        snprintf(path, sizeof path, "%s/%.*s_voidage.csv", o->out,
-                 (int)(strlen(base) > 4 ? strlen(base) - 4 : strlen(base)), base);
-        bdl_atomic_file af;
-        if (bdl_atomic_open(&af, path) != BDL_OK) {
-            free(f2d);
-            fprintf(stderr, "error: cannot write %s\n", path);
-            return BDL_ERR_ARGS;
-        }
-        fprintf(af.file, "column,row,f2d,f3d,voidage\n");
-        double mean = 0.0;
-        for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) {
-                double f3 = bdl_dia_fit_apply(&fit, f2d[j * nx + i], cap);
-                mean += f3 / (nx * ny);
-                fprintf(af.file, "%d,%d,%.6f,%.6f,%.6f\n", i, j, f2d[j * nx + i], f3, 1.0 - f3);
-            }
-        free(f2d);
-        if (bdl_atomic_commit(&af) != BDL_OK) {
-            fprintf(stderr, "error: cannot write %s\n", path);
-            return BDL_ERR_ARGS;
-        }
-        printf("%s: mean solids fraction %.4f -> %s\n", o->images[k], mean, path);
     }
     return BDL_OK;
 }
 
+/// The voidage map of one image: IMAGE_voidage.csv in --out.
+static bdl_result apply_to_image(const options *o, const char *image, const bdl_dia_fit *fit,
+                                 double cap)
+{
+    const int nx = o->cells[0], ny = o->cells[1];
+    double *f2d;
+    bdl_result rc = image_fractions(o, image, nx, ny, o->back_lit, &f2d);
+    if (rc != BDL_OK)
+        return rc;
+    char path[1200];
+    const char *base = strrchr(image, '/');
+    base = base ? base + 1 : image;
+    snprintf(path, sizeof path, "%s/%.*s_voidage.csv", o->out,
+             (int)(strlen(base) > 4 ? strlen(base) - 4 : strlen(base)), base);
+    bdl_atomic_file af;
+    if (bdl_atomic_open(&af, path) != BDL_OK) {
+        free(f2d);
+        fprintf(stderr, "error: cannot write %s\n", path);
+        return BDL_ERR_OUTPUT_DIR;
+    }
+    fprintf(af.file, "column,row,f2d,f3d,voidage\n");
+    double mean = 0.0;
+    for (int j = 0; j < ny; ++j)
+        for (int i = 0; i < nx; ++i) {
+            double f3 = bdl_dia_fit_apply(fit, f2d[j * nx + i], cap);
+            mean += f3 / (nx * ny);
+            fprintf(af.file, "%d,%d,%.6f,%.6f,%.6f\n", i, j, f2d[j * nx + i], f3, 1.0 - f3);
+        }
+    free(f2d);
+    if (bdl_atomic_commit(&af) != BDL_OK) {
+        fprintf(stderr, "error: cannot write %s\n", path);
+        return BDL_ERR_OUTPUT_DIR;
+    }
+    printf("%s: mean solids fraction %.4f -> %s\n", image, mean, path);
+    return BDL_OK;
+}
+
+/// --apply: voidage maps of images with a saved fit (no truth needed).
+static bdl_result apply_fit(const options *o)
+{
+    bdl_dia_fit fit;
+    double cap;
+    bdl_result rc = read_fit(o, &fit, &cap);
+    for (int k = 0; rc == BDL_OK && k < o->image_count; ++k)
+        rc = apply_to_image(o, o->images[k], &fit, cap);
+    return rc;
+}
+
+static const bdl_option calibrate_options[] = {
+    {"--test", BDL_OPTION_TEXT, offsetof(options, test)},
+    {"--apply", BDL_OPTION_TEXT, offsetof(options, apply)},
+    {"--offset", BDL_OPTION_NUMBER, offsetof(options, offset)},
+    {"--out", BDL_OPTION_TEXT, offsetof(options, out)},
+    {"--normalise", BDL_OPTION_SET, offsetof(options, normalise)},
+    {"--no-plots", BDL_OPTION_CLEAR, offsetof(options, plots)},
+};
+
+/// The numbers with a range, checked as they are read.
+static const bdl_option ranged_options[] = {
+    {"--holdout", BDL_OPTION_INT, offsetof(options, holdout)},
+    {"--window", BDL_OPTION_INT, offsetof(options, window)},
+    {"--cap", BDL_OPTION_NUMBER, offsetof(options, cap)},
+};
+
+/// The range of a ranged option just read from `value`.
+static int in_range(const options *o, const char *name, const char *value)
+{
+    if (strcmp(name, "--holdout") == 0 && o->holdout < 0) {
+        fprintf(stderr, "error: --holdout %s: expected an integer >= 0\n", value);
+        return 0;
+    }
+    if (strcmp(name, "--window") == 0 && (o->window < 1 || o->window > 1000)) {
+        fprintf(stderr, "error: --window %s: expected 1..1000 pixels\n", value);
+        return 0;
+    }
+    if (strcmp(name, "--cap") == 0 && !(o->cap > 0.0 && o->cap <= 1.0)) {
+        fprintf(stderr, "error: --cap %s: expected a fraction in (0, 1]\n", value);
+        return 0;
+    }
+    return 1;
+}
+
+/// --method, --measure, --lighting: one of two words, which sets an int to whether it is the
+/// first. Returns the arguments taken (0: not one of them, or no value), or -1 for a word it does
+/// not know (printed).
+static int set_choice(options *o, const char *name, const char *value)
+{
+    static const struct {
+        const char *name, *word, *other;
+        const char *expected; ///< NULL: any word but `word` means the other (--lighting)
+        size_t field;
+    } choices[] = {
+        {"--method", "adaptive", "otsu", "otsu or adaptive", offsetof(options, adaptive)},
+        {"--measure", "layer", "depth", "depth or layer", offsetof(options, layer)},
+        {"--lighting", "back", "front", NULL, offsetof(options, back_lit)},
+    };
+    for (size_t k = 0; value && k < sizeof choices / sizeof choices[0]; ++k) {
+        if (strcmp(name, choices[k].name) != 0)
+            continue;
+        const int is_word = strcmp(value, choices[k].word) == 0;
+        if (choices[k].expected && !is_word && strcmp(value, choices[k].other) != 0) {
+            fprintf(stderr, "error: %s %s: expected %s\n", name, value, choices[k].expected);
+            return -1;
+        }
+        *(int *)((char *)o + choices[k].field) = is_word;
+        return 2;
+    }
+    return 0;
+}
+
+/// --cells NX NY: 3 arguments, -1 for values that are not positive (printed), 0 when they are
+/// not both there.
+static int set_cells(options *o, int argc, char **argv, int i)
+{
+    if (strcmp(argv[i], "--cells") != 0 || i + 2 >= argc)
+        return 0;
+    o->cells[0] = atoi(argv[i + 1]);
+    o->cells[1] = atoi(argv[i + 2]);
+    if (o->cells[0] < 1 || o->cells[1] < 1) {
+        fprintf(stderr, "error: --cells: expected two positive integers\n");
+        return -1;
+    }
+    return 3;
+}
+
+/// The folder, or with --apply an image: 1, or 0 for an unknown option or a second folder.
+static int take_argument(options *o, const char *a)
+{
+    if (a[0] == '-') {
+        fprintf(stderr, "error: unknown option '%s'\n\n%s", a, calibrate_usage);
+        return 0;
+    } else if (o->apply) {
+        if (o->image_count < 256)
+            o->images[o->image_count++] = a;
+    } else if (!o->dir) {
+        o->dir = a;
+    } else {
+        fprintf(stderr, "error: more than one folder given ('%s')\n", a);
+        return 0;
+    }
+    return 1;
+}
+
+/// What the option table does not take: ranged numbers, choices, --cells, the folder or images.
+static int take_other(void *opts, int argc, char **argv, int i)
+{
+    options *o = opts;
+    const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
+    int used = bdl_option_set(ranged_options, BDL_OPTION_COUNT(ranged_options), o, a, value);
+    if (used > 0)
+        return in_range(o, a, value) ? used : 0;
+    if ((used = set_choice(o, a, value)) != 0 || (used = set_cells(o, argc, argv, i)) != 0)
+        return used > 0 ? used : 0;
+    return take_argument(o, a);
+}
+
 static bdl_result parse(int argc, char **argv, options *o)
 {
+    static const bdl_option_parser parser = {calibrate_options, BDL_OPTION_COUNT(calibrate_options),
+                                             calibrate_usage, 0, take_other};
     memset(o, 0, sizeof *o);
     o->holdout = 4, o->window = 15, o->offset = 0.02, o->plots = 1, o->cap = NAN;
     o->cells[0] = 12, o->cells[1] = 36;
-    for (int i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-        int more = i + 1 < argc;
-        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
-            fputs(calibrate_usage, stdout);
-            o->help = 1;
-            return BDL_OK;
-        } else if (strcmp(a, "--test") == 0 && more) {
-            o->test = argv[++i];
-        } else if (strcmp(a, "--holdout") == 0 && more) {
-            o->holdout = atoi(argv[++i]);
-            if (o->holdout < 0) {
-                fprintf(stderr, "error: --holdout %s: expected an integer >= 0\n", argv[i]);
-                return BDL_ERR_ARGS;
-            }
-        } else if (strcmp(a, "--apply") == 0 && more) {
-            o->apply = argv[++i];
-        } else if (strcmp(a, "--method") == 0 && more) {
-            ++i;
-            if (strcmp(argv[i], "adaptive") != 0 && strcmp(argv[i], "otsu") != 0) {
-                fprintf(stderr, "error: --method %s: expected otsu or adaptive\n", argv[i]);
-                return BDL_ERR_ARGS;
-            }
-            o->adaptive = strcmp(argv[i], "adaptive") == 0;
-        } else if (strcmp(a, "--window") == 0 && more) {
-            o->window = atoi(argv[++i]);
-            if (o->window < 1 || o->window > 1000) {
-                fprintf(stderr, "error: --window %s: expected 1..1000 pixels\n", argv[i]);
-                return BDL_ERR_ARGS;
-            }
-        } else if (strcmp(a, "--offset") == 0 && more) {
-            o->offset = atof(argv[++i]);
-        } else if (strcmp(a, "--measure") == 0 && more) {
-            ++i;
-            if (strcmp(argv[i], "depth") != 0 && strcmp(argv[i], "layer") != 0) {
-                fprintf(stderr, "error: --measure %s: expected depth or layer\n", argv[i]);
-                return BDL_ERR_ARGS;
-            }
-            o->layer = strcmp(argv[i], "layer") == 0;
-        } else if (strcmp(a, "--cap") == 0 && more) {
-            o->cap = atof(argv[++i]);
-            if (!(o->cap > 0.0 && o->cap <= 1.0)) {
-                fprintf(stderr, "error: --cap %s: expected a fraction in (0, 1]\n", argv[i]);
-                return BDL_ERR_ARGS;
-            }
-        } else if (strcmp(a, "--cells") == 0 && i + 2 < argc) {
-            o->cells[0] = atoi(argv[++i]);
-            o->cells[1] = atoi(argv[++i]);
-            if (o->cells[0] < 1 || o->cells[1] < 1) {
-                fprintf(stderr, "error: --cells: expected two positive integers\n");
-                return BDL_ERR_ARGS;
-            }
-        } else if (strcmp(a, "--lighting") == 0 && more) {
-            o->back_lit = strcmp(argv[++i], "back") == 0;
-        } else if (strcmp(a, "--out") == 0 && more) {
-            o->out = argv[++i];
-        } else if (strcmp(a, "--normalise") == 0) {
-            o->normalise = 1;
-        } else if (strcmp(a, "--no-plots") == 0) {
-            o->plots = 0;
-        } else if (a[0] == '-') {
-            fprintf(stderr, "error: unknown option '%s'\n\n%s", a, calibrate_usage);
-            return BDL_ERR_ARGS;
-        } else if (o->apply) {
-            if (o->image_count < 256)
-                o->images[o->image_count++] = a;
-        } else if (!o->dir) {
-            o->dir = a;
-        } else {
-            fprintf(stderr, "error: more than one folder given ('%s')\n", a);
-            return BDL_ERR_ARGS;
-        }
-    }
+    bdl_result rc = bdl_option_parse(&parser, argc, argv, 1, o, &o->help);
+    if (rc != BDL_OK || o->help)
+        return rc;
     if (!o->apply && !o->dir) {
         fprintf(stderr, "error: no folder given\n\n%s", calibrate_usage);
         return BDL_ERR_ARGS;
@@ -482,6 +562,88 @@ static bdl_result parse(int argc, char **argv, options *o)
         return BDL_ERR_ARGS;
     }
     return BDL_OK;
+}
+
+/// The cap: given, or the packed value the truth reaches (its 99.5th percentile, so that a few
+/// over-full cells at walls do not set it), or Mahajan's 0.49.
+static double choose_cap(const options *o, const double *f3d, long n)
+{
+    double cap = o->cap;
+    if (!isfinite(cap) && n >= 3) {
+        double *sorted = malloc((size_t)n * sizeof(double));
+        if (sorted) {
+            memcpy(sorted, f3d, (size_t)n * sizeof(double));
+            qsort(sorted, (size_t)n, sizeof(double), compare_double);
+            cap = sorted[(long)(0.995 * (double)(n - 1))];
+            free(sorted);
+        }
+    }
+    return isfinite(cap) ? cap : 0.49;
+}
+
+/// Fits both models to the training points and prints each with its errors; 0 when a fit has
+/// no finite parameters.
+static int fit_models(const point_set *p, const double *x, const double *y, long n_train,
+                      double cap, bdl_dia_fit *fits, errors *test)
+{
+    for (int m = 0; m < BDL_DIA_MODEL_COUNT; ++m) {
+        fits[m] = bdl_dia_fit_model((bdl_dia_model)m, x, y, n_train);
+        const errors train = evaluate(&fits[m], p, 0, cap);
+        test[m] = evaluate(&fits[m], p, 1, cap);
+        const bdl_dia_fit *f = &fits[m];
+        printf("  %-8s %s = %.5f, %s = %.5f  R^2 %.4f  rms %.4f  max |residual| %.4f  cap %.2f at "
+               "f2D %.4f%s\n",
+               bdl_dia_model_names[m], m ? "a" : "A", f->p[0], m ? "b" : "B", f->p[1], f->r2,
+               train.rms, train.max_abs, cap, bdl_dia_fit_cap_f2d(f, cap),
+               f->converged ? "" : "  (not converged)");
+        if (test[m].n > 0)
+            printf("           held out: %ld cells, error in solids fraction (= in voidage) rms "
+                   "%.4f, bias %+.4f, max %.4f\n",
+                   test[m].n, test[m].rms, test[m].bias, test[m].max_abs);
+        if (m == BDL_DIA_MODEL_RATIONAL && f->p[1] > 2.0)
+            printf("           B far above 1: the data have no curvature, and the rational form "
+                   "is the line f3D = %.4f f2D\n",
+                   f->p[0] / f->p[1]);
+        if (!isfinite(f->p[0]) || !isfinite(f->p[1]))
+            return 0;
+    }
+    return 1;
+}
+
+/// Fits the points, prints the fits and writes fit.json, points.csv and the plot into o->out.
+static bdl_result fit_and_write(const options *o, const point_set *p, int frames)
+{
+    long n_train = 0;
+    double *x = malloc((size_t)(p->n > 0 ? p->n : 1) * sizeof(double));
+    double *y = malloc((size_t)(p->n > 0 ? p->n : 1) * sizeof(double));
+    for (long k = 0; x && y && k < p->n; ++k)
+        if (!p->p[k].test) {
+            x[n_train] = p->p[k].f2d;
+            y[n_train++] = p->p[k].f3d;
+        }
+    const double cap = choose_cap(o, y, n_train);
+    printf("calibrate %s: %d frames%s, %ld cells in the bed (%ld fitted, %ld held out), threshold "
+           "%s%s, truth: solids over the %s\n",
+           o->dir, frames, o->test ? " (with the test set)" : "", p->n, n_train, p->n - n_train,
+           o->adaptive ? "adaptive" : "Otsu",
+           o->normalise ? ", f2D normalised to the image's solids" : "",
+           o->layer ? "first layer" : "whole depth");
+    bdl_dia_fit fits[BDL_DIA_MODEL_COUNT];
+    errors test[BDL_DIA_MODEL_COUNT];
+    bdl_result rc = !x || !y ? BDL_ERR_NOMEM : BDL_OK;
+    int ok = rc == BDL_OK && n_train >= 3 && fit_models(p, x, y, n_train, cap, fits, test);
+    free(x), free(y);
+    if (!ok)
+        return rc != BDL_OK ? rc : BDL_ERR_NO_RESULT;
+    char path[1300];
+    snprintf(path, sizeof path, "%s/fit.json", o->out);
+    ok = write_fit(path, fits, test, cap, o, n_train);
+    snprintf(path, sizeof path, "%s/points.csv", o->out);
+    ok = ok && write_points(path, p);
+    if (ok && o->plots)
+        plot(o->out, fits, cap);
+    printf("  -> %s/fit.json, points.csv%s\n", o->out, o->plots ? ", fit.png" : "");
+    return ok ? BDL_OK : BDL_ERR_NO_RESULT;
 }
 
 bdl_result bdl_cmd_calibrate(int argc, char **argv)
@@ -503,73 +665,13 @@ bdl_result bdl_cmd_calibrate(int argc, char **argv)
         return apply_fit(&o);
     point_set p = {0};
     int frames = 0, test_frames = 0;
-    if (!collect(&o, o.dir, o.test ? 0 : o.holdout, 0, &p, &frames) ||
-        (o.test && !collect(&o, o.test, 0, 1, &p, &test_frames))) {
-        free(p.f2d), free(p.f3d), free(p.frame), free(p.cell), free(p.test);
-        return BDL_ERR_ARGS;
-    }
-    // Fit on the training points.
-    long n_train = 0;
-    double *x = malloc((size_t)p.n * sizeof(double)), *y = malloc((size_t)p.n * sizeof(double));
-    for (long k = 0; x && y && k < p.n; ++k)
-        if (!p.test[k]) {
-            x[n_train] = p.f2d[k];
-            y[n_train++] = p.f3d[k];
-        }
-    // The cap: given, or the packed value the truth reaches (its 99.5th percentile, so that a few
-    // over-full cells at walls do not set it).
-    double cap = o.cap;
-    if (!isfinite(cap) && n_train >= 3) {
-        double *sorted = malloc((size_t)n_train * sizeof(double));
-        if (sorted) {
-            memcpy(sorted, y, (size_t)n_train * sizeof(double));
-            qsort(sorted, (size_t)n_train, sizeof(double), compare_double);
-            cap = sorted[(long)(0.995 * (double)(n_train - 1))];
-            free(sorted);
-        }
-    }
-    if (!isfinite(cap))
-        cap = 0.49;
-    bdl_dia_fit fits[BDL_DIA_MODEL_COUNT];
-    errors test[BDL_DIA_MODEL_COUNT], train[BDL_DIA_MODEL_COUNT];
-    int ok = x && y && n_train >= 3;
-    printf("calibrate %s: %d frames%s, %ld cells in the bed (%ld fitted, %ld held out), threshold "
-           "%s%s, truth: solids over the %s\n",
-           o.dir, frames + test_frames, o.test ? " (with the test set)" : "", p.n, n_train,
-           p.n - n_train, o.adaptive ? "adaptive" : "Otsu",
-           o.normalise ? ", f2D normalised to the image's solids" : "",
-           o.layer ? "first layer" : "whole depth");
-    for (int m = 0; ok && m < BDL_DIA_MODEL_COUNT; ++m) {
-        fits[m] = bdl_dia_fit_model((bdl_dia_model)m, x, y, n_train);
-        train[m] = evaluate(&fits[m], &p, 0, cap);
-        test[m] = evaluate(&fits[m], &p, 1, cap);
-        const bdl_dia_fit *f = &fits[m];
-        printf("  %-8s %s = %.5f, %s = %.5f  R^2 %.4f  rms %.4f  max |residual| %.4f  cap %.2f at "
-               "f2D %.4f%s\n",
-               bdl_dia_model_names[m], m ? "a" : "A", f->p[0], m ? "b" : "B", f->p[1], f->r2,
-               train[m].rms, train[m].max_abs, cap, bdl_dia_fit_cap_f2d(f, cap),
-               f->converged ? "" : "  (not converged)");
-        if (test[m].n > 0)
-            printf("           held out: %ld cells, error in solids fraction (= in voidage) rms "
-                   "%.4f, bias %+.4f, max %.4f\n",
-                   test[m].n, test[m].rms, test[m].bias, test[m].max_abs);
-        if (m == BDL_DIA_MODEL_RATIONAL && f->p[1] > 2.0)
-            printf("           B far above 1: the data have no curvature, and the rational form "
-                   "is the line f3D = %.4f f2D\n",
-                   f->p[0] / f->p[1]);
-        ok = ok && isfinite(f->p[0]) && isfinite(f->p[1]);
-    }
-    char path[1300];
-    if (ok) {
-        snprintf(path, sizeof path, "%s/fit.json", out);
-        ok = write_fit(path, fits, test, cap, &o, n_train);
-        snprintf(path, sizeof path, "%s/points.csv", out);
-        ok = ok && write_points(path, &p);
-        if (ok && o.plots)
-            plot(out, fits, cap);
-        printf("  -> %s/fit.json, points.csv%s\n", out, o.plots ? ", fit.png" : "");
-    }
-    free(x), free(y);
-    free(p.f2d), free(p.f3d), free(p.frame), free(p.cell), free(p.test);
-    return ok ? BDL_OK : BDL_ERR_NO_RESULT;
+    camera_set train = {.dir = o.dir, .holdout = o.test ? 0 : o.holdout};
+    camera_set test = {.dir = o.test, .all_test = 1};
+    rc = collect(&o, &train, &p, &frames);
+    if (rc == BDL_OK && o.test)
+        rc = collect(&o, &test, &p, &test_frames);
+    if (rc == BDL_OK)
+        rc = fit_and_write(&o, &p, frames + test_frames);
+    free(p.p);
+    return rc;
 }

@@ -18,6 +18,15 @@ static const char check_usage[] =
     "the run (measured on a few steps). Exit codes: 0 valid, 2 invalid (the message names file,\n"
     "line, key, value and the allowed range).\n";
 
+/// One line of the contacts table: the pair, its contact time and parameters.
+static void print_contact(const bdl_world *w, const char *a, const char *b, double tc,
+                          const bdl_contact_params *cp)
+{
+    printf("  %-12s - %-12s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = %.4g\n", a,
+           b, tc, cp->restitution, cp->friction, cp->rolling_friction, w->hertz ? "c" : "zeta",
+           cp->damping);
+}
+
 static void print_contacts(const bdl_world *w, double v_ref)
 {
     const bdl_scene *s = &w->scene;
@@ -27,56 +36,21 @@ static void print_contacts(const bdl_world *w, double v_ref)
     else
         printf("contacts (linear springs: the times do not depend on the impact speed):\n");
     for (int a = 0; a < ns; ++a) {
-        const bdl_species_def *sa = &s->species[a];
-        double da = sa->size_dist == BDL_SIZE_SINGLE ? sa->diameter : sa->diameter_min;
-        double ma = sa->density * 3.14159265358979323846 / 6.0 * da * da * da;
-        for (int b = a; b < ns; ++b) {
-            const bdl_species_def *sb = &s->species[b];
-            double db = sb->size_dist == BDL_SIZE_SINGLE ? sb->diameter : sb->diameter_min;
-            double mb = sb->density * 3.14159265358979323846 / 6.0 * db * db * db;
-            const bdl_contact_params *cp = &w->pair_params[a * ns + b];
-            double tc =
-                bdl_contact_time(cp, s->law, ma * mb / (ma + mb), 0.5 * da * db / (da + db), v_ref);
-            printf(
-                "  %-12s - %-12s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = %.4g\n",
-                sa->name, sb->name, tc, cp->restitution, cp->friction, cp->rolling_friction,
-                w->hertz ? "c" : "zeta", cp->damping);
-        }
+        const char *name = s->species[a].name;
+        for (int b = a; b < ns; ++b)
+            print_contact(w, name, s->species[b].name, bdl_world_pair_contact_time(w, a, b, v_ref),
+                          &w->pair_params[a * ns + b]);
         for (int k = 0; k < s->wall_count; ++k) {
-            const bdl_contact_params *cp = &w->wall_params[k * ns + a];
-            double tc = bdl_contact_time(cp, s->law, ma, 0.5 * da, v_ref);
-            printf("  %-12s - wall %-7s t_c = %-10.4g s  e = %-5.3g mu = %-5.3g mu_r = %-5.3g %s = "
-                   "%.4g\n",
-                   sa->name, s->walls[k].name, tc, cp->restitution, cp->friction,
-                   cp->rolling_friction, w->hertz ? "c" : "zeta", cp->damping);
+            char wall[128];
+            snprintf(wall, sizeof wall, "wall %-7s", s->walls[k].name);
+            print_contact(w, name, wall, bdl_world_wall_contact_time(w, a, k, v_ref),
+                          &w->wall_params[k * ns + a]);
         }
     }
 }
 
-bdl_result bdl_cmd_check(int argc, char **argv)
+static void print_modules(const bdl_world *w)
 {
-    bdl_scene_opts o;
-    bdl_result rc = bdl_parse_scene_opts(argc, argv, check_usage, &o);
-    if (rc != BDL_OK || o.help)
-        return rc;
-    if (o.threads > 0)
-        omp_set_num_threads(o.threads);
-    bdl_scene *scene = calloc(1, sizeof *scene);
-    bdl_scene_error err;
-    if (!scene)
-        return BDL_ERR_NOMEM;
-    if ((rc = bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err)) != BDL_OK) {
-        fprintf(stderr, "error: %s\n", err.message);
-        free(scene);
-        return rc;
-    }
-    bdl_world *w = NULL;
-    bdl_result r = bdl_world_create(scene, &w, &err);
-    free(scene);
-    if (r != BDL_OK) {
-        fprintf(stderr, "error: %s\n", r == BDL_ERR_SCENE ? err.message : bdl_result_text(r));
-        return r;
-    }
     const bdl_scene *s = &w->scene;
     printf("scene: %s — valid\n", s->path);
     printf("modules:\n");
@@ -100,24 +74,31 @@ bdl_result bdl_cmd_check(int argc, char **argv)
            s->periodic[2] ? "z " : "",
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
     printf("particles at start: %ld (species: %d)\n", w->particles.count, s->species_count);
-    double v_ref = bdl_world_reference_speed(w);
-    print_contacts(w, v_ref);
+}
+
+/// The time step against its limits; an error when the guards refuse it.
+static bdl_result print_time_step(const bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
     char message[1024], warning[1024];
-    r = bdl_guards_check_dt(w, message, sizeof message, warning, sizeof warning);
+    bdl_result r = bdl_guards_check_dt(w, message, sizeof message, warning, sizeof warning);
     printf("time step: dt = %.4g s = t_c / %.1f (smallest contact time %.4g s)\n", w->dt,
            1.0 / w->contact_time_dt_ratio, w->contact_time);
     printf("  stable limit: dt <= %.4g s ([guards] dt_refuse = %g t_c); accurate below %.4g s "
            "(dt_warn = %g t_c)\n",
            s->guards.dt_refuse * w->contact_time, s->guards.dt_refuse,
            s->guards.dt_warn * w->contact_time, s->guards.dt_warn);
-    if (r != BDL_OK) {
+    if (r != BDL_OK)
         fprintf(stderr, "error: %s\n", message);
-        bdl_world_destroy(w);
-        return r;
-    }
-    if (warning[0])
+    else if (warning[0])
         printf("  warning: %s\n", warning);
-    // Cost: time a few steps of this very scene.
+    return r;
+}
+
+/// The cost of the run, from a few timed steps of this very scene.
+static void print_cost(bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
     long steps_total = (long)ceil(s->end_time / w->dt);
     double t0 = bdl_wall_seconds();
     long trial = 0;
@@ -138,6 +119,23 @@ bdl_result bdl_cmd_check(int argc, char **argv)
            "particles) -> about %.3g s wall time for %ld particles (%.3gx real time)\n",
            steps_total, s->end_time, rate, omp_get_max_threads(), n, wall, total,
            s->end_time / wall);
+}
+
+bdl_result bdl_cmd_check(int argc, char **argv)
+{
+    bdl_scene_opts o;
+    bdl_result r = bdl_parse_scene_opts(argc, argv, check_usage, &o);
+    if (r != BDL_OK || o.help)
+        return r;
+    if (o.threads > 0)
+        omp_set_num_threads(o.threads);
+    bdl_world *w = NULL;
+    if ((r = bdl_load_world(o.scene, o.overrides, o.override_count, &w)) != BDL_OK)
+        return r;
+    print_modules(w);
+    print_contacts(w, bdl_world_reference_speed(w));
+    if ((r = print_time_step(w)) == BDL_OK)
+        print_cost(w);
     bdl_world_destroy(w);
-    return BDL_OK;
+    return r;
 }

@@ -10,6 +10,7 @@
 #include <time.h>
 
 #include "app/app.h"
+#include "app/options.h"
 #include "core/timer.h"
 #include "core/file.h"
 #include "verify/verify.h"
@@ -243,23 +244,9 @@ static const char readme_intro[] =
     "`bedlam verify --quick` (the reduced set CI runs); the ctest programs assert the same "
     "measurements with the tolerances listed.\n\n";
 
-static bdl_result write_readme(const char *dir, const case_run *runs, int n, int quick, int threads,
-                               double total, int plots)
+/// The summary table: a row per case.
+static void write_summary(FILE *f, const case_run *runs, int n)
 {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/README.md", dir);
-    bdl_atomic_file af;
-    bdl_result r = bdl_atomic_open(&af, path);
-    if (r != BDL_OK)
-        return r;
-    FILE *f = af.file;
-    time_t now = time(NULL);
-    char date[32];
-    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
-    fprintf(f, "# Verification: error against run time\n\n%s", readme_intro);
-    fprintf(f, "Run: `bedlam verify%s`, bedlam %s, %s, %d thread%s, %.0f s in all (%.1f min).\n\n",
-            quick ? " --quick" : "", BDL_VERSION, date, threads, threads == 1 ? "" : "s", total,
-            total / 60.0);
     fprintf(f, "## Summary\n\n| case | reference | tolerance | error at N | observed order "
                "(finest pair) | run time | result |\n|---|---|---|---|---|---|---|\n");
     for (int k = 0; k < n; ++k) {
@@ -285,133 +272,203 @@ static bdl_result write_readme(const char *dir, const case_run *runs, int n, int
             fprintf(f, " (of the differences)");
         fprintf(f, " | %.1f s | %s |\n", cr->wall, cr->pass ? "pass" : "**FAIL**");
     }
-    for (int k = 0; k < n; ++k) {
-        const case_run *cr = &runs[k];
-        const bdl_verify_case *c = cr->c;
-        fprintf(f, "\n## %s\n\n**%s.** Model: %s. Reference: %s. Error: %s. Refinement: %s.\n\n",
-                c->name, c->title, c->model, c->reference, c->measure, c->param);
-        fprintf(f, "Expected order: %s. Acceptance: error at most %g at N = %g", c->order_note,
-                c->tolerance, c->level[c->tolerance_level]);
-        if (c->order_min > 0.0)
-            fprintf(f, ", observed order over the finest pair at least %.2g", c->order_min);
-        if (c->diff_order_min > 0.0)
-            fprintf(f, ", order of the successive differences over the finest three at least %.2g",
-                    c->diff_order_min);
-        fprintf(f, ".\n\n| series | N | error | order | order of the differences | wall time [s] | "
-                   "steps |\n|---|---|---|---|---|---|---|\n");
-        for (int s = 0; s < c->series_count; ++s)
-            for (int l = 0; l < cr->levels; ++l) {
-                const point *p = find_point(cr, s, l);
-                if (!p)
-                    continue;
-                double q = l > 0 ? order_at(cr, s, l - 1) : NAN;
-                fprintf(f, "| %s | %g | %.3e | ", c->series[s], p->n, p->r.error);
-                double qd = diff_order_at(cr, s, l - 1);
-                if (isfinite(q))
-                    fprintf(f, "%.2f", q);
-                else
-                    fprintf(f, "–");
-                if (isfinite(qd))
-                    fprintf(f, " | %.2f", qd);
-                else
-                    fprintf(f, " | –");
-                fprintf(f, " | %.3f | %ld |\n", p->wall, p->r.steps);
-            }
-        fprintf(f, "\nResult: %s%s%s. Where it breaks: %s\n", cr->pass ? "pass" : "**FAIL**",
-                cr->pass ? "" : " — ", cr->why, c->breaks);
-        if (plots)
-            fprintf(f, "\n![%s: error against N and against run time](%s.png)\n", c->name, c->name);
-    }
+}
+
+/// The table row of one run of a case: error, orders, time.
+static void write_point_row(FILE *f, const case_run *cr, int s, int l)
+{
+    const point *p = find_point(cr, s, l);
+    if (!p)
+        return;
+    double q = l > 0 ? order_at(cr, s, l - 1) : NAN;
+    fprintf(f, "| %s | %g | %.3e | ", cr->c->series[s], p->n, p->r.error);
+    double qd = diff_order_at(cr, s, l - 1);
+    if (isfinite(q))
+        fprintf(f, "%.2f", q);
+    else
+        fprintf(f, "–");
+    if (isfinite(qd))
+        fprintf(f, " | %.2f", qd);
+    else
+        fprintf(f, " | –");
+    fprintf(f, " | %.3f | %ld |\n", p->wall, p->r.steps);
+}
+
+/// The section of one case: what it checks, its acceptance, its runs and its result.
+static void write_case(FILE *f, const case_run *cr, int plots)
+{
+    const bdl_verify_case *c = cr->c;
+    fprintf(f, "\n## %s\n\n**%s.** Model: %s. Reference: %s. Error: %s. Refinement: %s.\n\n",
+            c->name, c->title, c->model, c->reference, c->measure, c->param);
+    fprintf(f, "Expected order: %s. Acceptance: error at most %g at N = %g", c->order_note,
+            c->tolerance, c->level[c->tolerance_level]);
+    if (c->order_min > 0.0)
+        fprintf(f, ", observed order over the finest pair at least %.2g", c->order_min);
+    if (c->diff_order_min > 0.0)
+        fprintf(f, ", order of the successive differences over the finest three at least %.2g",
+                c->diff_order_min);
+    fprintf(f, ".\n\n| series | N | error | order | order of the differences | wall time [s] | "
+               "steps |\n|---|---|---|---|---|---|---|\n");
+    for (int s = 0; s < c->series_count; ++s)
+        for (int l = 0; l < cr->levels; ++l)
+            write_point_row(f, cr, s, l);
+    fprintf(f, "\nResult: %s%s%s. Where it breaks: %s\n", cr->pass ? "pass" : "**FAIL**",
+            cr->pass ? "" : " — ", cr->why, c->breaks);
+    if (plots)
+        fprintf(f, "\n![%s: error against N and against run time](%s.png)\n", c->name, c->name);
+}
+
+static bdl_result write_readme(const char *dir, const case_run *runs, int n, int quick, int threads,
+                               double total, int plots)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/README.md", dir);
+    bdl_atomic_file af;
+    bdl_result r = bdl_atomic_open(&af, path);
+    if (r != BDL_OK)
+        return r;
+    time_t now = time(NULL);
+    char date[32];
+    strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
+    fprintf(af.file, "# Verification: error against run time\n\n%s", readme_intro);
+    fprintf(af.file,
+            "Run: `bedlam verify%s`, bedlam %s, %s, %d thread%s, %.0f s in all (%.1f min).\n\n",
+            quick ? " --quick" : "", BDL_VERSION, date, threads, threads == 1 ? "" : "s", total,
+            total / 60.0);
+    write_summary(af.file, runs, n);
+    for (int k = 0; k < n; ++k)
+        write_case(af.file, &runs[k], plots);
     return bdl_atomic_commit(&af);
+}
+
+typedef struct verify_opts {
+    int quick, threads, plots, list;
+    const char *out;
+    const char *names[64];
+    int named;
+    int help; ///< --help was printed: nothing else to do
+} verify_opts;
+
+static const bdl_option verify_options[] = {
+    {"--quick", BDL_OPTION_SET, offsetof(verify_opts, quick)},
+    {"--no-plots", BDL_OPTION_CLEAR, offsetof(verify_opts, plots)},
+    {"--list", BDL_OPTION_SET, offsetof(verify_opts, list)},
+    {"--out", BDL_OPTION_TEXT, offsetof(verify_opts, out)},
+};
+
+/// --threads N (checked), or the name of a case.
+static int take_other(void *opts, int argc, char **argv, int i)
+{
+    verify_opts *o = opts;
+    if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
+        char *end;
+        long t = strtol(argv[i + 1], &end, 10);
+        if (*end || t < 1 || t > 256) {
+            fprintf(stderr, "error: --threads %s: expected an integer in [1, 256]\n", argv[i + 1]);
+            return 0;
+        }
+        o->threads = (int)t;
+        return 2;
+    }
+    if (argv[i][0] == '-') {
+        fprintf(stderr, "error: unknown option '%s'\n\n%s", argv[i], verify_usage);
+        return 0;
+    }
+    if (o->named < 64) {
+        if (!bdl_verify_find(argv[i])) {
+            fprintf(stderr, "error: unknown case '%s'; bedlam verify --list shows them\n", argv[i]);
+            return 0;
+        }
+        o->names[o->named++] = argv[i];
+    }
+    return 1;
+}
+
+static bdl_result parse_verify(int argc, char **argv, verify_opts *o)
+{
+    static const bdl_option_parser parser = {verify_options, BDL_OPTION_COUNT(verify_options),
+                                             verify_usage, 0, take_other};
+    *o = (verify_opts){.threads = 1, .plots = 1, .out = "docs/validation"};
+    return bdl_option_parse(&parser, argc, argv, 1, o, &o->help);
+}
+
+/// A case runs when it is named, or when none is and it belongs to the set (--quick: the
+/// reduced one).
+static int wanted(const verify_opts *o, const bdl_verify_case *c)
+{
+    int want = o->named == 0 ? (!o->quick || c->quick) : 0;
+    for (int m = 0; m < o->named; ++m)
+        want |= strcmp(o->names[m], c->name) == 0;
+    return want;
+}
+
+/// Runs the cases asked for into runs[] (*n of them), each written to its CSV as it ends.
+static bdl_result run_cases(const verify_opts *o, const bdl_verify_case *cases, int count,
+                            case_run *runs, int *n, int *failed)
+{
+    *n = *failed = 0;
+    for (int k = 0; k < count; ++k) {
+        if (!wanted(o, &cases[k]))
+            continue;
+        case_run *cr = &runs[(*n)++];
+        cr->c = &cases[k];
+        run_case(cr, o->quick && cases[k].quick_levels > 0);
+        *failed += !cr->pass;
+        if (write_csv(o->out, cr, o->threads) != BDL_OK) {
+            fprintf(stderr, "error: cannot write %s/%s.csv: %s\n", o->out, cr->c->name,
+                    strerror(errno));
+            return BDL_ERR_IO;
+        }
+    }
+    return BDL_OK;
+}
+
+/// The plots of the cases; none after the first gnuplot fails. Returns whether all were drawn.
+static int plot_cases(const char *out, const case_run *runs, int n)
+{
+    for (int k = 0; k < n; ++k)
+        if (!plot_case(out, &runs[k])) {
+            fprintf(stderr, "warning: gnuplot failed or is missing: no plots written\n");
+            return 0;
+        }
+    return 1;
 }
 
 bdl_result bdl_cmd_verify(int argc, char **argv)
 {
-    int quick = 0, threads = 1, plots = 1, list = 0, named = 0;
-    const char *out = "docs/validation";
-    const char *names[64];
-    for (int i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            fputs(verify_usage, stdout);
-            return BDL_OK;
-        } else if (strcmp(argv[i], "--quick") == 0) {
-            quick = 1;
-        } else if (strcmp(argv[i], "--no-plots") == 0) {
-            plots = 0;
-        } else if (strcmp(argv[i], "--list") == 0) {
-            list = 1;
-        } else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) {
-            out = argv[++i];
-        } else if (strcmp(argv[i], "--threads") == 0 && i + 1 < argc) {
-            char *end;
-            long t = strtol(argv[++i], &end, 10);
-            if (*end || t < 1 || t > 256) {
-                fprintf(stderr, "error: --threads %s: expected an integer in [1, 256]\n", argv[i]);
-                return BDL_ERR_ARGS;
-            }
-            threads = (int)t;
-        } else if (argv[i][0] == '-') {
-            fprintf(stderr, "error: unknown option '%s'\n\n%s", argv[i], verify_usage);
-            return BDL_ERR_ARGS;
-        } else if (named < 64) {
-            if (!bdl_verify_find(argv[i])) {
-                fprintf(stderr, "error: unknown case '%s'; bedlam verify --list shows them\n",
-                        argv[i]);
-                return BDL_ERR_ARGS;
-            }
-            names[named++] = argv[i];
-        }
-    }
+    verify_opts o;
+    bdl_result r = parse_verify(argc, argv, &o);
+    if (r != BDL_OK || o.help)
+        return r;
     int count;
     const bdl_verify_case *cases = bdl_verify_cases(&count);
-    if (list) {
+    if (o.list) {
         for (int k = 0; k < count; ++k)
             printf("%-18s %s%s\n", cases[k].name, cases[k].title,
                    cases[k].quick ? "" : " (full set only)");
         return BDL_OK;
     }
     char why[512];
-    if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
-        fprintf(stderr, "error: --out %s: %s\n", out, why);
+    if (bdl_check_writable_dir(o.out, why, sizeof why) != BDL_OK) {
+        fprintf(stderr, "error: --out %s: %s\n", o.out, why);
         return BDL_ERR_OUTPUT_DIR;
     }
-    omp_set_num_threads(threads);
+    omp_set_num_threads(o.threads);
     case_run *runs = calloc((size_t)count, sizeof *runs);
     if (!runs)
         return BDL_ERR_NOMEM;
-    int n = 0, failed = 0;
+    int n, failed;
     double t0 = bdl_wall_seconds();
-    for (int k = 0; k < count; ++k) {
-        int want = named == 0 ? (!quick || cases[k].quick) : 0;
-        for (int m = 0; m < named; ++m)
-            want |= strcmp(names[m], cases[k].name) == 0;
-        if (!want)
-            continue;
-        case_run *cr = &runs[n++];
-        cr->c = &cases[k];
-        run_case(cr, quick && cases[k].quick_levels > 0);
-        failed += !cr->pass;
-        if (write_csv(out, cr, threads) != BDL_OK) {
-            fprintf(stderr, "error: cannot write %s/%s.csv: %s\n", out, cr->c->name,
-                    strerror(errno));
-            free(runs);
-            return BDL_ERR_IO;
-        }
-    }
+    r = run_cases(&o, cases, count, runs, &n, &failed);
     double total = bdl_wall_seconds() - t0;
-    int plotted = plots;
-    for (int k = 0; k < n && plotted; ++k)
-        if (!plot_case(out, &runs[k])) {
-            fprintf(stderr, "warning: gnuplot failed or is missing: no plots written\n");
-            plotted = 0;
-        }
-    if (write_readme(out, runs, n, quick, threads, total, plotted) != BDL_OK) {
-        fprintf(stderr, "error: cannot write %s/README.md: %s\n", out, strerror(errno));
-        free(runs);
-        return BDL_ERR_IO;
+    int plotted = r == BDL_OK && o.plots && plot_cases(o.out, runs, n);
+    if (r == BDL_OK && write_readme(o.out, runs, n, o.quick, o.threads, total, plotted) != BDL_OK) {
+        fprintf(stderr, "error: cannot write %s/README.md: %s\n", o.out, strerror(errno));
+        r = BDL_ERR_IO;
     }
-    printf("%d case%s, %d failed, %.1f s; tables in %s/README.md\n", n, n == 1 ? "" : "s", failed,
-           total, out);
+    if (r == BDL_OK)
+        printf("%d case%s, %d failed, %.1f s; tables in %s/README.md\n", n, n == 1 ? "" : "s",
+               failed, total, o.out);
     free(runs);
-    return failed ? BDL_ERR_TOLERANCE : BDL_OK;
+    return r != BDL_OK ? r : failed ? BDL_ERR_TOLERANCE : BDL_OK;
 }

@@ -221,19 +221,59 @@ static void reset(viewer *v, float aspect)
     printf("view: reset\n");
 }
 
-static void key(viewer *v, SDL_Keycode k, float aspect)
+/// From full speed, the first step down is the speed the solver has now, halved.
+static void slower(viewer *v)
 {
-    bdl_view *view = &v->view;
+    double now = v->speed_limit > 0.0 ? v->speed_limit : 0.0;
+    if (now == 0.0) {
+        const bdl_snapshot *s = bdl_loop_acquire(v->loop);
+        now = s && s->steps_per_second > 0.0 ? s->steps_per_second * v->world->dt : 1.0;
+    }
+    set_speed(v, 0.5 * now);
+}
+
+/// Keys that drive the solver: pause, step, speed, the live parameter, reset. 0 for others.
+static int solver_key(viewer *v, SDL_Keycode k, float aspect)
+{
     switch (k) {
     case SDLK_SPACE:
         v->paused = !v->paused;
         command(v, v->paused ? BDL_CMD_PAUSE : BDL_CMD_RESUME);
         printf("view: %s\n", v->paused ? "paused" : "running");
-        break;
+        return 1;
     case SDLK_n:
         command(v, BDL_CMD_STEP);
         printf("view: step\n");
-        break;
+        return 1;
+    case SDLK_PLUS:
+    case SDLK_EQUALS:
+    case SDLK_KP_PLUS:
+        set_speed(v, v->speed_limit > 0.0 ? 2.0 * v->speed_limit : 0.0);
+        return 1;
+    case SDLK_MINUS:
+    case SDLK_KP_MINUS:
+        slower(v);
+        return 1;
+    case SDLK_0:
+        set_speed(v, 0.0);
+        return 1;
+    case SDLK_RIGHTBRACKET:
+    case SDLK_LEFTBRACKET:
+        change_live(v, k == SDLK_RIGHTBRACKET ? 1.1 : 1.0 / 1.1);
+        return 1;
+    case SDLK_r:
+        reset(v, aspect);
+        return 1;
+    default:
+        return 0;
+    }
+}
+
+/// Keys that change the picture: colours, views, projection, clip plane, lighting, text.
+static int picture_key(viewer *v, SDL_Keycode k)
+{
+    bdl_view *view = &v->view;
+    switch (k) {
     case SDLK_c:
     case SDLK_v:
         view->color =
@@ -241,59 +281,40 @@ static void key(viewer *v, SDL_Keycode k, float aspect)
                              BDL_COLOR_MODE_COUNT);
         view->range_fixed = 0;
         printf("view: colour %s\n", bdl_color_mode_names[view->color]);
-        break;
+        return 1;
     case SDLK_1:
     case SDLK_2:
     case SDLK_3:
     case SDLK_4:
         bdl_camera_preset((bdl_view_preset)(k - SDLK_1), &view->camera);
         printf("view: preset %d\n", (int)(k - SDLK_1) + 1);
-        break;
+        return 1;
     case SDLK_o:
         view->camera.ortho = !view->camera.ortho;
         printf("view: %s\n", view->camera.ortho ? "orthographic" : "perspective");
-        break;
+        return 1;
     case SDLK_x:
         view->clip = !view->clip;
         printf("view: clip %s\n", view->clip ? "on" : "off");
-        break;
+        return 1;
     case SDLK_l:
         view->lighting = !view->lighting;
-        break;
+        return 1;
     case SDLK_t:
         view->overlay = !view->overlay;
-        break;
-    case SDLK_PLUS:
-    case SDLK_EQUALS:
-    case SDLK_KP_PLUS:
-        set_speed(v, v->speed_limit > 0.0 ? 2.0 * v->speed_limit : 0.0);
-        break;
-    case SDLK_MINUS:
-    case SDLK_KP_MINUS: {
-        // From full speed, the first step down is the speed the solver has now, halved.
-        double now = v->speed_limit > 0.0 ? v->speed_limit : 0.0;
-        if (now == 0.0) {
-            const bdl_snapshot *s = bdl_loop_acquire(v->loop);
-            now = s && s->steps_per_second > 0.0 ? s->steps_per_second * v->world->dt : 1.0;
-        }
-        set_speed(v, 0.5 * now);
-        break;
+        return 1;
+    default:
+        return 0;
     }
-    case SDLK_0:
-        set_speed(v, 0.0);
-        break;
-    case SDLK_RIGHTBRACKET:
-        change_live(v, 1.1);
-        break;
-    case SDLK_LEFTBRACKET:
-        change_live(v, 1.0 / 1.1);
-        break;
+}
+
+/// Keys of the session: screenshot, help, quit.
+static void session_key(viewer *v, SDL_Keycode k)
+{
+    switch (k) {
     case SDLK_p:
     case SDLK_F12:
         screenshot(v);
-        break;
-    case SDLK_r:
-        reset(v, aspect);
         break;
     case SDLK_h:
     case SDLK_F1:
@@ -308,6 +329,12 @@ static void key(viewer *v, SDL_Keycode k, float aspect)
     default:
         break;
     }
+}
+
+static void key(viewer *v, SDL_Keycode k, float aspect)
+{
+    if (!solver_key(v, k, aspect) && !picture_key(v, k))
+        session_key(v, k);
     fflush(stdout);
 }
 
@@ -380,6 +407,54 @@ static void run_viewer(viewer *v)
     }
 }
 
+/// Opens the window and its renderer for the scene; prints why when it cannot.
+static bdl_result open_window(viewer *v)
+{
+    const bdl_scene_opts *o = v->opts;
+    char why[1024];
+    bdl_context_def cd = {.backend = BDL_GL_SDL,
+                          .window = 1,
+                          .width = o->width ? o->width : 1280,
+                          .height = o->height ? o->height : 720,
+                          .title = o->scene};
+    bdl_result rc = bdl_context_create(&cd, &v->context, why, sizeof why);
+    if (rc != BDL_OK) {
+        fprintf(stderr, "error: cannot open a window: %s\n", why);
+        return rc;
+    }
+    bdl_renderer_def rd = {.scene = v->scene};
+    if ((rc = bdl_renderer_create(&rd, &v->renderer, why, sizeof why)) != BDL_OK) {
+        fprintf(stderr, "error: %s\n", why);
+        return rc;
+    }
+    int w, h;
+    bdl_context_drawable_size(v->context, &w, &h);
+    bdl_view_from_scene(v->scene, (float)w / (float)h, &v->view);
+    return BDL_OK;
+}
+
+/// Reads the scene and the key script, and names the screenshot folder.
+static bdl_result prepare(viewer *v)
+{
+    const bdl_scene_opts *o = v->opts;
+    bdl_scene_error err;
+    bdl_result rc = bdl_scene_load(o->scene, o->overrides, o->override_count, v->scene, &err);
+    if (rc != BDL_OK) {
+        fprintf(stderr, "error: %s\n", err.message);
+        return rc;
+    }
+    if (o->script && !load_script(v, o->script))
+        return BDL_ERR_ARGS;
+    const char *stem = strrchr(o->scene, '/') ? strrchr(o->scene, '/') + 1 : o->scene;
+    if (o->out)
+        snprintf(v->shot_dir, sizeof v->shot_dir, "%s", o->out);
+    else
+        snprintf(v->shot_dir, sizeof v->shot_dir, "runs/%.*s/screenshots",
+                 (int)(strcspn(stem, ".")), stem);
+    find_live_parameter(v);
+    return BDL_OK;
+}
+
 bdl_result bdl_cmd_view(int argc, char **argv)
 {
     bdl_scene_opts o;
@@ -401,44 +476,9 @@ bdl_result bdl_cmd_view(int argc, char **argv)
     v->opts = &o;
     v->scene = scene;
     v->paused = o.paused;
-    bdl_scene_error err;
-    if ((rc = bdl_scene_load(o.scene, o.overrides, o.override_count, scene, &err)) != BDL_OK) {
-        fprintf(stderr, "error: %s\n", err.message);
-        goto done;
-    }
-    if (o.script && !load_script(v, o.script)) {
-        rc = BDL_ERR_ARGS;
-        goto done;
-    }
-    const char *stem = strrchr(o.scene, '/') ? strrchr(o.scene, '/') + 1 : o.scene;
-    if (o.out)
-        snprintf(v->shot_dir, sizeof v->shot_dir, "%s", o.out);
-    else
-        snprintf(v->shot_dir, sizeof v->shot_dir, "runs/%.*s/screenshots",
-                 (int)(strcspn(stem, ".")), stem);
-    find_live_parameter(v);
-    char why[1024];
-    bdl_context_def cd = {.backend = BDL_GL_SDL,
-                          .window = 1,
-                          .width = o.width ? o.width : 1280,
-                          .height = o.height ? o.height : 720,
-                          .title = o.scene};
-    if ((rc = bdl_context_create(&cd, &v->context, why, sizeof why)) != BDL_OK) {
-        fprintf(stderr, "error: cannot open a window: %s\n", why);
-        goto done;
-    }
-    bdl_renderer_def rd = {.scene = scene};
-    if ((rc = bdl_renderer_create(&rd, &v->renderer, why, sizeof why)) != BDL_OK) {
-        fprintf(stderr, "error: %s\n", why);
-        goto done;
-    }
-    int w, h;
-    bdl_context_drawable_size(v->context, &w, &h);
-    bdl_view_from_scene(scene, (float)w / (float)h, &v->view);
-    if ((rc = start_world(v)) != BDL_OK)
-        goto done;
-    run_viewer(v);
-done:
+    if ((rc = prepare(v)) == BDL_OK && (rc = open_window(v)) == BDL_OK &&
+        (rc = start_world(v)) == BDL_OK)
+        run_viewer(v);
     stop_world(v);
     bdl_renderer_destroy(v->renderer);
     bdl_context_destroy(v->context);

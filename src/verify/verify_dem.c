@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "dem/material.h"
 #include "output/diagnostics.h"
 #include "verify/verify.h"
 
@@ -100,9 +101,9 @@ bdl_world *bdl_verify_bounce_world(int hertz, const char *damping, double e, dou
         "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
         "[create ball]\ntype = lattice\ncount = 1\nvelocity = 0 0 %.17g\n"
         "region_min = %.17g %.17g %.17g\nregion_max = %.17g %.17g %.17g\n",
-        dt, -g, hertz ? "hertz" : "linear", damping, bounce_d, bounce_rho,
-        hertz ? "youngs_modulus" : "stiffness", hertz ? bounce_youngs : bounce_k, bounce_nu, e, -v,
-        -r, -r, z0 - r, r + bounce_d, r + bounce_d, z0 + 2.0 * r);
+        dt, -g, bdl_normal_law_names[hertz ? BDL_LAW_HERTZ : BDL_LAW_LINEAR], damping, bounce_d,
+        bounce_rho, hertz ? "youngs_modulus" : "stiffness", hertz ? bounce_youngs : bounce_k,
+        bounce_nu, e, -v, -r, -r, z0 - r, r + bounce_d, r + bounce_d, z0 + 2.0 * r);
 }
 
 double bdl_verify_restitution(int hertz, const char *damping, double e, double v, double dt,
@@ -138,7 +139,8 @@ double bdl_verify_restitution_worst(int hertz, double e, double v, double dt, lo
     enum { phases = 8 };
     double worst = 0.0;
     for (int k = 0; k < phases; ++k) {
-        double em = bdl_verify_restitution(hertz, "exact", e, v, dt, (k + 0.5) / phases, steps);
+        double em = bdl_verify_restitution(hertz, bdl_damping_mode_names[BDL_DAMPING_EXACT], e, v,
+                                           dt, (k + 0.5) / phases, steps);
         worst = fmax(worst, em < 0.0 ? INFINITY : fabs(em - e) / e);
     }
     return worst;
@@ -230,18 +232,18 @@ bdl_verify_slide bdl_verify_slide_roll(int hertz, double mu, double v0, double d
     bdl_verify_slide res = {-1.0, 0, 0.0, 0.0, 0.0, 0};
     // Linear: k_n = 1e5 N/m, t_c ~ 5e-4 s; Hertz: E = 1e8 Pa, resting contact period ~ 2e-3 s.
     // e = 0.2 (zeta = 0.73, exact damping).
-    bdl_world *w =
-        bdl_verify_world("[run]\nend_time = 10\ndt = %.17g\ngravity = 0 0 %.17g\n"
-                         "[domain]\nmin = -0.02 -0.02 -0.01\nmax = 1.5 0.02 0.05\n"
-                         "[contact]\nlaw = %s\n"
-                         "[species ball]\ndiameter = %.17g\ndensity = %.17g\n%s\nrestitution = "
-                         "0.2\nfriction = %.17g\ntangential_damping_ratio = 0.5\n"
-                         "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
-                         "[create ball]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
-                         "region_min = %.17g %.17g 0\nregion_max = %.17g %.17g %.17g\n",
-                         dt, -g, hertz ? "hertz" : "linear", d, rho,
-                         hertz ? "youngs_modulus = 1e8\npoisson_ratio = 0.3" : "stiffness = 1e5",
-                         mu, v0, -r, -r, r + d, r + d, 3.0 * d);
+    bdl_world *w = bdl_verify_world(
+        "[run]\nend_time = 10\ndt = %.17g\ngravity = 0 0 %.17g\n"
+        "[domain]\nmin = -0.02 -0.02 -0.01\nmax = 1.5 0.02 0.05\n"
+        "[contact]\nlaw = %s\n"
+        "[species ball]\ndiameter = %.17g\ndensity = %.17g\n%s\nrestitution = "
+        "0.2\nfriction = %.17g\ntangential_damping_ratio = 0.5\n"
+        "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
+        "[create ball]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
+        "region_min = %.17g %.17g 0\nregion_max = %.17g %.17g %.17g\n",
+        dt, -g, bdl_normal_law_names[hertz ? BDL_LAW_HERTZ : BDL_LAW_LINEAR], d, rho,
+        hertz ? "youngs_modulus = 1e8\npoisson_ratio = 0.3" : "stiffness = 1e5", mu, v0, -r, -r,
+        r + d, r + d, 3.0 * d);
     if (!w)
         return res;
     // Least-squares sums of the slip s(t) over the sliding window 0.2 v0 < s < 0.8 v0.
@@ -298,7 +300,7 @@ double bdl_verify_collision_energy(int hertz, double v, double dt, double phi, l
         "region_min = %.17g -0.005 -0.005\nregion_max = %.17g 0.01 0.01\n"
         "[create right]\ntype = lattice\ncount = 1\nvelocity = %.17g 0 0\n"
         "region_min = %.17g -0.005 -0.005\nregion_max = %.17g 0.01 0.01\n",
-        dt, hertz ? "hertz" : "linear",
+        dt, bdl_normal_law_names[hertz ? BDL_LAW_HERTZ : BDL_LAW_LINEAR],
         hertz ? "youngs_modulus = 1e9\npoisson_ratio = 0.3" : "stiffness = 1e6", 0.5 * v, -x0 - r,
         -x0 + 2.0 * r, -0.5 * v, x0 - r, x0 + 2.0 * r);
     if (!w)
@@ -347,8 +349,9 @@ bdl_verify_column bdl_verify_static_column(int hertz, double dt_fraction)
         "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
         "[create column]\ntype = lattice\ncount = %d\n"
         "region_min = %.17g %.17g 0\nregion_max = %.17g %.17g %.17g\n",
-        dt_fraction, -g, hertz ? "hertz" : "linear", d, rho, hertz ? "youngs_modulus" : "stiffness",
-        hertz ? youngs : k_n, nu, N, -r, -r, r + d, r + d, 5.5 * d);
+        dt_fraction, -g, bdl_normal_law_names[hertz ? BDL_LAW_HERTZ : BDL_LAW_LINEAR], d, rho,
+        hertz ? "youngs_modulus" : "stiffness", hertz ? youngs : k_n, nu, N, -r, -r, r + d, r + d,
+        5.5 * d);
     if (!w || w->particles.count != N) {
         if (w)
             bdl_world_destroy(w);

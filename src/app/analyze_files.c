@@ -1,0 +1,56 @@
+// bedlam analyze — reading columns of a run's CSV files, and drawing plots with gnuplot.
+#include "app/analyze_files.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "io/csv.h"
+
+int bdl_analyze_read_column(const char *run, const char *file, const char *column, double **out,
+                            long *n)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s", run, file);
+    *out = NULL;
+    long rows = bdl_csv_read_column(path, column, NULL, 0); // count, then read
+    *out = rows > 0 ? malloc((size_t)rows * sizeof(double)) : NULL;
+    *n = *out ? bdl_csv_read_column(path, column, *out, rows) : -1;
+    if (*n <= 0) {
+        fprintf(stderr, "error: %s: no column '%s' (or no rows)\n", path, column);
+        free(*out);
+        *out = NULL;
+        return 0;
+    }
+    return 1;
+}
+
+int bdl_analyze_read_series(const char *run, const char *file, const char *column, double **t,
+                            double **x, long *n)
+{
+    long m = 0;
+    *t = *x = NULL;
+    if (bdl_analyze_read_column(run, file, "time", t, n) &&
+        bdl_analyze_read_column(run, file, column, x, &m) && m == *n)
+        return 1;
+    free(*t), free(*x);
+    *t = *x = NULL;
+    return 0;
+}
+
+void bdl_analyze_plot(const char *script_path, const char *format, ...)
+{
+    FILE *f = fopen(script_path, "w");
+    if (!f)
+        return;
+    va_list ap;
+    va_start(ap, format);
+    vfprintf(f, format, ap);
+    va_end(ap);
+    fclose(f);
+    char cmd[1300];
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>&1", script_path);
+    if (system(cmd) != 0)
+        fprintf(stderr, "warning: gnuplot failed or is missing: no plot\n");
+    remove(script_path);
+}

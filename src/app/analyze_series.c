@@ -1,0 +1,195 @@
+// bedlam analyze spectrum, mean and profile — a column of a run's time series: its power
+// spectrum, its time average with a standard error, and the time-averaged solids fraction of
+// each gas cell layer (analysis/signal.h, analysis/series.h).
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/series.h"
+#include "analysis/signal.h"
+#include "app/analyze.h"
+#include "app/analyze_files.h"
+#include "core/file.h"
+
+/// The spectrum of a column between two times: its bins and the peak in the band asked for.
+typedef struct spectrum {
+    double *freq, *power;
+    long bins;
+    double peak;   ///< dominant frequency [Hz]
+    double t0, t1; ///< times of the first and last sample [s]
+} spectrum;
+
+static bdl_result write_spectrum(const bdl_analyze_opts *o, const spectrum *s)
+{
+    char path[1300];
+    snprintf(path, sizeof path, "%s/spectrum.csv", o->out);
+    bdl_atomic_file af;
+    if (bdl_atomic_open(&af, path) != BDL_OK)
+        return BDL_ERR_OUTPUT_DIR;
+    fprintf(af.file, "frequency,power\n");
+    for (long k = 0; k < s->bins; ++k)
+        fprintf(af.file, "%.6g,%.6g\n", s->freq[k], s->power[k]);
+    fprintf(af.file, "# %s, %.6g to %.6g s, dominant %.6g Hz\n", o->column, s->t0, s->t1, s->peak);
+    return bdl_atomic_commit(&af);
+}
+
+static void plot_spectrum(const bdl_analyze_opts *o, const spectrum *s)
+{
+    char path[1300];
+    snprintf(path, sizeof path, "%s/spectrum.gp", o->out);
+    bdl_analyze_plot(path,
+                     "set terminal pngcairo size 900,500 font 'DejaVu Sans,11'\n"
+                     "set output '%s/spectrum.png'\nset datafile separator ','\n"
+                     "set xlabel 'frequency [Hz]'\nset ylabel 'power (|FFT|^2, Hamming window)'\n"
+                     "set xrange [0:%g]\nset grid\nset key top right\n"
+                     "set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb '#c03030'\n"
+                     "plot '%s/spectrum.csv' every ::1 using 1:2 with lines lw 2 lc rgb '#3060c0' "
+                     "title '%s, %.1f-%.1f s; peak %.2f Hz' noenhanced\n",
+                     o->out, o->fmax, s->peak, s->peak, o->out, o->column, s->t0, s->t1, s->peak);
+}
+
+bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o)
+{
+    double *t = NULL, *x = NULL;
+    long n = 0;
+    if (!bdl_analyze_read_series(o->run, o->file, o->column, &t, &x, &n))
+        return BDL_ERR_ARGS;
+    const bdl_time_window w = bdl_time_window_of(t, n, o->from, o->to);
+    if (w.count < 16) {
+        fprintf(stderr, "error: only %ld samples between %g and %g s\n", w.count, o->from, o->to);
+        free(t), free(x);
+        return BDL_ERR_NO_RESULT;
+    }
+    spectrum s = {.t0 = t[w.first], .t1 = t[w.first + w.count - 1]};
+    bdl_result rc = bdl_power_spectrum(x + w.first, w.count, w.dt, &s.freq, &s.power, &s.bins);
+    free(t), free(x);
+    if (rc == BDL_ERR_NOMEM) { // otherwise equal times: no bins, no peak, no result
+        fprintf(stderr, "error: %s\n", bdl_result_text(rc));
+        return rc;
+    }
+    s.peak = bdl_dominant_frequency(s.freq, s.power, s.bins, o->fmin, o->fmax);
+    printf("%s from %.3f to %.3f s: %ld samples %.4g s apart (Nyquist %.3g Hz, resolution %.3g "
+           "Hz); dominant frequency in [%g, %g] Hz: %.3f Hz\n",
+           o->column, s.t0, s.t1, w.count, w.dt, 0.5 / w.dt, s.bins > 1 ? s.freq[1] : NAN, o->fmin,
+           o->fmax, s.peak);
+    rc = write_spectrum(o, &s);
+    if (rc == BDL_OK && o->plots)
+        plot_spectrum(o, &s);
+    free(s.freq), free(s.power);
+    return rc != BDL_OK ? rc : isfinite(s.peak) ? BDL_OK : BDL_ERR_NO_RESULT;
+}
+
+bdl_result bdl_analyze_mean(const bdl_analyze_opts *o)
+{
+    double *t = NULL, *x = NULL;
+    long n = 0;
+    if (!bdl_analyze_read_series(o->run, o->file, o->column, &t, &x, &n))
+        return BDL_ERR_ARGS;
+    const bdl_block_mean m = bdl_block_mean_in(t, x, n, o->from, o->to, 10);
+    const bdl_sample_stats *s = &m.samples;
+    if (s->count < 20) {
+        fprintf(stderr, "error: only %ld samples of %s between %g and %g s\n", s->count, o->column,
+                o->from, o->to);
+        free(t), free(x);
+        return BDL_ERR_NO_RESULT;
+    }
+    printf("%s from %.4g to %.4g s (%ld samples): mean %.6g, standard deviation %.4g, standard "
+           "error %.3g (10 blocks), range %.6g to %.6g\n",
+           o->column, t[s->first], t[s->last], s->count, s->mean, s->sd, m.standard_error, s->min,
+           s->max);
+    free(t), free(x);
+    return BDL_OK;
+}
+
+/// The table's rows: one per phi_at_HEIGHT column of RUN/profile.csv (named in `header`), its
+/// samples in the time window averaged. *used: the samples of the last column read (0: none).
+static void profile_rows(const bdl_analyze_opts *o, char *header, const double *t, long n,
+                         FILE *table, long *used, double *peak, double *peak_h)
+{
+    *used = 0, *peak = 0.0, *peak_h = 0.0;
+    for (char *tok = strtok(header, ",\r\n"); tok; tok = strtok(NULL, ",\r\n")) {
+        if (strncmp(tok, "phi_at_", 7) != 0)
+            continue;
+        double *x = NULL;
+        long m = 0;
+        if (!bdl_analyze_read_column(o->run, "profile.csv", tok, &x, &m) || m != n) {
+            free(x);
+            continue;
+        }
+        const bdl_sample_stats s = bdl_sample_stats_in(t, x, n, o->from, o->to);
+        free(x);
+        *used = s.count;
+        if (s.count == 0)
+            continue;
+        const double h = atof(tok + 7);
+        fprintf(table, "%.6g,%.6g,%.6g\n", h, s.mean, s.sd);
+        if (s.mean > *peak)
+            *peak = s.mean, *peak_h = h;
+    }
+}
+
+static void plot_profile(const char *out)
+{
+    char path[1300];
+    snprintf(path, sizeof path, "%s/profile.gp", out);
+    bdl_analyze_plot(path,
+                     "set terminal pngcairo size 600,700 font 'DejaVu Sans,11'\n"
+                     "set output '%s/profile.png'\nset datafile separator ','\n"
+                     "set xlabel 'solids fraction (layer mean)'\nset ylabel 'height [m]'\n"
+                     "set grid\nset key top right\nset xrange [0:*]\n"
+                     "plot '%s/profile.csv' every ::1 using 2:1:($2-$3):($2+$3) with xerrorlines "
+                     "pt 7 lc rgb '#3060c0' title 'time average +- standard deviation'\n",
+                     out, out);
+}
+
+/// The header line of RUN/profile.csv (its columns name the layers' heights).
+static int read_profile_header(const char *run, char *header, int len)
+{
+    char path[1300];
+    snprintf(path, sizeof path, "%s/profile.csv", run);
+    FILE *f = fopen(path, "r");
+    const int ok = f && fgets(header, len, f);
+    if (f)
+        fclose(f);
+    if (!ok)
+        fprintf(stderr, "error: cannot read %s (written by runs with a gas)\n", path);
+    return ok;
+}
+
+bdl_result bdl_analyze_profile(const bdl_analyze_opts *o)
+{
+    char header[65536];
+    double *t = NULL;
+    long n = 0;
+    if (!read_profile_header(o->run, header, sizeof header) ||
+        !bdl_analyze_read_column(o->run, "profile.csv", "time", &t, &n))
+        return BDL_ERR_ARGS;
+    char path[1300];
+    snprintf(path, sizeof path, "%s/profile.csv", o->out);
+    bdl_atomic_file af;
+    if (bdl_atomic_open(&af, path) != BDL_OK) {
+        fprintf(stderr, "error: cannot write %s\n", path);
+        free(t);
+        return BDL_ERR_OUTPUT_DIR;
+    }
+    fprintf(af.file, "height,solids_fraction,std\n");
+    long used;
+    double peak, peak_h;
+    profile_rows(o, header, t, n, af.file, &used, &peak, &peak_h);
+    free(t);
+    if (used == 0) {
+        bdl_atomic_abort(&af);
+        fprintf(stderr, "error: no rows of %s/profile.csv between %g and %g s\n", o->run, o->from,
+                o->to);
+        return BDL_ERR_NO_RESULT;
+    }
+    if (bdl_atomic_commit(&af) != BDL_OK)
+        return BDL_ERR_OUTPUT_DIR;
+    printf("solids fraction against height, averaged over %ld rows: largest %.4f at %.4g m; "
+           "table in %s\n",
+           used, peak, peak_h, path);
+    if (o->plots)
+        plot_profile(o->out);
+    return BDL_OK;
+}
