@@ -150,9 +150,8 @@ static bdl_result write_force_pdf(const char *out, const double *centre, const d
     char path[1300];
     snprintf(path, sizeof path, "%s/force_pdf.csv", out);
     bdl_atomic_file af;
-    if (bdl_atomic_open(&af, path) != BDL_OK)
+    if (bdl_atomic_open_csv(&af, path, "f,pdf,fit") != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
-    fprintf(af.file, "f,pdf,fit\n");
     for (int k = 0; k < bins; ++k)
         fprintf(af.file, "%.6g,%.6g,%.6g\n", centre[k], pdf[k], bdl_force_pdf_eval(fit, centre[k]));
     fprintf(af.file, "# a %.6g b %.6g beta %.6g\n", fit->a, fit->b, fit->beta);

@@ -15,9 +15,8 @@ static bdl_result write_phase(const bdl_analyze_opts *o, const bdl_phase_fold *f
     char path[1300];
     snprintf(path, sizeof path, "%s/phase_%s.csv", o->out, o->column);
     bdl_atomic_file af;
-    if (bdl_atomic_open(&af, path) != BDL_OK)
+    if (bdl_atomic_open_csv(&af, path, "phase,mean,min,max,samples") != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
-    fprintf(af.file, "phase,mean,min,max,samples\n");
     for (int b = 0; b < f->bins; ++b)
         fprintf(af.file, "%.6g,%.8g,%.8g,%.8g,%ld\n", (b + 0.5) / f->bins, f->mean[b], f->min[b],
                 f->max[b], f->count[b]);

@@ -25,9 +25,8 @@ static bdl_result write_spectrum(const bdl_analyze_opts *o, const spectrum *s)
     char path[1300];
     snprintf(path, sizeof path, "%s/spectrum.csv", o->out);
     bdl_atomic_file af;
-    if (bdl_atomic_open(&af, path) != BDL_OK)
+    if (bdl_atomic_open_csv(&af, path, "frequency,power") != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
-    fprintf(af.file, "frequency,power\n");
     for (long k = 0; k < s->bins; ++k)
         fprintf(af.file, "%.6g,%.6g\n", s->freq[k], s->power[k]);
     fprintf(af.file, "# %s, %.6g to %.6g s, dominant %.6g Hz\n", o->column, s->t0, s->t1, s->peak);

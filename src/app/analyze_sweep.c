@@ -35,11 +35,12 @@ static bdl_result write_sweep(const char *out, const bdl_sweep_stage *st, int ns
     char path[1300];
     snprintf(path, sizeof path, "%s/sweep.csv", out);
     bdl_atomic_file af;
-    if (bdl_atomic_open(&af, path) != BDL_OK) {
+    if (bdl_atomic_open_csv(&af, path,
+                            "stage,inlet_velocity,branch,pressure_drop,pressure_drop_std,"
+                            "weight_ratio") != BDL_OK) {
         fprintf(stderr, "error: cannot write %s\n", path);
         return BDL_ERR_OUTPUT_DIR;
     }
-    fprintf(af.file, "stage,inlet_velocity,branch,pressure_drop,pressure_drop_std,weight_ratio\n");
     for (int k = 0; k < ns; ++k)
         fprintf(af.file, "%d,%.6g,%s,%.6g,%.6g,%.6g\n", k, st[k].u,
                 st[k].branch > 0 ? "increasing" : "decreasing", st[k].dp, st[k].dp_std,

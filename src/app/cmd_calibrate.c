@@ -315,9 +315,8 @@ static int write_fit(const char *path, const bdl_dia_fit *fits, const errors *te
 static int write_points(const char *path, const point_set *p)
 {
     bdl_atomic_file af;
-    if (bdl_atomic_open(&af, path) != BDL_OK)
+    if (bdl_atomic_open_csv(&af, path, "frame,cell,f2d,f3d,set") != BDL_OK)
         return 0;
-    fprintf(af.file, "frame,cell,f2d,f3d,set\n");
     for (long k = 0; k < p->n; ++k) {
         const cell_point *c = &p->p[k];
         fprintf(af.file, "%d,%d,%.6f,%.6f,%s\n", c->frame, c->cell, c->f2d, c->f3d,

@@ -162,10 +162,10 @@ static bdl_result write_csv(const char *dir, const case_run *cr, int threads)
     char path[1024];
     snprintf(path, sizeof path, "%s/%s.csv", dir, cr->c->name);
     bdl_atomic_file af;
-    bdl_result r = bdl_atomic_open(&af, path);
+    bdl_result r = bdl_atomic_open_csv(
+        &af, path, "case,series,N,error,value,reference,wall_seconds,steps,threads,status");
     if (r != BDL_OK)
         return r;
-    fprintf(af.file, "case,series,N,error,value,reference,wall_seconds,steps,threads,status\n");
     for (int k = 0; k < cr->count; ++k) {
         const point *p = &cr->p[k];
         fprintf(af.file, "%s,%s,%.10g,%.6e,%.10g,%.10g,%.6f,%ld,%d,%s\n", cr->c->name,

@@ -8,8 +8,8 @@
 
 #define G BDL_GRID_GHOST
 
-const char *const bdl_gas_side_names[] = {BDL_GAS_SIDES(BDL_ENUM_WORD) NULL};
-const char *const bdl_convection_names[] = {BDL_CONVECTIONS(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_gas_side, BDL_GAS_SIDES);
+BDL_CHOICE_WORDS(bdl_convection, BDL_CONVECTIONS);
 const char *const bdl_convection_labels[] = {BDL_CONVECTIONS(BDL_ENUM_LABEL) NULL};
 
 static int periodic_axis(const bdl_gas *g, int a)

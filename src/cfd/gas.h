@@ -45,8 +45,7 @@ extern const char *const bdl_gas_side_names[]; ///< scene words (no "periodic"),
     X(CONVECTION_VANLEER, "vanleer", "van Leer")                                                   \
     X(CONVECTION_SUPERBEE, "superbee", "Superbee")                                                 \
     X(CONVECTION_CENTRAL, "central", "central")
-typedef enum bdl_convection { BDL_CONVECTIONS(BDL_ENUM_ITEM) } bdl_convection;
-extern const char *const bdl_convection_names[];  ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_convection, BDL_CONVECTIONS);
 extern const char *const bdl_convection_labels[]; ///< for logs ("van Leer")
 
 typedef struct bdl_gas_side {

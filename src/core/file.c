@@ -53,6 +53,14 @@ static void sync_parent_folder(const char *path)
     }
 }
 
+bdl_result bdl_atomic_open_csv(bdl_atomic_file *af, const char *path, const char *header)
+{
+    bdl_result r = bdl_atomic_open(af, path);
+    if (r == BDL_OK)
+        fprintf(af->file, "%s\n", header);
+    return r;
+}
+
 bdl_result bdl_atomic_commit(bdl_atomic_file *af)
 {
     if (!af->file)

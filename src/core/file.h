@@ -24,6 +24,9 @@ typedef struct bdl_atomic_file {
 /// NULL and nothing needs to be aborted.
 bdl_result bdl_atomic_open(bdl_atomic_file *af, const char *path);
 
+/// bdl_atomic_open, then the first line: `header` and a newline (the column names of a CSV file).
+bdl_result bdl_atomic_open_csv(bdl_atomic_file *af, const char *path, const char *header);
+
 /// Flushes, fsyncs and closes the temporary file, then renames it over the final path. Any
 /// failure along the way (write error, disk full at flush or close, rename refused) removes the
 /// temporary file and returns BDL_ERR_IO; the previous content of the final path is then intact.

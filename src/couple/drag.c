@@ -4,7 +4,7 @@
 
 #include <math.h>
 
-const char *const bdl_drag_law_names[] = {BDL_DRAG_LAWS(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_drag_law, BDL_DRAG_LAWS);
 const char *const bdl_drag_law_texts[] = {BDL_DRAG_LAWS(BDL_ENUM_LABEL) NULL};
 
 bdl_drag_params bdl_drag_default_params(void)
@@ -33,9 +33,9 @@ static double wen_yu(double eps, double d, double slip, double rho, double mu)
     return 18.0 * mu / (d * d) * schiller_naumann_factor(re) * pow(eps, -2.65);
 }
 
-/// Syamlal & O'Brien (1988), as written out by Sun (2007), eqs. 3.10-3.16: beta = 3 phi eps rho / (4 Vr^2 d)
-/// Cds(Re / Vr) |u - v| with the Dalla Valle Cds = (0.63 + 4.8 / sqrt(Re / Vr))^2 and the
-/// terminal-velocity ratio Vr of Garside & Al-Dibouni; Re = rho d |u - v| / mu.
+/// Syamlal & O'Brien (1988), as written out by Sun (2007), eqs. 3.10-3.16: beta = 3 phi eps rho /
+/// (4 Vr^2 d) Cds(Re / Vr) |u - v| with the Dalla Valle Cds = (0.63 + 4.8 / sqrt(Re / Vr))^2 and
+/// the terminal-velocity ratio Vr of Garside & Al-Dibouni; Re = rho d |u - v| / mu.
 static double syamlal_obrien(const bdl_drag_params *p, double eps, double d, double slip,
                              double rho, double mu)
 {

@@ -6,7 +6,8 @@
 // particle velocity v, gas density rho and viscosity mu. The force on one particle of volume
 // V_p is then beta V_p / phi (u - v); bdl_drag_per_volume returns beta / phi, finite as phi -> 0,
 // so a single particle in a large cell is handled without dividing zero by zero.
-// Pressure-gradient (buoyancy) forces are separate ("model A" of Sanghishetty et al. 2024, supplement, eq. 4).
+// Pressure-gradient (buoyancy) forces are separate ("model A" of Sanghishetty et al. 2024,
+// supplement, eq. 4).
 #ifndef BDL_DRAG_H
 #define BDL_DRAG_H
 

@@ -8,7 +8,7 @@
 
 #define PI 3.14159265358979323846
 
-const char *const bdl_create_kind_names[] = {BDL_CREATE_KINDS(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_create_kind, BDL_CREATE_KINDS);
 
 // A bucket grid over a region for overlap tests while placing particles.
 typedef struct placement_grid {

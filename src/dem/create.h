@@ -19,8 +19,7 @@
     X(CREATE_LATTICE, "lattice", "simple cubic lattice in a box region")                           \
     X(CREATE_POUR, "pour", "insert particles in a region at a rate during the run")                \
     X(CREATE_FILE, "file", "positions (and optionally diameter, velocity) from a CSV file")
-typedef enum bdl_create_kind { BDL_CREATE_KINDS(BDL_ENUM_ITEM) } bdl_create_kind;
-extern const char *const bdl_create_kind_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_create_kind, BDL_CREATE_KINDS);
 
 typedef struct bdl_create_def {
     char name[BDL_NAME_LEN];

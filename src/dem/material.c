@@ -120,9 +120,9 @@ static double damping_exact(int hertz, double restitution)
 
 static double mean2(double a, double b) { return 0.5 * (a + b); }
 
-const char *const bdl_normal_law_names[] = {BDL_NORMAL_LAWS(BDL_ENUM_WORD) NULL};
-const char *const bdl_damping_mode_names[] = {BDL_DAMPING_MODES(BDL_ENUM_WORD) NULL};
-const char *const bdl_rolling_model_names[] = {BDL_ROLLING_MODELS(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_normal_law, BDL_NORMAL_LAWS);
+BDL_CHOICE_WORDS(bdl_damping_mode, BDL_DAMPING_MODES);
+BDL_CHOICE_WORDS(bdl_rolling_model, BDL_ROLLING_MODELS);
 
 static double pick(double wall_value, double particle_value)
 {

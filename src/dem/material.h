@@ -20,22 +20,19 @@
 #define BDL_NORMAL_LAWS(X)                                                                         \
     X(LAW_LINEAR, "linear", "linear spring-dashpot: F = k_n delta - gamma v_n")                    \
     X(LAW_HERTZ, "hertz", "Hertz-Mindlin with delta^(1/4)-scaled (restitution-based) damping")
-typedef enum bdl_normal_law { BDL_NORMAL_LAWS(BDL_ENUM_ITEM) } bdl_normal_law;
-extern const char *const bdl_normal_law_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_normal_law, BDL_NORMAL_LAWS);
 
 /// How the damping coefficient is obtained from the restitution ([contact] damping).
 #define BDL_DAMPING_MODES(X)                                                                       \
     X(DAMPING_EXACT, "exact", "solved once per pair so that the realised restitution matches")     \
     X(DAMPING_CLOSED_FORM, "closed_form", "the closed form of LIGGGHTS/EDEM (approximate at low e)")
-typedef enum bdl_damping_mode { BDL_DAMPING_MODES(BDL_ENUM_ITEM) } bdl_damping_mode;
-extern const char *const bdl_damping_mode_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_damping_mode, BDL_DAMPING_MODES);
 
 /// Rolling resistance model ([contact] rolling).
 #define BDL_ROLLING_MODELS(X)                                                                      \
     X(ROLLING_NONE, "none", "none")                                                                \
     X(ROLLING_CONSTANT, "constant", "constant directional torque mu_r R* |F_n| against rolling")
-typedef enum bdl_rolling_model { BDL_ROLLING_MODELS(BDL_ENUM_ITEM) } bdl_rolling_model;
-extern const char *const bdl_rolling_model_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_rolling_model, BDL_ROLLING_MODELS);
 
 /// Material and contact parameters shared by species, pair overrides and walls.
 /// A value < 0 means "not given" where a default is derived (documented per key).

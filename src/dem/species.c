@@ -1,8 +1,8 @@
 // bedlam — species: size distributions.
 #include "dem/species.h"
 
-const char *const bdl_shape_names[] = {BDL_SHAPES(BDL_ENUM_WORD) NULL};
-const char *const bdl_size_dist_names[] = {BDL_SIZE_DISTS(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_shape, BDL_SHAPES);
+BDL_CHOICE_WORDS(bdl_size_dist, BDL_SIZE_DISTS);
 
 double bdl_species_max_diameter(const bdl_species_def *s)
 {

@@ -16,8 +16,7 @@
 
 /// Particle shape of a species ([species NAME] shape).
 #define BDL_SHAPES(X) X(SHAPE_SPHERE, "sphere", "sphere")
-typedef enum bdl_shape { BDL_SHAPES(BDL_ENUM_ITEM) } bdl_shape;
-extern const char *const bdl_shape_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_shape, BDL_SHAPES);
 
 /// Diameter distribution of a species.
 #define BDL_SIZE_DISTS(X)                                                                          \
@@ -25,8 +24,7 @@ extern const char *const bdl_shape_names[]; ///< scene words, NULL-terminated
     X(SIZE_UNIFORM, "uniform", "uniform in [diameter_min, diameter_max]")                          \
     X(SIZE_NORMAL, "normal",                                                                       \
       "normal(diameter, diameter_std) truncated to [diameter_min, diameter_max]")
-typedef enum bdl_size_dist { BDL_SIZE_DISTS(BDL_ENUM_ITEM) } bdl_size_dist;
-extern const char *const bdl_size_dist_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_size_dist, BDL_SIZE_DISTS);
 
 typedef struct bdl_species_def {
     char name[BDL_NAME_LEN];

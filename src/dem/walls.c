@@ -4,9 +4,9 @@
 
 #define PI 3.14159265358979323846
 
-const char *const bdl_wall_kind_names[] = {BDL_WALL_KINDS(BDL_ENUM_WORD) NULL};
-const char *const bdl_motion_kind_names[] = {BDL_MOTIONS(BDL_ENUM_WORD) NULL};
-const char *const bdl_wall_frame_names[] = {BDL_WALL_FRAMES(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_wall_kind, BDL_WALL_KINDS);
+BDL_CHOICE_WORDS(bdl_motion_kind, BDL_MOTIONS);
+BDL_CHOICE_WORDS(bdl_wall_frame, BDL_WALL_FRAMES);
 
 static void add_plane(bdl_walls *walls, int wall, bdl_vec3 point, bdl_vec3 normal)
 {

@@ -18,23 +18,20 @@
     X(WALL_PLANE, "plane", "half-space boundary: particles stay on the side `normal` points to")   \
     X(WALL_BOX, "box", "the inside of an axis-aligned box (six planes)")                           \
     X(WALL_CYLINDER, "cylinder", "the inside of a cylinder around an axis (infinite unless capped)")
-typedef enum bdl_wall_kind { BDL_WALL_KINDS(BDL_ENUM_ITEM) } bdl_wall_kind;
-extern const char *const bdl_wall_kind_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_wall_kind, BDL_WALL_KINDS);
 
 /// Prescribed motion of a wall ([wall NAME] motion).
 #define BDL_MOTIONS(X)                                                                             \
     X(MOTION_NONE, "none", "at rest")                                                              \
     X(MOTION_VIBRATE, "vibrate", "displacement A sin(2 pi f t + phase) along `direction`")
-typedef enum bdl_motion_kind { BDL_MOTIONS(BDL_ENUM_ITEM) } bdl_motion_kind;
-extern const char *const bdl_motion_kind_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_motion_kind, BDL_MOTIONS);
 
 /// The frame a vibrating wall is seen from ([wall NAME] frame).
 #define BDL_WALL_FRAMES(X)                                                                         \
     X(FRAME_LAB, "lab", "the wall moves through the fixed domain")                                 \
     X(FRAME_CONTAINER, "container",                                                                \
       "the whole container moves with it; the run is done in its frame")
-typedef enum bdl_wall_frame { BDL_WALL_FRAMES(BDL_ENUM_ITEM) } bdl_wall_frame;
-extern const char *const bdl_wall_frame_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_wall_frame, BDL_WALL_FRAMES);
 
 typedef struct bdl_wall_def {
     char name[BDL_NAME_LEN];

@@ -194,10 +194,10 @@ static bdl_result write_particles(const char *path, const bdl_dia_camera *cam,
                                   const bdl_dia_scene *s, const long *visible, int samples)
 {
     bdl_atomic_file af;
-    bdl_result r = bdl_atomic_open(&af, path);
+    bdl_result r = bdl_atomic_open_csv(
+        &af, path, "id,x,y,z,vx,vy,vz,radius,u,v,depth,visible_samples,visible_fraction");
     if (r != BDL_OK)
         return r;
-    fprintf(af.file, "id,x,y,z,vx,vy,vz,radius,u,v,depth,visible_samples,visible_fraction\n");
     for (long i = 0; i < s->count; ++i) {
         double u, v, z;
         bdl_dia_project(cam, s->pos[i], &u, &v, &z);
@@ -216,11 +216,11 @@ static bdl_result write_cells(const char *path, const bdl_dia_truth_def *t,
                               const bdl_dia_cell_truth *cells)
 {
     bdl_atomic_file af;
-    bdl_result r = bdl_atomic_open(&af, path);
+    bdl_result r = bdl_atomic_open_csv(&af, path,
+                                       "column,row,u0,v0,u1,v1,area_fraction,solids_depth,"
+                                       "solids_layer,visible_particles,vx,vy,vz,du,dv");
     if (r != BDL_OK)
         return r;
-    fprintf(af.file, "column,row,u0,v0,u1,v1,area_fraction,solids_depth,solids_layer,"
-                     "visible_particles,vx,vy,vz,du,dv\n");
     for (int j = 0; j < t->cells[1]; ++j)
         for (int i = 0; i < t->cells[0]; ++i) {
             const bdl_dia_cell_truth *c = &cells[j * t->cells[0] + i];

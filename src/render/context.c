@@ -24,6 +24,13 @@ int bdl_gl_backend_parse(const char *text, bdl_gl_backend *out)
     return 0;
 }
 
+bdl_gl_proc bdl_context_proc(const void *p)
+{
+    bdl_gl_proc q;
+    memcpy(&q, p, sizeof q);
+    return q;
+}
+
 int bdl_context_symbol(void *library, const char *name, void *slot)
 {
     void *p = dlsym(library, name);

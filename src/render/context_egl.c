@@ -29,9 +29,7 @@ static egl_api egl;
 static bdl_gl_proc lookup(const char *name)
 {
     __eglMustCastToProperFunctionPointerType p = egl.GetProcAddress(name);
-    bdl_gl_proc q;
-    memcpy(&q, &p, sizeof q);
-    return q;
+    return bdl_context_proc(&p);
 }
 
 static void close_egl(bdl_context *c)

@@ -26,6 +26,9 @@ bdl_result bdl_context_open_sdl(bdl_context *c, const bdl_context_def *def, char
 /// Looks up `name` in a dlopen'ed library into the function pointer at `slot`; 0 if missing.
 int bdl_context_symbol(void *library, const char *name, void *slot);
 
+/// The function pointer at `p` (of any function type) as a GL procedure.
+bdl_gl_proc bdl_context_proc(const void *p);
+
 /// Loads the GL table and checks the version; on failure writes why.
 bdl_result bdl_context_finish(bdl_context *c, bdl_gl_lookup lookup, char *why, size_t why_len);
 

@@ -36,9 +36,7 @@ static struct {
 static bdl_gl_proc lookup(const char *name)
 {
     OSMESAproc p = osm.GetProcAddress(name);
-    bdl_gl_proc q;
-    memcpy(&q, &p, sizeof q);
-    return q;
+    return bdl_context_proc(&p);
 }
 
 static void close_osmesa(bdl_context *c)

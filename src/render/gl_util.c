@@ -6,6 +6,26 @@
 
 const char *bdl_shader_source(const char *name); // generated from shaders/
 
+/// 0 when a shader compiled (`program` 0) or a program linked; else its log after `what` into
+/// `why`, and 1.
+static int failed(GLuint object, int program, const char *what, char *why, size_t why_len)
+{
+    GLint ok = 0;
+    if (program)
+        glGetProgramiv(object, GL_LINK_STATUS, &ok);
+    else
+        glGetShaderiv(object, GL_COMPILE_STATUS, &ok);
+    if (ok)
+        return 0;
+    char log[1024] = "";
+    if (program)
+        glGetProgramInfoLog(object, sizeof log, NULL, log);
+    else
+        glGetShaderInfoLog(object, sizeof log, NULL, log);
+    snprintf(why, why_len, "%s: %s", what, log);
+    return 1;
+}
+
 static GLuint compile(GLenum kind, const char *name, char *why, size_t why_len)
 {
     const char *source = bdl_shader_source(name);
@@ -16,12 +36,9 @@ static GLuint compile(GLenum kind, const char *name, char *why, size_t why_len)
     GLuint s = glCreateShader(kind);
     glShaderSource(s, 1, &source, NULL);
     glCompileShader(s);
-    GLint ok = 0;
-    glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        glGetShaderInfoLog(s, sizeof log, NULL, log);
-        snprintf(why, why_len, "shader %s does not compile: %s", name, log);
+    char what[256];
+    snprintf(what, sizeof what, "shader %s does not compile", name);
+    if (failed(s, 0, what, why, why_len)) {
         glDeleteShader(s);
         return 0;
     }
@@ -43,12 +60,9 @@ GLuint bdl_gl_program(const char *vert, const char *frag, char *why, size_t why_
     glLinkProgram(p);
     glDeleteShader(v);
     glDeleteShader(f);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[1024] = "";
-        glGetProgramInfoLog(p, sizeof log, NULL, log);
-        snprintf(why, why_len, "shaders %s + %s do not link: %s", vert, frag, log);
+    char what[256];
+    snprintf(what, sizeof what, "shaders %s + %s do not link", vert, frag);
+    if (failed(p, 1, what, why, why_len)) {
         glDeleteProgram(p);
         return 0;
     }

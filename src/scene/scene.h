@@ -45,14 +45,12 @@ typedef struct bdl_output_def {
     X(VIEW_FRONT, "front", "along +y: the x-z plane, as a camera sees a pseudo-2D bed's front")    \
     X(VIEW_SIDE, "side", "along -x: the y-z plane")                                                \
     X(VIEW_TOP, "top", "along -z: the x-y plane")
-typedef enum bdl_view_preset { BDL_VIEW_PRESETS(BDL_ENUM_ITEM) } bdl_view_preset;
-extern const char *const bdl_view_preset_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_view_preset, BDL_VIEW_PRESETS);
 
 #define BDL_PROJECTIONS(X)                                                                         \
     X(PROJ_PERSPECTIVE, "perspective", "perspective")                                              \
     X(PROJ_ORTHOGRAPHIC, "orthographic", "orthographic")
-typedef enum bdl_projection { BDL_PROJECTIONS(BDL_ENUM_ITEM) } bdl_projection;
-extern const char *const bdl_projection_names[]; ///< scene words, NULL-terminated
+BDL_CHOICES(bdl_projection, BDL_PROJECTIONS);
 
 /// What the particle colour shows ([camera] color): X(NAME, "word", "label", "unit").
 #define BDL_COLOR_MODES(X)                                                                         \

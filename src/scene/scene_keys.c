@@ -49,8 +49,8 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
 #define BDL_X_WORD(name, word, label, unit)  word,
 #define BDL_X_LABEL(name, word, label, unit) label,
 #define BDL_X_UNIT(name, word, label, unit)  unit,
-const char *const bdl_view_preset_names[] = {BDL_VIEW_PRESETS(BDL_ENUM_WORD) NULL};
-const char *const bdl_projection_names[] = {BDL_PROJECTIONS(BDL_ENUM_WORD) NULL};
+BDL_CHOICE_WORDS(bdl_view_preset, BDL_VIEW_PRESETS);
+BDL_CHOICE_WORDS(bdl_projection, BDL_PROJECTIONS);
 const char *const bdl_color_mode_names[] = {BDL_COLOR_MODES(BDL_X_WORD) NULL};
 const char *const bdl_color_mode_labels[] = {BDL_COLOR_MODES(BDL_X_LABEL) NULL};
 const char *const bdl_color_mode_units[] = {BDL_COLOR_MODES(BDL_X_UNIT) NULL};
