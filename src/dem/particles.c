@@ -5,18 +5,15 @@
 #include <stdlib.h>
 #include <string.h>
 
-/// When a per-particle array exists.
-typedef enum array_when {
-    ALWAYS,
-    WITH_GAS, ///< only when bdl_particles.fluid is set
-} array_when;
+#define ALWAYS   BDL_ARRAYS_ALWAYS
+#define WITH_GAS BDL_ARRAYS_WITH_GAS
 
 /// One per-particle array of bdl_particles: where its pointer lives and how many bytes each
 /// particle takes in it.
 typedef struct particle_array {
     size_t offset; ///< of the pointer in bdl_particles
     size_t elem;   ///< bytes per particle
-    array_when when;
+    int when;      ///< BDL_ARRAYS_*: when it exists
 } particle_array;
 
 // clang-format off
@@ -51,6 +48,16 @@ static void **array_pointer(bdl_particles *p, const particle_array *a)
 static int has_array(const bdl_particles *p, const particle_array *a)
 {
     return a->when == ALWAYS || p->fluid;
+}
+
+int bdl_particles_arrays(const bdl_particles *p, int when, bdl_particle_array *out)
+{
+    int count = 0;
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        if ((arrays[a].when & when) && has_array(p, &arrays[a]))
+            out[count++] = (bdl_particle_array){
+                *(void *const *)((const char *)p + arrays[a].offset), arrays[a].elem};
+    return count;
 }
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity)

@@ -8,11 +8,12 @@
 // between processes carries): declare its pointer in bdl_particles and add one row to the table
 // `arrays` in particles.c, with the condition under which it exists. Reserve, free, permute and
 // the byte count all walk that table; a new particle starts with zero in it unless
-// bdl_particles_add sets another value. An array that is part of the state must also be saved
-// in checkpoints (output/checkpoint.c lists the file's fields in their file order).
+// bdl_particles_add sets another value. Checkpoints save every array the table lists
+// (bdl_particles_arrays), so a new one is saved and restored without a further line.
 #ifndef BDL_PARTICLES_H
 #define BDL_PARTICLES_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "core/error.h"
@@ -62,6 +63,21 @@ static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 /// `scratch` must hold count * sizeof(bdl_vec3) bytes (wider records, as the force-torque record,
 /// are moved a vector's width at a time).
 void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch);
+
+/// Which per-particle arrays exist: always, or only with a gas (bdl_particles.fluid).
+enum { BDL_ARRAYS_ALWAYS = 1, BDL_ARRAYS_WITH_GAS = 2 };
+
+/// A per-particle array: its storage and the bytes each particle takes in it.
+typedef struct bdl_particle_array {
+    void *data;
+    size_t element;
+} bdl_particle_array;
+
+/// The per-particle arrays that exist among the kinds in the mask `when`, in the table's order
+/// (at most BDL_PARTICLE_ARRAYS); returns their count. Checkpoints, and later the migration of
+/// particles between processes, move every array this lists.
+#define BDL_PARTICLE_ARRAYS 16
+int bdl_particles_arrays(const bdl_particles *p, int when, bdl_particle_array *out);
 
 /// Bytes allocated for particle storage.
 long bdl_particles_bytes(const bdl_particles *p);

@@ -77,15 +77,10 @@ static int state_fields(bdl_world *w, field *f)
     size_t n = (size_t)p->count, np = (size_t)nb->pair_count, nw = (size_t)nb->wall_pair_count;
     size_t v = sizeof(bdl_vec3), i32 = sizeof(int32_t);
     int k = 0;
-    f[k++] = (field){p->pos, n * v};
-    f[k++] = (field){p->vel, n * v};
-    f[k++] = (field){p->omega, n * v};
-    f[k++] = (field){p->load, n * sizeof(bdl_wrench)};
-    f[k++] = (field){p->pos_at_build, n * v};
-    f[k++] = (field){p->radius, n * sizeof(double)};
-    f[k++] = (field){p->inv_mass, n * sizeof(double)};
-    f[k++] = (field){p->species, n * i32};
-    f[k++] = (field){p->id, n * sizeof(uint32_t)};
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    int count = bdl_particles_arrays(p, BDL_ARRAYS_ALWAYS, arrays);
+    for (int a = 0; a < count; ++a)
+        f[k++] = (field){arrays[a].data, n * arrays[a].element};
     f[k++] = (field){w->coordination, n};
     f[k++] = (field){nb->wall_offset_at_build, sizeof nb->wall_offset_at_build};
     f[k++] = (field){nb->start, (n + 1) * i32};
@@ -98,11 +93,10 @@ static int state_fields(bdl_world *w, field *f)
     f[k++] = (field){nb->wall_history, nw * v};
     f[k++] = (field){nb->wall_force, nw * v};
     f[k++] = (field){nb->wall_touching, nw};
-    if (p->fluid) { // the gas's forces on the particles, held between gas steps
-        f[k++] = (field){p->fluid_accel, n * v};
-        f[k++] = (field){p->vel_mark, n * v};
-        f[k++] = (field){p->drag_accel, n * v};
-    }
+    // The gas's forces on the particles, held between gas steps.
+    count = bdl_particles_arrays(p, BDL_ARRAYS_WITH_GAS, arrays);
+    for (int a = 0; a < count; ++a)
+        f[k++] = (field){arrays[a].data, n * arrays[a].element};
     bdl_gas *g = w->gas;
     if (g) {
         const size_t cells = (size_t)g->grid.size * sizeof(double);
