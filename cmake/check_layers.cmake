@@ -3,7 +3,10 @@
 # folder uses only folders before it in its own layer or in lower layers). Prints every include
 # edge between folders with its count, and fails on any edge the table does not allow.
 #
-#   cmake -DSRC=path/to/src [-DLAYERS=path/to/layers.cmake] -P cmake/check_layers.cmake
+#   cmake -DSRC=path/to/src [-DLAYERS=path/to/layers.cmake] [-DDOT=out.dot] -P check_layers.cmake
+#
+# With DOT, also writes the folders (by layer; planned ones dashed) and the include edges as a
+# Graphviz graph (tools/architecture_figure.sh draws docs/img/architecture.png from it).
 if(NOT SRC)
   message(FATAL_ERROR "usage: cmake -DSRC=path/to/src -P check_layers.cmake")
 endif()
@@ -89,3 +92,31 @@ if(problems)
 endif()
 list(LENGTH counted count)
 message("layers: ${count} directions between folders, all allowed")
+
+if(DOT)
+  set(planned "")
+  set(dot "digraph layers {\n  rankdir=BT; fontname=\"DejaVu Sans\";\n")
+  string(APPEND dot "  node [shape=box, fontname=\"DejaVu Sans\"];\n")
+  foreach(layer ${BDL_LAYERS})
+    string(APPEND dot "  subgraph cluster_${layer} {\n    label=\"${layer}\"; style=rounded;\n")
+    foreach(folder ${BDL_LAYER_${layer}})
+      if(IS_DIRECTORY ${SRC}/${folder})
+        string(APPEND dot "    ${folder};\n")
+      else() # a planned folder: dashed, with the directions it will be allowed
+        string(APPEND dot "    ${folder} [style=dashed, label=\"${folder}\\n(next)\"];\n")
+        foreach(used ${BDL_USES_${folder}})
+          string(APPEND planned "  ${folder} -> ${used} [style=dashed];\n")
+        endforeach()
+      endif()
+    endforeach()
+    string(APPEND dot "  }\n")
+  endforeach()
+  foreach(edge ${counted})
+    string(REPLACE " -> " ";" pair "${edge}")
+    list(GET pair 0 from)
+    list(GET pair 1 to)
+    string(APPEND dot "  ${from} -> ${to};\n")
+  endforeach()
+  string(APPEND dot "${planned}}\n")
+  file(WRITE ${DOT} "${dot}")
+endif()

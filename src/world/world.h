@@ -1,8 +1,15 @@
 // bedlam — the world: the modules a scene needs, and one time step.
 //
 // A world is built from a validated scene. It owns the particles, walls, neighbour lists and
-// contact tables, and advances them with bdl_world_step. Nothing here starts threads or writes
-// files: the run loop (run.h, loop.h) does that around it.
+// contact tables, and with [gas] the gas and its coupling, and advances them with
+// bdl_world_step. Nothing here starts threads or writes files: the run loop (run/loop.h) does
+// that around it.
+//
+// The next solvers take their places beside the gas: parcels of many real particles
+// (src/parcels/) and solids phases on the gas's grid (src/solids/) become members built only
+// when a scene asks for them, stepped inside the gas step where they exchange momentum with the
+// gas through the same implicit drag coefficients on the faces (cfd/gas.h: beta, bv) as the
+// particles do (docs/architecture.md, "The next solvers").
 #ifndef BDL_WORLD_H
 #define BDL_WORLD_H
 
