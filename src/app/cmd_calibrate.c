@@ -9,6 +9,7 @@
 #include "app/app.h"
 #include "app/options.h"
 #include "dia/analysis.h"
+#include "scene/scene.h"
 #include "core/file.h"
 #include "io/png.h"
 
@@ -175,7 +176,7 @@ static bdl_result read_camera(const char *dir, int *nx, int *ny, int *back_lit)
     }
     char lighting[16];
     json_string(json, "lighting", lighting, sizeof lighting);
-    *back_lit = strcmp(lighting, "back") == 0;
+    *back_lit = strcmp(lighting, bdl_dia_lighting_names[BDL_DIA_BACK_LIT]) == 0;
     const char *cells = strstr(json, "\"cells\": [");
     *nx = *ny = 0;
     if (cells)

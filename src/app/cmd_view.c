@@ -291,7 +291,8 @@ static int picture_key(viewer *v, SDL_Keycode k)
         return 1;
     case SDLK_o:
         view->camera.ortho = !view->camera.ortho;
-        printf("view: %s\n", view->camera.ortho ? "orthographic" : "perspective");
+        printf("view: %s\n", bdl_projection_names[view->camera.ortho ? BDL_PROJ_ORTHOGRAPHIC
+                                                                     : BDL_PROJ_PERSPECTIVE]);
         return 1;
     case SDLK_x:
         view->clip = !view->clip;

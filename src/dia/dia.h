@@ -18,16 +18,11 @@
 
 #include "core/error.h"
 #include "core/vec3.h"
+#include "scene/scene.h"
 
-typedef enum bdl_dia_projection {
-    BDL_DIA_ORTHOGRAPHIC = 0,
-    BDL_DIA_PERSPECTIVE,
-} bdl_dia_projection;
-
-typedef enum bdl_dia_lighting {
-    BDL_DIA_FRONT_LIT = 0, ///< lights on the camera's side: bright spheres, dark background
-    BDL_DIA_BACK_LIT,      ///< a light panel behind the bed: dark silhouettes, bright background
-} bdl_dia_lighting;
+// The projections and the lightings (front: lights on the camera's side, bright spheres on a dark
+// background; back: a light panel behind the bed, dark silhouettes on a bright background) are
+// the scene's choices: bdl_dia_projection and bdl_dia_lighting in scene/scene.h.
 
 #define BDL_DIA_MAX_LIGHTS 4
 

@@ -36,7 +36,7 @@ bdl_result bdl_dia_from_scene(const bdl_scene *s, int index, bdl_dia_camera *cam
 {
     const bdl_dia_scene_def *d = &s->dias[index];
     bdl_dia_def def = {0};
-    def.projection = d->projection ? BDL_DIA_PERSPECTIVE : BDL_DIA_ORTHOGRAPHIC;
+    def.projection = d->projection;
     def.position = d->position;
     def.target = d->target;
     def.up = d->up;
@@ -44,7 +44,7 @@ bdl_result bdl_dia_from_scene(const bdl_scene *s, int index, bdl_dia_camera *cam
     def.pixel_size = d->pixel_size;
     def.focal_length = d->focal_length;
     def.samples = d->samples;
-    def.lighting = d->lighting ? BDL_DIA_BACK_LIT : BDL_DIA_FRONT_LIT;
+    def.lighting = d->lighting;
     // Lights: one, or a ring in the image plane around the given point (LEDs around a lens).
     const bdl_vec3 centre = d->has_light_position ? d->light_position : d->position;
     def.light_count = d->lights < 1                    ? 1
@@ -104,8 +104,7 @@ static bdl_result write_camera_json(const camera_state *c, double dt)
     const bdl_dia_def *d = &c->camera.def;
     FILE *f = af.file;
     fprintf(f, "{\n  \"name\": \"%s\",\n  \"kind\": \"dia\",\n", c->def->name);
-    fprintf(f, "  \"projection\": \"%s\",\n",
-            d->projection == BDL_DIA_PERSPECTIVE ? "perspective" : "orthographic");
+    fprintf(f, "  \"projection\": \"%s\",\n", bdl_dia_projection_names[d->projection]);
     fprintf(f, "  \"width\": %d,\n  \"height\": %d,\n  \"pixel_size\": %.17g,\n", d->width,
             d->height, d->pixel_size);
     fprintf(f, "  \"focal_length\": %.17g,\n",
@@ -119,7 +118,7 @@ static bdl_result write_camera_json(const camera_state *c, double dt)
                "position).right / s; v = height/2 + (x - position).down / s; pixel (i, j) covers "
                "[i, i+1) x [j, j+1), rows from the top\",\n");
     fprintf(f, "  \"lighting\": \"%s\",\n  \"dark\": %.6g,\n  \"bright\": %.6g,\n",
-            d->lighting == BDL_DIA_BACK_LIT ? "back" : "front", d->dark, d->bright);
+            bdl_dia_lighting_names[d->lighting], d->dark, d->bright);
     fprintf(f, "  \"ambient\": %.6g,\n  \"lights\": [", d->ambient);
     for (int k = 0; k < d->light_count; ++k)
         fprintf(f, "%s{\"position\": [%.9g, %.9g, %.9g], \"intensity\": %.6g}", k ? ", " : "",

@@ -266,7 +266,7 @@ static bdl_result open_cameras(bdl_run_outputs *o, int resume)
     for (int k = 0; k < s->dia_count; ++k) {
         const bdl_dia_scene_def *dd = &s->dias[k];
         bdl_info("camera %s: %dx%d %s images every %g s%s in %s/dia/%s", dd->name, dd->width,
-                 dd->height, dd->lighting ? "back-lit" : "front-lit", dd->interval,
+                 dd->height, bdl_dia_lighting_labels[dd->lighting], dd->interval,
                  dd->pair_dt > 0.0 ? " (PIV pairs)" : "", o->out, dd->name);
     }
     return BDL_OK;

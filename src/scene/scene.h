@@ -112,21 +112,44 @@ typedef struct bdl_camera_def {
     double gas_opacity;        ///< of the slice, 0..1
 } bdl_camera_def;
 
+/// How a synthetic camera projects ([camera NAME] projection).
+#define BDL_DIA_PROJECTIONS(X)                                                                     \
+    X(DIA_ORTHOGRAPHIC, "orthographic", "orthographic")                                            \
+    X(DIA_PERSPECTIVE, "perspective", "perspective")
+BDL_CHOICES(bdl_dia_projection, BDL_DIA_PROJECTIONS);
+
+/// Where a synthetic camera's light comes from ([camera NAME] lighting): lights on the camera's
+/// side (bright spheres, dark background) or a light panel behind the bed (dark silhouettes on a
+/// bright background).
+#define BDL_DIA_LIGHTINGS(X)                                                                       \
+    X(DIA_FRONT_LIT, "front", "front-lit")                                                         \
+    X(DIA_BACK_LIT, "back", "back-lit")
+BDL_CHOICES(bdl_dia_lighting, BDL_DIA_LIGHTINGS);
+extern const char *const bdl_dia_lighting_labels[]; ///< "front-lit", "back-lit"
+
+/// A stepwise sweep of the inlet velocity ([gas] sweep).
+#define BDL_SWEEPS(X)                                                                              \
+    X(SWEEP_NONE, "none", "none")                                                                  \
+    X(SWEEP_UP, "up", "from inlet_velocity up to sweep_to")                                        \
+    X(SWEEP_DOWN, "down", "from inlet_velocity down to sweep_to")                                  \
+    X(SWEEP_UP_DOWN, "up_down", "to sweep_to and back to inlet_velocity")
+BDL_CHOICES(bdl_sweep, BDL_SWEEPS);
+
 /// A synthetic camera ([camera NAME], kind = dia): images of the particles as a DIA rig sees them,
 /// with the ground truth beside every image (src/dia).
 typedef struct bdl_dia_scene_def {
     char name[BDL_NAME_LEN];
     int line;
-    int kind;          ///< 0: dia
-    int projection;    ///< 0 orthographic, 1 perspective (bdl_dia_projection)
+    int kind; ///< 0: dia
+    bdl_dia_projection projection;
     bdl_vec3 position; ///< perspective: the pinhole; orthographic: centre of the view [m]
     bdl_vec3 target;   ///< point on the optical axis [m]
     bdl_vec3 up;       ///< world direction shown up
     int width, height; ///< [px]
     double pixel_size; ///< orthographic: m per pixel; perspective: sensor pixel pitch [m]
     double focal_length;
-    int samples;  ///< rays per pixel along each axis
-    int lighting; ///< 0 front-lit, 1 back-lit (bdl_dia_lighting)
+    int samples; ///< rays per pixel along each axis
+    bdl_dia_lighting lighting;
     bdl_vec3 light_position;
     int has_light_position; ///< else a light at the camera
     int lights;             ///< 1: one light; 2-4: a ring around light_position
@@ -167,7 +190,7 @@ typedef struct bdl_gas_scene {
     double dt;                    ///< gas time step [s]; 0: automatic
     double probe_low, probe_high; ///< heights of the two pressure probes above the floor [m]
     int has_probe_low, has_probe_high;
-    int sweep;          ///< 0 none, 1 up, 2 down, 3 up then down (a pressure-drop sweep)
+    bdl_sweep sweep;    ///< a pressure-drop sweep of the inlet velocity
     double sweep_to;    ///< the far end of the sweep [m/s]
     double sweep_step;  ///< velocity change per stage [m/s]
     double sweep_dwell; ///< time per stage [s]

@@ -26,6 +26,9 @@ _Static_assert(sizeof(bdl_gas_side_type) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_convection) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_drag_law) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_shape) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_dia_projection) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_dia_lighting) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_sweep) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_gas_field) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
@@ -59,9 +62,10 @@ const char *const bdl_gas_field_labels[] = {BDL_GAS_FIELDS(BDL_X_LABEL) NULL};
 const char *const bdl_gas_field_units[] = {BDL_GAS_FIELDS(BDL_X_UNIT) NULL};
 static const char *const axis_names[] = {"x", "y", "z", NULL};
 static const char *const dia_kind_names[] = {"dia", NULL};
-static const char *const dia_projection_names[] = {"orthographic", "perspective", NULL};
-static const char *const dia_lighting_names[] = {"front", "back", NULL};
-static const char *const sweep_names[] = {"none", "up", "down", "up_down", NULL};
+BDL_CHOICE_WORDS(bdl_dia_projection, BDL_DIA_PROJECTIONS);
+BDL_CHOICE_WORDS(bdl_dia_lighting, BDL_DIA_LIGHTINGS);
+const char *const bdl_dia_lighting_labels[] = {BDL_DIA_LIGHTINGS(BDL_ENUM_LABEL) NULL};
+BDL_CHOICE_WORDS(bdl_sweep, BDL_SWEEPS);
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
 #define IN_SPECIES(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_species_def, field)
@@ -393,7 +397,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "what the camera makes: dia, synthetic grey images for digital image analysis with "
             "their ground truth, in dia/NAME/ of the run folder"},
     {S(DIA), "projection", .type = BDL_KEY_ENUM, "-", IN_DIA(projection), .def = {0},
-     .enum_names = dia_projection_names,
+     .enum_names = bdl_dia_projection_names,
      .doc = "orthographic (a telecentric view) or perspective (a pinhole camera)"},
     {S(DIA), "position", VEC, "m", IN_DIA(position), REQUIRED,
      .doc = "perspective: the pinhole; orthographic: the centre of the view, in front of the bed"},
@@ -414,7 +418,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "rays per pixel along each axis (samples^2 per pixel): anti-aliasing and the "
             "resolution of the truth"},
     {S(DIA), "lighting", .type = BDL_KEY_ENUM, "-", IN_DIA(lighting), .def = {0},
-     .enum_names = dia_lighting_names,
+     .enum_names = bdl_dia_lighting_names,
      .doc = "front: lights on the camera's side, bright spheres on a dark background; back: a "
             "light panel behind the bed, dark silhouettes on a bright background"},
     {S(DIA), "light_position", VEC, "m", IN_DIA(light_position), .has_flag = 1,
@@ -495,7 +499,7 @@ const bdl_scene_key bdl_scene_keys[] = {
             "cell, within the viscous limit, at most 5e-4 s; a run stops with an error when the "
             "gas step exceeds twice the stable one"},
     {S(GAS), "sweep", .type = BDL_KEY_ENUM, "-", IN_GAS(sweep), .def = {0},
-     .enum_names = sweep_names,
+     .enum_names = bdl_sweep_names,
      .doc = "a stepwise sweep of the inlet velocity, as a pressure-drop measurement is made: up "
             "from inlet_velocity to sweep_to, down to it, or up and back down to inlet_velocity; "
             "each stage lasts sweep_dwell; diagnostics.csv's inlet_velocity column follows it"},

@@ -134,12 +134,12 @@ double bdl_world_inlet_velocity(const bdl_world *w, double t)
 {
     const bdl_gas_scene *g = &w->scene.gas;
     double u = g->inlet_velocity;
-    if (g->sweep != 0 && t >= g->sweep_start) {
+    if (g->sweep != BDL_SWEEP_NONE && t >= g->sweep_start) {
         // Stages from inlet_velocity towards sweep_to (and back for up_down), sweep_step apart.
         const long stages = lround(fabs(g->sweep_to - u) / g->sweep_step);
         const double sign = g->sweep_to >= u ? 1.0 : -1.0;
         long k = (long)floor((t - g->sweep_start) / g->sweep_dwell + 1e-9);
-        if (g->sweep == 3) // up_down: out and back, then hold at the start
+        if (g->sweep == BDL_SWEEP_UP_DOWN) // out and back, then hold at the start
             k = k <= stages ? k : k <= 2 * stages ? 2 * stages - k : 0;
         else if (k > stages)
             k = stages;
@@ -166,7 +166,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     }
     const double dt = (double)w->gas_every * w->dt;
     w->gas_next = w->step + w->gas_every;
-    if (w->scene.gas.sweep != 0) // the sweep's stage at the start of this gas step
+    if (w->scene.gas.sweep != BDL_SWEEP_NONE) // the sweep's stage at the start of this gas step
         bdl_gas_set_inflow(w->gas, bdl_world_inlet_velocity(w, w->time),
                            w->live.inlet_scale * w->scene.gas.jet_velocity);
     const bdl_coupling_step_def def = {.dt = dt,
