@@ -1,6 +1,7 @@
 # Physics verification of the DEM solver (docs/verification-dem.md): restitution and its
 # convergence with dt, Hertz contact duration, sliding to rolling, conservation in collisions,
 # and static overlaps of a column. Each prints its table to stdout.
+bdl_add_test(test_material SOURCES test_material.c LABELS dem)
 bdl_add_test(test_bounce SOURCES test_bounce.c LABELS dem verification TIMEOUT 600)
 target_link_libraries(test_bounce PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_hertz_duration SOURCES test_hertz_duration.c LABELS dem verification TIMEOUT 300)

@@ -9,7 +9,9 @@
 
 const char *const bdl_dia_model_names[BDL_DIA_MODEL_COUNT] = {"rational", "power"};
 
-double bdl_dia_otsu(const double *img, long n)
+/// Otsu's global threshold of grey values in [0, 1] (256 bins): the level that maximises the
+/// between-class variance.
+static double otsu(const double *img, long n)
 {
     long hist[256] = {0};
     for (long k = 0; k < n; ++k) {
@@ -41,7 +43,7 @@ void bdl_dia_threshold(const double *img, int w, int h, int bright_particles, in
                        double offset, unsigned char *mask)
 {
     const long n = (long)w * h;
-    const double global = bdl_dia_otsu(img, n);
+    const double global = otsu(img, n);
     double *integral = NULL;
     if (window > 0) // summed-area table, (w + 1) x (h + 1)
         integral = calloc((size_t)(w + 1) * (size_t)(h + 1), sizeof(double));

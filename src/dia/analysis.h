@@ -5,10 +5,6 @@
 
 #include "core/error.h"
 
-/// Otsu's global threshold of grey values in [0, 1] (256 bins): the level that maximises the
-/// between-class variance.
-double bdl_dia_otsu(const double *img, long n);
-
 /// Binary mask of particle pixels: 1 where the pixel belongs to a particle. `bright_particles`:
 /// front-lit (particles above the threshold) or back-lit (below). `window` > 0 selects the
 /// adaptive method: a pixel is compared with the mean of the (2 window + 1)^2 square around it

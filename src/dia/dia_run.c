@@ -31,8 +31,10 @@ struct bdl_dia_run {
 /// Times are due when the step lands within half a step of them.
 static int due(const bdl_particle_view *v, double t) { return v->time >= t - 0.5 * v->dt; }
 
-bdl_result bdl_dia_from_scene(const bdl_scene *s, int index, bdl_dia_camera *camera,
-                              bdl_dia_truth_def *truth)
+/// The camera of a scene section, with the bed's depth range (front and back along the view,
+/// from the domain's corners) and the first layer (the largest species diameter).
+static bdl_result camera_from_scene(const bdl_scene *s, int index, bdl_dia_camera *camera,
+                                    bdl_dia_truth_def *truth)
 {
     const bdl_dia_scene_def *d = &s->dias[index];
     bdl_dia_def def = {0};
@@ -153,7 +155,7 @@ bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, co
         camera_state *c = &r->cam[r->count++];
         c->def = &s->dias[k];
         c->pending_b = -1.0;
-        if (bdl_dia_from_scene(s, k, &c->camera, &c->truth) != BDL_OK) {
+        if (camera_from_scene(s, k, &c->camera, &c->truth) != BDL_OK) {
             snprintf(why, len, "[camera %s]: the view is degenerate", c->def->name);
             bdl_dia_run_close(r);
             return BDL_ERR_SCENE;

@@ -28,9 +28,4 @@ bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v);
 long bdl_dia_run_count(const bdl_dia_run *r);
 void bdl_dia_run_close(bdl_dia_run *r);
 
-/// The camera of a scene section, with the bed's depth range (front and back along the view,
-/// from the domain's corners) and the first layer (the largest species diameter).
-bdl_result bdl_dia_from_scene(const bdl_scene *scene, int index, bdl_dia_camera *camera,
-                              bdl_dia_truth_def *truth);
-
 #endif

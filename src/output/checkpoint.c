@@ -11,7 +11,8 @@
 // through an outlet. 4: force and torque side by side in one record per particle.
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '4'};
 
-uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *s)
+/// Fingerprint of the scene quantities a checkpoint depends on (species, walls, law, counts).
+static uint64_t scene_fingerprint(const bdl_scene *s)
 {
     uint64_t h = BDL_HASH_INIT;
     int counts[4] = {s->species_count, s->wall_count, s->create_count, (int)s->law};
@@ -129,7 +130,7 @@ bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path)
     writer out = {af.file, 1};
     const bdl_particles *p = &w->particles;
     const bdl_neighbor *nb = &w->neighbor;
-    uint64_t fp = bdl_checkpoint_scene_fingerprint(&w->scene);
+    uint64_t fp = scene_fingerprint(&w->scene);
     put(&out, magic, sizeof magic);
     put(&out, &fp, sizeof fp);
 #define PUT_SCALAR(name) put(&out, &w->name, sizeof w->name);
@@ -176,7 +177,7 @@ bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t
         fclose(f);
         return fail(why, why_len, path, "is not a bedlam checkpoint (bad magic)");
     }
-    if (fp != bdl_checkpoint_scene_fingerprint(&w->scene)) {
+    if (fp != scene_fingerprint(&w->scene)) {
         fclose(f);
         return fail(why, why_len, path,
                     "was written for a different scene (species, walls or law differ)");

@@ -11,9 +11,6 @@
 
 #include "world/world.h"
 
-/// Fingerprint of the scene quantities a checkpoint depends on (species, walls, law, counts).
-uint64_t bdl_checkpoint_scene_fingerprint(const bdl_scene *scene);
-
 bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path);
 
 /// Replaces the state of `w` (built from the same scene) by the checkpoint's. On a mismatch or a

@@ -139,5 +139,3 @@ void bdl_context_drawable_size(bdl_context *c, int *width, int *height)
 }
 
 bdl_gl_backend bdl_context_backend(const bdl_context *c) { return c->backend; }
-
-void *bdl_context_window(const bdl_context *c) { return c->window; }

@@ -40,8 +40,6 @@ void bdl_context_present(bdl_context *c);
 /// Size of the window's drawable in pixels (can differ from the window size on HiDPI screens).
 void bdl_context_drawable_size(bdl_context *c, int *width, int *height);
 bdl_gl_backend bdl_context_backend(const bdl_context *c);
-/// The SDL_Window of an SDL context, else NULL.
-void *bdl_context_window(const bdl_context *c);
 
 const char *bdl_gl_backend_name(bdl_gl_backend b);
 /// Parses "auto", "sdl", "egl", "osmesa". Returns 0 for anything else.
