@@ -134,6 +134,7 @@ static bdl_result run_settling(int series, double n, bdl_verify_result *out)
     return r;
 }
 
+// clang-format off: the acceptance, quick-set, series and level fields of a case on one line each
 static const bdl_verify_case cases[] = {
     {
         .name = "restitution",
@@ -149,15 +150,10 @@ static const bdl_verify_case cases[] = {
         .param = "N = t_c/dt (steps per contact time)",
         .order_note = "first order: the linear dashpot force jumps at first touch, and both laws "
                       "evaluate the dashpot with the half-step velocity",
-        .tolerance = 0.05,
-        .tolerance_level = 1,
-        .order_min = 0.8,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 2,
-        .series = {"linear", "hertz"},
-        .level_count = 5,
-        .level = {25, 50, 100, 200, 400},
+        .tolerance = 0.05, .tolerance_level = 1, .order_min = 0.8,
+        .quick = 1, .quick_levels = 3,
+        .series_count = 2, .series = {"linear", "hertz"},
+        .level_count = 5, .level = {25, 50, 100, 200, 400},
         .run = run_restitution,
     },
     {
@@ -174,20 +170,15 @@ static const bdl_verify_case cases[] = {
         .order_note = "second order (velocity Verlet; the Hertz force is C^1 at touch); the "
                       "linear interpolation of the instants of touch and release is second "
                       "order too",
-        .tolerance = 0.02,
-        .tolerance_level = 1,
-        .order_min = 1.8,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 2,
-        .series = {"sphere-wall", "sphere-sphere"},
-        .level_count = 5,
-        .level = {25, 50, 100, 200, 400},
+        .tolerance = 0.02, .tolerance_level = 1, .order_min = 1.8,
+        .quick = 1, .quick_levels = 3,
+        .series_count = 2, .series = {"sphere-wall", "sphere-sphere"},
+        .level_count = 5, .level = {25, 50, 100, 200, 400},
         .run = run_hertz_duration,
     },
     {
         .name = "slide_roll",
-        .no_order = 1,
+        .tolerance = 0.01, .tolerance_level = 2, .order_min = 0.0, .no_order = 1,
         .breaks = "the tangential spring needs dt well below its own period, the same limit as the "
                   "normal contact; without friction no history is kept.",
         .title = "A sliding sphere starts rolling",
@@ -197,15 +188,9 @@ static const bdl_verify_case cases[] = {
         .param = "N = 1/dt [1/s]",
         .order_note = "none: while sliding the friction force is exactly mu F_n at any step, so "
                       "t_s is exact up to the normal transient and the fit",
-        .tolerance = 0.01,
-        .tolerance_level = 2,
-        .order_min = 0.0,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 2,
-        .series = {"linear", "hertz"},
-        .level_count = 4,
-        .level = {25000, 50000, 100000, 200000},
+        .quick = 1, .quick_levels = 3,
+        .series_count = 2, .series = {"linear", "hertz"},
+        .level_count = 4, .level = {25000, 50000, 100000, 200000},
         .run = run_slide_roll,
     },
     {
@@ -226,20 +211,15 @@ static const bdl_verify_case cases[] = {
                       "the two steps that straddle touch and release, where the force is only "
                       "C^0 (linear: O(dt^3)) or C^1 with a singular second derivative (Hertz, "
                       "delta^(3/2): O(dt^2.5))",
-        .tolerance = 0.01,
-        .tolerance_level = 1,
-        .order_min = 1.8,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 2,
-        .series = {"linear", "hertz"},
-        .level_count = 5,
-        .level = {25, 50, 100, 200, 400},
+        .tolerance = 0.01, .tolerance_level = 1, .order_min = 1.8,
+        .quick = 1, .quick_levels = 3,
+        .series_count = 2, .series = {"linear", "hertz"},
+        .level_count = 5, .level = {25, 50, 100, 200, 400},
         .run = run_collision_energy,
     },
     {
         .name = "column",
-        .no_order = 1,
+        .tolerance = 1e-3, .tolerance_level = 0, .order_min = 0.0, .no_order = 1,
         .breaks = "overlaps beyond `[guards] max_overlap` (default 0.1 of the radius) stop the "
                   "run: contacts too soft for the load.",
         .title = "Static overlaps in a column of five spheres",
@@ -249,15 +229,9 @@ static const bdl_verify_case cases[] = {
         .param = "N = t_c/dt",
         .order_note = "none: velocity Verlet's fixed point is exact force balance at any step; "
                       "what remains is the residual motion when the run stops",
-        .tolerance = 1e-3,
-        .tolerance_level = 0,
-        .order_min = 0.0,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 2,
-        .series = {"linear", "hertz"},
-        .level_count = 3,
-        .level = {10, 20, 50},
+        .quick = 1, .quick_levels = 3,
+        .series_count = 2, .series = {"linear", "hertz"},
+        .level_count = 3, .level = {10, 20, 50},
         .run = run_column,
     },
     {
@@ -270,15 +244,10 @@ static const bdl_verify_case cases[] = {
         .measure = "max |u - u_exact| / u_max",
         .param = "N = cells across the channel",
         .order_note = "second order (central viscous stencil; the wall sits on a face)",
-        .tolerance = 0.02,
-        .tolerance_level = 0,
-        .order_min = 1.9,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 1,
-        .series = {"van Leer"},
-        .level_count = 4,
-        .level = {8, 16, 32, 64},
+        .tolerance = 0.02, .tolerance_level = 0, .order_min = 1.9,
+        .quick = 1, .quick_levels = 3,
+        .series_count = 1, .series = {"van Leer"},
+        .level_count = 4, .level = {8, 16, 32, 64},
         .run = run_poiseuille,
     },
     {
@@ -295,20 +264,15 @@ static const bdl_verify_case cases[] = {
                       "used 129 x 129 cells, and from 32 cells on our difference to their table "
                       "stays at 0.7-0.9 % of the lid speed on both schemes: that is the floor "
                       "of the comparison, not of the solver",
-        .tolerance = 0.02,
-        .tolerance_level = 2,
-        .order_min = 0.0,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 2,
-        .series = {"central", "van Leer"},
-        .level_count = 4,
-        .level = {16, 32, 64, 128},
+        .tolerance = 0.02, .tolerance_level = 2, .order_min = 0.0,
+        .quick = 1, .quick_levels = 3,
+        .series_count = 2, .series = {"central", "van Leer"},
+        .level_count = 4, .level = {16, 32, 64, 128},
         .run = run_cavity,
     },
     {
         .name = "terminal",
-        .no_order = 1,
+        .tolerance = 0.01, .tolerance_level = 1, .order_min = 0.0, .no_order = 1,
         .breaks = "cells smaller than about 3 particle diameters let the sphere's own wake slow "
                   "the gas it feels (the undisturbed velocity is not available); particles whose "
                   "drag relaxation time is far below dt are stable because the drag is implicit "
@@ -323,20 +287,14 @@ static const bdl_verify_case cases[] = {
         .order_note = "none: the drag is backward Euler and the terminal state is its fixed "
                       "point at any step; what remains is the disturbance the sphere makes in "
                       "the gas it feels, which grows as cells shrink towards d",
-        .tolerance = 0.01,
-        .tolerance_level = 1,
-        .order_min = 0.0,
-        .quick = 1,
-        .quick_levels = 2,
-        .series_count = 3,
-        .series = {"Re 0.1", "Re 19", "Re 460"},
-        .level_count = 4,
-        .level = {3, 6, 9, 12},
+        .quick = 1, .quick_levels = 2,
+        .series_count = 3, .series = {"Re 0.1", "Re 19", "Re 460"},
+        .level_count = 4, .level = {3, 6, 9, 12},
         .run = run_terminal,
     },
     {
         .name = "ergun",
-        .no_order = 1,
+        .tolerance = 0.03, .tolerance_level = 1, .order_min = 0.0, .no_order = 1,
         .breaks = "Ergun holds for fixed beds; near close packing the deposited voidage is capped "
                   "at 1 - max_solids (stability.md: test_close_packing).",
         .title = "Packed bed against Ergun",
@@ -350,15 +308,9 @@ static const bdl_verify_case cases[] = {
                       "5 d only two or three layers fit between a quarter and three quarters of "
                       "the bed, and the layer voidage mixes in the looser packing at the floor "
                       "and the free surface; finer layers sample the uniform interior",
-        .tolerance = 0.03,
-        .tolerance_level = 1,
-        .order_min = 0.0,
-        .quick = 1,
-        .quick_levels = 2,
-        .series_count = 1,
-        .series = {"ergun"},
-        .level_count = 3,
-        .level = {15, 25, 50},
+        .quick = 1, .quick_levels = 2,
+        .series_count = 1, .series = {"ergun"},
+        .level_count = 3, .level = {15, 25, 50},
         .run = run_ergun,
     },
     {
@@ -376,21 +328,15 @@ static const bdl_verify_case cases[] = {
                       "not touch (the particles' disturbance of the gas on the 4 x 4 x 8 grid, "
                       "as in the terminal case), so the plain order falls towards 0 while the "
                       "successive differences halve with the step: their order is 1",
-        .tolerance = 0.05,
-        .tolerance_level = 0,
-        .order_min = 0.0,
-        .diff_order_min = 0.8,
-        .quick = 1,
-        .quick_levels = 3,
-        .series_count = 3,
-        .series = {"phi 0.1", "phi 0.2", "phi 0.3"},
-        .level_count = 4,
-        .level = {1, 2, 4, 8},
+        .tolerance = 0.05, .tolerance_level = 0, .order_min = 0.0, .diff_order_min = 0.8,
+        .quick = 1, .quick_levels = 3,
+        .series_count = 3, .series = {"phi 0.1", "phi 0.2", "phi 0.3"},
+        .level_count = 4, .level = {1, 2, 4, 8},
         .run = run_settling,
     },
     {
         .name = "umf",
-        .no_order = 1,
+        .tolerance = 0.10, .tolerance_level = 1, .order_min = 0.0, .no_order = 1,
         .breaks = "the narrow periodic column slugs above U_mf, so the pressure drop there "
                   "fluctuates by tens of per cent; the packed branch below U_mf gives U_mf.",
         .title = "Minimum fluidization velocity from a velocity sweep",
@@ -400,18 +346,13 @@ static const bdl_verify_case cases[] = {
         .param = "N = dwell per velocity [ms] (averaging time)",
         .order_note = "none: the sweep averages a fluctuating signal; longer dwells reduce the "
                       "noise, not a truncation error",
-        .tolerance = 0.10,
-        .tolerance_level = 1,
-        .order_min = 0.0,
-        .quick = 0,
-        .quick_levels = 0,
-        .series_count = 1,
-        .series = {"sweep"},
-        .level_count = 3,
-        .level = {40, 80, 160},
+        .quick = 0, .quick_levels = 0,
+        .series_count = 1, .series = {"sweep"},
+        .level_count = 3, .level = {40, 80, 160},
         .run = run_umf,
     },
 };
+// clang-format on
 
 const bdl_verify_case *bdl_verify_cases(int *count)
 {
