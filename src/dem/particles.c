@@ -1,12 +1,14 @@
 #include "dem/particles.h"
+#include "dem/species.h"
 #include "core/memory.h"
 
 #include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define ALWAYS   BDL_ARRAYS_ALWAYS
-#define WITH_GAS BDL_ARRAYS_WITH_GAS
+#define ALWAYS    BDL_ARRAYS_ALWAYS
+#define WITH_GAS  BDL_ARRAYS_WITH_GAS
+#define WITH_RODS BDL_ARRAYS_WITH_RODS
 
 /// One per-particle array of bdl_particles: where its pointer lives and how many bytes each
 /// particle takes in it.
@@ -34,6 +36,11 @@ static const particle_array arrays[] = {
     ARRAY(fluid_accel,  WITH_GAS),
     ARRAY(vel_mark,     WITH_GAS),
     ARRAY(drag_accel,   WITH_GAS),
+    ARRAY(orient,        WITH_RODS),
+    ARRAY(ang_mom,       WITH_RODS),
+    ARRAY(inv_inertia,   WITH_RODS),
+    ARRAY(half_length,   WITH_RODS),
+    ARRAY(axis_at_build, WITH_RODS),
 };
 // clang-format on
 
@@ -47,7 +54,8 @@ static void **array_pointer(bdl_particles *p, const particle_array *a)
 
 static int has_array(const bdl_particles *p, const particle_array *a)
 {
-    return a->when == ALWAYS || p->fluid;
+    return a->when == ALWAYS || (a->when == WITH_GAS && p->fluid) ||
+           (a->when == WITH_RODS && p->rods);
 }
 
 int bdl_particles_arrays(const bdl_particles *p, int when, bdl_particle_array *out)
@@ -95,6 +103,11 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
             memset((char *)*array_pointer(p, &arrays[a]) + (size_t)i * arrays[a].elem, 0,
                    arrays[a].elem);
     double mass = density * (4.0 / 3.0) * 3.14159265358979323846 * radius * radius * radius;
+    if (p->rods) { // a sphere among rods: a rod without a shaft
+        const double inv = 2.5 / (mass * radius * radius);
+        p->orient[i] = bdl_q_identity();
+        p->inv_inertia[i] = bdl_v3(inv, inv, inv);
+    }
     p->pos[i] = pos;
     p->vel[i] = vel;
     p->pos_at_build[i] = pos;
@@ -104,6 +117,22 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
     p->id[i] = p->next_id++;
     if (p->fluid)
         p->vel_mark[i] = vel;
+    return i;
+}
+
+long bdl_particles_add_rod(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radius,
+                           double half_length, bdl_quat orient, double density, int species)
+{
+    long i = bdl_particles_add(p, pos, vel, radius, density, species);
+    if (i < 0)
+        return -1;
+    double mass, axial, transverse;
+    bdl_rod_mass_properties(radius, 2.0 * half_length, density, &mass, &axial, &transverse);
+    p->inv_mass[i] = 1.0 / mass;
+    p->orient[i] = orient;
+    p->half_length[i] = half_length;
+    p->inv_inertia[i] = bdl_v3(1.0 / transverse, 1.0 / transverse, 1.0 / axial);
+    p->axis_at_build[i] = bdl_particle_half_axis(p, i);
     return i;
 }
 

@@ -17,6 +17,7 @@
 #include <stdint.h>
 
 #include "core/error.h"
+#include "core/quat.h"
 #include "core/vec3.h"
 
 /// Force and torque on a particle, side by side: the force pass adds a pair's reaction to both of
@@ -44,6 +45,15 @@ typedef struct bdl_particles {
     bdl_vec3 *fluid_accel; ///< acceleration from the gas (drag + pressure), held over a gas step
     bdl_vec3 *vel_mark;    ///< velocity at the start of the current gas step [m/s]
     bdl_vec3 *drag_accel;  ///< the drag's part of fluid_accel [m/s^2]
+    // With rods only (NULL otherwise; set `rods` before the first reserve). A rod is a
+    // spherocylinder: a shaft of 2 half_length along its body z axis with caps of `radius`; in a
+    // scene with rods a sphere is a rod of half_length 0.
+    int rods;                ///< keep the arrays below
+    bdl_quat *orient;        ///< orientation: body frame to world frame
+    bdl_vec3 *ang_mom;       ///< angular momentum in the world frame [kg m^2/s]
+    bdl_vec3 *inv_inertia;   ///< principal moments of inertia (body x, y, z), inverted [1/(kg m^2)]
+    double *half_length;     ///< half the shaft length [m]
+    bdl_vec3 *axis_at_build; ///< half_length times the axis when the lists were built [m]
 } bdl_particles;
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);
@@ -52,6 +62,17 @@ void bdl_particles_free(bdl_particles *p);
 /// Appends a particle at rest (spin zero); returns its index or -1 when out of memory.
 long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radius, double density,
                        int species);
+
+/// Appends a rod of shaft length 2 half_length along the body z axis, oriented by `orient` (see
+/// bdl_particles, `rods`), at rest; returns its index or -1 when out of memory.
+long bdl_particles_add_rod(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radius,
+                           double half_length, bdl_quat orient, double density, int species);
+
+/// Half the shaft of particle i as a vector: half_length times its axis; zero for spheres [m].
+static inline bdl_vec3 bdl_particle_half_axis(const bdl_particles *p, long i)
+{
+    return p->rods ? bdl_v3_scale(bdl_q_axis_z(p->orient[i]), p->half_length[i]) : bdl_v3_zero();
+}
 
 /// Moment of inertia of a solid sphere: I = 2/5 m r^2, returned as 1/I.
 static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
@@ -64,8 +85,9 @@ static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 /// are moved a vector's width at a time).
 void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch);
 
-/// Which per-particle arrays exist: always, or only with a gas (bdl_particles.fluid).
-enum { BDL_ARRAYS_ALWAYS = 1, BDL_ARRAYS_WITH_GAS = 2 };
+/// Which per-particle arrays exist: always, only with a gas (bdl_particles.fluid), only with rods
+/// (bdl_particles.rods).
+enum { BDL_ARRAYS_ALWAYS = 1, BDL_ARRAYS_WITH_GAS = 2, BDL_ARRAYS_WITH_RODS = 4 };
 
 /// A per-particle array: its storage and the bytes each particle takes in it.
 typedef struct bdl_particle_array {

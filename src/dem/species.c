@@ -1,6 +1,8 @@
 // bedlam — species: size distributions.
 #include "dem/species.h"
 
+#include "core/vec3.h"
+
 BDL_CHOICE_WORDS(bdl_shape, BDL_SHAPES);
 BDL_CHOICE_WORDS(bdl_size_dist, BDL_SIZE_DISTS);
 
@@ -29,4 +31,26 @@ double bdl_species_draw_diameter(const bdl_species_def *s, bdl_rng *rng)
     default:
         return s->diameter;
     }
+}
+
+void bdl_rod_mass_properties(double r, double shaft, double density, double *mass, double *axial,
+                             double *transverse)
+{
+    const double L = shaft, r2 = r * r, r3 = r2 * r, r4 = r2 * r2, r5 = r4 * r;
+    *mass = density * BDL_PI * (r2 * L + 4.0 / 3.0 * r3);
+    *axial = BDL_PI * density * (0.5 * r4 * L + 8.0 / 15.0 * r5);
+    *transverse = BDL_PI * density *
+                  (r2 * L * L * L / 12.0 + 0.75 * r4 * L + r3 * L * L / 3.0 + 8.0 / 15.0 * r5);
+}
+
+double bdl_species_volume(const bdl_species_def *s, double d)
+{
+    const double r = 0.5 * d, shaft = s->shape == BDL_SHAPE_ROD ? s->length - d : 0.0;
+    return BDL_PI * (r * r * shaft + 4.0 / 3.0 * r * r * r);
+}
+
+double bdl_species_max_extent(const bdl_species_def *s)
+{
+    const double d = bdl_species_max_diameter(s);
+    return s->shape == BDL_SHAPE_ROD && s->length > d ? s->length : d;
 }

@@ -15,7 +15,9 @@
 #define BDL_MAX_SPECIES 16
 
 /// Particle shape of a species ([species NAME] shape).
-#define BDL_SHAPES(X) X(SHAPE_SPHERE, "sphere", "sphere")
+#define BDL_SHAPES(X)                                                                              \
+    X(SHAPE_SPHERE, "sphere", "sphere")                                                            \
+    X(SHAPE_ROD, "rod", "spherocylinder: a cylinder with hemispherical caps")
 BDL_CHOICES(bdl_shape, BDL_SHAPES);
 
 /// Diameter distribution of a species.
@@ -34,6 +36,7 @@ typedef struct bdl_species_def {
     double diameter_min;       ///< [m]
     double diameter_max;       ///< [m]
     double diameter_std;       ///< [m] (normal distribution)
+    double length;             ///< rod: tip-to-tip length [m] (> diameter); 0 for spheres
     double density;            ///< [kg/m^3]
     double background_damping; ///< b [1/s]: force -b m v on every particle of the species
     bdl_material material;
@@ -41,6 +44,18 @@ typedef struct bdl_species_def {
 
 /// Diameter drawn from a species' distribution [m].
 double bdl_species_draw_diameter(const bdl_species_def *s, bdl_rng *rng);
+
+/// Mass [kg] and principal moments of inertia [kg m^2] of a spherocylinder of radius r around a
+/// shaft of length `shaft` (0: a sphere) of uniform density: axial pi rho (r^4 L/2 + 8/15 r^5),
+/// transverse pi rho (r^2 L^3/12 + 3/4 r^4 L + 1/3 r^3 L^2 + 8/15 r^5), L the shaft length.
+void bdl_rod_mass_properties(double r, double shaft, double density, double *mass, double *axial,
+                             double *transverse);
+
+/// Volume of one particle of the species of diameter d [m^3] (a rod: of its length).
+double bdl_species_volume(const bdl_species_def *s, double d);
+
+/// Largest extent of a particle of the species: its diameter, or a rod's length [m].
+double bdl_species_max_extent(const bdl_species_def *s);
 
 /// Largest and smallest diameter a species can have [m].
 double bdl_species_max_diameter(const bdl_species_def *s);

@@ -29,6 +29,17 @@ int bdl_snapshot_reserve(bdl_snapshot *s, long n)
     return 1;
 }
 
+int bdl_snapshot_reserve_axis(bdl_snapshot *s, long n)
+{
+    if (n <= s->axis_capacity)
+        return 1;
+    long cap = n + n / 4 + 64;
+    if (!grow((void **)&s->axis, cap, 3 * sizeof(float)))
+        return 0;
+    s->axis_capacity = cap;
+    return 1;
+}
+
 int bdl_snapshot_reserve_slice(bdl_snapshot *s, long cells)
 {
     if (cells <= s->slice_capacity)
@@ -42,6 +53,7 @@ int bdl_snapshot_reserve_slice(bdl_snapshot *s, long cells)
 void bdl_snapshot_free(bdl_snapshot *s)
 {
     free(s->slice);
+    free(s->axis);
     free(s->pos);
     free(s->vel);
     free(s->radius);

@@ -13,6 +13,7 @@
 
 #include <stdint.h>
 
+#include "core/quat.h"
 #include "core/vec3.h"
 
 /// Walls a snapshot carries displacements for (at least the scene's BDL_MAX_WALLS).
@@ -24,6 +25,8 @@ typedef struct bdl_snapshot {
     float *pos;    ///< xyz per particle [m]
     float *vel;    ///< xyz per particle [m/s]
     float *radius; ///< [m]
+    float *axis;   ///< with rods: xyz per particle, half the shaft along the rod's axis (zero for a
+                   ///< sphere) [m]; NULL in scenes without rods
     uint8_t *coordination;
     int32_t *species;
     uint32_t *id;
@@ -41,10 +44,13 @@ typedef struct bdl_snapshot {
     int slice_n[2];                 ///< cells along axes (axis + 1) % 3 and (axis + 2) % 3
     float *slice;                   ///< slice_n[0] x slice_n[1] values, the first axis fastest
     long slice_capacity;
+    long axis_capacity;
 } bdl_snapshot;
 
 /// Grows the particle arrays to hold n particles (contents kept). Returns 0 when out of memory.
 int bdl_snapshot_reserve(bdl_snapshot *s, long n);
+/// Grows the rods' axes to hold n particles (contents kept). Returns 0 when out of memory.
+int bdl_snapshot_reserve_axis(bdl_snapshot *s, long n);
 /// Grows the slice to hold `cells` values. Returns 0 when out of memory.
 int bdl_snapshot_reserve_slice(bdl_snapshot *s, long cells);
 void bdl_snapshot_free(bdl_snapshot *s);
@@ -58,8 +64,10 @@ typedef struct bdl_particle_view {
     const double *radius; ///< [m]
     const uint32_t *id;   ///< stable ids
     const int32_t *species;
-    double time; ///< simulated time [s]
-    double dt;   ///< the solver's time step [s]
+    const bdl_quat *orient;    ///< with rods: body to world (a rod's axis is body z); else NULL
+    const double *half_length; ///< with rods: half the shaft length (0 for spheres) [m]; else NULL
+    double time;               ///< simulated time [s]
+    double dt;                 ///< the solver's time step [s]
     long step;
 } bdl_particle_view;
 

@@ -67,6 +67,16 @@ int bdl_capture(bdl_snapshot *s, const bdl_world *w)
         s->vel[3 * i + 2] = (float)p->vel[i].z;
         s->radius[i] = (float)p->radius[i];
     }
+    if (p->rods) {
+        if (!bdl_snapshot_reserve_axis(s, p->count))
+            return 0;
+        for (long i = 0; i < p->count; ++i) {
+            const bdl_vec3 a = bdl_particle_half_axis(p, i);
+            s->axis[3 * i] = (float)a.x;
+            s->axis[3 * i + 1] = (float)a.y;
+            s->axis[3 * i + 2] = (float)a.z;
+        }
+    }
     memcpy(s->coordination, w->coordination, (size_t)p->count);
     memcpy(s->species, p->species, (size_t)p->count * sizeof(int32_t));
     memcpy(s->id, p->id, (size_t)p->count * sizeof(uint32_t));
@@ -91,6 +101,8 @@ bdl_particle_view bdl_capture_view(const bdl_world *w)
                                .radius = p->radius,
                                .id = p->id,
                                .species = p->species,
+                               .orient = p->orient,
+                               .half_length = p->half_length,
                                .time = w->time,
                                .dt = w->dt,
                                .step = w->step};

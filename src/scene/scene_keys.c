@@ -142,7 +142,13 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [species NAME]
     {S(SPECIES), "shape", .type = BDL_KEY_ENUM, "-", IN_SPECIES(shape), .def = {BDL_SHAPE_SPHERE},
-     .enum_names = bdl_shape_names, .doc = "particle shape (spheres only in this version)"},
+     .enum_names = bdl_shape_names,
+     .doc = "particle shape: sphere, or rod (a spherocylinder: a cylinder of the diameter with "
+            "hemispherical caps)"},
+    {S(SPECIES), "length", NUM, "m", IN_SPECIES(length), WHEN("shape", BIT(BDL_SHAPE_ROD)),
+     .required = BIT(BDL_SHAPE_ROD), GT(0), .default_text = "required for rods",
+     .doc = "tip-to-tip length of a rod (longer than its diameter; aspect ratio = length / "
+            "diameter)"},
     {S(SPECIES), "diameter", NUM, "m", IN_SPECIES(diameter), REQUIRED, GT(0),
      .doc = "particle diameter (the mean for uniform and normal distributions)"},
     {S(SPECIES), "distribution", .type = BDL_KEY_ENUM, "-", IN_SPECIES(size_dist),

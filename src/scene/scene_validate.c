@@ -152,6 +152,14 @@ static void check_species(bdl_scene_parser *p, bdl_scene_section *s)
         fail_missing(p, s, "stiffness", " for [contact] law = linear");
     if (p->failed)
         return;
+    if (sp->shape == BDL_SHAPE_ROD && !(sp->length > sp->diameter)) {
+        fail_at_key(p, s, "length", 0, "must be longer than the diameter");
+        return;
+    }
+    if (sp->shape == BDL_SHAPE_ROD && sp->size_dist != BDL_SIZE_SINGLE) {
+        fail_at_key(p, s, "distribution", 0, "rods have one diameter and length: use single");
+        return;
+    }
     if (sp->size_dist == BDL_SIZE_SINGLE) {
         sp->diameter_min = sp->diameter_max = sp->diameter;
         return;
@@ -219,10 +227,11 @@ static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
     }
 }
 
-/// Largest diameter of a species [m] (diameter_max is set for every distribution by now).
+/// Largest extent of a particle of a species: its diameter, or a rod's length [m]
+/// (diameter_max is set for every distribution by now).
 static double largest_diameter(const bdl_scene *scene, int species)
 {
-    return scene->species[species].diameter_max;
+    return bdl_species_max_extent(&scene->species[species]);
 }
 
 static void check_region(bdl_scene_parser *p, bdl_scene_section *s, double diameter)

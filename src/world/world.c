@@ -578,6 +578,13 @@ static bdl_result choose_time_step(bdl_world *w, bdl_scene_error *err)
 bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
 {
     *out = NULL;
+    for (int k = 0; k < scene->species_count; ++k)
+        if (scene->species[k].shape == BDL_SHAPE_ROD) {
+            snprintf(err->message, sizeof err->message,
+                     "%s:%d: [species %s] shape = rod: the solver does not move rods yet",
+                     scene->path, scene->line.species[k], scene->species[k].name);
+            return BDL_ERR_SCENE;
+        }
     bdl_world *w = calloc(1, sizeof *w);
     if (!w)
         return BDL_ERR_NOMEM;
