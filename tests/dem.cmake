@@ -2,6 +2,8 @@
 # convergence with dt, Hertz contact duration, sliding to rolling, conservation in collisions,
 # and static overlaps of a column. Each prints its table to stdout.
 bdl_add_test(test_material SOURCES test_material.c LABELS dem)
+bdl_add_test(test_rods SOURCES test_rods.c LABELS dem TIMEOUT 300)
+target_link_libraries(test_rods PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_bounce SOURCES test_bounce.c LABELS dem verification TIMEOUT 600)
 target_link_libraries(test_bounce PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_hertz_duration SOURCES test_hertz_duration.c LABELS dem verification TIMEOUT 300)

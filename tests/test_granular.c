@@ -2,7 +2,8 @@
 // multi-contact ratio, the normal forces and contact counts of a contact list, the bed-height
 // quantile, Lacey's index of segregated, random and
 // perfectly ordered mixtures, force networks of a chain and a lattice (and their independence
-// from the contacts' order), and the fit of the force distribution to samples drawn from it.
+// from the contacts' order), the fit of the force distribution to samples drawn from it, and the
+// orientation order of aligned, isotropic and planar sets of axes.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -256,8 +257,46 @@ static void test_force_pdf(void)
     free(fn);
 }
 
+/// Orientation order: aligned axes give S = 1 (whatever the direction, and for either sign);
+/// 2e5 isotropic axes S ~ 0 and <|cos|> ~ 1/2; axes spread over the horizontal plane S ~ 1/4
+/// and <|cos|> = 0; the tolerances are a few standard errors of the samples.
+static void test_orientation(void)
+{
+    bdl_orientation_sums aligned = {0}, iso = {0}, flat = {0}, halves[2] = {{0}};
+    const bdl_vec3 up = bdl_v3(0, 0, 1), d = bdl_v3_normalize(bdl_v3(1, 2, -2));
+    for (int k = 0; k < 10; ++k)
+        bdl_orientation_add(&aligned, bdl_v3_scale(d, k % 2 ? 1.0 : -1.0), up);
+    CHECK_CLOSE(bdl_orientation_order(&aligned), 1.0, 1e-12);
+    CHECK_CLOSE(bdl_orientation_vertical(&aligned), 2.0 / 3.0, 1e-12);
+    bdl_rng rng;
+    bdl_rng_seed(&rng, 3);
+    const long n = 200000;
+    for (long k = 0; k < n; ++k) {
+        bdl_vec3 u;
+        u.x = bdl_rng_normal(&rng);
+        u.y = bdl_rng_normal(&rng);
+        u.z = bdl_rng_normal(&rng);
+        bdl_orientation_add(&iso, bdl_v3_normalize(u), up);
+        const bdl_vec3 h = bdl_v3_normalize(bdl_v3(u.x, u.y, 0.0));
+        bdl_orientation_add(&flat, h, up);
+        bdl_orientation_add(&halves[k % 2], h, up);
+    }
+    const double s_iso = bdl_orientation_order(&iso), s_flat = bdl_orientation_order(&flat);
+    printf("orientation: isotropic S = %.4f <|cos|> = %.4f; planar S = %.4f\n", s_iso,
+           bdl_orientation_vertical(&iso), s_flat);
+    CHECK(fabs(s_iso) < 0.01);
+    CHECK(fabs(bdl_orientation_vertical(&iso) - 0.5) < 0.003);
+    CHECK(fabs(s_flat - 0.25) < 0.01);
+    CHECK(bdl_orientation_vertical(&flat) == 0.0);
+    bdl_orientation_merge(&halves[0], &halves[1]);
+    CHECK_CLOSE(bdl_orientation_order(&halves[0]), s_flat, 1e-12);
+    bdl_orientation_sums none = {0};
+    CHECK(isnan(bdl_orientation_order(&none)) && isnan(bdl_orientation_vertical(&none)));
+}
+
 int main(void)
 {
+    test_orientation();
     test_coordination();
     test_contact_forces();
     test_height_quantile();

@@ -277,3 +277,54 @@ bdl_result bdl_force_pdf(const double *fn, long n, int bins, double fmax, double
     fit->rms = sqrt(ss / bins);
     return BDL_OK;
 }
+
+void bdl_orientation_add(bdl_orientation_sums *s, bdl_vec3 u, bdl_vec3 up)
+{
+    s->n += 1.0;
+    s->abs_cos += fabs(bdl_v3_dot(u, up));
+    const double uu[6] = {u.x * u.x, u.y * u.y, u.z * u.z, u.x * u.y, u.x * u.z, u.y * u.z};
+    for (int k = 0; k < 6; ++k)
+        s->uu[k] += uu[k];
+}
+
+void bdl_orientation_merge(bdl_orientation_sums *into, const bdl_orientation_sums *s)
+{
+    into->n += s->n;
+    into->abs_cos += s->abs_cos;
+    for (int k = 0; k < 6; ++k)
+        into->uu[k] += s->uu[k];
+}
+
+double bdl_orientation_vertical(const bdl_orientation_sums *s)
+{
+    return s->n > 0.0 ? s->abs_cos / s->n : NAN;
+}
+
+/// The largest eigenvalue of the symmetric 3x3 matrix a (xx yy zz xy xz yz), by the
+/// trigonometric solution of the characteristic cubic.
+static double largest_eigenvalue(const double a[6])
+{
+    const double off = a[3] * a[3] + a[4] * a[4] + a[5] * a[5];
+    const double mean = (a[0] + a[1] + a[2]) / 3.0;
+    const double d0 = a[0] - mean, d1 = a[1] - mean, d2 = a[2] - mean;
+    const double p = sqrt((d0 * d0 + d1 * d1 + d2 * d2 + 2.0 * off) / 6.0);
+    if (p == 0.0)
+        return mean; // a multiple of the identity
+    // B = (A - mean I) / p; det(B) / 2 = cos(3 phi).
+    const double b0 = d0 / p, b1 = d1 / p, b2 = d2 / p;
+    const double b3 = a[3] / p, b4 = a[4] / p, b5 = a[5] / p;
+    const double det =
+        b0 * (b1 * b2 - b5 * b5) - b3 * (b3 * b2 - b5 * b4) + b4 * (b3 * b5 - b1 * b4);
+    const double c = fmin(1.0, fmax(-1.0, 0.5 * det));
+    return mean + 2.0 * p * cos(acos(c) / 3.0);
+}
+
+double bdl_orientation_order(const bdl_orientation_sums *s)
+{
+    if (!(s->n > 0.0))
+        return NAN;
+    double q[6];
+    for (int k = 0; k < 6; ++k)
+        q[k] = 1.5 * s->uu[k] / s->n - (k < 3 ? 0.5 : 0.0);
+    return largest_eigenvalue(q);
+}

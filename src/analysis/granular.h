@@ -96,4 +96,23 @@ bdl_result bdl_force_pdf(const double *fn, long n, int bins, double fmax, double
 /// P(f) of the fit.
 double bdl_force_pdf_eval(const bdl_force_pdf_fit *fit, double f);
 
+/// Running sums over the axes u of rods (unit vectors; the sign of an axis does not matter):
+/// their count, the sum of |u . up| and of the products u_a u_b (xx yy zz xy xz yz). Sums of
+/// blocks add with bdl_orientation_merge, so a parallel sum in fixed blocks is deterministic.
+typedef struct bdl_orientation_sums {
+    double n, abs_cos, uu[6];
+} bdl_orientation_sums;
+
+void bdl_orientation_add(bdl_orientation_sums *s, bdl_vec3 u, bdl_vec3 up);
+void bdl_orientation_merge(bdl_orientation_sums *into, const bdl_orientation_sums *s);
+
+/// Mean |cos| of the angle between the axes and `up`: 1 all upright, 1/2 isotropic, 0 all
+/// lying flat; NAN for no axes.
+double bdl_orientation_vertical(const bdl_orientation_sums *s);
+
+/// The nematic order parameter S, the largest eigenvalue of Q = <3/2 u u - 1/2 I>: 1 all
+/// parallel, 0 isotropic, 1/4 spread evenly over directions within a plane (a bed of rods lying
+/// flat with no preferred heading); NAN for no axes.
+double bdl_orientation_order(const bdl_orientation_sums *s);
+
 #endif

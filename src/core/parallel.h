@@ -9,6 +9,11 @@
 #ifndef BDL_PARALLEL_H
 #define BDL_PARALLEL_H
 
+/// Below this many particles a parallel particle loop costs more than it saves: small beds gain
+/// little from a second thread, and in the spells when the machine's parallel regions slow down
+/// they lose (figures: docs/performance.md, "Why these thresholds").
+#define BDL_PARALLEL_MIN 4096
+
 #define BDL_PARALLEL_FOR(cond, ...)                                                                \
     do {                                                                                           \
         if (cond) {                                                                                \

@@ -33,7 +33,7 @@
 #define BDL_KERNEL_MAX 8 ///< cells per axis a particle may touch (w <= 4 cells)
 
 /// Per-particle loops over fewer particles than this run on one thread (as the force pass: see
-/// BDL_PARALLEL_MIN in dem/contact_force.h).
+/// BDL_PARALLEL_MIN in core/parallel.h).
 #define BDL_COUPLING_PARALLEL_MIN 4096
 
 typedef struct bdl_coupling_def {

@@ -29,13 +29,7 @@
 #define BDL_PREFETCH_L2(address) ((void)(address))
 #endif
 
-/// Evaluated boundary pair (see partition()).
-typedef struct bdl_pair_result {
-    bdl_vec3 force;    ///< on i [N]
-    bdl_vec3 torque_i; ///< [N m]
-    bdl_vec3 torque_j; ///< [N m]
-    int touching;
-} pair_result;
+typedef bdl_pair_result pair_result;
 
 // Pairs are evaluated in batches, three loops per batch:
 //   gather  (scalar): for each listed pair of a run of particles, the separation and the touching
@@ -512,8 +506,8 @@ static void list_boundary(bdl_force_work *fw, const bdl_neighbor *nb, int thread
 /// Splits the particles into one range per thread and lists the boundary pairs between them; also
 /// checks whether the particles are uniform and allocates the per-thread batches. Nothing to do
 /// while the lists, the particle count and the thread count stay the same.
-static bdl_result partition(bdl_force_work *fw, const bdl_neighbor *nb, const bdl_particles *p,
-                            int threads)
+bdl_result bdl_force_partition(bdl_force_work *fw, const bdl_neighbor *nb, const bdl_particles *p,
+                               int threads)
 {
     long n = p->count;
     if (fw->threads == threads && fw->version == nb->version && fw->count == n)
@@ -891,7 +885,7 @@ bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
 {
     long n = p->count;
     int threads = n >= def->parallel_min ? omp_get_max_threads() : 1;
-    bdl_result r = partition(fw, nb, p, threads);
+    bdl_result r = bdl_force_partition(fw, nb, p, threads);
     if (r != BDL_OK)
         return r;
     threads = fw->threads;

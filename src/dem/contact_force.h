@@ -21,12 +21,15 @@ typedef struct bdl_force_def {
     int loads_cleared; ///< force and torque are zero already (bdl_dem_kick_drift cleared them)
 } bdl_force_def;
 
-/// Below this many particles a parallel region costs more than it saves: small beds gain little
-/// from a second thread, and in the spells when the machine's parallel regions slow down they
-/// lose (figures: docs/performance.md, "Why these thresholds").
-#define BDL_PARALLEL_MIN 4096
-
 #define BDL_MAX_FORCE_THREADS 256
+
+/// An evaluated boundary pair: a pair whose j lies in a later thread's range, kept for j's owner.
+typedef struct bdl_pair_result {
+    bdl_vec3 force;    ///< on i [N]
+    bdl_vec3 torque_i; ///< [N m]
+    bdl_vec3 torque_j; ///< [N m]
+    int touching;
+} bdl_pair_result;
 
 /// Per-step bookkeeping of the parallel force pass (see contact_force.c): the particle range of
 /// each thread and the boundary pairs between ranges. Rebuilt when the lists or the thread count
@@ -43,8 +46,8 @@ typedef struct bdl_force_work {
     int32_t *owner;                            ///< first particle of every listed pair
     int32_t owner_count;                       ///< listed pairs
     long owner_capacity;
-    int32_t *target;                ///< boundary entries ordered by target thread
-    struct bdl_pair_result *result; ///< evaluated boundary pairs
+    int32_t *target;         ///< boundary entries ordered by target thread
+    bdl_pair_result *result; ///< evaluated boundary pairs
     long capacity;
     struct bdl_pair_batch *batch[BDL_MAX_FORCE_THREADS]; ///< per-thread pair batches
     int uniform;     ///< every particle has the same species, radius and mass (these:)
@@ -54,6 +57,12 @@ typedef struct bdl_force_work {
 } bdl_force_work;
 
 void bdl_force_work_free(bdl_force_work *fw);
+
+/// Splits the particles into one range per thread (equal work: a particle and its pairs) and lists
+/// the boundary pairs between the ranges; nothing to do while the lists, the particle count and
+/// the thread count stay the same. Both force passes (spheres here, rods in rod_force.c) use it.
+bdl_result bdl_force_partition(bdl_force_work *fw, const bdl_neighbor *nb, const bdl_particles *p,
+                               int threads);
 long bdl_force_work_bytes(const bdl_force_work *fw);
 
 /// Evaluates all contacts in one pass over the particles: pair forces (each pair once), wall

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define PI 3.14159265358979323846
+#include "dem/capsule.h"
 
 BDL_CHOICE_WORDS(bdl_create_kind, BDL_CREATE_KINDS);
 
@@ -82,15 +82,41 @@ static int grid_insert(placement_grid *g, const bdl_particles *p, long i)
     return 1;
 }
 
-/// True when a sphere at x with radius r overlaps a particle in the grid. Particles are at most
-/// `reach` = r + r_max apart to touch, so the search covers ceil(reach / cell) cells.
-static int grid_overlaps(const placement_grid *g, const bdl_particles *p, bdl_vec3 x, double r,
+/// A particle to be placed: centre, half axis (zero for a sphere), radius; a rod's orientation.
+typedef struct body {
+    bdl_vec3 x, e;
+    double r, half_length;
+    bdl_quat q;
+} body;
+
+/// A sphere at x of radius r.
+static body sphere_at(bdl_vec3 x, double r)
+{
+    return (body){x, bdl_v3_zero(), r, 0.0, bdl_q_identity()};
+}
+
+/// Whether body b overlaps particle j: the centres (spheres) or the shafts (rods) closer than the
+/// sum of the radii.
+static int overlaps(const bdl_particles *p, long j, const body *b)
+{
+    double cut = b->r + p->radius[j];
+    if (!p->rods)
+        return bdl_v3_len2(bdl_v3_sub(b->x, p->pos[j])) < cut * cut;
+    double s, t;
+    return bdl_segments_closest(bdl_v3_sub(b->x, p->pos[j]), b->e, bdl_particle_half_axis(p, j), &s,
+                                &t) < cut * cut;
+}
+
+/// True when body b overlaps a particle in the grid. Particles whose bounding spheres (of radius
+/// at most r_max) touch b's are at most `reach` apart, so the search covers ceil(reach / cell)
+/// cells.
+static int grid_overlaps(const placement_grid *g, const bdl_particles *p, const body *b,
                          double r_max)
 {
     int c[3];
     for (int a = 0; a < 3; ++a)
-        c[a] = (int)floor((bdl_v3_comp(x, a) - bdl_v3_comp(g->lo, a)) / g->cell);
-    int reach = (int)ceil((r + r_max) / g->cell);
+        c[a] = (int)floor((bdl_v3_comp(b->x, a) - bdl_v3_comp(g->lo, a)) / g->cell);
+    int reach = (int)ceil((b->r + b->half_length + r_max) / g->cell);
     for (int z = c[2] - reach; z <= c[2] + reach; ++z) {
         if (z < 0 || z >= g->dims[2])
             continue;
@@ -101,37 +127,68 @@ static int grid_overlaps(const placement_grid *g, const bdl_particles *p, bdl_ve
                 if (xx < 0 || xx >= g->dims[0])
                     continue;
                 long cell = xx + (long)g->dims[0] * (y + (long)g->dims[1] * z);
-                for (long j = g->head[cell]; j >= 0; j = g->next[j]) {
-                    double cut = r + p->radius[j];
-                    if (bdl_v3_len2(bdl_v3_sub(x, p->pos[j])) < cut * cut)
+                for (long j = g->head[cell]; j >= 0; j = g->next[j])
+                    if (overlaps(p, j, b))
                         return 1;
-                }
             }
         }
     }
     return 0;
 }
 
-static int inside_walls(const bdl_walls *walls, bdl_vec3 x, double r)
+/// Whether body b is clear of every wall (a rod: both tips; walls are touched at the tips).
+static int inside_walls(const bdl_walls *walls, const body *b)
 {
-    for (int w = 0; w < walls->prim_count; ++w) {
-        bdl_vec3 n;
-        if (bdl_wall_gap(walls, w, x, r, &n) < 0.0)
-            return 0;
-    }
+    const int tips = b->half_length > 0.0 ? 2 : 1;
+    for (int w = 0; w < walls->prim_count; ++w)
+        for (int k = 0; k < tips; ++k) {
+            bdl_vec3 n;
+            bdl_vec3 x = tips == 1 ? b->x : bdl_v3_madd(b->x, b->e, k ? 1.0 : -1.0);
+            if (bdl_wall_gap(walls, w, x, b->r, &n) < 0.0)
+                return 0;
+        }
     return 1;
 }
 
-/// The largest radius of any species: particles of all species share the placement grid.
+/// The largest bounding radius of any species (half a diameter, or half a rod's length):
+/// particles of all species share the placement grid.
 static double largest_radius(const bdl_create_context *ctx)
 {
     double r = 0.0;
     for (int s = 0; s < ctx->species_count; ++s) {
-        double d = bdl_species_max_diameter(&ctx->species[s]);
+        double d = bdl_species_max_extent(&ctx->species[s]);
         if (0.5 * d > r)
             r = 0.5 * d;
     }
     return r;
+}
+
+/// A random orientation for a rod of species s (uniform over directions); spheres draw nothing.
+static void orient(body *b, const bdl_species_def *s, bdl_rng *rng)
+{
+    if (s->shape != BDL_SHAPE_ROD)
+        return;
+    bdl_vec3 u;
+    u.x = bdl_rng_normal(rng); // one draw per statement: argument order is unspecified in C
+    u.y = bdl_rng_normal(rng);
+    u.z = bdl_rng_normal(rng);
+    u = bdl_v3_normalize(u);
+    b->half_length = 0.5 * s->length - b->r;
+    b->q = bdl_q_from_z(u);
+    b->e = bdl_v3_scale(u, b->half_length);
+}
+
+/// Whether a rod's tips, with its radius around them, lie in the creator's region (a sphere's
+/// centre was drawn inside it already).
+static int inside_region(const bdl_create_def *c, const body *b)
+{
+    for (int a = 0; a < 3; ++a) {
+        const double x = bdl_v3_comp(b->x, a), e = fabs(bdl_v3_comp(b->e, a));
+        if (x - e - b->r < bdl_v3_comp(c->region_min, a) ||
+            x + e + b->r > bdl_v3_comp(c->region_max, a))
+            return 0;
+    }
+    return 1;
 }
 
 /// A placement grid over the region, holding the existing particles near it.
@@ -147,16 +204,22 @@ static int grid_for_region(placement_grid *g, const bdl_particles *p, bdl_vec3 l
     return 1;
 }
 
-/// Draws a centre uniformly in the creator's region (a whole sphere inside it); true when the
-/// sphere overlaps no wall and no particle.
-static int try_place(const bdl_create_def *c, const bdl_walls *walls, const placement_grid *g,
-                     const bdl_particles *p, double r, double r_max, bdl_rng *rng, bdl_vec3 *x)
+/// Draws a centre uniformly in the creator's region (a whole sphere inside it) and a rod's
+/// orientation; true when the particle lies in the region and overlaps no wall and no particle.
+static int try_place(const bdl_create_def *c, const bdl_create_context *ctx,
+                     const placement_grid *g, const bdl_particles *p, double r, double r_max,
+                     body *b)
 {
+    bdl_rng *rng = ctx->rng;
+    bdl_vec3 x;
     // One draw per statement: argument evaluation order is unspecified in C.
-    x->x = bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r);
-    x->y = bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r);
-    x->z = bdl_rng_range(rng, c->region_min.z + r, c->region_max.z - r);
-    return inside_walls(walls, *x, r) && !grid_overlaps(g, p, *x, r, r_max);
+    x.x = bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r);
+    x.y = bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r);
+    x.z = bdl_rng_range(rng, c->region_min.z + r, c->region_max.z - r);
+    *b = sphere_at(x, r);
+    orient(b, &ctx->species[c->species], rng);
+    return (b->half_length == 0.0 || inside_region(c, b)) && inside_walls(ctx->walls, b) &&
+           !grid_overlaps(g, p, b, r_max);
 }
 
 static bdl_vec3 draw_velocity(const bdl_create_def *c, bdl_rng *rng)
@@ -176,10 +239,13 @@ static double region_volume(const bdl_create_def *c)
     return l.x * l.y * l.z;
 }
 
-static long add_checked(bdl_particles *p, placement_grid *g, bdl_vec3 x, bdl_vec3 v, double r,
+static long add_checked(bdl_particles *p, placement_grid *g, const body *b, bdl_vec3 v,
                         const bdl_create_context *ctx, int species)
 {
-    long i = bdl_particles_add(p, x, v, r, ctx->species[species].density, species);
+    const double density = ctx->species[species].density;
+    long i = b->half_length > 0.0
+                 ? bdl_particles_add_rod(p, b->x, v, b->r, b->half_length, b->q, density, species)
+                 : bdl_particles_add(p, b->x, v, b->r, density, species);
     if (i >= 0 && !grid_insert(g, p, i))
         return -1;
     return i;
@@ -196,7 +262,6 @@ static bdl_result create_random(const bdl_create_def *c, const bdl_create_contex
                                 bdl_particles *p, char *why, size_t why_len)
 {
     const bdl_species_def *s = &ctx->species[c->species];
-    const bdl_walls *walls = ctx->walls;
     bdl_rng *rng = ctx->rng;
     double r_max = largest_radius(ctx);
     long target = c->count;
@@ -204,10 +269,8 @@ static bdl_result create_random(const bdl_create_def *c, const bdl_create_contex
         // Mean particle volume from a sample of the distribution.
         bdl_rng probe = *rng;
         double v = 0.0;
-        for (int k = 0; k < 256; ++k) {
-            double d = bdl_species_draw_diameter(s, &probe);
-            v += PI / 6.0 * d * d * d;
-        }
+        for (int k = 0; k < 256; ++k)
+            v += bdl_species_volume(s, bdl_species_draw_diameter(s, &probe));
         target = (long)floor(c->volume_fraction * region_volume(c) / (v / 256.0) + 0.5);
     }
     placement_grid g;
@@ -217,11 +280,10 @@ static bdl_result create_random(const bdl_create_def *c, const bdl_create_contex
     double d = bdl_species_draw_diameter(s, rng);
     while (placed < target && attempts < max_attempts) {
         ++attempts;
-        double r = 0.5 * d;
-        bdl_vec3 x;
-        if (!try_place(c, walls, &g, p, r, r_max, rng, &x))
+        body b;
+        if (!try_place(c, ctx, &g, p, 0.5 * d, r_max, &b))
             continue;
-        if (add_checked(p, &g, x, draw_velocity(c, rng), r, ctx, c->species) < 0) {
+        if (add_checked(p, &g, &b, draw_velocity(c, rng), ctx, c->species) < 0) {
             grid_free(&g);
             return BDL_ERR_NOMEM;
         }
@@ -245,7 +307,7 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
                                  bdl_particles *p, char *why, size_t why_len)
 {
     const bdl_species_def *s = &ctx->species[c->species];
-    const double r_max = largest_radius(ctx), d_species = bdl_species_max_diameter(s);
+    const double r_max = largest_radius(ctx), d_species = bdl_species_max_extent(s);
     double h = c->spacing > 0.0 ? c->spacing : 1.0001 * d_species;
     placement_grid g;
     if (!grid_for_region(&g, p, c->region_min, c->region_max, r_max))
@@ -260,13 +322,14 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
         for (int j = 0; j < ny && placed != limit; ++j)
             for (int i = 0; i < nx && placed != limit; ++i) {
                 double d = bdl_species_draw_diameter(s, ctx->rng);
-                bdl_vec3 x = bdl_v3(lo.x + 0.5 * d_species + i * h, lo.y + 0.5 * d_species + j * h,
-                                    lo.z + 0.5 * d_species + k * h);
-                if (!inside_walls(ctx->walls, x, 0.5 * d) ||
-                    grid_overlaps(&g, p, x, 0.5 * d, r_max))
+                body b =
+                    sphere_at(bdl_v3(lo.x + 0.5 * d_species + i * h, lo.y + 0.5 * d_species + j * h,
+                                     lo.z + 0.5 * d_species + k * h),
+                              0.5 * d);
+                orient(&b, s, ctx->rng);
+                if (!inside_walls(ctx->walls, &b) || grid_overlaps(&g, p, &b, r_max))
                     continue;
-                if (add_checked(p, &g, x, draw_velocity(c, ctx->rng), 0.5 * d, ctx, c->species) <
-                    0) {
+                if (add_checked(p, &g, &b, draw_velocity(c, ctx->rng), ctx, c->species) < 0) {
                     grid_free(&g);
                     return BDL_ERR_NOMEM;
                 }
@@ -285,30 +348,25 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
     return BDL_OK;
 }
 
-/// Column names of a particle CSV file.
-enum { COL_X, COL_Y, COL_Z, COL_D, COL_VX, COL_VY, COL_VZ, COL_COUNT };
+/// Columns of a particle CSV file.
+enum { COL_X, COL_Y, COL_Z, COL_D, COL_VX, COL_VY, COL_VZ, COL_UX, COL_UY, COL_UZ, COL_COUNT };
 
-static bdl_result create_file(const bdl_create_def *c, const bdl_create_context *ctx,
-                              bdl_particles *p, char *why, size_t why_len)
+/// Reads the header line of a particle file into col (column index of each name, or -1) and
+/// returns the number of columns, or a negative value with the reason in what.
+static int file_header(FILE *f, const bdl_species_def *species, int col[COL_COUNT], char *what,
+                       size_t what_len)
 {
-    const bdl_species_def *species = &ctx->species[c->species];
-    static const char *const names[COL_COUNT] = {"x", "y", "z", "diameter", "vx", "vy", "vz"};
-    FILE *f = fopen(c->file, "r");
-    char what[600];
-    if (!f) {
-        snprintf(what, sizeof what, "cannot open '%s': %s", c->file, strerror(errno));
-        return fail(why, why_len, what);
-    }
+    static const char *const names[COL_COUNT] = {"x",  "y",  "z",  "diameter", "vx",
+                                                 "vy", "vz", "ux", "uy",       "uz"};
     char line[4096];
-    int col[COL_COUNT];
     for (int k = 0; k < COL_COUNT; ++k)
         col[k] = -1;
-    int ncols = 0;
     if (!fgets(line, sizeof line, f)) {
-        fclose(f);
-        return fail(why, why_len,
-                    "particle file is empty (expected a header such as x,y,z,diameter)");
+        snprintf(what, what_len,
+                 "particle file is empty (expected a header such as x,y,z,diameter)");
+        return -1;
     }
+    int ncols = 0;
     for (char *tok = strtok(line, ",\r\n"); tok; tok = strtok(NULL, ",\r\n"), ++ncols) {
         while (*tok == ' ')
             ++tok;
@@ -316,51 +374,125 @@ static bdl_result create_file(const bdl_create_def *c, const bdl_create_context 
             if (strcmp(tok, names[k]) == 0)
                 col[k] = ncols;
     }
-    if (col[COL_X] < 0 || col[COL_Y] < 0 || col[COL_Z] < 0) {
-        fclose(f);
-        return fail(why, why_len, "particle file header must name columns x, y and z");
+    const int axis = (col[COL_UX] >= 0) + (col[COL_UY] >= 0) + (col[COL_UZ] >= 0);
+    const int rod = species->shape == BDL_SHAPE_ROD;
+    if (col[COL_X] < 0 || col[COL_Y] < 0 || col[COL_Z] < 0)
+        snprintf(what, what_len, "particle file header must name columns x, y and z");
+    else if (axis != 0 && axis != 3)
+        snprintf(what, what_len,
+                 "particle file header names only some of ux, uy, uz "
+                 "(a rod's axis needs all three)");
+    else if (axis && !rod)
+        snprintf(what, what_len,
+                 "particle file has axis columns ux, uy, uz but species '%s' "
+                 "is a sphere",
+                 species->name);
+    else if (rod && col[COL_D] >= 0)
+        snprintf(what, what_len,
+                 "particle file has a diameter column but species '%s' is a rod "
+                 "(its diameter and length come from the species)",
+                 species->name);
+    else
+        return ncols;
+    return -1;
+}
+
+/// Parses up to 64 comma-separated numbers of a line into v; returns how many.
+static int parse_numbers(char *s, double v[64])
+{
+    int n = 0;
+    char *end;
+    while (n < 64) {
+        v[n] = strtod(s, &end);
+        if (end == s)
+            break;
+        ++n;
+        s = end;
+        while (*s == ' ')
+            ++s;
+        if (*s != ',')
+            break;
+        ++s;
     }
+    return n;
+}
+
+/// The particle of one row of a particle file (numbers v, columns col): a sphere of the row's
+/// or the species' diameter, or a rod along the row's axis or a random one. Returns 0 with the
+/// reason in what for a row that describes no particle.
+static int file_body(const double *v, const int col[COL_COUNT], const bdl_species_def *species,
+                     bdl_rng *rng, body *b, char *what, size_t what_len)
+{
+    const double d = col[COL_D] >= 0 ? v[col[COL_D]] : bdl_species_draw_diameter(species, rng);
+    if (!(d > 0.0) || !isfinite(d)) {
+        snprintf(what, what_len, "diameter %g must be > 0", d);
+        return 0;
+    }
+    *b = sphere_at(bdl_v3(v[col[COL_X]], v[col[COL_Y]], v[col[COL_Z]]), 0.5 * d);
+    if (species->shape != BDL_SHAPE_ROD)
+        return 1;
+    if (col[COL_UX] < 0) {
+        orient(b, species, rng);
+        return 1;
+    }
+    const bdl_vec3 u = bdl_v3(v[col[COL_UX]], v[col[COL_UY]], v[col[COL_UZ]]);
+    const double len = bdl_v3_len(u);
+    if (!(len > 0.0) || !isfinite(len)) {
+        snprintf(what, what_len, "axis (%g, %g, %g) must be a nonzero direction", u.x, u.y, u.z);
+        return 0;
+    }
+    b->half_length = 0.5 * species->length - b->r;
+    b->q = bdl_q_from_z(bdl_v3_scale(u, 1.0 / len));
+    b->e = bdl_v3_scale(u, b->half_length / len);
+    return 1;
+}
+
+/// Particles from a CSV file: a header naming x, y, z and optionally diameter (spheres), vx, vy,
+/// vz, and ux, uy, uz (a rod's axis; rods without them get random axes).
+static bdl_result create_file(const bdl_create_def *c, const bdl_create_context *ctx,
+                              bdl_particles *p, char *why, size_t why_len)
+{
+    const bdl_species_def *species = &ctx->species[c->species];
+    FILE *f = fopen(c->file, "r");
+    char what[600], reason[200];
+    if (!f) {
+        snprintf(what, sizeof what, "cannot open '%s': %s", c->file, strerror(errno));
+        return fail(why, why_len, what);
+    }
+    int col[COL_COUNT];
+    const int ncols = file_header(f, species, col, reason, sizeof reason);
+    if (ncols < 0) {
+        fclose(f);
+        snprintf(what, sizeof what, "%s: %s", c->file, reason);
+        return fail(why, why_len, what);
+    }
+    char line[4096];
     long row = 1;
     bdl_result result = BDL_OK;
-    while (fgets(line, sizeof line, f)) {
+    while (result == BDL_OK && fgets(line, sizeof line, f)) {
         ++row;
         if (line[0] == '\n' || line[0] == '#')
             continue;
         double v[64];
-        int n = 0;
-        char *s = line, *end;
-        while (n < 64) {
-            v[n] = strtod(s, &end);
-            if (end == s)
-                break;
-            ++n;
-            s = end;
-            while (*s == ' ')
-                ++s;
-            if (*s != ',')
-                break;
-            ++s;
-        }
-        if (n < ncols) {
-            snprintf(what, sizeof what, "%s:%ld: expected %d numbers, found %d", c->file, row,
-                     ncols, n);
-            result = fail(why, why_len, what);
-            break;
-        }
-        double d = col[COL_D] >= 0 ? v[col[COL_D]] : bdl_species_draw_diameter(species, ctx->rng);
-        if (!(d > 0.0) || !isfinite(d)) {
-            snprintf(what, sizeof what, "%s:%ld: diameter %g must be > 0", c->file, row, d);
+        const int n = parse_numbers(line, v);
+        body b;
+        if (n < ncols)
+            snprintf(reason, sizeof reason, "expected %d numbers, found %d", ncols, n);
+        if (n < ncols || !file_body(v, col, species, ctx->rng, &b, reason, sizeof reason)) {
+            snprintf(what, sizeof what, "%s:%ld: %s", c->file, row, reason);
             result = fail(why, why_len, what);
             break;
         }
         bdl_vec3 vel = c->velocity;
         if (col[COL_VX] >= 0 && col[COL_VY] >= 0 && col[COL_VZ] >= 0)
             vel = bdl_v3(v[col[COL_VX]], v[col[COL_VY]], v[col[COL_VZ]]);
-        bdl_vec3 x = bdl_v3(v[col[COL_X]], v[col[COL_Y]], v[col[COL_Z]]);
-        if (bdl_particles_add(p, x, vel, 0.5 * d, species->density, c->species) < 0) {
+        const double density = species->density;
+        const long i =
+            b.half_length > 0.0
+                ? bdl_particles_add_rod(p, b.x, vel, b.r, b.half_length, b.q, density, c->species)
+                : bdl_particles_add(p, b.x, vel, b.r, density, c->species);
+        if (i < 0)
             result = BDL_ERR_NOMEM;
-            break;
-        }
     }
     fclose(f);
     return result;
@@ -385,7 +517,6 @@ bdl_result bdl_create_initial(const bdl_create_def *def, const bdl_create_contex
 long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, double t,
                      long *poured, bdl_particles *p)
 {
-    const bdl_walls *walls = ctx->walls;
     bdl_rng *rng = ctx->rng;
     if (t < def->start_time || *poured >= def->count)
         return 0;
@@ -404,10 +535,10 @@ long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, d
         double r = 0.5 * bdl_species_draw_diameter(s, rng);
         int placed = 0;
         for (int attempt = 0; attempt < 50 && !placed; ++attempt) {
-            bdl_vec3 x;
-            if (!try_place(def, walls, &g, p, r, r_max, rng, &x))
+            body b;
+            if (!try_place(def, ctx, &g, p, r, r_max, &b))
                 continue;
-            if (add_checked(p, &g, x, draw_velocity(def, rng), r, ctx, def->species) < 0) {
+            if (add_checked(p, &g, &b, draw_velocity(def, rng), ctx, def->species) < 0) {
                 grid_free(&g);
                 return -1;
             }
@@ -453,7 +584,7 @@ long bdl_create_estimate_total(const bdl_create_def *creates, int count,
         }
         const bdl_species_def *s = &species[def->species];
         double d = bdl_species_min_diameter(s);
-        double vp = PI / 6.0 * d * d * d;
+        double vp = bdl_species_volume(s, d);
         if (def->kind == BDL_CREATE_RANDOM)
             total += (long)(def->volume_fraction * region_volume(def) / vp) + 1;
         else if (def->kind == BDL_CREATE_LATTICE)

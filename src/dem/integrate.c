@@ -2,35 +2,84 @@
 // kicks, which also applies the closing one, is contact_force.c.
 #include "dem/integrate.h"
 
+#include <math.h>
 #include <omp.h>
 
-#include "dem/contact_force.h" // BDL_PARALLEL_MIN
+#include "core/parallel.h"
+#include "dem/rigid.h"
+
+/// Kick and drift of the spheres lo..hi-1, swept backwards; returns the largest squared
+/// displacement since the lists were built.
+static double kick_drift_range(bdl_particles *p, bdl_vec3 gravity, double h, double dt, long lo,
+                               long hi)
+{
+    double max2 = 0.0;
+    for (long i = hi - 1; i >= lo; --i) {
+        double im = p->inv_mass[i];
+        bdl_vec3 g = p->fluid_accel ? bdl_v3_add(gravity, p->fluid_accel[i]) : gravity;
+        bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, h), p->load[i].force, h * im);
+        p->vel[i] = v;
+        p->omega[i] =
+            bdl_v3_madd(p->omega[i], p->load[i].torque, h * bdl_particle_inv_inertia(p, i));
+        p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()}; // for the force pass
+        bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);
+        p->pos[i] = x;
+        double d2 = bdl_v3_len2(bdl_v3_sub(x, p->pos_at_build[i]));
+        if (d2 > max2)
+            max2 = d2;
+    }
+    return max2;
+}
 
 double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double dt)
 {
-    long n = p->count;
+    const long n = p->count;
+    // Small systems stay out of the OpenMP runtime altogether (core/parallel.h).
+    if (n < BDL_PARALLEL_MIN)
+        return kick_drift_range(p, gravity, h, dt, 0, n);
     double max2 = 0.0;
     // Each thread sweeps its share of the particles backwards: the force pass that follows
     // starts at the low end of the same share, so the state it reads first is what this pass
     // touched last and is still in the caches (docs/performance.md, "Memory").
-#pragma omp parallel reduction(max : max2) if (n >= BDL_PARALLEL_MIN)
+#pragma omp parallel reduction(max : max2)
     {
-        long t = omp_get_thread_num(), threads = omp_get_num_threads();
-        long lo = n * t / threads, hi = n * (t + 1) / threads;
-        for (long i = hi - 1; i >= lo; --i) {
-            double im = p->inv_mass[i];
-            bdl_vec3 g = p->fluid_accel ? bdl_v3_add(gravity, p->fluid_accel[i]) : gravity;
-            bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, h), p->load[i].force, h * im);
-            p->vel[i] = v;
-            p->omega[i] =
-                bdl_v3_madd(p->omega[i], p->load[i].torque, h * bdl_particle_inv_inertia(p, i));
-            p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()}; // for the force pass
-            bdl_vec3 x = bdl_v3_madd(p->pos[i], v, dt);
-            p->pos[i] = x;
-            double d2 = bdl_v3_len2(bdl_v3_sub(x, p->pos_at_build[i]));
-            if (d2 > max2)
-                max2 = d2;
-        }
+        const long t = omp_get_thread_num(), threads = omp_get_num_threads();
+        max2 = kick_drift_range(p, gravity, h, dt, n * t / threads, n * (t + 1) / threads);
+    }
+    return max2;
+}
+
+/// Kick, rotation and drift of rod-scene particle i; returns its largest squared tip
+/// displacement since the lists were built.
+static double kick_drift_rod(bdl_particles *p, long i, bdl_vec3 gravity, double h, double dt)
+{
+    const bdl_wrench load = p->load[i];
+    bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], gravity, h), load.force, h * p->inv_mass[i]);
+    const bdl_vec3 L = bdl_v3_madd(p->ang_mom[i], load.torque, h);
+    const bdl_quat q = bdl_rigid_rotate(p->orient[i], L, p->inv_inertia[i], dt);
+    p->vel[i] = v;
+    p->ang_mom[i] = L;
+    p->orient[i] = q;
+    p->omega[i] = bdl_rigid_omega(q, L, p->inv_inertia[i]);
+    p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()}; // for the force pass
+    p->pos[i] = bdl_v3_madd(p->pos[i], v, dt);
+    return bdl_particle_move2(p, i);
+}
+
+double bdl_dem_kick_drift_rods(bdl_particles *p, bdl_vec3 gravity, double h, double dt)
+{
+    const long n = p->count;
+    double max2 = 0.0;
+    if (n < BDL_PARALLEL_MIN) {
+        for (long i = 0; i < n; ++i)
+            max2 = fmax(max2, kick_drift_rod(p, i, gravity, h, dt));
+        return max2;
+    }
+#pragma omp parallel for schedule(static) reduction(max : max2)
+    for (long i = 0; i < n; ++i) {
+        const double d2 = kick_drift_rod(p, i, gravity, h, dt);
+        if (d2 > max2)
+            max2 = d2;
     }
     return max2;
 }

@@ -1,5 +1,7 @@
 #include "dem/neighbor.h"
+#include "dem/capsule.h"
 #include "core/memory.h"
+#include "core/parallel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -50,7 +52,7 @@ static bdl_result rank_cells(bdl_neighbor *nb)
 
 bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const int periodic[3],
                              double cutoff, double skin, long max_particles, int friction,
-                             int rolling)
+                             int rolling, int rods)
 {
     memset(nb, 0, sizeof *nb);
     nb->origin = lo;
@@ -58,6 +60,8 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
     nb->skin = skin;
     nb->friction = friction;
     nb->rolling = rolling;
+    nb->rods = rods;
+    nb->parallel_min = BDL_PARALLEL_MIN;
     long max_cells = 4 * max_particles + 4096;
     double size = cutoff;
     for (;;) {
@@ -127,14 +131,29 @@ static inline int step_cell(const bdl_neighbor *nb, int axis, int c)
     return c;
 }
 
-/// Visits every j > i closer than r_i + r_j + skin; `out` NULL counts only.
+/// Whether j comes within the skin of i: the centres closer than r_i + r_j + skin, or with rods
+/// the shafts (the centres first, within the rods' half lengths).
+static inline int listed(const bdl_neighbor *nb, const bdl_particles *p, long i, long j, bdl_vec3 d)
+{
+    double cut = p->radius[i] + p->radius[j] + nb->skin;
+    if (!nb->rods)
+        return bdl_v3_len2(d) < cut * cut;
+    const double reach = cut + p->half_length[i] + p->half_length[j];
+    if (!(bdl_v3_len2(d) < reach * reach))
+        return 0;
+    double s, t;
+    const double d2 =
+        bdl_segments_closest(d, bdl_particle_half_axis(p, i), bdl_particle_half_axis(p, j), &s, &t);
+    return d2 < cut * cut;
+}
+
+/// Visits every j > i listed with i (see `listed`); `out` NULL counts only.
 static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i, int32_t *out)
 {
     int c[3];
     cell_of(nb, p->pos[i], c);
     int32_t n = 0;
     bdl_vec3 xi = p->pos[i];
-    double ri = p->radius[i];
     for (int dz = -1; dz <= 1; ++dz) {
         int z = step_cell(nb, 2, c[2] + dz);
         if (z < 0)
@@ -152,9 +171,7 @@ static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i
                 for (int32_t j = nb->cell_start[r]; j < nb->cell_start[r + 1]; ++j) {
                     if (j <= i)
                         continue;
-                    bdl_vec3 d = bdl_neighbor_delta(nb, xi, p->pos[j]);
-                    double cut = ri + p->radius[j] + nb->skin;
-                    if (bdl_v3_len2(d) < cut * cut) {
+                    if (listed(nb, p, i, j, bdl_neighbor_delta(nb, xi, p->pos[j]))) {
                         if (out)
                             out[n] = j;
                         ++n;
@@ -289,12 +306,22 @@ static void wrap_periodic(const bdl_neighbor *nb, bdl_particles *p)
     }
 }
 
+/// The springs of particle i's pairs that touched before the rebuild, from the stash.
+static void restore_history(bdl_neighbor *nb, long old_count, long i)
+{
+    for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+        int found = 0;
+        nb->history[k] = find_stashed(nb, old_count, nb->perm[i], nb->perm[nb->partner[k]], &found);
+        nb->touching[k] = (uint8_t)found;
+    }
+}
+
 static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old_count)
 {
     long n = p->count;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i)
-        nb->start[i + 1] = scan_pairs(nb, p, i, NULL);
+    const int team = n >= nb->parallel_min;
+    BDL_PARALLEL_FOR(team,
+                     for (long i = 0; i < n; ++i) nb->start[i + 1] = scan_pairs(nb, p, i, NULL););
     nb->start[0] = 0;
     for (long i = 0; i < n; ++i)
         nb->start[i + 1] += nb->start[i];
@@ -305,40 +332,61 @@ static bdl_result build_pairs(bdl_neighbor *nb, const bdl_particles *p, long old
     if (r != BDL_OK)
         return r;
     nb->pair_count = pairs;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i)
-        scan_pairs(nb, p, i, nb->partner + nb->start[i]);
+    BDL_PARALLEL_FOR(team, for (long i = 0; i < n; ++i)
+                               scan_pairs(nb, p, i, nb->partner + nb->start[i]););
     // A pair marked touching is visited by the next force pass either way: it is evaluated, or
     // cleared (history included) if it no longer overlaps.
     memset(nb->touching, 0, (size_t)pairs);
-    if (nb->friction) {
-#pragma omp parallel for schedule(static)
-        for (long i = 0; i < n; ++i)
-            for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-                int found = 0;
-                nb->history[k] =
-                    find_stashed(nb, old_count, nb->perm[i], nb->perm[nb->partner[k]], &found);
-                nb->touching[k] = (uint8_t)found;
-            }
-    }
+    if (nb->friction)
+        BDL_PARALLEL_FOR(team, for (long i = 0; i < n; ++i) restore_history(nb, old_count, i););
     return BDL_OK;
 }
 
 static bdl_result reserve_wall_pairs(bdl_neighbor *nb, long count);
 
+/// The gap between particle i and wall primitive w: of its centre, or with rods of its nearer tip.
+static double wall_gap(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
+                       long i, int w)
+{
+    bdl_vec3 normal;
+    if (!nb->rods || p->half_length[i] == 0.0)
+        return bdl_wall_gap(walls, w, p->pos[i], p->radius[i], &normal);
+    const bdl_vec3 e = bdl_particle_half_axis(p, i);
+    return fmin(bdl_wall_gap(walls, w, bdl_v3_add(p->pos[i], e), p->radius[i], &normal),
+                bdl_wall_gap(walls, w, bdl_v3_sub(p->pos[i], e), p->radius[i], &normal));
+}
+
+/// Visits every wall primitive within the skin of particle i; `out` NULL counts only.
 static int32_t scan_walls(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
                           long i, int32_t *out)
 {
     int32_t n = 0;
     for (int w = 0; w < walls->prim_count; ++w) {
-        bdl_vec3 normal;
-        if (bdl_wall_gap(walls, w, p->pos[i], p->radius[i], &normal) < nb->skin) {
+        if (wall_gap(nb, p, walls, i, w) < nb->skin) {
             if (out)
                 out[n] = w;
             ++n;
         }
     }
     return n;
+}
+
+/// Lists the wall primitives near particle i, carrying the springs of those it touched before the
+/// rebuild.
+static void list_walls(bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
+                       long old_count, long i)
+{
+    scan_walls(nb, p, walls, i, nb->wall_prim + nb->wall_start[i]);
+    const int32_t oi = nb->perm[i];
+    for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+        nb->wall_history[k] = bdl_v3_zero();
+        nb->wall_touching[k] = 0;
+        if (oi >= old_count || !nb->old_wall_prim)
+            continue;
+        for (int32_t m = nb->old_wall_start[oi]; m < nb->old_wall_start[oi + 1]; ++m)
+            if (nb->old_wall_prim[m] == nb->wall_prim[k])
+                nb->wall_history[k] = nb->old_wall_history[m];
+    }
 }
 
 static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
@@ -359,9 +407,9 @@ static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bd
     nb->old_wall_capacity = nb->wall_pair_capacity;
     nb->wall_pair_capacity = tc;
 
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i)
-        nb->wall_start[i + 1] = scan_walls(nb, p, walls, i, NULL);
+    const int team = n >= nb->parallel_min;
+    BDL_PARALLEL_FOR(team, for (long i = 0; i < n; ++i) nb->wall_start[i + 1] =
+                               scan_walls(nb, p, walls, i, NULL););
     nb->wall_start[0] = 0;
     for (long i = 0; i < n; ++i)
         nb->wall_start[i + 1] += nb->wall_start[i];
@@ -370,20 +418,7 @@ static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bd
     if (r != BDL_OK)
         return r;
     nb->wall_pair_count = count;
-#pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) {
-        scan_walls(nb, p, walls, i, nb->wall_prim + nb->wall_start[i]);
-        int32_t oi = nb->perm[i];
-        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
-            nb->wall_history[k] = bdl_v3_zero();
-            nb->wall_touching[k] = 0;
-            if (oi >= old_count || !nb->old_wall_prim)
-                continue;
-            for (int32_t m = nb->old_wall_start[oi]; m < nb->old_wall_start[oi + 1]; ++m)
-                if (nb->old_wall_prim[m] == nb->wall_prim[k])
-                    nb->wall_history[k] = nb->old_wall_history[m];
-        }
-    }
+    BDL_PARALLEL_FOR(team, for (long i = 0; i < n; ++i) list_walls(nb, p, walls, old_count, i););
     for (int w = 0; w < walls->wall_count; ++w)
         nb->wall_offset_at_build[w] = walls->offset[w];
     return BDL_OK;
@@ -409,6 +444,9 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
     n = p->count;
     for (long i = 0; i < n; ++i)
         p->pos_at_build[i] = p->pos[i];
+    if (p->rods)
+        for (long i = 0; i < n; ++i)
+            p->axis_at_build[i] = bdl_particle_half_axis(p, i);
     r = build_pairs(nb, p, old_count);
     if (r != BDL_OK)
         return r;
@@ -429,12 +467,17 @@ int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, con
     double max2 = max_move2;
     if (max2 < 0.0) {
         max2 = 0.0;
-        long n = p->count;
+        const long n = p->count;
+        if (n < nb->parallel_min) {
+            for (long i = 0; i < n; ++i)
+                max2 = fmax(max2, bdl_particle_move2(p, i));
+        } else {
 #pragma omp parallel for schedule(static) reduction(max : max2)
-        for (long i = 0; i < n; ++i) {
-            double d2 = bdl_v3_len2(bdl_v3_sub(p->pos[i], p->pos_at_build[i]));
-            if (d2 > max2)
-                max2 = d2;
+            for (long i = 0; i < n; ++i) {
+                const double d2 = bdl_particle_move2(p, i);
+                if (d2 > max2)
+                    max2 = d2;
+            }
         }
     }
     double move = sqrt(max2);

@@ -5,6 +5,13 @@
 // every pair (i < j) closer than r_i + r_j + skin; it stays valid until a particle has moved
 // skin/2 (or a particle plus a wall have moved skin together), so it is rebuilt only then.
 //
+// With rods the cells are at least a rod's length plus the skin, a pair is listed when the
+// distance of the two shafts (dem/capsule.h) is below r_i + r_j + skin, and a wall when either
+// tip comes within the skin of it (a shaft's distance to a plane, or to a cylinder's inside, is
+// smallest at a tip): the lists stay valid until a tip has moved skin/2. (The thesis bounds a rod
+// by three spheres, Mahajan 2019 §3.2.4; the exact shaft distance lists fewer pairs for the same
+// guarantee.)
+//
 // Tangential history follows each pair across rebuilds and re-sorts (looked up by the particles'
 // previous indices). How forces are summed deterministically is described in contact_force.c.
 #ifndef BDL_NEIGHBOR_H
@@ -61,14 +68,17 @@ typedef struct bdl_neighbor {
     void *scratch;  ///< scratch for permutations (count * 24 bytes)
     long scratch_count;
     int friction, rolling;
-    long builds; ///< rebuilds so far
+    int rods;          ///< the particles are rods (bdl_particles.rods)
+    long parallel_min; ///< fewer particles than this: builds on one thread (core/parallel.h)
+    long builds;       ///< rebuilds so far
 } bdl_neighbor;
 
-/// Sets up the grid for the domain; `cutoff` = d_max + skin [m]. `max_particles` bounds the cell
-/// count (cells grow when the domain is much larger than the particles need).
+/// Sets up the grid for the domain; `cutoff` = the largest particle extent (a diameter, or a
+/// rod's length) + skin [m]. `max_particles` bounds the cell count (cells grow when the domain is
+/// much larger than the particles need). `rods`: the particles are rods (the lists follow them).
 bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const int periodic[3],
                              double cutoff, double skin, long max_particles, int friction,
-                             int rolling);
+                             int rolling, int rods);
 void bdl_neighbor_free(bdl_neighbor *nb);
 
 /// Wraps positions into periodic axes, re-sorts the particles, rebuilds pair and wall lists and
@@ -77,8 +87,9 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
                               const uint8_t *drop);
 
 /// True when the lists may have missed a contact: 2 max|x - x_build| > skin, or a particle and a
-/// wall together moved more than the skin. `max_move2` is max|x - x_build|^2 when the caller
-/// knows it (from bdl_dem_kick_drift), or < 0 to have it computed.
+/// wall together moved more than the skin (x: the centre, or with rods either tip). `max_move2`
+/// is that largest squared displacement when the caller knows it (from the drift), or < 0 to
+/// have it computed.
 int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
                              double max_move2);
 

@@ -74,6 +74,17 @@ static inline bdl_vec3 bdl_particle_half_axis(const bdl_particles *p, long i)
     return p->rods ? bdl_v3_scale(bdl_q_axis_z(p->orient[i]), p->half_length[i]) : bdl_v3_zero();
 }
 
+/// The larger squared displacement of particle i's two tips since the lists were built (of its
+/// centre when there are no rods): |dx|^2 + |de|^2 + 2 |dx . de|, de the change of the half axis.
+static inline double bdl_particle_move2(const bdl_particles *p, long i)
+{
+    const bdl_vec3 dx = bdl_v3_sub(p->pos[i], p->pos_at_build[i]);
+    if (!p->rods)
+        return bdl_v3_len2(dx);
+    const bdl_vec3 de = bdl_v3_sub(bdl_particle_half_axis(p, i), p->axis_at_build[i]);
+    return bdl_v3_len2(dx) + bdl_v3_len2(de) + 2.0 * fabs(bdl_v3_dot(dx, de));
+}
+
 /// Moment of inertia of a solid sphere: I = 2/5 m r^2, returned as 1/I.
 static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 {

@@ -45,8 +45,10 @@ void bdl_rod_mass_properties(double r, double shaft, double density, double *mas
 
 double bdl_species_volume(const bdl_species_def *s, double d)
 {
-    const double r = 0.5 * d, shaft = s->shape == BDL_SHAPE_ROD ? s->length - d : 0.0;
-    return BDL_PI * (r * r * shaft + 4.0 / 3.0 * r * r * r);
+    if (s->shape != BDL_SHAPE_ROD)
+        return BDL_PI / 6.0 * d * d * d;
+    const double r = 0.5 * d;
+    return BDL_PI * (r * r * (s->length - d) + 4.0 / 3.0 * r * r * r);
 }
 
 double bdl_species_max_extent(const bdl_species_def *s)

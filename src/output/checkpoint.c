@@ -28,6 +28,11 @@ static uint64_t scene_fingerprint(const bdl_scene *s)
     }
     if (s->gas.enabled)
         h = bdl_hash_bytes(h, &s->gas.cells, sizeof s->gas.cells);
+    for (int k = 0; k < s->species_count; ++k)
+        if (s->species[k].shape == BDL_SHAPE_ROD) { // spheres' fingerprints stay as they were
+            double rod[2] = {(double)k, s->species[k].length};
+            h = bdl_hash_bytes(h, rod, sizeof rod);
+        }
     return h;
 }
 
@@ -94,8 +99,8 @@ static int state_fields(bdl_world *w, field *f)
     f[k++] = (field){nb->wall_history, nw * v};
     f[k++] = (field){nb->wall_force, nw * v};
     f[k++] = (field){nb->wall_touching, nw};
-    // The gas's forces on the particles, held between gas steps.
-    count = bdl_particles_arrays(p, BDL_ARRAYS_WITH_GAS, arrays);
+    // The gas's forces on the particles, held between gas steps; the rods' orientations.
+    count = bdl_particles_arrays(p, BDL_ARRAYS_WITH_GAS | BDL_ARRAYS_WITH_RODS, arrays);
     for (int a = 0; a < count; ++a)
         f[k++] = (field){arrays[a].data, n * arrays[a].element};
     bdl_gas *g = w->gas;

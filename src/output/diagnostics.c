@@ -6,6 +6,7 @@
 
 #include "analysis/granular.h"
 #include "cfd/gas.h"
+#include "core/parallel.h"
 #include "dem/contact_law.h"
 
 const char *const bdl_diagnostics_columns[] = {
@@ -35,6 +36,8 @@ const char *const bdl_diagnostics_columns[] = {
     "mean_height",
     "multi_contact_ratio",
     "wall_force",
+    "rod_vertical_cos",
+    "rod_order",
 };
 const int bdl_diagnostics_column_count =
     (int)(sizeof bdl_diagnostics_columns / sizeof bdl_diagnostics_columns[0]);
@@ -43,7 +46,20 @@ const int bdl_diagnostics_column_count =
 
 typedef struct partial {
     double kinetic, rotational, potential, elastic, contacts, overlap, speed, wall_force;
+    bdl_orientation_sums axes; ///< of the rods
 } partial;
+
+int bdl_diagnostics_columns_for(const bdl_world *w)
+{
+    return bdl_diagnostics_column_count - (w->particles.rods ? 0 : 2);
+}
+
+/// Upward: against gravity, z without gravity.
+static bdl_vec3 up_of(const bdl_world *w)
+{
+    const double g = bdl_v3_len(w->scene.gravity);
+    return g > 0.0 ? bdl_v3_scale(w->scene.gravity, -1.0 / g) : bdl_v3(0, 0, 1);
+}
 
 static void particle_terms(const bdl_world *w, long i, partial *s)
 {
@@ -52,42 +68,39 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
     double m = 1.0 / p->inv_mass[i];
     double v2 = bdl_v3_len2(p->vel[i]);
     s->kinetic += 0.5 * m * v2;
-    s->rotational += 0.5 * bdl_v3_len2(p->omega[i]) / bdl_particle_inv_inertia(p, i);
+    s->rotational += p->rods ? 0.5 * bdl_v3_dot(p->omega[i], p->ang_mom[i])
+                             : 0.5 * bdl_v3_len2(p->omega[i]) / bdl_particle_inv_inertia(p, i);
     s->potential -= m * bdl_v3_dot(w->scene.gravity, p->pos[i]);
     s->contacts += w->coordination ? w->coordination[i] : 0;
     if (v2 > s->speed * s->speed)
         s->speed = sqrt(v2);
+    if (p->rods && p->half_length[i] > 0.0)
+        bdl_orientation_add(&s->axes, bdl_q_axis_z(p->orient[i]), up_of(w));
     int ns = w->scene.species_count;
     for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
         int32_t j = nb->partner[k];
-        double cut = p->radius[i] + p->radius[j];
-        double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
-        if (dist >= cut)
+        bdl_world_contact c;
+        if (!bdl_world_pair_contact(w, i, j, &c))
             continue;
-        double overlap = cut - dist;
-        double ratio = overlap / fmin(p->radius[i], p->radius[j]);
+        double ratio = c.overlap / fmin(p->radius[i], p->radius[j]);
         if (ratio > s->overlap)
             s->overlap = ratio;
         const bdl_contact_params *cp = &w->pair_params[p->species[i] * ns + p->species[j]];
-        double r_eff = p->radius[i] * p->radius[j] / cut;
-        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, overlap, r_eff,
+        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff,
                                                  nb->history ? nb->history[k] : bdl_v3_zero());
     }
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
-        bdl_vec3 n;
-        int prim = nb->wall_prim[k];
-        double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
-        if (gap >= 0.0)
+        bdl_world_contact c;
+        if (!bdl_world_wall_contact(w, i, k, &c))
             continue;
-        double ratio = -gap / p->radius[i];
+        double ratio = c.overlap / p->radius[i];
         if (ratio > s->overlap)
             s->overlap = ratio;
         const bdl_contact_params *cp =
-            &w->wall_params[w->walls.prims[prim].wall * ns + p->species[i]];
-        double r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
-        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, -gap, r_eff,
+            &w->wall_params[w->walls.prims[c.prim].wall * ns + p->species[i]];
+        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff,
                                                  w->friction ? nb->wall_history[k] : bdl_v3_zero());
-        s->wall_force += bdl_world_wall_normal_force(w, i, prim, n, gap);
+        s->wall_force += c.normal;
     }
 }
 
@@ -176,12 +189,12 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     long per = (n + BLOCKS - 1) / BLOCKS;
     if (per < 1)
         per = 1;
-#pragma omp parallel for schedule(static)
-    for (int b = 0; b < BLOCKS; ++b) {
-        long lo = b * per, hi = lo + per < n ? lo + per : n;
-        for (long i = lo; i < hi; ++i)
-            particle_terms(w, i, &blocks[b]);
-    }
+    BDL_PARALLEL_FOR(
+        n >= w->parallel_min, for (int b = 0; b < BLOCKS; ++b) {
+            long lo = b * per, hi = lo + per < n ? lo + per : n;
+            for (long i = lo; i < hi; ++i)
+                particle_terms(w, i, &blocks[b]);
+        });
     partial s;
     memset(&s, 0, sizeof s);
     for (int b = 0; b < BLOCKS; ++b) {
@@ -193,6 +206,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
         s.overlap = fmax(s.overlap, blocks[b].overlap);
         s.speed = fmax(s.speed, blocks[b].speed);
         s.wall_force += blocks[b].wall_force;
+        bdl_orientation_merge(&s.axes, &blocks[b].axes);
     }
     memset(d, 0, sizeof *d);
     d->probe_pressure_drop = NAN; // without [gas] probe_low and probe_high
@@ -212,6 +226,8 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->max_speed = s.speed;
     d->wall_force = s.wall_force;
     d->wall_work = w->wall_work;
+    d->rod_vertical_cos = bdl_orientation_vertical(&s.axes);
+    d->rod_order = bdl_orientation_order(&s.axes);
     if (w->gas)
         gas_terms(w, d);
     d->inlet_velocity = w->gas ? bdl_world_inlet_velocity(w, w->time) : 0.0;
@@ -254,4 +270,6 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[23] = d->mean_height;
     v[24] = d->multi_contact_ratio;
     v[25] = d->wall_force;
+    v[26] = d->rod_vertical_cos;
+    v[27] = d->rod_order;
 }

@@ -43,11 +43,18 @@ typedef struct bdl_diagnostics {
     double mean_height;    ///< with a gas: mean particle centre height above the floor [m]
     double multi_contact_ratio; ///< particles with >= 2 contacts / particles with >= 1
     double wall_force;          ///< sum of the normal forces of all particle-wall contacts [N]
+    // Of the rods (NAN without; the columns are written only in scenes with rods):
+    double rod_vertical_cos; ///< mean |cos| of the angle of the axes to the vertical
+    double rod_order;        ///< nematic order parameter S of the axes (analysis/granular.h)
 } bdl_diagnostics;
 
 /// Column names of diagnostics.csv, in the order of bdl_diagnostics_row.
 extern const char *const bdl_diagnostics_columns[];
 extern const int bdl_diagnostics_column_count;
+
+/// How many of the columns a run of w writes: all in scenes with rods, else all but the last two
+/// (the rods' orientation).
+int bdl_diagnostics_columns_for(const bdl_world *w);
 
 /// Computes every diagnostic for the current state. `energy0` is the total energy at the start
 /// (pass 0 when unknown).

@@ -134,25 +134,17 @@ bdl_result bdl_contacts_write(const bdl_world *w, const char *path)
     fprintf(f, "# time = %.9g s\ni,j,species_i,species_j,x_i,y_i,z_i,x_j,y_j,z_j,overlap,fn\n",
             w->time);
     for (long i = 0; i < p->count; ++i) {
+        bdl_world_contact c;
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
             const int32_t j = nb->partner[k];
-            const bdl_vec3 d = bdl_neighbor_delta(nb, p->pos[i], p->pos[j]);
-            const double cut = p->radius[i] + p->radius[j], dist = bdl_v3_len(d);
-            if (dist >= cut || dist <= 0.0)
-                continue;
-            write_contact(f, p, i, (long)p->id[j], p->species[j], p->pos[j], cut - dist,
-                          bdl_world_pair_normal_force(w, i, j, d, dist));
+            if (bdl_world_pair_contact(w, i, j, &c))
+                write_contact(f, p, i, (long)p->id[j], p->species[j], p->pos[j], c.overlap,
+                              c.normal);
         }
-        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
-            bdl_vec3 n;
-            const int prim = nb->wall_prim[k], wall = w->walls.prims[prim].wall;
-            const double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
-            if (gap >= 0.0)
-                continue;
-            const bdl_vec3 point = bdl_v3_madd(p->pos[i], n, -(p->radius[i] + 0.5 * gap));
-            write_contact(f, p, i, -1L - wall, -1, point, -gap,
-                          bdl_world_wall_normal_force(w, i, prim, n, gap));
-        }
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k)
+            if (bdl_world_wall_contact(w, i, k, &c))
+                write_contact(f, p, i, -1L - w->walls.prims[c.prim].wall, -1, c.point, c.overlap,
+                              c.normal);
     }
     if (ferror(f)) {
         bdl_atomic_abort(&af);

@@ -39,28 +39,52 @@ bdl_result bdl_world_gas_vti_write(const bdl_world *w, const char *path)
     return r;
 }
 
+/// The unit axes and tip-to-tip lengths of the particles in p (a sphere: axis 0 0 1, length its
+/// diameter), for glyphs drawn along the axis.
+static void rod_axes(const bdl_particles *p, bdl_vec3 *axis, double *length)
+{
+    for (long i = 0; i < p->count; ++i) {
+        axis[i] = bdl_q_axis_z(p->orient[i]);
+        length[i] = 2.0 * (p->half_length[i] + p->radius[i]);
+    }
+}
+
 bdl_result bdl_world_vtp_write(const bdl_world *w, const char *path)
 {
     const bdl_particles *p = &w->particles;
-    long n = p->count;
-    int32_t *id = malloc((size_t)(n > 0 ? n : 1) * sizeof(int32_t));
-    int32_t *coord = malloc((size_t)(n > 0 ? n : 1) * sizeof(int32_t));
-    if (!id || !coord) {
-        free(id);
-        free(coord);
-        return BDL_ERR_NOMEM;
+    const long n = p->count, m = n > 0 ? n : 1;
+    const int rods = p->rods;
+    int32_t *id = malloc((size_t)m * sizeof(int32_t));
+    int32_t *coord = malloc((size_t)m * sizeof(int32_t));
+    bdl_vec3 *axis = rods ? malloc((size_t)m * sizeof(bdl_vec3)) : NULL;
+    double *length = rods ? malloc((size_t)m * sizeof(double)) : NULL;
+    bdl_result r = BDL_ERR_NOMEM;
+    if (id && coord && (!rods || (axis && length))) {
+        for (long i = 0; i < n; ++i) {
+            id[i] = (int32_t)p->id[i];
+            coord[i] = w->coordination[i];
+        }
+        if (rods)
+            rod_axes(p, axis, length);
+        // Rod scenes add the orientation quaternion (w x y z, body z along the axis), the unit
+        // axis (for ParaView's glyph filter) and the tip-to-tip length.
+        bdl_vtk_array arrays[] = {
+            {"radius", BDL_VTK_FLOAT64, 1, p->radius},
+            {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
+            {"omega", BDL_VTK_FLOAT64, 3, p->omega},
+            {"id", BDL_VTK_INT32, 1, id},
+            {"species", BDL_VTK_INT32, 1, p->species},
+            {"coordination", BDL_VTK_INT32, 1, coord},
+            {"orientation", BDL_VTK_FLOAT64, 4, p->orient},
+            {"axis", BDL_VTK_FLOAT64, 3, axis},
+            {"length", BDL_VTK_FLOAT64, 1, length},
+        };
+        const int count = (int)(sizeof arrays / sizeof arrays[0]) - (rods ? 0 : 3);
+        r = bdl_vtp_write(path, n, p->pos, arrays, count);
     }
-    for (long i = 0; i < n; ++i) {
-        id[i] = (int32_t)p->id[i];
-        coord[i] = w->coordination[i];
-    }
-    bdl_vtk_array arrays[] = {
-        {"radius", BDL_VTK_FLOAT64, 1, p->radius}, {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
-        {"omega", BDL_VTK_FLOAT64, 3, p->omega},   {"id", BDL_VTK_INT32, 1, id},
-        {"species", BDL_VTK_INT32, 1, p->species}, {"coordination", BDL_VTK_INT32, 1, coord},
-    };
-    bdl_result r = bdl_vtp_write(path, n, p->pos, arrays, (int)(sizeof arrays / sizeof arrays[0]));
     free(id);
     free(coord);
+    free(axis);
+    free(length);
     return r;
 }

@@ -160,7 +160,7 @@ static bdl_result open_files(bdl_run_outputs *o, int resume)
     const bdl_world *w = o->world;
     const bdl_output_def *out = &w->scene.output;
     bdl_result r = open_csv(o, "diagnostics.csv", bdl_diagnostics_columns,
-                            bdl_diagnostics_column_count, resume, &o->csv);
+                            bdl_diagnostics_columns_for(w), resume, &o->csv);
     if (r == BDL_OK)
         r = open_series(o, resume);
     char sub[1200];

@@ -311,8 +311,8 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(CREATE), "file", .type = BDL_KEY_PATH, "-", IN_CREATE(file),
      WHEN("type", BIT(BDL_CREATE_FILE)), .required = BIT(BDL_CREATE_FILE),
      .default_text = "required for file",
-     .doc = "file: CSV file of positions (optionally diameters, velocities), relative to the "
-            "scene folder"},
+     .doc = "file: CSV file of positions (optionally diameters, velocities, rod axes), relative "
+            "to the scene folder"},
 
     // [output]
     {S(OUTPUT), "diagnostics_interval", NUM, "s", IN_SCENE(output.diagnostics_interval),

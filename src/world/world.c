@@ -3,14 +3,17 @@
 
 #include "cfd/gas.h"
 #include "core/memory.h"
+#include "core/parallel.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "dem/capsule.h"
 #include "dem/create.h"
 #include "dem/contact_force.h"
+#include "dem/rod_force.h"
 #include "dem/integrate.h"
 
 #define PI 3.14159265358979323846
@@ -68,11 +71,22 @@ double bdl_world_reference_speed(const bdl_world *w)
     return v > 0.1 ? v : 0.1;
 }
 
-/// The smallest particle of species a: its diameter and mass (the shortest contacts).
+/// The smallest particle of species a: its diameter and mass (the shortest contacts). A rod's
+/// mass is the smallest it shows at a contact point, struck at a tip across its axis:
+/// 1 / (1/m + h^2 / I_t), h half the shaft (0.347 m for the thesis's small rod), as the contact
+/// damping takes it (dem/rod_force.h).
 static void smallest(const bdl_scene *s, int a, double *d, double *m)
 {
-    *d = bdl_species_min_diameter(&s->species[a]);
-    *m = sphere_mass(*d, s->species[a].density);
+    const bdl_species_def *sp = &s->species[a];
+    *d = bdl_species_min_diameter(sp);
+    if (sp->shape == BDL_SHAPE_ROD) {
+        double mass, axial, transverse;
+        const double h = 0.5 * (sp->length - *d);
+        bdl_rod_mass_properties(0.5 * *d, sp->length - *d, sp->density, &mass, &axial, &transverse);
+        *m = 1.0 / (1.0 / mass + h * h / transverse);
+    } else {
+        *m = sphere_mass(*d, sp->density);
+    }
 }
 
 double bdl_world_pair_contact_time(const bdl_world *w, int a, int b, double v_ref)
@@ -185,6 +199,7 @@ static bdl_result forces(bdl_world *w, double max_move2, double kick)
             return BDL_ERR_NOMEM;
         w->coordination_capacity = p->capacity;
     }
+    w->neighbor.parallel_min = w->parallel_min;
     if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls, max_move2)) {
         bdl_result r = bdl_neighbor_build(&w->neighbor, p, &w->walls, NULL);
         if (r != BDL_OK)
@@ -192,6 +207,9 @@ static bdl_result forces(bdl_world *w, double max_move2, double kick)
     }
     bdl_force_def def = force_def(w);
     def.loads_cleared = kick > 0.0;
+    if (p->rods)
+        return bdl_rod_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination,
+                              kick);
     return bdl_dem_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination, kick);
 }
 
@@ -200,9 +218,10 @@ bdl_result bdl_world_compute_forces(bdl_world *w) { return forces(w, -1.0, 0.0);
 static double particle_energy(const bdl_particles *p, long i, bdl_vec3 g)
 {
     double m = 1.0 / p->inv_mass[i];
-    double iner = 1.0 / bdl_particle_inv_inertia(p, i);
-    return 0.5 * m * bdl_v3_len2(p->vel[i]) + 0.5 * iner * bdl_v3_len2(p->omega[i]) -
-           m * bdl_v3_dot(g, p->pos[i]);
+    double iner = p->rods ? 0.0 : 1.0 / bdl_particle_inv_inertia(p, i);
+    double rotation = p->rods ? 0.5 * bdl_v3_dot(p->omega[i], p->ang_mom[i])
+                              : 0.5 * iner * bdl_v3_len2(p->omega[i]);
+    return 0.5 * m * bdl_v3_len2(p->vel[i]) + rotation - m * bdl_v3_dot(g, p->pos[i]);
 }
 
 /// What the scene's creators draw on.
@@ -271,6 +290,7 @@ static bdl_result remove_outflow(bdl_world *w, double *max_move2)
     }
     w->removed += leaving;
     *max_move2 = 0.0;
+    w->neighbor.parallel_min = w->parallel_min;
     return bdl_neighbor_build(&w->neighbor, p, &w->walls, w->drop);
 }
 
@@ -314,7 +334,9 @@ bdl_result bdl_world_step(bdl_world *w)
             return r;
     }
     double h = 0.5 * w->dt;
-    double max_move2 = bdl_dem_kick_drift(p, bdl_world_gravity(w, w->time), h, w->dt);
+    const bdl_vec3 g_now = bdl_world_gravity(w, w->time);
+    double max_move2 = p->rods ? bdl_dem_kick_drift_rods(p, g_now, h, w->dt)
+                               : bdl_dem_kick_drift(p, g_now, h, w->dt);
     w->step++;
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
@@ -343,6 +365,10 @@ uint64_t bdl_world_hash(const bdl_world *w)
     h = bdl_hash_bytes(h, p->vel, n * sizeof(bdl_vec3));
     h = bdl_hash_bytes(h, p->omega, n * sizeof(bdl_vec3));
     h = bdl_hash_bytes(h, p->id, n * sizeof(uint32_t));
+    if (p->rods) {
+        h = bdl_hash_bytes(h, p->orient, n * sizeof(bdl_quat));
+        h = bdl_hash_bytes(h, p->ang_mom, n * sizeof(bdl_vec3));
+    }
     if (w->neighbor.history)
         h = bdl_hash_bytes(h, w->neighbor.history,
                            (size_t)w->neighbor.pair_count * sizeof(bdl_vec3));
@@ -424,7 +450,10 @@ static int overlaps_particle(const bdl_world *w, long i, char *what, size_t len)
     const double allowed = w->scene.guards.initial_overlap;
     for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
         int32_t j = nb->partner[k];
-        double dist = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
+        double s, t; // the centres' (or with rods the shafts') distance, coincident ones included
+        double dist = sqrt(bdl_segments_closest(bdl_neighbor_delta(nb, p->pos[i], p->pos[j]),
+                                                bdl_particle_half_axis(p, i),
+                                                bdl_particle_half_axis(p, j), &s, &t));
         double overlap = p->radius[i] + p->radius[j] - dist;
         double rmin = fmin(p->radius[i], p->radius[j]);
         if (overlap > allowed * rmin + 1e-12 * rmin) {
@@ -445,13 +474,12 @@ static int overlaps_wall(const bdl_world *w, long i, char *what, size_t len)
     const bdl_particles *p = &w->particles;
     const bdl_neighbor *nb = &w->neighbor;
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
-        bdl_vec3 n;
-        int prim = nb->wall_prim[k];
-        double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], p->radius[i], &n);
-        if (gap < -(w->scene.guards.initial_overlap + 1e-12) * p->radius[i]) {
+        bdl_world_contact c;
+        if (bdl_world_wall_contact(w, i, k, &c) &&
+            c.overlap > (w->scene.guards.initial_overlap + 1e-12) * p->radius[i]) {
             snprintf(what, len, "initial particle %u overlaps wall '%s' by %.3g%% of its radius",
-                     p->id[i], w->scene.walls[w->walls.prims[prim].wall].name,
-                     -100.0 * gap / p->radius[i]);
+                     p->id[i], w->scene.walls[w->walls.prims[c.prim].wall].name,
+                     100.0 * c.overlap / p->radius[i]);
             return 1;
         }
     }
@@ -520,6 +548,8 @@ static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
 {
     const bdl_scene *scene = &w->scene;
     w->particles.fluid = scene->gas.enabled; // before the arrays exist
+    for (int k = 0; k < scene->species_count; ++k)
+        w->particles.rods |= scene->species[k].shape == BDL_SHAPE_ROD;
     // Reserve what the creators will make, so storage carries no growth slack.
     *expected = bdl_create_estimate_total(scene->creates, scene->create_count, scene->species);
     long reserve = *expected < 64 ? 64 : (*expected > 10000000 ? 10000000 : *expected);
@@ -545,16 +575,18 @@ static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
 static bdl_result build_neighbor(bdl_world *w, long expected, bdl_scene_error *err)
 {
     const bdl_scene *scene = &w->scene;
-    double d_max = max_diameter(scene);
+    double d_max = max_diameter(scene), extent = d_max;
+    for (int k = 0; k < scene->species_count; ++k)
+        extent = fmax(extent, bdl_species_max_extent(&scene->species[k]));
     double skin = scene->skin * d_max;
-    bdl_result r =
-        bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max, scene->periodic,
-                          d_max + skin, skin, expected, w->friction, w->rolling);
+    bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,
+                                     scene->periodic, extent + skin, skin, expected, w->friction,
+                                     w->rolling, w->particles.rods);
     if (r == BDL_ERR_SCENE)
-        snprintf(
-            err->message, sizeof err->message,
-            "%s: [domain] periodic axes must be at least 3 x (largest diameter + skin) = %g m long",
-            scene->path, 3.0 * (d_max + skin));
+        snprintf(err->message, sizeof err->message,
+                 "%s: [domain] periodic axes must be at least 3 x (largest particle + skin) = %g "
+                 "m long",
+                 scene->path, 3.0 * (extent + skin));
     return r;
 }
 
@@ -578,13 +610,6 @@ static bdl_result choose_time_step(bdl_world *w, bdl_scene_error *err)
 bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
 {
     *out = NULL;
-    for (int k = 0; k < scene->species_count; ++k)
-        if (scene->species[k].shape == BDL_SHAPE_ROD) {
-            snprintf(err->message, sizeof err->message,
-                     "%s:%d: [species %s] shape = rod: the solver does not move rods yet",
-                     scene->path, scene->line.species[k], scene->species[k].name);
-            return BDL_ERR_SCENE;
-        }
     bdl_world *w = calloc(1, sizeof *w);
     if (!w)
         return BDL_ERR_NOMEM;

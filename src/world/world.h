@@ -153,13 +153,24 @@ double bdl_world_reference_speed(const bdl_world *world);
 /// The axis gravity points along (z without gravity) and the sign of "up" on it (+1 or -1).
 int bdl_world_vertical_axis(const bdl_world *world, double *up);
 
-/// Normal force [N] of the contact of particles i and j, d = x_i - x_j (minimum image) and
-/// dist = |d| < r_i + r_j, as the contact law gives it now (the dashpot included).
-double bdl_world_pair_normal_force(const bdl_world *world, long i, long j, bdl_vec3 d, double dist);
+/// A contact as the outputs see it.
+typedef struct bdl_world_contact {
+    bdl_vec3 n;     ///< unit normal, from the partner (or the wall) towards particle i
+    double overlap; ///< [m], > 0
+    double r_eff;   ///< effective radius of the contact law [m]
+    bdl_vec3 point; ///< the contact point, in the middle of the overlap [m]
+    bdl_vec3 v_c;   ///< relative velocity of the contact point (i minus the partner) [m/s]
+    bdl_vec3 arm_j; ///< rods: the contact point from the partner's centre [m]
+    double normal;  ///< normal force the law gives now, the dashpot included [N]
+    int prim;       ///< a wall contact's primitive (-1 for a pair)
+} bdl_world_contact;
 
-/// Normal force [N] of particle i on wall primitive `prim`, with n and gap < 0 from bdl_wall_gap.
-double bdl_world_wall_normal_force(const bdl_world *world, long i, int prim, bdl_vec3 n,
-                                   double gap);
+/// The listed pair (i, j): 0 when they do not touch, else the contact (spheres: centres; rods:
+/// the shafts' closest points, as the force pass has them).
+int bdl_world_pair_contact(const bdl_world *world, long i, long j, bdl_world_contact *c);
+
+/// Entry k of particle i's wall list: 0 when it does not touch, else the contact.
+int bdl_world_wall_contact(const bdl_world *world, long i, int32_t k, bdl_world_contact *c);
 
 /// Applies live parameters (after a command changed them).
 void bdl_world_apply_live(bdl_world *world);
