@@ -21,3 +21,4 @@ bdl_add_test(test_particles SOURCES test_particles.c LABELS dem)
 # Rods: the closest points of two segments against a brute force; mass properties, free and
 # torqued rotation of rigid bodies (docs/theory-rods.md).
 bdl_add_test(test_capsule SOURCES test_capsule.c LABELS dem)
+bdl_add_test(test_rigid SOURCES test_rigid.c LABELS dem)
