@@ -20,3 +20,7 @@ bdl_add_test(test_stiff_contacts SOURCES test_stiff_contacts.c LABELS "dem;stabi
 bdl_add_test(test_size_ratio SOURCES test_size_ratio.c LABELS "dem;stability" TIMEOUT 600)
 bdl_add_test(test_violent_shaking SOURCES test_violent_shaking.c LABELS "dem;stability" TIMEOUT 600)
 bdl_add_test(test_particles SOURCES test_particles.c LABELS dem)
+# Rods: the closest points of two segments against a brute force; mass properties, free and
+# torqued rotation of rigid bodies (docs/theory-rods.md).
+bdl_add_test(test_capsule SOURCES test_capsule.c LABELS dem)
+bdl_add_test(test_rigid SOURCES test_rigid.c LABELS dem)

@@ -69,10 +69,13 @@ static inline bdl_vec3 bdl_q_axis_z(bdl_quat q)
 /// The rotation that takes the z axis to the unit vector u (the shortest one).
 static inline bdl_quat bdl_q_from_z(bdl_vec3 u)
 {
-    // Half-way vector between z and u; for u = -z any perpendicular axis does.
-    if (u.z < -1.0 + 1e-15)
+    // (1 + z.u, z x u) normalised: the rotation about z x u by the angle between z and u. Near
+    // u = -z, 1 + u.z is formed as (u.x^2 + u.y^2) / (1 - u.z), which keeps the digits the sum
+    // loses (10^-8 rad from -z the sum is 0); for u = -z exactly any perpendicular axis does.
+    if (u.x == 0.0 && u.y == 0.0 && u.z < 0.0)
         return (bdl_quat){0.0, 1.0, 0.0, 0.0};
-    return bdl_q_normalize((bdl_quat){1.0 + u.z, -u.y, u.x, 0.0});
+    const double w = u.z >= 0.0 ? 1.0 + u.z : (u.x * u.x + u.y * u.y) / (1.0 - u.z);
+    return bdl_q_normalize((bdl_quat){w, -u.y, u.x, 0.0});
 }
 
 #endif

@@ -8,12 +8,19 @@
 //
 // Closest points (Vega & Lago 1994; Pournin et al. 2005): with d = x_a - x_b, A = e_a.e_a,
 // B = e_a.e_b, C = e_b.e_b, D = e_a.d, E = e_b.d, the infinite lines are closest at
-//   s' = (B E - C D) / (A C - B^2),   t' = (A E - B D) / (A C - B^2);
+//   s' = (B E - C D) / (A C - B^2) = n.(e_b x d) / |n|^2,   n = e_a x e_b;
 // s' is clamped to [-1, 1], t re-projected onto b's segment for that s and clamped, s re-projected
 // for that t and clamped again: the exact minimum of the (convex) distance over the two segments.
-// When the segments are parallel (A C - B^2 below 1e-10 A C) every s of their common stretch is a
-// minimiser, and s is taken in the middle of it, so that two rods lying side by side touch at
-// the middle of their overlap and not at an arbitrary end of it.
+// s' is computed in the second form (Lagrange's identity): A C - B^2 = A C sin^2 theta loses its
+// digits to cancellation as the angle theta between the segments goes to zero (at 1e-4 rad the
+// first form already misplaces the distance by 1e-12 of the rods' length), while the cross
+// product keeps a relative error of about 1e-16 / theta, which the distance, flat along the rods
+// at the minimum, feels only as 1e-16 of the rods' length.
+// When the segments are parallel to rounding (theta below 1e-13 rad, where n is noise) every s of
+// their common stretch is a minimiser to 1e-13 of the length, and s is taken in the middle of it,
+// so that two rods lying side by side touch at the middle of their overlap and not at an
+// arbitrary end of it. Nearly parallel rods above that angle touch where they are closest: at the
+// end of their overlap towards which they converge (docs/theory-rods.md).
 #ifndef BDL_CAPSULE_H
 #define BDL_CAPSULE_H
 
@@ -30,9 +37,10 @@ static inline double bdl_segments_closest(bdl_vec3 d, bdl_vec3 ea, bdl_vec3 eb, 
     const double D = bdl_v3_dot(ea, d), E = bdl_v3_dot(eb, d);
     double s = 0.0, t = 0.0;
     if (A > 0.0 && C > 0.0) {
-        const double denom = A * C - B * B;
-        if (denom > 1e-10 * A * C) {
-            s = bdl_clamp_unit((B * E - C * D) / denom);
+        const bdl_vec3 n = bdl_v3_cross(ea, eb);
+        const double n2 = bdl_v3_len2(n); // A C - B^2 without the cancellation
+        if (n2 > 1e-26 * A * C) {
+            s = bdl_clamp_unit(bdl_v3_dot(n, bdl_v3_cross(eb, d)) / n2);
         } else { // parallel: the middle of the stretch of a facing b (or of a's nearer end)
             const double s1 = (B - D) / A, s2 = (-B - D) / A; // b's ends projected onto a
             const double lo = s1 < s2 ? s1 : s2, hi = s1 < s2 ? s2 : s1;

@@ -9,35 +9,50 @@ static bdl_quat turn_body(bdl_quat q, int a, double angle)
     return bdl_q_mul(q, r);
 }
 
-/// Free symmetric top: about L by |L| dt / I_t in the world frame, then about the body axis 3 by
-/// (1/I_3 - 1/I_t) pi_3 dt.
-static bdl_quat rotate_axisymmetric(bdl_quat q, bdl_vec3 L, bdl_vec3 inv_inertia, double dt)
+/// The exact flow of H_a = rate pi_a^2 / 2 for dt: the body turns about its axis a by
+/// rate pi_a dt, pi = R^T L (pi_a itself does not change under this flow).
+static bdl_quat flow_body_axis(bdl_quat q, bdl_vec3 L, int a, double rate, double dt)
 {
-    const double pi_3 = bdl_q_unrotate(q, L).z;
-    q = turn_body(q, 2, (inv_inertia.z - inv_inertia.x) * pi_3 * dt);
-    const double l = bdl_v3_len(L);
-    if (l > 0.0)
-        q = bdl_q_mul(bdl_q_axis_angle(bdl_v3_scale(L, 1.0 / l), l * inv_inertia.x * dt), q);
-    return q;
+    return turn_body(q, a, rate * bdl_v3_comp(bdl_q_unrotate(q, L), a) * dt);
 }
 
-/// The splitting 3, 2, 1, 2, 3 of the kinetic energy over the body axes: each part turns the body
-/// about its axis k by pi_k dt_k / I_k, with pi = R^T L the body-frame momentum at that moment.
-static bdl_quat rotate_split(bdl_quat q, bdl_vec3 L, bdl_vec3 inv_inertia, double dt)
+/// Swaps the axes o[i] and o[i + 1] when o[i + 1] has the larger inverse moment.
+static void order_pair(bdl_vec3 inv_inertia, int o[3], int i)
 {
-    static const int axis[5] = {2, 1, 0, 1, 2};
-    static const double share[5] = {0.5, 0.5, 1.0, 0.5, 0.5};
-    for (int k = 0; k < 5; ++k) {
-        const int a = axis[k];
-        const double pi_a = bdl_v3_comp(bdl_q_unrotate(q, L), a);
-        q = turn_body(q, a, share[k] * dt * pi_a * bdl_v3_comp(inv_inertia, a));
+    if (bdl_v3_comp(inv_inertia, o[i + 1]) > bdl_v3_comp(inv_inertia, o[i])) {
+        const int swap = o[i];
+        o[i] = o[i + 1], o[i + 1] = swap;
     }
-    return q;
+}
+
+/// The body axes by inverse moment: o[0] the largest, o[1] the middle one, o[2] the smallest
+/// (ties keep the lower index first).
+static void order_axes(bdl_vec3 inv_inertia, int o[3])
+{
+    o[0] = 0, o[1] = 1, o[2] = 2;
+    order_pair(inv_inertia, o, 0);
+    order_pair(inv_inertia, o, 1);
+    order_pair(inv_inertia, o, 0);
 }
 
 bdl_quat bdl_rigid_rotate(bdl_quat q, bdl_vec3 L, bdl_vec3 inv_inertia, double dt)
 {
-    q = inv_inertia.x == inv_inertia.y ? rotate_axisymmetric(q, L, inv_inertia, dt)
-                                       : rotate_split(q, L, inv_inertia, dt);
+    int axis[3];
+    order_axes(inv_inertia, axis);
+    const double c = bdl_v3_comp(inv_inertia, axis[1]);
+    // c |pi|^2 / 2: a rotation about the constant L, commuting with the two parts that follow.
+    const double l = bdl_v3_len(L);
+    if (l > 0.0)
+        q = bdl_q_mul(bdl_q_axis_angle(bdl_v3_scale(L, 1.0 / l), c * l * dt), q);
+    // The remainder, Strang-split: outer axis for dt/2, inner axis for dt, outer axis for dt/2.
+    const double outer = bdl_v3_comp(inv_inertia, axis[0]) - c;
+    const double inner = bdl_v3_comp(inv_inertia, axis[2]) - c;
+    // For an axisymmetric body one of the two vanishes (and is skipped): the step is then exact.
+    if (outer != 0.0)
+        q = flow_body_axis(q, L, axis[0], outer, 0.5 * dt);
+    if (inner != 0.0)
+        q = flow_body_axis(q, L, axis[2], inner, dt);
+    if (outer != 0.0)
+        q = flow_body_axis(q, L, axis[0], outer, 0.5 * dt);
     return bdl_q_normalize(q);
 }
