@@ -1,4 +1,5 @@
-// bedlam — synthetic camera images: projection, CPU ray casting, post-processing, ground truth.
+// bedlam — synthetic camera images: projection, CPU ray casting of spheres and capsules,
+// post-processing, ground truth.
 #include "dia/dia.h"
 
 #include <float.h>
@@ -10,6 +11,13 @@
 
 #include "core/rng.h"
 #include "core/file.h"
+#include "dia/capsule.h"
+
+/// Half the shaft length of particle i: 0 for a sphere.
+static double half_length(const bdl_dia_scene *s, long i)
+{
+    return s->axis && s->half_length ? s->half_length[i] : 0.0;
+}
 
 bdl_result bdl_dia_camera_init(bdl_dia_camera *c, const bdl_dia_def *def)
 {
@@ -55,6 +63,24 @@ bdl_vec3 bdl_dia_unproject(const bdl_dia_camera *c, double u, double v, double d
     return bdl_v3_madd(x, c->down, (v - 0.5 * d->height) * s);
 }
 
+double bdl_dia_outline_area(const bdl_dia_camera *c, const bdl_dia_scene *s, long i, int samples)
+{
+    double u, v, depth;
+    bdl_dia_project(c, s->pos[i], &u, &v, &depth);
+    const double scale = bdl_dia_scale(c, depth);
+    const double rp = s->radius[i] / scale * samples;
+    double area = BDL_PI * rp * rp;
+    const double h = half_length(s, i);
+    if (h > 0.0) {
+        // The shaft seen across the line of sight adds a rectangle 2 r by 2 h |u x sight|.
+        bdl_vec3 sight = c->def.projection == BDL_DIA_ORTHOGRAPHIC
+                             ? c->forward
+                             : bdl_v3_normalize(bdl_v3_sub(s->pos[i], c->def.position));
+        area += 4.0 * rp * (h / scale * samples) * bdl_v3_len(bdl_v3_cross(s->axis[i], sight));
+    }
+    return area;
+}
+
 void bdl_dia_image_free(bdl_dia_image *im)
 {
     free(im->value);
@@ -77,7 +103,7 @@ static void sample_ray(const bdl_dia_camera *c, double u, double v, bdl_vec3 *o,
     }
 }
 
-/// Grey level of a sphere's surface point p (normal n) under the camera's lights.
+/// Grey level of a particle's surface point p (normal n) under the camera's lights.
 static double shade(const bdl_dia_camera *c, bdl_vec3 p, bdl_vec3 n)
 {
     const bdl_dia_def *d = &c->def;
@@ -98,14 +124,22 @@ static double shade(const bdl_dia_camera *c, bdl_vec3 p, bdl_vec3 n)
     return d->dark + (d->bright - d->dark) * fade * (g < 1.0 ? g : 1.0);
 }
 
-/// Pixel bounding box of a sphere's image (conservative for perspective).
-static int sphere_box(const bdl_dia_camera *c, bdl_vec3 x, double r, int box[4])
+/// Where a particle's image can be: within rp pixels of the segment from (u0, v0) to (u1, v1)
+/// (for a sphere a point), or anywhere (a capsule reaching behind a pinhole camera).
+typedef struct outline {
+    double u0, v0, u1, v1, rp;
+    int anywhere;
+} outline;
+
+/// Pixel position of a sphere's centre and a bound on its image's radius (exact orthographic,
+/// conservative for perspective). 0 when the camera is inside or behind the sphere.
+static int sphere_image(const bdl_dia_camera *c, bdl_vec3 x, double r, double *u, double *v,
+                        double *rp)
 {
-    double u, v, z;
-    bdl_dia_project(c, x, &u, &v, &z);
-    double rp;
+    double z;
+    bdl_dia_project(c, x, u, v, &z);
     if (c->def.projection == BDL_DIA_ORTHOGRAPHIC) {
-        rp = r / c->def.pixel_size;
+        *rp = r / c->def.pixel_size;
     } else {
         if (z <= r) // the camera is inside or behind the sphere
             return 0;
@@ -113,10 +147,45 @@ static int sphere_box(const bdl_dia_camera *c, bdl_vec3 x, double r, int box[4])
         // centre's direction; bound it by the tangent of that angle at the nearest depth.
         double dist = bdl_v3_len(bdl_v3_sub(x, c->def.position));
         double tan_a = r / sqrt(dist * dist - r * r);
-        rp = (dist * tan_a + r) / bdl_dia_scale(c, z - r) + 1.0;
+        *rp = (dist * tan_a + r) / bdl_dia_scale(c, z - r) + 1.0;
     }
-    box[0] = (int)floor(u - rp - 1.0), box[1] = (int)ceil(u + rp + 1.0);
-    box[2] = (int)floor(v - rp - 1.0), box[3] = (int)ceil(v + rp + 1.0);
+    return 1;
+}
+
+/// Particle i's outline; 0 when the camera cannot see it.
+static int particle_outline(const bdl_dia_camera *c, const bdl_dia_scene *s, long i, outline *o)
+{
+    const double h = half_length(s, i), r = s->radius[i];
+    o->anywhere = 0;
+    if (h == 0.0) {
+        if (!sphere_image(c, s->pos[i], r, &o->u0, &o->v0, &o->rp))
+            return 0;
+        o->u1 = o->u0, o->v1 = o->v0;
+        return 1;
+    }
+    // A capsule is the convex hull of its end balls, and both projections map the hull of points
+    // in front of the camera to the hull of their images: within the larger ball's image radius
+    // of the segment between the ends' images.
+    const bdl_vec3 e = bdl_v3_scale(s->axis[i], h);
+    double ra, rb;
+    if (sphere_image(c, bdl_v3_sub(s->pos[i], e), r, &o->u0, &o->v0, &ra) &&
+        sphere_image(c, bdl_v3_add(s->pos[i], e), r, &o->u1, &o->v1, &rb))
+        o->rp = fmax(ra, rb);
+    else
+        o->anywhere = 1;
+    return 1;
+}
+
+/// Pixel bounding box of an outline (one pixel wider), within the image; 0 when it has none.
+static int outline_box(const bdl_dia_camera *c, const outline *o, int box[4])
+{
+    double ext[4] = {0.0, c->def.width, 0.0, c->def.height};
+    if (!o->anywhere) {
+        ext[0] = fmin(o->u0, o->u1) - o->rp - 1.0, ext[1] = fmax(o->u0, o->u1) + o->rp + 1.0;
+        ext[2] = fmin(o->v0, o->v1) - o->rp - 1.0, ext[3] = fmax(o->v0, o->v1) + o->rp + 1.0;
+    }
+    box[0] = (int)floor(ext[0]), box[1] = (int)ceil(ext[1]);
+    box[2] = (int)floor(ext[2]), box[3] = (int)ceil(ext[3]);
     if (box[0] < 0)
         box[0] = 0;
     if (box[2] < 0)
@@ -126,6 +195,35 @@ static int sphere_box(const bdl_dia_camera *c, bdl_vec3 x, double r, int box[4])
     if (box[3] > c->def.height)
         box[3] = c->def.height;
     return box[0] < box[1] && box[2] < box[3];
+}
+
+/// The sample columns [*x0, *x1) of sample row py that an outline can reach (one pixel wider):
+/// the part of its segment within reach of the row, widened by the reach. A long rod across the
+/// image fills a small part of its box; this keeps the rays it casts near its outline.
+static void outline_row(const outline *o, int ns, int py, int *x0, int *x1)
+{
+    if (o->anywhere)
+        return;
+    const double v = (py + 0.5) / ns, reach = o->rp + 1.0, dv = o->v1 - o->v0;
+    double ta = 0.0, tb = 1.0; // the segment's parameters within reach of the row
+    if (dv != 0.0) {
+        double t0 = (v - reach - o->v0) / dv, t1 = (v + reach - o->v0) / dv;
+        ta = fmax(ta, fmin(t0, t1)), tb = fmin(tb, fmax(t0, t1));
+    } else if (fabs(v - o->v0) > reach) {
+        ta = 1.0, tb = 0.0;
+    }
+    if (ta > tb) {
+        *x1 = *x0;
+        return;
+    }
+    const double ua = o->u0 + ta * (o->u1 - o->u0), ub = o->u0 + tb * (o->u1 - o->u0);
+    // Sample px sits at u = (px + 0.5) / ns.
+    const double a = ceil((fmin(ua, ub) - reach) * ns - 0.5);
+    const double b = floor((fmax(ua, ub) + reach) * ns - 0.5) + 1.0;
+    if (a > *x0)
+        *x0 = a < *x1 ? (int)a : *x1;
+    if (b < *x1)
+        *x1 = b > *x0 ? (int)b : *x0;
 }
 
 /// Separable Gaussian blur of a w x h image in place.
@@ -189,40 +287,74 @@ static bdl_result allocate_image(const bdl_dia_def *d, int ns, bdl_dia_image *im
     return BDL_OK;
 }
 
-/// Each sphere writes the samples of its pixel box where it is the nearest hit so far.
-static void cast_rays(const bdl_dia_camera *c, const bdl_dia_scene *s, bdl_dia_image *im)
+/// Keeps the hit at distance t along the ray of sample k when it is nearer than the one held.
+static void record_hit(const bdl_dia_camera *c, bdl_dia_image *im, size_t k, bdl_vec3 o,
+                       bdl_vec3 dir, double t, long i)
 {
-    const bdl_dia_def *d = &c->def;
-    const int ns = im->samples, sw = d->width * ns;
-    for (long i = 0; i < s->count; ++i) {
-        int box[4];
-        const bdl_vec3 x = s->pos[i];
-        const double r = s->radius[i];
-        if (!sphere_box(c, x, r, box))
-            continue;
-        for (int py = box[2] * ns; py < box[3] * ns; ++py)
-            for (int px = box[0] * ns; px < box[1] * ns; ++px) {
-                bdl_vec3 o, dir;
-                sample_ray(c, (px + 0.5) / ns, (py + 0.5) / ns, &o, &dir);
-                bdl_vec3 oc = bdl_v3_sub(o, x);
-                double b = bdl_v3_dot(oc, dir), q = bdl_v3_dot(oc, oc) - r * r;
-                double disc = b * b - q;
-                if (disc < 0.0)
-                    continue;
-                double t = -b - sqrt(disc); // nearest intersection along the ray
-                // Depth along the optical axis of the hit point.
-                double depth =
-                    bdl_v3_dot(bdl_v3_sub(bdl_v3_madd(o, dir, t), d->position), c->forward);
-                size_t k = (size_t)py * (size_t)sw + (size_t)px;
-                if (t > 0.0 && depth < im->depth[k]) {
-                    im->depth[k] = (float)depth;
-                    im->hit[k] = (int32_t)i;
-                }
-            }
+    // Depth along the optical axis of the hit point.
+    double depth = bdl_v3_dot(bdl_v3_sub(bdl_v3_madd(o, dir, t), c->def.position), c->forward);
+    if (t > 0.0 && depth < im->depth[k]) {
+        im->depth[k] = (float)depth;
+        im->hit[k] = (int32_t)i;
     }
 }
 
-/// The light a sample at (px, py) receives: the background, or the shaded sphere it hits.
+/// Sphere i writes the samples of its pixel box where it is the nearest hit so far.
+static void cast_sphere(const bdl_dia_camera *c, const bdl_dia_scene *s, long i, const int box[4],
+                        bdl_dia_image *im)
+{
+    const int ns = im->samples, sw = c->def.width * ns;
+    const bdl_vec3 x = s->pos[i];
+    const double r = s->radius[i];
+    for (int py = box[2] * ns; py < box[3] * ns; ++py)
+        for (int px = box[0] * ns; px < box[1] * ns; ++px) {
+            bdl_vec3 o, dir;
+            sample_ray(c, (px + 0.5) / ns, (py + 0.5) / ns, &o, &dir);
+            bdl_vec3 oc = bdl_v3_sub(o, x);
+            double b = bdl_v3_dot(oc, dir), q = bdl_v3_dot(oc, oc) - r * r;
+            double disc = b * b - q;
+            if (disc < 0.0)
+                continue;
+            double t = -b - sqrt(disc); // nearest intersection along the ray
+            record_hit(c, im, (size_t)py * (size_t)sw + (size_t)px, o, dir, t, i);
+        }
+}
+
+/// The same for capsule i (half shaft length h), row by row within its outline.
+static void cast_capsule(const bdl_dia_camera *c, const bdl_dia_scene *s, long i, double h,
+                         const outline *ol, const int box[4], bdl_dia_image *im)
+{
+    const int ns = im->samples, sw = c->def.width * ns;
+    const bdl_vec3 e = bdl_v3_scale(s->axis[i], h);
+    for (int py = box[2] * ns; py < box[3] * ns; ++py) {
+        int x0 = box[0] * ns, x1 = box[1] * ns;
+        outline_row(ol, ns, py, &x0, &x1);
+        for (int px = x0; px < x1; ++px) {
+            bdl_vec3 o, dir, n;
+            double t;
+            sample_ray(c, (px + 0.5) / ns, (py + 0.5) / ns, &o, &dir);
+            if (bdl_dia_ray_capsule(o, dir, s->pos[i], e, s->radius[i], &t, &n))
+                record_hit(c, im, (size_t)py * (size_t)sw + (size_t)px, o, dir, t, i);
+        }
+    }
+}
+
+static void cast_rays(const bdl_dia_camera *c, const bdl_dia_scene *s, bdl_dia_image *im)
+{
+    for (long i = 0; i < s->count; ++i) {
+        outline o;
+        int box[4];
+        if (!particle_outline(c, s, i, &o) || !outline_box(c, &o, box))
+            continue;
+        const double h = half_length(s, i);
+        if (h > 0.0)
+            cast_capsule(c, s, i, h, &o, box, im);
+        else
+            cast_sphere(c, s, i, box, im);
+    }
+}
+
+/// The light a sample at (px, py) receives: the background, or the shaded particle it hits.
 static double sample_light(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
                            int px, int py)
 {
@@ -233,6 +365,17 @@ static double sample_light(const bdl_dia_camera *c, const bdl_dia_scene *s, cons
         return d->lighting == BDL_DIA_BACK_LIT ? d->bright : d->dark;
     bdl_vec3 o, dir;
     sample_ray(c, (px + 0.5) / ns, (py + 0.5) / ns, &o, &dir);
+    const double h = half_length(s, hit);
+    if (h > 0.0) {
+        double t;
+        bdl_vec3 n;
+        // The ray that hit the capsule when cast hits it again; the background stands in for a
+        // miss that cannot happen.
+        if (!bdl_dia_ray_capsule(o, dir, s->pos[hit], bdl_v3_scale(s->axis[hit], h), s->radius[hit],
+                                 &t, &n))
+            return d->lighting == BDL_DIA_BACK_LIT ? d->bright : d->dark;
+        return shade(c, bdl_v3_madd(o, dir, t), n);
+    }
     bdl_vec3 oc = bdl_v3_sub(o, s->pos[hit]);
     double b = bdl_v3_dot(oc, dir);
     double disc = b * b - bdl_v3_dot(oc, oc) + s->radius[hit] * s->radius[hit];
@@ -470,36 +613,109 @@ static bdl_result visible_truth(const bdl_dia_camera *c, const bdl_dia_scene *s,
     return BDL_OK;
 }
 
-/// Solids fractions: each particle's volume inside each cell's box, in camera coordinates
-/// (right, down, forward from the camera position); the box's cross-section is the cell at the
-/// mid depth of the bed (exact for orthographic views).
-static void solids_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
-                         const bdl_dia_truth_def *t, bdl_dia_cell_truth *cells)
+/// The truth cells' boxes in camera coordinates (x across, y along the view, z down, from the
+/// camera position): the cell's footprint at the bed's mid depth (exact for orthographic views),
+/// from the front to the back depth or to the end of the first layer.
+typedef struct cell_boxes {
+    int nx, ny;
+    double cw, ch; ///< cell width and height [m]
+    double a0, b0; ///< the image's left and top edges [m]
+} cell_boxes;
+
+static cell_boxes make_cell_boxes(const bdl_dia_camera *c, const bdl_dia_image *im,
+                                  const bdl_dia_truth_def *t)
 {
-    const int nx = t->cells[0], ny = t->cells[1];
     const double scale = bdl_dia_scale(c, 0.5 * (t->front + t->back));
-    const double cw = scale * im->width / nx, chh = scale * im->height / ny;
-    const double a0 = -0.5 * im->width * scale, b0 = -0.5 * im->height * scale;
-    for (long i = 0; i < s->count; ++i) {
-        bdl_vec3 rel = bdl_v3_sub(s->pos[i], c->def.position);
-        bdl_vec3 q = {bdl_v3_dot(rel, c->right), bdl_v3_dot(rel, c->forward),
-                      bdl_v3_dot(rel, c->down)}; // x: across, y: depth, z: down
-        double r = s->radius[i];
-        int cx0 = (int)floor((q.x - r - a0) / cw), cx1 = (int)floor((q.x + r - a0) / cw);
-        int cy0 = (int)floor((q.z - r - b0) / chh), cy1 = (int)floor((q.z + r - b0) / chh);
-        for (int cy = cy0 < 0 ? 0 : cy0; cy <= cy1 && cy < ny; ++cy)
-            for (int cx = cx0 < 0 ? 0 : cx0; cx <= cx1 && cx < nx; ++cx) {
-                bdl_vec3 lo = {a0 + cx * cw, t->front, b0 + cy * chh};
-                bdl_vec3 hi = {a0 + (cx + 1) * cw, t->back, b0 + (cy + 1) * chh};
-                cells[cy * nx + cx].solids_depth += bdl_dia_sphere_box_volume(q, r, lo, hi);
-                hi.y = t->front + t->layer;
-                cells[cy * nx + cx].solids_layer += bdl_dia_sphere_box_volume(q, r, lo, hi);
-            }
+    return (cell_boxes){t->cells[0],
+                        t->cells[1],
+                        scale * im->width / t->cells[0],
+                        scale * im->height / t->cells[1],
+                        -0.5 * im->width * scale,
+                        -0.5 * im->height * scale};
+}
+
+/// A world vector in camera coordinates (x across, y depth, z down).
+static bdl_vec3 camera_coordinates(const bdl_dia_camera *c, bdl_vec3 v)
+{
+    return (bdl_vec3){bdl_v3_dot(v, c->right), bdl_v3_dot(v, c->forward), bdl_v3_dot(v, c->down)};
+}
+
+/// Sphere i's volume inside each cell's boxes, added to the cells.
+static void sphere_solids(const bdl_dia_camera *c, const bdl_dia_scene *s, long i,
+                          const bdl_dia_truth_def *t, const cell_boxes *b,
+                          bdl_dia_cell_truth *cells)
+{
+    const int nx = b->nx, ny = b->ny;
+    const double cw = b->cw, chh = b->ch, a0 = b->a0, b0 = b->b0;
+    const bdl_vec3 q = camera_coordinates(c, bdl_v3_sub(s->pos[i], c->def.position));
+    const double r = s->radius[i];
+    int cx0 = (int)floor((q.x - r - a0) / cw), cx1 = (int)floor((q.x + r - a0) / cw);
+    int cy0 = (int)floor((q.z - r - b0) / chh), cy1 = (int)floor((q.z + r - b0) / chh);
+    for (int cy = cy0 < 0 ? 0 : cy0; cy <= cy1 && cy < ny; ++cy)
+        for (int cx = cx0 < 0 ? 0 : cx0; cx <= cx1 && cx < nx; ++cx) {
+            bdl_vec3 lo = {a0 + cx * cw, t->front, b0 + cy * chh};
+            bdl_vec3 hi = {a0 + (cx + 1) * cw, t->back, b0 + (cy + 1) * chh};
+            cells[cy * nx + cx].solids_depth += bdl_dia_sphere_box_volume(q, r, lo, hi);
+            hi.y = t->front + t->layer;
+            cells[cy * nx + cx].solids_layer += bdl_dia_sphere_box_volume(q, r, lo, hi);
+        }
+}
+
+/// The capsules' volumes in the cells: one grid for all the cells' boxes, whose depth planes are
+/// the front, the end of the first layer and the back, so that each capsule is integrated once
+/// (dia/capsule.h). Slab 0 is in both boxes; slab 1, when there is one, in the whole depth when the
+/// layer ends before the back, else in the layer only.
+static bdl_result capsule_solids(const bdl_dia_camera *c, const bdl_dia_scene *s,
+                                 const bdl_dia_truth_def *t, const cell_boxes *b,
+                                 bdl_dia_cell_truth *cells)
+{
+    const int nx = b->nx, ny = b->ny;
+    const double layer_end = t->front + t->layer;
+    const double py[3] = {t->front, fmin(layer_end, t->back), fmax(layer_end, t->back)};
+    const int slabs = py[2] > py[1] ? 2 : 1;
+    double *px = malloc((size_t)(nx + 1) * sizeof(double));
+    double *pz = malloc((size_t)(ny + 1) * sizeof(double));
+    double *volume = calloc((size_t)nx * ny * slabs, sizeof(double));
+    bdl_result res = px && pz && volume ? BDL_OK : BDL_ERR_NOMEM;
+    for (int k = 0; px && k <= nx; ++k)
+        px[k] = b->a0 + k * b->cw; // the same cell edges as the spheres' boxes
+    for (int k = 0; pz && k <= ny; ++k)
+        pz[k] = b->b0 + k * b->ch;
+    const bdl_dia_grid g = {{nx, slabs, ny}, {px, py, pz}};
+    for (long i = 0; res == BDL_OK && i < s->count; ++i) {
+        const double h = half_length(s, i);
+        if (h > 0.0 &&
+            !bdl_dia_capsule_grid_volume(
+                camera_coordinates(c, bdl_v3_sub(s->pos[i], c->def.position)),
+                bdl_v3_scale(camera_coordinates(c, s->axis[i]), h), s->radius[i], &g, volume))
+            res = BDL_ERR_NOMEM;
     }
-    for (int k = 0; k < nx * ny; ++k) {
-        cells[k].solids_depth /= cw * chh * (t->back - t->front);
-        cells[k].solids_layer /= cw * chh * t->layer;
+    for (int k = 0; res == BDL_OK && k < nx * ny; ++k) {
+        const double *v = volume + (size_t)(k / nx) * slabs * nx + k % nx;
+        cells[k].solids_depth += v[0] + (slabs > 1 && layer_end < t->back ? v[nx] : 0.0);
+        cells[k].solids_layer += v[0] + (slabs > 1 && layer_end > t->back ? v[nx] : 0.0);
     }
+    free(px);
+    free(pz);
+    free(volume);
+    return res;
+}
+
+/// Solids fractions: each particle's volume inside each cell's box.
+static bdl_result solids_truth(const bdl_dia_camera *c, const bdl_dia_scene *s,
+                               const bdl_dia_image *im, const bdl_dia_truth_def *t,
+                               bdl_dia_cell_truth *cells)
+{
+    const cell_boxes b = make_cell_boxes(c, im, t);
+    for (long i = 0; i < s->count; ++i)
+        if (half_length(s, i) == 0.0)
+            sphere_solids(c, s, i, t, &b, cells);
+    bdl_result r = s->axis ? capsule_solids(c, s, t, &b, cells) : BDL_OK;
+    for (int k = 0; k < b.nx * b.ny; ++k) {
+        cells[k].solids_depth /= b.cw * b.ch * (t->back - t->front);
+        cells[k].solids_layer /= b.cw * b.ch * t->layer;
+    }
+    return r;
 }
 
 bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
@@ -524,6 +740,6 @@ bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const 
         }
     bdl_result r = visible_truth(c, s, im, t, cells);
     if (r == BDL_OK)
-        solids_truth(c, s, im, t, cells);
+        r = solids_truth(c, s, im, t, cells);
     return r;
 }

@@ -1,12 +1,12 @@
 // bedlam — synthetic camera (DIA) images with exact ground truth.
 //
 // A camera looks at the particles as a digital image analysis (DIA) rig would: through the front
-// wall of a pseudo-2D bed, front-lit (bright spheres on a dark background) or back-lit
-// (silhouettes on a bright one). Images are ray-cast on the CPU, sphere by sphere, with several
-// rays per pixel: the same code gives the image and, exactly, which particle every ray hit, so
-// the ground truth beside each image (which particles are visible, the covered area per image
-// cell, the solids fraction behind it, the velocities PIV should find) is computed rather than
-// estimated.
+// wall of a pseudo-2D bed, front-lit (bright particles on a dark background) or back-lit
+// (silhouettes on a bright one). Images are ray-cast on the CPU, particle by particle (spheres,
+// and rods as capsules), with several rays per pixel: the same code gives the image and,
+// exactly, which particle every ray hit, so the ground truth beside each image (which particles
+// are visible, the covered area per image cell, the solids fraction behind it, the velocities PIV
+// should find) is computed rather than estimated.
 //
 // Image coordinates: column u to the right, row v down, pixel (i, j) covers [i, i+1) x [j, j+1)
 // and its centre is (i + 0.5, j + 0.5). World to pixel is bdl_dia_project; pixel to world (on a
@@ -70,13 +70,22 @@ bdl_vec3 bdl_dia_unproject(const bdl_dia_camera *c, double u, double v, double d
 /// Metres per pixel at a given depth (constant when orthographic).
 double bdl_dia_scale(const bdl_dia_camera *c, double depth);
 
-/// What the particles are, for imaging: positions, radii, velocities, ids.
+/// What the particles are, for imaging: positions, radii, velocities, ids, and in scenes with rods
+/// the rods' axes. A rod is a capsule (spherocylinder): the points within its radius of the segment
+/// pos -/+ half_length axis.
 typedef struct bdl_dia_scene {
     long count;
     const bdl_vec3 *pos, *vel;
     const double *radius;
     const uint32_t *id;
+    const bdl_vec3 *axis;      ///< with rods: each particle's unit axis; else NULL
+    const double *half_length; ///< with rods: half the shaft length, 0 for spheres [m]; else NULL
 } bdl_dia_scene;
+
+/// Area of particle i's outline in the image, in samples (samples^2 per pixel): a sphere's disc
+/// pi r^2 at the depth of its centre; a capsule's adds the shaft's side view 2 r 2 h |u x sight|,
+/// the sight line being the view direction (orthographic) or the ray to the centre (perspective).
+double bdl_dia_outline_area(const bdl_dia_camera *c, const bdl_dia_scene *s, long i, int samples);
 
 /// A rendered image and, per sample, which particle it shows.
 typedef struct bdl_dia_image {
@@ -89,7 +98,8 @@ typedef struct bdl_dia_image {
 
 void bdl_dia_image_free(bdl_dia_image *im);
 
-/// Ray-casts the particles; `frame` varies the noise from image to image.
+/// Ray-casts the particles (spheres, and capsules exactly: dia/capsule.h); `frame` varies the noise
+/// from image to image.
 bdl_result bdl_dia_render(const bdl_dia_camera *c, const bdl_dia_scene *s, long frame,
                           bdl_dia_image *im);
 
@@ -115,7 +125,8 @@ typedef struct bdl_dia_truth_def {
 } bdl_dia_truth_def;
 
 /// Cell truth (cells[0] x cells[1], row by row from the top) and, per particle, the number of
-/// samples where it is visible (`visible`, count entries). Either output may be NULL.
+/// samples where it is visible (`visible`, count entries). Either output may be NULL. Solids:
+/// spheres by bdl_dia_sphere_box_volume, capsules by bdl_dia_capsule_grid_volume (dia/capsule.h).
 bdl_result bdl_dia_truth(const bdl_dia_camera *c, const bdl_dia_scene *s, const bdl_dia_image *im,
                          const bdl_dia_truth_def *t, bdl_dia_cell_truth *cells, long *visible);
 

@@ -9,6 +9,7 @@
 
 #include "dia/dia.h"
 #include "core/file.h"
+#include "core/quat.h"
 
 typedef struct camera_state {
     bdl_dia_camera camera;
@@ -191,24 +192,30 @@ bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, co
     return BDL_OK;
 }
 
+/// The particles of an image; in scenes with rods each row ends with the axis and the half shaft
+/// length (0 for a sphere).
 static bdl_result write_particles(const char *path, const bdl_dia_camera *cam,
                                   const bdl_dia_scene *s, const long *visible, int samples)
 {
     bdl_atomic_file af;
     bdl_result r = bdl_atomic_open_csv(
-        &af, path, "id,x,y,z,vx,vy,vz,radius,u,v,depth,visible_samples,visible_fraction");
+        &af, path,
+        s->axis ? "id,x,y,z,vx,vy,vz,radius,u,v,depth,visible_samples,visible_fraction,ux,uy,uz,"
+                  "half_length"
+                : "id,x,y,z,vx,vy,vz,radius,u,v,depth,visible_samples,visible_fraction");
     if (r != BDL_OK)
         return r;
     for (long i = 0; i < s->count; ++i) {
         double u, v, z;
         bdl_dia_project(cam, s->pos[i], &u, &v, &z);
-        // The sphere's image area in samples (its disc at its depth).
-        double rp = s->radius[i] / bdl_dia_scale(cam, z) * samples;
-        double area = BDL_PI * rp * rp;
-        fprintf(af.file, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%.9g,%ld,%.4f\n",
-                s->id[i], s->pos[i].x, s->pos[i].y, s->pos[i].z, s->vel[i].x, s->vel[i].y,
-                s->vel[i].z, s->radius[i], u, v, z, visible[i],
-                area > 0.0 ? fmin(1.0, visible[i] / area) : 0.0);
+        double area = bdl_dia_outline_area(cam, s, i, samples);
+        fprintf(af.file, "%u,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.9g,%.6f,%.6f,%.9g,%ld,%.4f", s->id[i],
+                s->pos[i].x, s->pos[i].y, s->pos[i].z, s->vel[i].x, s->vel[i].y, s->vel[i].z,
+                s->radius[i], u, v, z, visible[i], area > 0.0 ? fmin(1.0, visible[i] / area) : 0.0);
+        if (s->axis)
+            fprintf(af.file, ",%.9g,%.9g,%.9g,%.9g", s->axis[i].x, s->axis[i].y, s->axis[i].z,
+                    s->half_length[i]);
+        fputc('\n', af.file);
     }
     return bdl_atomic_commit(&af);
 }
@@ -238,11 +245,21 @@ static bdl_result write_cells(const char *path, const bdl_dia_truth_def *t,
 /// "_b". Cell truth goes with single images and first frames.
 static bdl_result shoot(camera_state *c, const bdl_particle_view *v, const char *part)
 {
-    bdl_dia_scene s = {v->count, v->pos, v->vel, v->radius, v->id};
+    bdl_dia_scene s = {v->count, v->pos, v->vel, v->radius, v->id, NULL, NULL};
+    bdl_vec3 *axis = NULL;
+    if (v->orient && v->half_length) { // a rod's axis is its body z axis
+        if (!(axis = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof(bdl_vec3))))
+            return BDL_ERR_NOMEM;
+        for (long i = 0; i < v->count; ++i)
+            axis[i] = bdl_q_axis_z(v->orient[i]);
+        s.axis = axis, s.half_length = v->half_length;
+    }
     bdl_dia_image im;
     bdl_result r = bdl_dia_render(&c->camera, &s, c->frame * 2 + (part[1] == 'b'), &im);
-    if (r != BDL_OK)
+    if (r != BDL_OK) {
+        free(axis);
         return r;
+    }
     long *visible = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof(long));
     const int ncells = c->truth.cells[0] * c->truth.cells[1];
     bdl_dia_cell_truth *cells =
@@ -271,6 +288,7 @@ static bdl_result shoot(camera_state *c, const bdl_particle_view *v, const char 
     }
     free(visible);
     free(cells);
+    free(axis);
     bdl_dia_image_free(&im);
     return r;
 }
