@@ -71,3 +71,7 @@ bdl_cli_expect(cli_analyze_bad 2 "expected 'sweep RUN'" analyze nonsense somewhe
 add_test(NAME cli_bench_bed_dir COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/bench_beds -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/bench_bed_cli.cmake)
 set_tests_properties(cli_bench_bed_dir PROPERTIES LABELS cli TIMEOUT 300)
+
+# The rod bed refuses the thesis's own step (5e-5 s is about the rods' shortest contact time).
+bdl_cli_expect(cli_rods_thesis_dt 2 "of the contact time .* of species 'rod' with 'rod'" run
+  ${PROJECT_SOURCE_DIR}/scenes/rod_bed_packed.ini --set run.dt=5e-5 --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/rods_dt)

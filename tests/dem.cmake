@@ -3,6 +3,8 @@
 # and static overlaps of a column. Each prints its table to stdout.
 bdl_add_test(test_material SOURCES test_material.c LABELS dem)
 bdl_add_test(test_rods SOURCES test_rods.c LABELS dem TIMEOUT 300)
+bdl_add_test(test_rod_bed SOURCES test_rod_bed.c LABELS "dem;slow" TIMEOUT 7200)
+target_link_libraries(test_rod_bed PRIVATE OpenMP::OpenMP_C)
 target_link_libraries(test_rods PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_bounce SOURCES test_bounce.c LABELS dem verification TIMEOUT 600)
 target_link_libraries(test_bounce PRIVATE OpenMP::OpenMP_C)

@@ -294,9 +294,36 @@ static void test_orientation(void)
     CHECK(isnan(bdl_orientation_order(&none)) && isnan(bdl_orientation_vertical(&none)));
 }
 
+/// A bed of 100 layers 1 mm thick, each holding solids fraction 0.55 of a 1 cm^2 base in 7
+/// particles: its surface is at 0.1 m and its bulk fraction 0.55, whatever the layer thickness of
+/// the profile (a divisor of the layers' or not).
+static void test_bed_surface(void)
+{
+    enum { LAYERS = 100, PER = 7 };
+    static double lo[LAYERS * PER], hi[LAYERS * PER], vol[LAYERS * PER];
+    const double d = 1e-3, area = 1e-4, phi = 0.55;
+    for (int k = 0; k < LAYERS * PER; ++k) {
+        lo[k] = (k / PER) * d;
+        hi[k] = lo[k] + d;
+        vol[k] = phi * area * d / PER;
+    }
+    const double dz[] = {0.5e-3, 0.25e-3, 0.3e-3};
+    for (int m = 0; m < 3; ++m) {
+        bdl_bed_surface b;
+        CHECK(bdl_bed_surface_of(lo, hi, vol, LAYERS * PER, area, dz[m], &b) == BDL_OK);
+        printf("bed surface, layers %.2g m: height %.6f m, bulk %.4f\n", dz[m], b.height, b.bulk);
+        CHECK(fabs(b.height - 0.1) <= 0.5 * dz[m]);
+        CHECK_CLOSE(b.bulk, phi, 1e-9);
+        CHECK_CLOSE(b.top, 0.1, 1e-12);
+    }
+    bdl_bed_surface b;
+    CHECK(bdl_bed_surface_of(lo, hi, vol, 0, area, 1e-3, &b) == BDL_ERR_ARGS);
+}
+
 int main(void)
 {
     test_orientation();
+    test_bed_surface();
     test_coordination();
     test_contact_forces();
     test_height_quantile();

@@ -13,6 +13,7 @@
 #include "check.h"
 #include "dem/rigid.h"
 #include "output/checkpoint.h"
+#include "output/diagnostics.h"
 #include "output/world_vtk.h"
 #include "scene/scene.h"
 #include "scene_util.h"
@@ -266,8 +267,32 @@ static void test_file(void)
     }
 }
 
+/// The guards see a rod's overlap along its shaft: two rods crossed at right angles, the end of
+/// one shaft 0.75 mm above the other's axis, overlap by half a diameter (a ratio of 1 to the
+/// radius), though their centres are 2.4 mm apart, farther than a diameter.
+static void test_overlap_seen(void)
+{
+    bdl_world *w = bdl_test_world(one_rod, 1.0 / 50);
+    bdl_particles *p = &w->particles;
+    p->count = 0; // the scene's rod out, two placed by hand, well above the floor
+    // Axis of a along x, centred at x = 2.25 mm (its tip sphere's centre over the origin); b
+    // along y through the origin, 0.75 mm below.
+    CHECK(bdl_particles_add_rod(p, bdl_v3(2.25e-3, 0, 0.02075), bdl_v3_zero(), 0.75e-3, 2.25e-3,
+                                bdl_q_from_z(bdl_v3(1, 0, 0)), 1395, 0) >= 0);
+    CHECK(bdl_particles_add_rod(p, bdl_v3(0, 0, 0.02), bdl_v3_zero(), 0.75e-3, 2.25e-3,
+                                bdl_q_from_z(bdl_v3(0, 1, 0)), 1395, 0) >= 0);
+    CHECK(bdl_neighbor_build(&w->neighbor, p, &w->walls, NULL) == BDL_OK);
+    CHECK(bdl_world_compute_forces(w) == BDL_OK);
+    bdl_diagnostics d;
+    bdl_diagnostics_compute(w, 0.0, &d);
+    printf("crossed rods: largest overlap / radius %.6f (expected 1)\n", d.max_overlap_ratio);
+    CHECK_CLOSE(d.max_overlap_ratio, 1.0, 1e-9);
+    bdl_world_destroy(w);
+}
+
 int main(void)
 {
+    test_overlap_seen();
     test_file();
     test_flat_drop();
     test_tilted_drop();

@@ -328,3 +328,55 @@ double bdl_orientation_order(const bdl_orientation_sums *s)
         q[k] = 1.5 * s->uu[k] / s->n - (k < 3 ? 0.5 : 0.0);
     return largest_eigenvalue(q);
 }
+
+/// Adds volume v spread evenly over [a, b] to the layers of thickness dz of phi.
+static void spread_volume(double *phi, long layers, double dz, double a, double b, double v)
+{
+    a = fmax(a, 0.0);
+    if (!(b > a)) {
+        const long k = (long)(a / dz);
+        phi[k < layers ? k : layers - 1] += v;
+        return;
+    }
+    const double density = v / (b - a);
+    for (long k = (long)(a / dz); k < layers && k * dz < b; ++k)
+        phi[k] += density * (fmin(b, (double)(k + 1) * dz) - fmax(a, (double)k * dz));
+}
+
+bdl_result bdl_bed_surface_of(const double *lo, const double *hi, const double *vol, long n,
+                              double area, double dz, bdl_bed_surface *out)
+{
+    if (n < 1 || !(area > 0.0) || !(dz > 0.0))
+        return BDL_ERR_ARGS;
+    double top = 0.0;
+    for (long k = 0; k < n; ++k)
+        top = fmax(top, hi[k]);
+    const long layers = (long)ceil(top / dz) + 1;
+    double *phi = calloc((size_t)layers, sizeof *phi);
+    if (!phi)
+        return BDL_ERR_NOMEM;
+    for (long k = 0; k < n; ++k)
+        spread_volume(phi, layers, dz, lo[k], hi[k], vol[k]);
+    for (long k = 0; k < layers; ++k)
+        phi[k] /= area * dz;
+    double bulk = 0.0;
+    long used = 0;
+    for (long k = 0; k < layers; ++k) {
+        const double z = (k + 0.5) * dz;
+        if (z >= 0.2 * top && z <= 0.6 * top) {
+            bulk += phi[k];
+            ++used;
+        }
+    }
+    bulk = used > 0 ? bulk / (double)used : 0.0;
+    double height = 0.0;
+    for (long k = layers - 1; k > 0; --k)
+        if (phi[k - 1] >= 0.5 * bulk && phi[k] < 0.5 * bulk) {
+            const double f = (phi[k - 1] - 0.5 * bulk) / (phi[k - 1] - phi[k]);
+            height = (k - 0.5 + f) * dz;
+            break;
+        }
+    free(phi);
+    *out = (bdl_bed_surface){height, bulk, top, layers};
+    return BDL_OK;
+}

@@ -115,4 +115,21 @@ double bdl_orientation_vertical(const bdl_orientation_sums *s);
 /// flat with no preferred heading); NAN for no axes.
 double bdl_orientation_order(const bdl_orientation_sums *s);
 
+/// The surface of a settled bed from its solids-fraction profile. Each particle k spreads its
+/// volume vol[k] evenly over its vertical extent [lo[k], hi[k]] (a sphere: its centre -/+ r; a
+/// rod: from its lower to its upper tip, -/+ r), over layers of thickness dz from z = 0 on a base
+/// of the given area. The bulk fraction is the mean over the layers between 20 % and 60 % of the
+/// highest point; the surface is the height at which the profile, scanned down from the top,
+/// first reaches half the bulk fraction (linear between layer centres): where a camera at the
+/// front wall sees the bed end.
+typedef struct bdl_bed_surface {
+    double height;   ///< [m]
+    double bulk;     ///< solids fraction below the surface
+    double top;      ///< highest point of any particle [m]
+    long layers;     ///< of the profile
+} bdl_bed_surface;
+
+bdl_result bdl_bed_surface_of(const double *lo, const double *hi, const double *vol, long n,
+                              double area, double dz, bdl_bed_surface *out);
+
 #endif

@@ -1,5 +1,8 @@
 // bedlam bench dem — particle-steps per second and bytes per particle of a settled dense bed.
 //
+// With --shape rod the particles are rods of the same diameter and four diameters long (aspect
+// ratio 4, the thesis's rods), placed with random axes; everything else is as for spheres.
+//
 // The bed (docs/performance.md): frictional Hertz-Mindlin spheres (d = 1 mm, 2500 kg/m^3,
 // E = 10 MPa, nu = 0.25, e = 0.5, mu = 0.5) on a floor, periodic in x and y. The box is as wide as
 // it takes for the settled bed to be `height` diameters deep whatever the particle count, so every
@@ -39,6 +42,7 @@ static const char bench_usage[] =
     "  --scaling         also time 1e3, 1e4, 1e5 and 1e6 particles on one thread (the 1e6 bed\n"
     "                    takes about 20 minutes to settle on two cores)\n"
     "  --height H        settled bed depth in diameters (default 12)\n"
+    "  --shape S         sphere (default) or rod: rods of aspect ratio 4 (length 4 d)\n"
     "  --skin X          neighbour-list skin as a fraction of the diameter (default: the scene\n"
     "                    default, 0.1)\n"
     "  --csv FILE        append the rows to FILE\n"
@@ -64,6 +68,7 @@ static const char bench_usage[] =
 #define BED_HOLD1       1000 ///< steps at 1 g with BED_UNLOAD_DAMP
 #define BED_HOLD2       2000 ///< steps at 1 g with BED_HOLD_DAMP
 #define BED_RELAX       1000 ///< undamped steps at the timed time step
+#define BED_ROD_ASPECT  4.0  ///< --shape rod: length / diameter
 
 typedef struct bench_opts {
     long particles;
@@ -74,6 +79,8 @@ typedef struct bench_opts {
     double height, skin;
     const char *csv;
     const char *bed_dir; ///< settled-bed cache (NULL: none)
+    const char *shape;   ///< "sphere" or "rod"
+    int rods;            ///< shape is rod
 } bench_opts;
 
 typedef struct bed_info {
@@ -116,15 +123,13 @@ static double mean_coordination(const bdl_world *w)
 
 static double max_overlap(const bdl_world *w)
 {
-    const bdl_particles *p = &w->particles;
     const bdl_neighbor *nb = &w->neighbor;
     double most = 0.0;
-    for (long i = 0; i < p->count; ++i)
+    for (long i = 0; i < w->particles.count; ++i)
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-            int32_t j = nb->partner[k];
-            double gap = bdl_v3_len(bdl_neighbor_delta(nb, p->pos[i], p->pos[j])) - p->radius[i] -
-                         p->radius[j];
-            most = fmax(most, -gap);
+            bdl_world_contact c;
+            if (bdl_world_pair_contact(w, i, nb->partner[k], &c))
+                most = fmax(most, c.overlap);
         }
     return most;
 }
@@ -177,27 +182,31 @@ static bdl_result settle(bdl_world *w, long n, const bench_opts *o, double tc, d
 /// file).
 static void bed_scene(long n, const bench_opts *o, char *text, size_t len, double *side)
 {
-    const double d = BED_D;
-    const double solid = (double)n * 3.14159265358979323846 / 6.0 * d * d * d;
+    const double d = BED_D, pi = 3.14159265358979323846;
+    const double solid = (double)n * (o->rods ? pi / 4.0 * d * d * (BED_ROD_ASPECT - 1.0 / 3.0) * d
+                                              : pi / 6.0 * d * d * d);
     *side = sqrt(solid / BED_PHI / (o->height * d));
     // The fill region's height gives the fill solids fraction in the volume the centres can
     // reach (the region less a radius at each side), which matters for small beds.
     const double fill =
         o->height * d * BED_PHI / BED_FILL_PHI * (*side * *side) / ((*side - d) * (*side - d)) + d;
-    char skin[64] = "";
+    char skin[64] = "", shape[64] = "";
     if (o->skin > 0.0)
         snprintf(skin, sizeof skin, "skin = %.17g\n", o->skin);
+    if (o->rods)
+        snprintf(shape, sizeof shape, "shape = rod\nlength = %.17g\n", BED_ROD_ASPECT * d);
     snprintf(text, len,
              "[run]\nend_time = 1\ngravity = 0 0 %.17g\nseed = 3\n"
              "[domain]\nmin = 0 0 0\nmax = %.17g %.17g %.17g\nperiodic = x y\n"
              "[contact]\nlaw = %s\n%s"
-             "[species glass]\ndiameter = %.17g\ndensity = 2500\nyoungs_modulus = 1e7\n"
+             "[species glass]\n%sdiameter = %.17g\ndensity = 2500\nyoungs_modulus = 1e7\n"
              "poisson_ratio = 0.25\nrestitution = 0.5\nfriction = 0.5\nbackground_damping = %g\n"
              "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
              "[create bed]\ntype = random\nspecies = glass\nregion_min = 0 0 0\n"
              "region_max = %.17g %.17g %.17g\ncount = %ld\n",
              -BED_COMPACT_G * BED_G, *side, *side, fill + 4.0 * d,
-             bdl_normal_law_names[BDL_LAW_HERTZ], skin, d, BED_FALL_DAMP, *side, *side, fill, n);
+             bdl_normal_law_names[BDL_LAW_HERTZ], skin, shape, d, BED_FALL_DAMP, *side, *side, fill,
+             n);
 }
 
 /// The world of a scene text; prints why there is none.
@@ -222,8 +231,8 @@ static bdl_result settle_or_load(bdl_world *w, long n, const bench_opts *o, doub
 {
     char cached[1024] = "", why[256];
     if (o->bed_dir)
-        snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g.chk", o->bed_dir, n, o->height,
-                 o->skin);
+        snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g%s.chk", o->bed_dir, n, o->height,
+                 o->skin, o->rods ? "-rod" : "");
     FILE *exists = cached[0] ? fopen(cached, "rb") : NULL;
     int loaded = 0;
     if (exists) {
@@ -387,6 +396,7 @@ static const bdl_option bench_options[] = {
     {"--skin", BDL_OPTION_NUMBER, offsetof(bench_opts, skin)},
     {"--bed-dir", BDL_OPTION_TEXT, offsetof(bench_opts, bed_dir)},
     {"--csv", BDL_OPTION_TEXT, offsetof(bench_opts, csv)},
+    {"--shape", BDL_OPTION_TEXT, offsetof(bench_opts, shape)},
 };
 
 /// --threads 1,2,4: at most 16 counts.
@@ -421,12 +431,14 @@ static bdl_result parse_bench(int argc, char **argv, int k, bench_opts *o, int *
     int bad_threads = o->thread_count < 1;
     for (int t = 0; t < o->thread_count; ++t)
         bad_threads |= o->threads[t] < 1;
+    const int shape_ok = strcmp(o->shape, "sphere") == 0 || strcmp(o->shape, "rod") == 0;
     if (o->particles < 100 || o->steps < 0 || o->repeat < 1 || bad_threads || !(o->height >= 2.0) ||
-        o->skin < 0.0 || o->skin > 1.0) {
+        o->skin < 0.0 || o->skin > 1.0 || !shape_ok) {
         fprintf(stderr, "error: bench needs --particles >= 100, --steps >= 1, --repeat >= 1, "
-                        "--threads >= 1, --height >= 2, 0 < --skin <= 1\n");
+                        "--threads >= 1, --height >= 2, 0 < --skin <= 1, --shape sphere or rod\n");
         return BDL_ERR_ARGS;
     }
+    o->rods = strcmp(o->shape, "rod") == 0;
     return BDL_OK;
 }
 
@@ -479,7 +491,7 @@ static bdl_result time_scaling(const bench_opts *o, FILE *csv)
 
 bdl_result bdl_cmd_bench(int argc, char **argv)
 {
-    bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL, NULL};
+    bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL, NULL, "sphere", 0};
     int k = 1, help;
     if (k < argc && strcmp(argv[k], "render") == 0)
         return bdl_bench_render(argc - 1, argv + 1);
@@ -499,7 +511,8 @@ bdl_result bdl_cmd_bench(int argc, char **argv)
         fprintf(stderr, "error: cannot open '%s'\n", o.csv);
         return BDL_ERR_OUTPUT_DIR;
     }
-    printf("bedlam bench dem: settled frictional Hertz-Mindlin bed, %d repetitions\n", o.repeat);
+    printf("bedlam bench dem: settled frictional Hertz-Mindlin bed of %ss, %d repetitions\n",
+           o.shape, o.repeat);
     r = time_threads(&o, csv);
     if (r == BDL_OK && o.scaling)
         r = time_scaling(&o, csv);

@@ -124,6 +124,26 @@ typedef struct bdl_verify_column {
 /// Five spheres stacked on a plane under gravity, settled: the overlaps against the spring law.
 bdl_verify_column bdl_verify_static_column(int hertz, double dt_fraction);
 
+// ---- rods (verify_rods.c) ----
+
+#define BDL_VERIFY_TILT_BINS 9
+/// The thesis's small rod bed (Mahajan 2019, table 4.1; scenes/rod_bed_packed.ini), packed.
+typedef struct bdl_verify_rod_bed {
+    double height;       ///< the bed's surface (analysis/granular.h: bdl_bed_surface_of) [m]
+    double bulk;         ///< solids fraction below it
+    double vertical_cos; ///< mean |cos| of the axes to the vertical (1/2 isotropic)
+    double order;        ///< nematic order parameter S
+    double tilt[BDL_VERIFY_TILT_BINS]; ///< fraction of the rods at 0-10, 10-20, ... 80-90 degrees
+                                       ///< from the horizontal
+    double kinetic;      ///< kinetic energy per rod / (m g d) at the end
+    double time;         ///< simulated [s]
+    long steps;
+} bdl_verify_rod_bed;
+/// 8070 rods dropped with random axes into the 0.1 x 0.014 m column, settled (kinetic energy
+/// below 1e-4 m g d per rod after at least 0.4 s, at most 3 s) at dt = dt_fraction of the shortest
+/// contact time.
+bdl_result bdl_verify_rod_bed_run(double dt_fraction, bdl_verify_rod_bed *out);
+
 // ---- gas and coupling (verify_gas.c) ----
 
 /// Steady plane Poiseuille flow on `cells` across the channel: max |u - exact| / u_max. `cross`
