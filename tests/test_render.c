@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "dem/capsule.h"
 #include "io/png.h"
 #include "render/colormap.h"
 #include "render/context.h"
@@ -33,10 +34,10 @@ typedef struct frame {
 static frame fr;
 static bdl_scene scene;
 
-/// A snapshot of up to 4 particles.
+/// A snapshot of up to 4 particles (rods: point s.axis at axis).
 typedef struct small_snapshot {
     bdl_snapshot s;
-    float pos[12], vel[12], radius[4];
+    float pos[12], vel[12], radius[4], axis[12];
     uint8_t coordination[4];
     int32_t species[4];
     uint32_t id[4];
@@ -214,6 +215,10 @@ static void test_colors(void)
         case BDL_COLOR_VOIDAGE:
             v.range[0] = 0, v.range[1] = 1, t = -1.0f; // measured below
             break;
+        case BDL_COLOR_TILT:
+        case BDL_COLOR_AZIMUTH:
+            v.range[0] = 0, v.range[1] = 90; // a sphere has no orientation: the missing value
+            break;
         default:
             break;
         }
@@ -221,6 +226,8 @@ static void test_colors(void)
         float c[3];
         if (mode == BDL_COLOR_SPECIES)
             bdl_category_color(1, c);
+        else if (mode == BDL_COLOR_TILT || mode == BDL_COLOR_AZIMUTH)
+            bdl_colormap_missing(c);
         else if (mode == BDL_COLOR_VOIDAGE)
             c[0] = c[1] = c[2] = -1.0f;
         else
@@ -473,6 +480,511 @@ static void test_gas_slice(void)
     CHECK(is_background((int)(W / 2.0 - 0.015 * ppm), (int)(H / 2.0 + 0.015 * ppm)));
 }
 
+// ---------------------------------------------------------------------------------------------
+// Rods. Predictions come from a ray cast on the CPU that shares nothing with the shader's: the
+// distance from a point of the ray to the shaft, minus r, is convex along the ray, so a ternary
+// search finds where the ray passes closest to the shaft (a miss when that is farther than r)
+// and a bisection before that point finds where it enters the capsule.
+
+/// A capsule in world coordinates: the points within r of the segment c +- a (a = 0: a sphere).
+typedef struct capsule {
+    double c[3], a[3], r;
+    int species;
+} capsule;
+
+static double dot3(const double *x, const double *y)
+{
+    return x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+}
+
+/// Distance from o + t d to the capsule's surface (negative inside); *s the shaft parameter of
+/// the nearest point of the shaft, in [-1, 1].
+static double surface_gap(const capsule *k, const double o[3], const double d[3], double t,
+                          double *s)
+{
+    double q[3], aa = dot3(k->a, k->a);
+    for (int i = 0; i < 3; ++i)
+        q[i] = o[i] + t * d[i] - k->c[i];
+    *s = aa > 0.0 ? fmax(-1.0, fmin(1.0, dot3(q, k->a) / aa)) : 0.0;
+    for (int i = 0; i < 3; ++i)
+        q[i] -= *s * k->a[i];
+    return sqrt(dot3(q, q)) - k->r;
+}
+
+/// Focal length of base_view's cameras [px]: pixels per metre at the target's distance 0.2 m.
+static double focal(void) { return (H / 2.0) / tan(20.0 * BDL_PI / 180.0); }
+
+/// The view ray through pixel centre (x, y) in world coordinates: base_view's eye is at
+/// y = -0.2 looking along +y, x right and z up.
+static void pixel_ray(double x, double y, int ortho, double o[3], double d[3])
+{
+    double f = focal(), u = (x - W / 2.0) / f, w = (H / 2.0 - y) / f;
+    if (ortho) {
+        o[0] = 0.2 * u, o[1] = -0.2, o[2] = 0.2 * w;
+        d[0] = 0.0, d[1] = 1.0, d[2] = 0.0;
+        return;
+    }
+    double len = sqrt(u * u + 1.0 + w * w);
+    o[0] = 0.0, o[1] = -0.2, o[2] = 0.0;
+    d[0] = u / len, d[1] = 1.0 / len, d[2] = w / len;
+}
+
+/// A ray against a capsule: the distance along it to the first hit (INFINITY on a miss), the
+/// unit normal there, pixels per metre at the hit's depth, and how far in pixels the ray passes
+/// from the silhouette (rays that graze it are left out of comparisons).
+typedef struct ray_hit {
+    double t, n[3], px_per_m, edge_px;
+} ray_hit;
+
+static ray_hit cast(const capsule *k, const double o[3], const double d[3], int ortho)
+{
+    double to_c[3] = {k->c[0] - o[0], k->c[1] - o[1], k->c[2] - o[2]}, s;
+    double tc = dot3(to_c, d), reach = sqrt(dot3(k->a, k->a)) + k->r;
+    double lo = tc - reach, hi = tc + reach; // the closest pass and the entry lie in here
+    for (int it = 0; it < 60; ++it) {
+        double m1 = lo + (hi - lo) / 3.0, m2 = hi - (hi - lo) / 3.0;
+        if (surface_gap(k, o, d, m1, &s) < surface_gap(k, o, d, m2, &s))
+            hi = m2;
+        else
+            lo = m1;
+    }
+    double closest = 0.5 * (lo + hi), gap = surface_gap(k, o, d, closest, &s);
+    ray_hit h = {INFINITY, {0.0, 0.0, 0.0}, 0.0, 0.0};
+    h.px_per_m = ortho ? focal() / 0.2 : focal() / (closest * d[1]);
+    h.edge_px = fabs(gap) * h.px_per_m;
+    if (gap > 0.0)
+        return h;
+    lo = tc - reach, hi = closest;
+    for (int it = 0; it < 60; ++it) {
+        double mid = 0.5 * (lo + hi);
+        if (surface_gap(k, o, d, mid, &s) > 0.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    h.t = 0.5 * (lo + hi);
+    surface_gap(k, o, d, h.t, &s);
+    for (int i = 0; i < 3; ++i)
+        h.n[i] = (o[i] + h.t * d[i] - k->c[i] - s * k->a[i]) / k->r;
+    return h;
+}
+
+/// The colour the renderer gives a capsule of `species` at a surface point: flat, or shaded
+/// with the world normal n seen along the ray d (8-bit base colour, as the instance holds it).
+static void predict(int species, int lit, const double n[3], const double d[3], int ortho,
+                    uint8_t out[3])
+{
+    float base[3], shaded[3];
+    bdl_category_color(species, base);
+    for (int k = 0; k < 3; ++k)
+        base[k] = lrintf(255 * base[k]) / 255.0f;
+    // base_view's view space: x = world x, y = world z, z = -world y (towards the eye).
+    float nv[3] = {(float)n[0], (float)n[2], (float)-n[1]}, view[3] = {0.0f, 0.0f, 1.0f};
+    if (!ortho)
+        view[0] = (float)-d[0], view[1] = (float)-d[2], view[2] = (float)d[1];
+    if (lit)
+        bdl_shade(base, nv, view, shaded);
+    for (int k = 0; k < 3; ++k)
+        out[k] = (uint8_t)lrintf(255 * fminf(lit ? shaded[k] : base[k], 1.0f));
+}
+
+/// Counts of a frame compared with the CPU ray cast.
+typedef struct comparison {
+    int compared, shared, wrong;
+} comparison;
+
+/// The frame against the ray cast of `count` capsules: at every pixel whose ray passes farther
+/// than `edge` px from each silhouette, the nearest surface's colour within 1 level, or the
+/// background where the ray hits none; pixels where two surfaces lie within 0.05 px of each
+/// other in depth are left out (the existing two-sphere test's rule).
+static comparison compare_capsules(const capsule *k, int count, int ortho, int lit, double edge)
+{
+    comparison c = {0, 0, 0};
+    for (int py = 0; py < H; ++py)
+        for (int px = 0; px < W; ++px) {
+            double o[3], d[3];
+            pixel_ray(px + 0.5, py + 0.5, ortho, o, d);
+            ray_hit best = {INFINITY, {0, 0, 0}, 0, 0};
+            int nearest = -1, hits = 0, skip = 0;
+            for (int j = 0; j < count; ++j) {
+                ray_hit h = cast(&k[j], o, d, ortho);
+                skip |= h.edge_px < edge;
+                if (h.t == INFINITY)
+                    continue;
+                skip |= hits > 0 && fabs(h.t - best.t) * h.px_per_m < 0.05;
+                ++hits;
+                if (h.t < best.t)
+                    best = h, nearest = j;
+            }
+            if (skip)
+                continue;
+            uint8_t e[3] = {0, 0, 0};
+            if (nearest >= 0)
+                predict(k[nearest].species, lit, best.n, d, ortho, e);
+            ++c.compared;
+            c.shared += hits > 1;
+            c.wrong += !close_color(pixel(px, py), e, 1);
+        }
+    return c;
+}
+
+/// A snapshot of the capsules, with axes.
+static void capsule_snapshot(small_snapshot *ss, const capsule *k, int count)
+{
+    snapshot_init(ss, count);
+    ss->s.axis = ss->axis;
+    for (int j = 0; j < count; ++j) {
+        for (int i = 0; i < 3; ++i) {
+            ss->pos[3 * j + i] = (float)k[j].c[i];
+            ss->axis[3 * j + i] = (float)k[j].a[i];
+        }
+        ss->radius[j] = (float)k[j].r;
+        ss->species[j] = k[j].species;
+    }
+}
+
+/// First and one-past-last non-background pixel along a row (dx = 1) or a column (dx = 0).
+static int extent(int fixed, int dx)
+{
+    int first = -1, last = -1, n = dx ? W : H;
+    for (int q = 0; q < n; ++q)
+        if (!is_background(dx ? q : fixed, dx ? fixed : q)) {
+            first = first < 0 ? q : first;
+            last = q + 1;
+        }
+    return last - first;
+}
+
+/// Side-on, parallel projection: the silhouette is 2 (h + r) long and 2 r wide, and the pixel
+/// at the centre has the flat colour, then the lit one for the cylinder's normal there.
+static void test_capsule_side_on(void)
+{
+    const double h = 0.02, r = 0.008, ppm = focal() / 0.2;
+    capsule k = {{0.0, 0.0, 0.0}, {h, 0.0, 0.0}, r, 1};
+    small_snapshot ss;
+    capsule_snapshot(&ss, &k, 1);
+    bdl_view v;
+    base_view(&v, 1);
+    draw(&ss, &v);
+    int length = extent(H / 2, 1), width = extent(W / 2, 0);
+    printf("capsule side-on: %d x %d px, predicted %.2f x %.2f\n", length, width, 2 * (h + r) * ppm,
+           2 * r * ppm);
+    CHECK(fabs(length - 2 * (h + r) * ppm) <= 1.0);
+    CHECK(fabs(width - 2 * r * ppm) <= 1.0);
+    const float range[2] = {0.0f, 1.0f};
+    uint8_t e[3];
+    bdl_particle_color(BDL_COLOR_SPECIES, &ss.s, 0, 1.0f, range, e);
+    const uint8_t *p = pixel(W / 2, H / 2);
+    CHECK_MSG(close_color(p, e, 1), "flat: pixel %d %d %d, predicted %d %d %d", p[0], p[1], p[2],
+              e[0], e[1], e[2]);
+    v.lighting = 1;
+    draw(&ss, &v);
+    double o[3], d[3];
+    pixel_ray(W / 2 + 0.5, H / 2 + 0.5, 1, o, d);
+    ray_hit hit = cast(&k, o, d, 1);
+    CHECK(hit.t < INFINITY && fabs(hit.n[0]) < 1e-9); // on the cylinder
+    predict(1, 1, hit.n, d, 1, e);
+    CHECK_MSG(close_color(p, e, 1), "lit: pixel %d %d %d, predicted %d %d %d", p[0], p[1], p[2],
+              e[0], e[1], e[2]);
+}
+
+/// A capsule at a slant to every axis, lit, in both projections: every pixel not within
+/// 0.05 px of the silhouette is inside or outside as predicted, with the shading of its normal.
+static void test_capsule_silhouette(void)
+{
+    capsule k = {{0.005, 0.01, -0.004}, {0.012, 0.006, 0.009}, 0.006, 2};
+    small_snapshot ss;
+    capsule_snapshot(&ss, &k, 1);
+    for (int ortho = 1; ortho >= 0; --ortho) {
+        bdl_view v;
+        base_view(&v, ortho);
+        v.lighting = 1;
+        draw(&ss, &v);
+        comparison c = compare_capsules(&k, 1, ortho, 1, 0.05);
+        printf("slanted capsule (%s): %d pixels compared, %d differ\n",
+               ortho ? "orthographic" : "perspective", c.compared, c.wrong);
+        CHECK(c.compared > W * H - 400);
+        CHECK(c.wrong == 0);
+    }
+}
+
+/// Seen along its axis a capsule is the ball of its nearer end: the frame equals that sphere's
+/// (drawn without axes) within a level, and in parallel projection has its centre and radius.
+static void test_capsule_end_on(void)
+{
+    for (int ortho = 1; ortho >= 0; --ortho) {
+        // Parallel: off the image centre; perspective: on the optical axis, which is the rod's.
+        capsule k = {{ortho ? 0.01 : 0.0, 0.02, ortho ? 0.005 : 0.0}, {0.0, 0.015, 0.0}, 0.01, 1};
+        small_snapshot rod, ball;
+        capsule_snapshot(&rod, &k, 1);
+        snapshot_init(&ball, 1);
+        ball.pos[0] = (float)k.c[0], ball.pos[1] = (float)(k.c[1] - k.a[1]);
+        ball.pos[2] = (float)k.c[2], ball.radius[0] = (float)k.r, ball.species[0] = k.species;
+        bdl_view v;
+        base_view(&v, ortho);
+        v.lighting = 1;
+        static uint8_t sphere_rgb[W * H * 3];
+        draw(&ball, &v);
+        memcpy(sphere_rgb, fr.rgb, sizeof sphere_rgb);
+        draw(&rod, &v);
+        int differ = 0;
+        for (int q = 0; q < W * H; ++q)
+            differ += !close_color(&fr.rgb[3 * q], &sphere_rgb[3 * q], 1);
+        double cx, cy, radius, ppm = focal() / 0.2;
+        blob(&cx, &cy, &radius);
+        printf("capsule end-on (%s): %d pixels differ from the sphere's; centre (%.2f, %.2f), "
+               "radius %.2f px\n",
+               ortho ? "orthographic" : "perspective", differ, cx, cy, radius);
+        CHECK(differ == 0);
+        if (ortho) {
+            CHECK(fabs(cx - (W / 2.0 + k.c[0] * ppm)) <= 1.0);
+            CHECK(fabs(cy - (H / 2.0 - k.c[2] * ppm)) <= 1.0);
+            CHECK(fabs(radius - k.r * ppm) <= 1.0);
+        }
+    }
+}
+
+/// A capsule through a sphere: at every pixel both cover, the nearer surface's colour shows
+/// (flat colours; pixels within 1.5 px of a silhouette left out, as for two spheres).
+static void test_capsule_sphere_depth(void)
+{
+    capsule k[2] = {{{-0.002, 0.0, 0.0}, {0.016, 0.007, 0.005}, 0.006, 0},
+                    {{0.006, 0.002, 0.003}, {0.0, 0.0, 0.0}, 0.009, 1}};
+    small_snapshot ss;
+    capsule_snapshot(&ss, k, 2);
+    for (int ortho = 1; ortho >= 0; --ortho) {
+        bdl_view v;
+        base_view(&v, ortho);
+        draw(&ss, &v);
+        comparison c = compare_capsules(k, 2, ortho, 0, 1.5);
+        printf("capsule through a sphere (%s): %d shared pixels, %d of %d pixels wrong\n",
+               ortho ? "orthographic" : "perspective", c.shared, c.wrong, c.compared);
+        CHECK(c.shared > 100);
+        CHECK(c.wrong == 0);
+    }
+}
+
+/// Rods of zero length are spheres: the frame with zero axes equals, byte for byte, the frame
+/// of the same particles without axes (the sphere shader), lit, in both projections.
+static void test_capsule_zero_axis(void)
+{
+    small_snapshot ss;
+    snapshot_init(&ss, 3);
+    const float pos[9] = {-0.005f, 0.0f, 0.0f, 0.006f, 0.004f, 0.002f, -0.02f, -0.03f, 0.015f};
+    const float radius[3] = {0.012f, 0.011f, 0.004f};
+    memcpy(ss.pos, pos, sizeof pos);
+    memcpy(ss.radius, radius, sizeof radius);
+    ss.species[1] = 1, ss.species[2] = 2;
+    static uint8_t spheres[W * H * 3];
+    for (int ortho = 1; ortho >= 0; --ortho) {
+        bdl_view v;
+        base_view(&v, ortho);
+        v.lighting = 1;
+        ss.s.axis = NULL;
+        draw(&ss, &v);
+        memcpy(spheres, fr.rgb, sizeof spheres);
+        ss.s.axis = ss.axis; // all zero
+        draw(&ss, &v);
+        int differ = 0;
+        for (int q = 0; q < W * H * 3; ++q)
+            differ += fr.rgb[q] != spheres[q];
+        printf("zero-length rods (%s): %d bytes differ from the spheres\n",
+               ortho ? "orthographic" : "perspective", differ);
+        CHECK(differ == 0);
+    }
+}
+
+/// The cyclic map's ends are one colour (azimuth 0 and 180 deg are the same axis), and every hue
+/// has its lightness.
+static void check_cyclic_map(void)
+{
+    float first[3], last[3], c[3], lab[3], spread = 0.0f;
+    bdl_colormap_eval(BDL_CMAP_CYCLIC, 0.0, first);
+    bdl_colormap_eval(BDL_CMAP_CYCLIC, 1.0, last);
+    for (int k = 0; k < 3; ++k)
+        CHECK(fabsf(first[k] - last[k]) < 1e-6f);
+    for (int i = 0; i <= 64; ++i) {
+        bdl_colormap_eval(BDL_CMAP_CYCLIC, i / 64.0, c);
+        bdl_oklab_from_srgb(c, lab);
+        spread = fmaxf(spread, fabsf(lab[0] - 0.72f));
+    }
+    CHECK_MSG(spread < 0.005f, "cyclic map lightness off 0.72 by %.4f", spread);
+}
+
+/// The orientation colours: tilt on the sequential map over 0..90 deg, azimuth on the cyclic map
+/// over 0..180 deg, the same for an axis and its opposite; a sphere among rods is grey.
+static void test_orientation_colors(void)
+{
+    check_cyclic_map();
+    const double deg = BDL_PI / 180.0, h = 0.012;
+    struct {
+        bdl_color_mode mode;
+        double axis[3], t; ///< t < 0: the missing value
+    } cases[] = {
+        {BDL_COLOR_TILT, {h * sin(30 * deg), 0.0, h * cos(30 * deg)}, 30.0 / 90.0},
+        {BDL_COLOR_TILT, {-h * sin(30 * deg), 0.0, -h * cos(30 * deg)}, 30.0 / 90.0},
+        {BDL_COLOR_TILT, {0.0, h * sin(75 * deg), h * cos(75 * deg)}, 75.0 / 90.0},
+        {BDL_COLOR_TILT, {0.0, 0.0, 0.0}, -1.0},
+        {BDL_COLOR_AZIMUTH, {h * cos(120 * deg), h * sin(120 * deg), 0.0}, 120.0 / 180.0},
+        {BDL_COLOR_AZIMUTH, {-h * cos(120 * deg), -h * sin(120 * deg), 0.0}, 120.0 / 180.0},
+        {BDL_COLOR_AZIMUTH, {h * cos(10 * deg), h * sin(10 * deg), 0.004}, 10.0 / 180.0},
+        {BDL_COLOR_AZIMUTH, {0.0, 0.0, h}, -1.0}, // upright: no azimuth
+    };
+    for (size_t j = 0; j < sizeof cases / sizeof cases[0]; ++j) {
+        capsule k = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}, 0.005, 0};
+        memcpy(k.a, cases[j].axis, sizeof k.a);
+        small_snapshot ss;
+        capsule_snapshot(&ss, &k, 1);
+        bdl_view v;
+        base_view(&v, 1);
+        v.color = cases[j].mode;
+        draw(&ss, &v);
+        float c[3];
+        if (cases[j].t < 0.0)
+            bdl_colormap_missing(c);
+        else
+            bdl_colormap_eval(cases[j].mode == BDL_COLOR_TILT ? BDL_CMAP_SEQUENTIAL
+                                                              : BDL_CMAP_CYCLIC,
+                              cases[j].t, c);
+        uint8_t e[3] = {(uint8_t)lrintf(255 * c[0]), (uint8_t)lrintf(255 * c[1]),
+                        (uint8_t)lrintf(255 * c[2])};
+        const uint8_t *p = pixel(W / 2, H / 2);
+        CHECK_MSG(close_color(p, e, 1), "%s of axis %g %g %g: pixel %d %d %d, predicted %d %d %d",
+                  bdl_color_mode_names[cases[j].mode], k.a[0], k.a[1], k.a[2], p[0], p[1], p[2],
+                  e[0], e[1], e[2]);
+    }
+}
+
+/// Occlusion culling stays conservative with rods: a dense random bed of rods and spheres drawn
+/// with and without it gives the same image.
+static void test_capsule_culling(bdl_gl_backend backend)
+{
+    enum { N = 3000 };
+    bdl_snapshot s = {0};
+    static float pos[3 * N], vel[3 * N], radius[N], axis[3 * N];
+    static uint8_t coordination[N];
+    static int32_t species[N];
+    static uint32_t id[N];
+    s.pos = pos, s.vel = vel, s.radius = radius, s.axis = axis, s.coordination = coordination;
+    s.species = species, s.id = id, s.count = s.capacity = N;
+    unsigned seed = 4321;
+    for (int i = 0; i < N; ++i) {
+        float u[6];
+        for (int k = 0; k < 6; ++k) {
+            seed = seed * 1103515245u + 12345u;
+            u[k] = (float)(seed >> 8) / 16777216.0f - 0.5f;
+        }
+        for (int k = 0; k < 3; ++k) {
+            pos[3 * i + k] = 0.06f * u[k];
+            axis[3 * i + k] = i % 3 ? 0.012f * u[3 + k] : 0.0f; // a third are spheres
+        }
+        radius[i] = 0.0015f + 0.001f * (float)(i % 2);
+        species[i] = i % 3;
+    }
+    char why[1024];
+    bdl_renderer *r = NULL;
+    bdl_renderer_def rd = {.scene = &scene, .headless = 1, .width = W, .height = H, .samples = 4};
+    CHECK_MSG(bdl_renderer_create(&rd, &r, why, sizeof why) == BDL_OK, "%s", why);
+    if (!r)
+        return;
+    static uint8_t culled[W * H * 3], full[W * H * 3];
+    for (int ortho = 0; ortho < 2; ++ortho) {
+        bdl_view v;
+        base_view(&v, ortho);
+        v.camera.yaw = 30.0f;
+        v.camera.pitch = 25.0f;
+        v.lighting = 1;
+        bdl_renderer_draw(r, &s, &v, W, H);
+        long drawn = bdl_renderer_drawn(r);
+        bdl_renderer_read(r, culled);
+        v.no_culling = 1;
+        bdl_renderer_draw(r, &s, &v, W, H);
+        bdl_renderer_read(r, full);
+        int differ = 0;
+        for (int k = 0; k < W * H * 3; ++k)
+            differ += culled[k] != full[k];
+        printf("%s culling of rods (%s): %ld of %d drawn, %d bytes differ\n",
+               bdl_gl_backend_name(backend), ortho ? "orthographic" : "perspective", drawn, N,
+               differ);
+        CHECK(drawn < N);
+        CHECK(differ == 0);
+    }
+    bdl_renderer_destroy(r);
+}
+
+/// The picture of docs/rendering.md's rods (docs/img/render_rods.png), written when
+/// BDL_RODS_PICTURE names a file: 240 rods and 120 spheres placed at random in the test domain
+/// (rejecting any that would come within 1 mm of another), coloured by tilt, lit, with the colour
+/// bar. Run `BDL_RODS_PICTURE=FILE
+/// build/tests/test_render` to make it again.
+static void write_rods_picture(void)
+{
+    static int written = 0; // by the first backend that works
+    const char *path = getenv("BDL_RODS_PICTURE");
+    if (!path || written++)
+        return;
+    enum { N = 360, PW = 960, PH = 540 };
+    static float pos[3 * N], vel[3 * N], radius[N], axis[3 * N];
+    static uint8_t coordination[N], rgb[PW * PH * 3];
+    static int32_t species[N];
+    static uint32_t id[N];
+    bdl_snapshot s = {.count = N,
+                      .capacity = N,
+                      .pos = pos,
+                      .vel = vel,
+                      .radius = radius,
+                      .axis = axis,
+                      .coordination = coordination,
+                      .species = species,
+                      .id = id};
+    unsigned seed = 2024;
+    for (int i = 0; i < N; ++i) {
+        capsule k = {{0}, {0}, 0.0025, 0};
+        int placed = 0;
+        while (!placed) { // rejection: bounding balls apart, so no two particles overlap
+            double u[5];
+            for (int j = 0; j < 5; ++j) {
+                seed = seed * 1103515245u + 12345u;
+                u[j] = (double)(seed >> 8) / 16777216.0;
+            }
+            double h = i % 3 == 2 ? 0.0 : 0.0075, z = 2.0 * u[3] - 1.0, phi = 2.0 * BDL_PI * u[4];
+            for (int j = 0; j < 3; ++j)
+                k.c[j] = 0.085 * (u[j] - 0.5);
+            k.a[0] = h * sqrt(1.0 - z * z) * cos(phi), k.a[1] = h * sqrt(1.0 - z * z) * sin(phi);
+            k.a[2] = h * z;
+            placed = 1;
+            for (int j = 0; j < i && placed; ++j) {
+                bdl_vec3 d =
+                    bdl_v3(k.c[0] - pos[3 * j], k.c[1] - pos[3 * j + 1], k.c[2] - pos[3 * j + 2]);
+                bdl_vec3 ea = bdl_v3(k.a[0], k.a[1], k.a[2]);
+                bdl_vec3 eb = bdl_v3(axis[3 * j], axis[3 * j + 1], axis[3 * j + 2]);
+                double sa, sb, gap = k.r + radius[j] + 0.001;
+                placed = bdl_segments_closest(d, ea, eb, &sa, &sb) > gap * gap;
+            }
+        }
+        for (int j = 0; j < 3; ++j)
+            pos[3 * i + j] = (float)k.c[j], axis[3 * i + j] = (float)k.a[j];
+        radius[i] = (float)k.r, id[i] = (uint32_t)i;
+    }
+    char why[1024];
+    bdl_renderer *r = NULL;
+    bdl_renderer_def rd = {.scene = &scene, .headless = 1, .width = PW, .height = PH, .samples = 4};
+    CHECK_MSG(bdl_renderer_create(&rd, &r, why, sizeof why) == BDL_OK, "%s", why);
+    if (!r)
+        return;
+    bdl_view v;
+    base_view(&v, 0);
+    v.camera.yaw = 30.0f, v.camera.pitch = 25.0f, v.camera.distance = 0.24f;
+    v.color = BDL_COLOR_TILT;
+    v.lighting = v.overlay = v.outlines = 1;
+    v.background[0] = v.background[1] = v.background[2] = 0.08f;
+    bdl_renderer_draw(r, &s, &v, PW, PH);
+    CHECK(bdl_renderer_read(r, rgb) == BDL_OK);
+    CHECK(bdl_png_write(path, rgb, PW, PH, 3, 0) == BDL_OK);
+    printf("rods picture: %s\n", path);
+    bdl_renderer_destroy(r);
+}
+
 static int run_backend(bdl_gl_backend backend)
 {
     char why[1024];
@@ -492,6 +1004,14 @@ static int run_backend(bdl_gl_backend backend)
         test_depth();
         test_gas_slice();
         test_culling(backend);
+        test_capsule_side_on();
+        test_capsule_silhouette();
+        test_capsule_end_on();
+        test_capsule_sphere_depth();
+        test_capsule_zero_axis();
+        test_orientation_colors();
+        test_capsule_culling(backend);
+        write_rods_picture();
         test_overlay_and_png(bdl_gl_backend_name(backend));
         bdl_renderer_destroy(fr.r);
         fr.r = NULL;

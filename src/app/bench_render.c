@@ -5,7 +5,8 @@
 // bed), seen from the default iso camera, lit, coloured by speed, overlay on, drawn and read back
 // at the frame size, for 10^4, 10^5 and 10^6 particles. A frame is counted once its pixels are in
 // memory (what a frame dump needs); PNG encoding runs on its own thread in a run and is timed
-// separately.
+// separately. With --rods every particle is a rod (tip to tip three diameters, a random axis) at
+// the same number density, drawn as capsules.
 //
 // Solver cost: a falling bed is stepped for a fixed number of steps without frames, with frames
 // every k steps, and without frames again, each time from the same initial state; the ratio of
@@ -48,11 +49,12 @@ static const char usage[] =
     "                   rate of a real-time video (default 2000; 0 skips it)\n"
     "  --solver N       particles of the bed dumped at 30 frames per wall-clock second, as\n"
     "                   fast as the renderer takes them (default 20000; 0 skips it)\n"
-    "  --threads N      solver threads for the solver-cost part (default: all cores)\n";
+    "  --threads N      solver threads for the solver-cost part (default: all cores)\n"
+    "  --rods           the frame series with rods (capsules three diameters long, random axes)\n";
 
 typedef struct render_opts {
     bdl_gl_backend backend;
-    int width, height, samples, threads;
+    int width, height, samples, threads, rods;
     long max, solver, video;
 } render_opts;
 
@@ -85,9 +87,12 @@ static int load_scene(bdl_scene *scene, long n, const render_opts *o)
 
 /// A snapshot of n spheres of the scene's diameter with centres uniformly at random in a cube at
 /// the number density of a packed bed (solids fraction 0.6): as opaque as a settled bed, which
-/// is what the culling and the fill rate see (overlaps do not matter to the renderer).
-static int bed_snapshot(bdl_snapshot *s, const bdl_scene *scene, long n)
+/// is what the culling and the fill rate see (overlaps do not matter to the renderer). Rods get
+/// axes uniformly distributed over the directions.
+static int bed_snapshot(bdl_snapshot *s, const bdl_scene *scene, long n, int rods)
 {
+    if (rods && !bdl_snapshot_reserve_axis(s, n))
+        return 0;
     s->pos = malloc((size_t)n * 3 * sizeof(float));
     s->vel = malloc((size_t)n * 3 * sizeof(float));
     s->radius = malloc((size_t)n * sizeof(float));
@@ -111,6 +116,14 @@ static int bed_snapshot(bdl_snapshot *s, const bdl_scene *scene, long n)
         s->radius[i] = (float)(0.5 * d);
         s->coordination[i] = (uint8_t)(bdl_rng_uniform(&rng) * 7);
         s->id[i] = (uint32_t)i;
+        if (rods) {
+            double z = 2.0 * bdl_rng_uniform(&rng) - 1.0,
+                   phi = 2.0 * BDL_PI * bdl_rng_uniform(&rng);
+            double h = d, rho = sqrt(1.0 - z * z); // half shaft: three diameters tip to tip
+            s->axis[3 * i] = (float)(h * rho * cos(phi));
+            s->axis[3 * i + 1] = (float)(h * rho * sin(phi));
+            s->axis[3 * i + 2] = (float)(h * z);
+        }
     }
     s->count = s->capacity = n;
     return 1;
@@ -128,7 +141,8 @@ static void time_frames(const render_opts *o, long n, bdl_scene *scene, uint8_t 
                            .width = o->width,
                            .height = o->height,
                            .samples = o->samples};
-    if (!bed_snapshot(&s, scene, n) || bdl_renderer_create(&rd, &r, why, sizeof why) != BDL_OK) {
+    if (!bed_snapshot(&s, scene, n, o->rods) ||
+        bdl_renderer_create(&rd, &r, why, sizeof why) != BDL_OK) {
         fprintf(stderr, "bench render: %s\n", why);
         bdl_snapshot_free(&s);
         return;
@@ -282,6 +296,7 @@ static const bdl_option render_options[] = {
     {"--solver", BDL_OPTION_LONG, offsetof(render_opts, solver)},
     {"--video", BDL_OPTION_LONG, offsetof(render_opts, video)},
     {"--threads", BDL_OPTION_INT, offsetof(render_opts, threads)},
+    {"--rods", BDL_OPTION_SET, offsetof(render_opts, rods)},
 };
 
 /// --gl (not sdl: frames are headless) and --size WxH, which the table cannot hold.
@@ -316,7 +331,7 @@ static bdl_result parse_render(int argc, char **argv, render_opts *o, int *help)
 
 bdl_result bdl_bench_render(int argc, char **argv)
 {
-    render_opts o = {BDL_GL_AUTO, 1280, 720, 4, 0, 1000000, 20000, 2000};
+    render_opts o = {BDL_GL_AUTO, 1280, 720, 4, 0, 0, 1000000, 20000, 2000};
     int help;
     bdl_result r = parse_render(argc, argv, &o, &help);
     if (r != BDL_OK || help)
@@ -336,8 +351,9 @@ bdl_result bdl_bench_render(int argc, char **argv)
         bdl_context_destroy(ctx);
         return BDL_ERR_NOMEM;
     }
-    printf("bedlam bench render: %s, %dx%d, %d samples, lit spheres coloured by speed\n",
-           bdl_gl_backend_name(bdl_context_backend(ctx)), o.width, o.height, o.samples);
+    printf("bedlam bench render: %s, %dx%d, %d samples, lit %s coloured by speed\n",
+           bdl_gl_backend_name(bdl_context_backend(ctx)), o.width, o.height, o.samples,
+           o.rods ? "rods" : "spheres");
     printf("%10s %12s %12s %14s %10s\n", "particles", "frames/s", "ms/frame", "PNG encode ms",
            "drawn");
     for (long n = 10000; n <= o.max; n *= 10)

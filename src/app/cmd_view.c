@@ -269,16 +269,25 @@ static int solver_key(viewer *v, SDL_Keycode k, float aspect)
     }
 }
 
+/// The colour modes C and V cycle through: the orientation modes (last in the list) only when
+/// the scene has rods.
+static int color_modes(const bdl_scene *scene)
+{
+    for (int k = 0; k < scene->species_count; ++k)
+        if (scene->species[k].shape == BDL_SHAPE_ROD)
+            return BDL_COLOR_MODE_COUNT;
+    return BDL_COLOR_TILT;
+}
+
 /// Keys that change the picture: colours, views, projection, clip plane, lighting, text.
 static int picture_key(viewer *v, SDL_Keycode k)
 {
     bdl_view *view = &v->view;
+    int modes = color_modes(v->scene);
     switch (k) {
     case SDLK_c:
     case SDLK_v:
-        view->color =
-            (bdl_color_mode)((view->color + (k == SDLK_c ? 1 : BDL_COLOR_MODE_COUNT - 1)) %
-                             BDL_COLOR_MODE_COUNT);
+        view->color = (bdl_color_mode)((view->color + (k == SDLK_c ? 1 : modes - 1)) % modes);
         view->range_fixed = 0;
         printf("view: colour %s\n", bdl_color_mode_names[view->color]);
         return 1;

@@ -95,7 +95,14 @@ static void diverging(double t, float rgb[3])
     lch_color(0.95 - 0.47 * a, 0.16 * a, u < 0.0 ? 255.0 : 30.0, rgb);
 }
 
-static float tables[2][BDL_COLORMAP_SIZE][3];
+static void cyclic(double t, float rgb[3])
+{
+    // Chroma 0.11 is inside the sRGB gamut at every hue at this lightness (the least is 0.122,
+    // at hue 200 deg), so the circle is not flattened anywhere.
+    lch_color(0.72, 0.11, fmod(30.0 + 360.0 * t, 360.0), rgb);
+}
+
+static float tables[BDL_CMAP_KINDS][BDL_COLORMAP_SIZE][3];
 static pthread_once_t tables_once = PTHREAD_ONCE_INIT;
 
 static void build_tables(void)
@@ -104,6 +111,7 @@ static void build_tables(void)
         double t = (double)i / (BDL_COLORMAP_SIZE - 1);
         sequential(t, tables[BDL_CMAP_SEQUENTIAL][i]);
         diverging(t, tables[BDL_CMAP_DIVERGING][i]);
+        cyclic(t, tables[BDL_CMAP_CYCLIC][i]);
     }
 }
 
@@ -130,6 +138,8 @@ void bdl_colormap_eval(bdl_colormap_kind kind, double t, float rgb[3])
     for (int k = 0; k < 3; ++k)
         rgb[k] = tables[kind][i][k] + f * (tables[kind][i + 1][k] - tables[kind][i][k]);
 }
+
+void bdl_colormap_missing(float rgb[3]) { lch_color(0.55, 0.0, 0.0, rgb); }
 
 void bdl_category_color(int index, float rgb[3])
 {

@@ -1,6 +1,14 @@
 // bedlam — the colour of each particle: the field a colour mode shows, mapped through the
-// categorical, sequential or diverging map over the frame's range (fixed by the view, else the
-// data's), and the voidage around each particle when that is the field.
+// categorical, sequential, diverging or cyclic map over the frame's range (fixed by the view, else
+// the data's), and the voidage around each particle when that is the field.
+//
+// A rod's orientation is its axis u up to sign (u and -u are the same rod), with z taken as the
+// vertical, as the camera's "up" is: a colour is a function of the snapshot alone, which carries
+// no gravity, and the default gravity and every bundled scene's point along -z. Tilt is the
+// angle between the axis and the vertical, atan2(|u_xy|, |u_z|), from 0 (upright) to 90 deg
+// (lying); azimuth is the angle of the axis's horizontal part from +x, atan2(u_y, u_x), modulo
+// 180 deg. A sphere has neither, and a vertical rod has no azimuth: they show the missing-value
+// grey.
 #include <math.h>
 #include <stdlib.h>
 
@@ -17,9 +25,35 @@ const char *bdl_color_mode_unit(bdl_color_mode mode)
     return (unsigned)mode < BDL_COLOR_MODE_COUNT ? bdl_color_mode_units[mode] : "";
 }
 
-int bdl_color_mode_diverging(bdl_color_mode mode)
+static int diverging(bdl_color_mode mode)
 {
     return mode == BDL_COLOR_VX || mode == BDL_COLOR_VY || mode == BDL_COLOR_VZ;
+}
+
+bdl_colormap_kind bdl_color_mode_map(bdl_color_mode mode)
+{
+    if (mode == BDL_COLOR_AZIMUTH)
+        return BDL_CMAP_CYCLIC;
+    return diverging(mode) ? BDL_CMAP_DIVERGING : BDL_CMAP_SEQUENTIAL;
+}
+
+static int orientation_mode(bdl_color_mode mode)
+{
+    return mode == BDL_COLOR_TILT || mode == BDL_COLOR_AZIMUTH;
+}
+
+/// Tilt or azimuth of particle i [deg]; NaN when it has none.
+static float orientation(bdl_color_mode mode, const bdl_snapshot *s, long i)
+{
+    const float deg = (float)(180.0 / BDL_PI);
+    const float *a = s->axis ? &s->axis[3 * i] : NULL;
+    if (!a || (a[0] == 0.0f && a[1] == 0.0f && (mode == BDL_COLOR_AZIMUTH || a[2] == 0.0f)))
+        return NAN;
+    if (mode == BDL_COLOR_TILT)
+        return deg * atan2f(hypotf(a[0], a[1]), fabsf(a[2]));
+    float phi = deg * atan2f(a[1], a[0]); // (-180, 180]
+    phi = phi < 0.0f ? phi + 180.0f : phi;
+    return phi >= 180.0f ? phi - 180.0f : phi; // a tiny negative angle + 180 rounds to 180
 }
 
 /// The scalar a mode maps through the colour map.
@@ -37,6 +71,9 @@ static float field_value(bdl_color_mode mode, const bdl_snapshot *s, long i, flo
         return v[mode - BDL_COLOR_VX];
     case BDL_COLOR_VOIDAGE:
         return voidage;
+    case BDL_COLOR_TILT:
+    case BDL_COLOR_AZIMUTH:
+        return orientation(mode, s, i);
     default:
         return 0.0f;
     }
@@ -58,18 +95,28 @@ void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, f
         float x = field_value(mode, snap, i, voidage);
         float span = range[1] - range[0];
         float t = span > 0.0f ? (x - range[0]) / span : 0.5f;
-        bdl_colormap_eval(bdl_color_mode_diverging(mode) ? BDL_CMAP_DIVERGING : BDL_CMAP_SEQUENTIAL,
-                          t, c);
+        bdl_colormap_kind map = bdl_color_mode_map(mode);
+        if (map == BDL_CMAP_CYCLIC)
+            t -= floorf(t); // a range narrower than the period wraps round
+        if (orientation_mode(mode) && isnan(x))
+            bdl_colormap_missing(c);
+        else
+            bdl_colormap_eval(map, t, c);
     }
     for (int k = 0; k < 3; ++k)
         rgb[k] = bdl_color_byte(c[k]);
 }
 
 /// The data's range for automatic colouring: speeds from 0, velocity components symmetric about
-/// 0, coordination numbers from 0 in whole steps.
+/// 0, coordination numbers from 0 in whole steps; the angles over their whole span.
 static void auto_range(const bdl_render_colors *c, bdl_color_mode mode, const bdl_snapshot *s,
                        float range[2])
 {
+    if (orientation_mode(mode)) { // all the angles there are, the same in every frame
+        range[0] = 0.0f;
+        range[1] = mode == BDL_COLOR_TILT ? 90.0f : 180.0f;
+        return;
+    }
     float lo = INFINITY, hi = -INFINITY;
     for (long i = 0; i < s->count; ++i) {
         float x = field_value(mode, s, i, c->voidage_at ? c->voidage_at[i] : 1.0f);

@@ -114,25 +114,81 @@ static int hidden(const bdl_cull *c, const projected *q)
     return 1;
 }
 
-long bdl_cull_spheres(bdl_cull *c, const float *pos, const float *radius, long count,
-                      const float view[16], const float proj[16], int ortho, int width, int height,
-                      const float *clip, uint8_t *visible)
+/// The frame the particles are projected into.
+typedef struct frame {
+    const float *view, *proj; ///< column-major
+    int ortho, width, height;
+} frame;
+
+static int project_ball(const frame *f, const float *p, float r, projected *out)
+{
+    return project(p, r, f->view, f->proj, f->ortho, f->width, f->height, out);
+}
+
+/// A rod occludes with balls of its radius along its shaft, at most a radius apart: each lies
+/// inside it, and their inner disks overlap into a band along the shaft's image.
+static void occlude_rod(bdl_cull *c, const frame *f, const float *p, float r, const float *a)
+{
+    float h = sqrtf(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    int n = r > 0.0f ? (int)ceilf(h / r) : 0;
+    projected q;
+    for (int k = -n; k <= n; ++k) {
+        float s = n > 0 ? (float)k / (float)n : 0.0f;
+        float x[3] = {p[0] + s * a[0], p[1] + s * a[1], p[2] + s * a[2]};
+        if (project_ball(f, x, r, &q))
+            occlude(c, &q);
+    }
+}
+
+/// A rod's bounds on screen: the rod is the convex hull of its two end balls, so its image lies
+/// in the union of theirs and its nearest point is one of theirs. 0 when an end reaches behind
+/// the eye.
+static int project_rod(const frame *f, const float *p, float r, const float *a, projected *out)
+{
+    float lo[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
+    float hi[3] = {p[0] + a[0], p[1] + a[1], p[2] + a[2]};
+    projected e;
+    if (!project_ball(f, lo, r, out) || !project_ball(f, hi, r, &e))
+        return 0;
+    out->x0 = fminf(out->x0, e.x0), out->x1 = fmaxf(out->x1, e.x1);
+    out->y0 = fminf(out->y0, e.y0), out->y1 = fmaxf(out->y1, e.y1);
+    out->near_z = fminf(out->near_z, e.near_z);
+    return 1;
+}
+
+static void occlude_all(bdl_cull *c, const frame *f, const float *pos, const float *radius,
+                        const float *axis, long count, const float *clip)
+{
+    projected q;
+    for (long i = 0; i < count; ++i) {
+        const float *p = &pos[3 * i];
+        if (clipped(clip, p))
+            continue;
+        if (axis)
+            occlude_rod(c, f, p, radius[i], &axis[3 * i]);
+        else if (project_ball(f, p, radius[i], &q))
+            occlude(c, &q);
+    }
+}
+
+long bdl_cull_particles(bdl_cull *c, const float *pos, const float *radius, const float *axis,
+                        long count, const float view[16], const float proj[16], int ortho,
+                        int width, int height, const float *clip, uint8_t *visible)
 {
     if (!grid_reserve(c, width, height)) {
         for (long i = 0; i < count; ++i)
             visible[i] = !clipped(clip, &pos[3 * i]);
         return count;
     }
-    projected q;
-    for (long i = 0; i < count; ++i)
-        if (!clipped(clip, &pos[3 * i]) &&
-            project(&pos[3 * i], radius[i], view, proj, ortho, width, height, &q))
-            occlude(c, &q);
+    const frame f = {view, proj, ortho, width, height};
+    occlude_all(c, &f, pos, radius, axis, count, clip);
     long shown = 0;
+    projected q;
     for (long i = 0; i < count; ++i) {
         const float *p = &pos[3 * i];
-        int v = !clipped(clip, p) &&
-                (!project(p, radius[i], view, proj, ortho, width, height, &q) || !hidden(c, &q));
+        int on_screen = axis ? project_rod(&f, p, radius[i], &axis[3 * i], &q)
+                             : project_ball(&f, p, radius[i], &q);
+        int v = !clipped(clip, p) && (!on_screen || !hidden(c, &q));
         visible[i] = (uint8_t)v;
         shown += v;
     }

@@ -50,12 +50,11 @@ int bdl_render_overlay_create(bdl_renderer *r, char *why, size_t why_len)
     glVertexAttribPointer(2, 4, GL_UNSIGNED_BYTE, GL_TRUE, stride, (void *)16);
 
     uint8_t table[BDL_COLORMAP_SIZE][3];
-    bdl_colormap_table(BDL_CMAP_SEQUENTIAL, table);
-    o->colormap_texture[0] =
-        bdl_gl_texture_2d(GL_RGB8, BDL_COLORMAP_SIZE, 1, GL_RGB, table, GL_LINEAR);
-    bdl_colormap_table(BDL_CMAP_DIVERGING, table);
-    o->colormap_texture[1] =
-        bdl_gl_texture_2d(GL_RGB8, BDL_COLORMAP_SIZE, 1, GL_RGB, table, GL_LINEAR);
+    for (int k = 0; k < BDL_CMAP_KINDS; ++k) {
+        bdl_colormap_table((bdl_colormap_kind)k, table);
+        o->colormap_texture[k] =
+            bdl_gl_texture_2d(GL_RGB8, BDL_COLORMAP_SIZE, 1, GL_RGB, table, GL_LINEAR);
+    }
     if (o->font) {
         int w, h;
         const uint8_t *atlas = bdl_font_atlas(o->font, &w, &h);
@@ -68,8 +67,8 @@ void bdl_render_overlay_destroy(bdl_renderer *r)
 {
     bdl_render_overlay *o = &r->overlay;
     if (o->mesh.vao) {
-        GLuint textures[3] = {o->font_texture, o->colormap_texture[0], o->colormap_texture[1]};
-        glDeleteTextures(3, textures);
+        glDeleteTextures(1, &o->font_texture);
+        glDeleteTextures(BDL_CMAP_KINDS, o->colormap_texture);
     }
     bdl_gl_mesh_destroy(&o->mesh);
     if (o->font)
@@ -132,6 +131,18 @@ static void format_value(char *buf, size_t size, float x)
 // ---------------------------------------------------------------------------------------------
 // Parts.
 
+/// Below the colour bar: the grey of particles without a value (spheres among rods, upright
+/// rods' azimuth).
+static void missing_swatch(bdl_render_overlay *o, float x0, float y, float lh)
+{
+    float grey[3];
+    bdl_colormap_missing(grey);
+    uint8_t rgba[4] = {bdl_color_byte(grey[0]), bdl_color_byte(grey[1]), bdl_color_byte(grey[2]),
+                       255};
+    rect(o, x0, y, x0 + 16.0f, y + 12.0f, rgba);
+    text(o, x0 + 25.0f, y + 6.0f - 0.5f * lh, "none", text_color);
+}
+
 /// A continuous colour bar on the right: the map, labels at both ends and the middle.
 static void colour_bar(bdl_render_overlay *o, const float range[2], bdl_color_mode mode, int width,
                        int height)
@@ -155,6 +166,8 @@ static void colour_bar(bdl_render_overlay *o, const float range[2], bdl_color_mo
         rect(o, x1, y - 0.5f, x1 + 4, y + 0.5f, text_color);
         text(o, x1 + 9, y - 0.5f * lh, label, text_color);
     }
+    if (mode == BDL_COLOR_TILT || mode == BDL_COLOR_AZIMUTH)
+        missing_swatch(o, x0, y1 + 0.6f * lh, lh);
     char title[64];
     const char *unit = bdl_color_mode_unit(mode);
     snprintf(title, sizeof title, "%s%s%s%s", bdl_color_mode_label(mode), unit[0] ? " [" : "", unit,
@@ -256,7 +269,7 @@ static void build(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v, int
     bdl_render_overlay *o = &r->overlay;
     for (int k = 0; k < BDL_OVERLAY_MODES; ++k)
         o->quad_count[k] = 0;
-    o->bar_diverging = bdl_color_mode_diverging(v->color);
+    o->bar_map = bdl_color_mode_map(v->color);
     if (v->overlay) {
         status_lines(r, s, v);
         if (v->color == BDL_COLOR_SPECIES || v->color == BDL_COLOR_COORDINATION)
@@ -289,7 +302,7 @@ static void draw_batches(const bdl_render_overlay *o, int width, int height)
         if (mode == BDL_OVERLAY_TEXT)
             glBindTexture(GL_TEXTURE_2D, o->font_texture);
         if (mode == BDL_OVERLAY_COLORMAP)
-            glBindTexture(GL_TEXTURE_2D, o->colormap_texture[o->bar_diverging]);
+            glBindTexture(GL_TEXTURE_2D, o->colormap_texture[o->bar_map]);
         glUniform1i(glGetUniformLocation(o->mesh.program, "u_mode"), mode);
         GLsizeiptr bytes =
             (GLsizeiptr)o->quad_count[mode] * 6 * (GLsizeiptr)sizeof(bdl_overlay_vertex);

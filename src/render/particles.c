@@ -1,7 +1,8 @@
 // bedlam — the particles as sphere impostors: one screen-space quad per sphere (a point sprite,
 // or an instanced quad when a sphere outgrows the driver's point size), on which the fragment
 // shader intersects the view ray with the sphere and writes the hit's depth. Spheres the
-// occlusion culling proves hidden are left out of the instance buffer.
+// occlusion culling proves hidden are left out of the instance buffer. A snapshot with rods'
+// axes is drawn by capsules.c instead, after the same culling.
 #include <cglm/cglm.h>
 #include <math.h>
 #include <stdlib.h>
@@ -53,7 +54,8 @@ void bdl_render_particles_destroy(bdl_renderer *r)
     free(p->instances);
 }
 
-static int reserve(bdl_render_particles *p, long n)
+/// Room for n particles' visibility, and for their sphere instances unless they are capsules.
+static int reserve(bdl_render_particles *p, long n, int spheres)
 {
     if (n > p->visible_capacity) {
         uint8_t *a = realloc(p->visible, (size_t)n);
@@ -62,7 +64,7 @@ static int reserve(bdl_render_particles *p, long n)
         p->visible = a;
         p->visible_capacity = n;
     }
-    if (n <= p->instance_capacity)
+    if (!spheres || n <= p->instance_capacity)
         return 1;
     long cap = n + n / 4 + 64;
     uint8_t *a = realloc(p->instances, (size_t)cap * INSTANCE_BYTES);
@@ -86,8 +88,8 @@ static void cull(bdl_render_particles *p, const bdl_snapshot *s, const bdl_view 
     const float *n = v->clip_normal, *q = v->clip_point;
     clip[0] = n[0], clip[1] = n[1], clip[2] = n[2];
     clip[3] = -(n[0] * q[0] + n[1] * q[1] + n[2] * q[2]);
-    bdl_cull_spheres(&p->cull, s->pos, s->radius, s->count, f->view, f->proj, v->camera.ortho,
-                     f->width, f->height, v->clip ? clip : NULL, p->visible);
+    bdl_cull_particles(&p->cull, s->pos, s->radius, s->axis, s->count, f->view, f->proj,
+                       v->camera.ortho, f->width, f->height, v->clip ? clip : NULL, p->visible);
 }
 
 /// Writes the instance data of the visible particles; returns their number.
@@ -155,7 +157,8 @@ void bdl_shade(const float base[3], const float n[3], const float view[3], float
         out[k] = base[k] * (0.35f + 0.65f * diffuse) + 0.22f * specular;
 }
 
-static void set_uniforms(GLuint prog, const bdl_view *v, const bdl_render_frame *f, int points)
+void bdl_render_particle_uniforms(GLuint prog, const bdl_view *v, const bdl_render_frame *f,
+                                  int points)
 {
     glUseProgram(prog);
     glUniformMatrix4fv(glGetUniformLocation(prog, "u_view"), 1, GL_FALSE, f->view);
@@ -177,7 +180,7 @@ static void draw_spheres(bdl_render_particles *p, const bdl_snapshot *s, long co
                          const bdl_view *v, const bdl_render_frame *f)
 {
     int points = points_fit(p, s, v, f->view, f->height);
-    set_uniforms(p->mesh.program, v, f, points);
+    bdl_render_particle_uniforms(p->mesh.program, v, f, points);
     glBindBuffer(GL_ARRAY_BUFFER, p->mesh.vbo);
     // Storage is reallocated only when the particles outgrow it: a fresh allocation each frame
     // costs page faults in a software driver.
@@ -201,10 +204,12 @@ long bdl_render_particles_draw(bdl_renderer *r, const bdl_snapshot *s, const bdl
                                const bdl_render_frame *f)
 {
     bdl_render_particles *p = &r->particles;
-    if (s->count <= 0 || !reserve(p, s->count))
+    if (s->count <= 0 || !reserve(p, s->count, s->axis == NULL))
         return 0;
     cull(p, s, v, f);
     bdl_render_colors_prepare(r, s, v);
+    if (s->axis)
+        return bdl_render_capsules_draw(r, s, v, f);
     long count = fill_instances(r, s, v);
     if (count > 0)
         draw_spheres(p, s, count, v, f);

@@ -60,6 +60,7 @@ bdl_result bdl_renderer_create(const bdl_renderer_def *def, bdl_renderer **out, 
     }
     bdl_render_outlines_build(r);
     int ok = bdl_render_particles_create(r, why, why_len) &&
+             bdl_render_capsules_create(r, why, why_len) &&
              bdl_render_outlines_create(r, why, why_len) &&
              bdl_render_overlay_create(r, why, why_len) &&
              bdl_render_slice_create(r, why, why_len) &&
@@ -78,6 +79,7 @@ void bdl_renderer_destroy(bdl_renderer *r)
     if (!r)
         return;
     bdl_render_particles_destroy(r);
+    bdl_render_capsules_destroy(r);
     bdl_render_colors_destroy(r);
     bdl_render_slice_destroy(r);
     bdl_render_outlines_destroy(r);

@@ -4,6 +4,7 @@
 // A frame is drawn in phases, each owned by one file that also owns its part of the state:
 //
 //   particles.c   sphere impostors: instance buffer, occlusion culling, the sphere shader
+//   capsules.c    with rods, every particle as a capsule impostor instead (the capsule shader)
 //   colors.c      the colour of each particle: field values, automatic range, voidage
 //   slice.c       the translucent gas-field slice
 //   outlines.c    the domain and wall outlines
@@ -19,6 +20,7 @@
 #include <stdint.h>
 
 #include "analysis/voidage.h"
+#include "render/colormap.h"
 #include "render/cull.h"
 #include "render/font.h"
 #include "render/gl.h"
@@ -48,6 +50,14 @@ typedef struct bdl_render_particles {
     uint8_t *visible; ///< per particle, from the occlusion culling
     long visible_capacity;
 } bdl_render_particles;
+
+/// Capsule impostors, drawn instead of the spheres when the snapshot has axes (capsules.c).
+typedef struct bdl_render_capsules {
+    bdl_gl_mesh mesh;   ///< the capsule program; its vertex array takes one box per particle
+    long vbo_capacity;  ///< particles the capsule buffer holds
+    uint8_t *instances; ///< per particle: 4 floats (centre, radius), 3 (half shaft), 4 bytes colour
+    long instance_capacity;
+} bdl_render_capsules;
 
 /// What the particles' colours are computed from (colors.c).
 typedef struct bdl_render_colors {
@@ -94,11 +104,11 @@ enum { BDL_OVERLAY_FLAT, BDL_OVERLAY_TEXT, BDL_OVERLAY_COLORMAP, BDL_OVERLAY_MOD
 /// Text and colour bar (overlay.c).
 typedef struct bdl_render_overlay {
     bdl_gl_mesh mesh;
-    GLuint font_texture, colormap_texture[2];
+    GLuint font_texture, colormap_texture[BDL_CMAP_KINDS];
     bdl_font *font; ///< NULL: no text
     bdl_overlay_vertex *quads[BDL_OVERLAY_MODES];
     int quad_count[BDL_OVERLAY_MODES];
-    int bar_diverging; ///< the colour bar shows the diverging map
+    bdl_colormap_kind bar_map; ///< the map the colour bar shows
 } bdl_render_overlay;
 
 struct bdl_renderer {
@@ -107,6 +117,7 @@ struct bdl_renderer {
     GLuint fbo, color_rb, depth_rb, resolve_fbo, resolve_rb; ///< headless only
     long drawn;                                              ///< particles drawn in the last frame
     bdl_render_particles particles;
+    bdl_render_capsules capsules;
     bdl_render_colors colors;
     bdl_render_slice slice;
     bdl_render_outlines outlines;
@@ -120,6 +131,15 @@ int bdl_render_particles_create(bdl_renderer *r, char *why, size_t why_len);
 long bdl_render_particles_draw(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
                                const bdl_render_frame *f);
 void bdl_render_particles_destroy(bdl_renderer *r);
+/// The uniforms the sphere and capsule programs share (`points`: the spheres are point sprites).
+void bdl_render_particle_uniforms(GLuint prog, const bdl_view *v, const bdl_render_frame *f,
+                                  int points);
+
+int bdl_render_capsules_create(bdl_renderer *r, char *why, size_t why_len);
+/// Draws the particles particles.c's culling left visible as capsules; returns their number.
+long bdl_render_capsules_draw(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
+                              const bdl_render_frame *f);
+void bdl_render_capsules_destroy(bdl_renderer *r);
 
 /// Computes what the colours of this frame need (voidage, the range) before any is asked for.
 void bdl_render_colors_prepare(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v);
@@ -127,8 +147,9 @@ void bdl_render_colors_prepare(bdl_renderer *r, const bdl_snapshot *s, const bdl
 void bdl_render_colors_particle(const bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v,
                                 long i, uint8_t rgb[3]);
 void bdl_render_colors_destroy(bdl_renderer *r);
-/// Whether a mode uses the diverging map (signed values).
-int bdl_color_mode_diverging(bdl_color_mode mode);
+/// The colour map a mode uses: diverging for signed values, cyclic for the azimuth, else
+/// sequential.
+bdl_colormap_kind bdl_color_mode_map(bdl_color_mode mode);
 /// A colour channel in [0, 1] (clamped) as a byte.
 uint8_t bdl_color_byte(float c);
 

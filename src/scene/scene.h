@@ -52,7 +52,9 @@ BDL_CHOICES(bdl_view_preset, BDL_VIEW_PRESETS);
     X(PROJ_ORTHOGRAPHIC, "orthographic", "orthographic")
 BDL_CHOICES(bdl_projection, BDL_PROJECTIONS);
 
-/// What the particle colour shows ([camera] color): X(NAME, "word", "label", "unit").
+/// What the particle colour shows ([camera] color): X(NAME, "word", "label", "unit"). The rods'
+/// orientation modes come last, so that a viewer of a scene without rods cycles through the
+/// modes before them only.
 #define BDL_COLOR_MODES(X)                                                                         \
     X(COLOR_SPECIES, "species", "species", "")                                                     \
     X(COLOR_COORDINATION, "coordination", "coordination number", "contacts")                       \
@@ -60,7 +62,9 @@ BDL_CHOICES(bdl_projection, BDL_PROJECTIONS);
     X(COLOR_VX, "vx", "velocity x", "m/s")                                                         \
     X(COLOR_VY, "vy", "velocity y", "m/s")                                                         \
     X(COLOR_VZ, "vz", "velocity z", "m/s")                                                         \
-    X(COLOR_VOIDAGE, "voidage", "voidage", "")
+    X(COLOR_VOIDAGE, "voidage", "voidage", "")                                                     \
+    X(COLOR_TILT, "tilt", "tilt from vertical", "deg")                                             \
+    X(COLOR_AZIMUTH, "azimuth", "azimuth mod 180", "deg")
 #define BDL_X_COLOR_ITEM(name, word, label, unit) BDL_##name,
 typedef enum bdl_color_mode {
     BDL_COLOR_MODES(BDL_X_COLOR_ITEM) BDL_COLOR_MODE_COUNT

@@ -354,7 +354,9 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(CAMERA), "color", .type = BDL_KEY_ENUM, "-", IN_CAMERA(color), .def = {BDL_COLOR_SPEED},
      .enum_names = bdl_color_mode_names,
      .doc = "particle colour: species, coordination (contacts), speed, vx, vy, vz (velocity "
-            "component), voidage (void fraction around the particle)"},
+            "component), voidage (void fraction around the particle); with rods tilt (angle of "
+            "the axis to z, 0 vertical to 90 horizontal) and azimuth (angle of the axis in the x-y "
+            "plane, modulo 180)"},
     {S(CAMERA), "color_min", NUM, "unit of the field", IN_CAMERA_FLAGGED(color_min),
      .default_text = "automatic", .doc = "value at the low end of the colour map"},
     {S(CAMERA), "color_max", NUM, "unit of the field", IN_CAMERA_FLAGGED(color_max),
