@@ -94,17 +94,6 @@ static double check_case(stats *st, bdl_vec3 d, bdl_vec3 ea, bdl_vec3 eb, double
     return got2;
 }
 
-static bdl_vec3 random_unit(bdl_rng *rng)
-{
-    for (;;) {
-        const bdl_vec3 v = {bdl_rng_range(rng, -1, 1), bdl_rng_range(rng, -1, 1),
-                            bdl_rng_range(rng, -1, 1)};
-        const double l2 = bdl_v3_len2(v);
-        if (l2 > 1e-4 && l2 <= 1.0)
-            return bdl_v3_scale(v, 1.0 / sqrt(l2));
-    }
-}
-
 /// A unit vector perpendicular to the unit vector u.
 static bdl_vec3 perpendicular(bdl_vec3 u)
 {
@@ -124,8 +113,8 @@ static void random_pairs(stats *st, bdl_rng *rng, long n)
         const double box = k % 2 ? 1.0 : 3.0; // crowded pairs (most cross) and looser ones
         const bdl_vec3 d = {bdl_rng_range(rng, -box, box), bdl_rng_range(rng, -box, box),
                             bdl_rng_range(rng, -box, box)};
-        const bdl_vec3 ea = bdl_v3_scale(random_unit(rng), random_half_length(rng));
-        const bdl_vec3 eb = bdl_v3_scale(random_unit(rng), random_half_length(rng));
+        const bdl_vec3 ea = bdl_v3_scale(bdl_rng_direction(rng), random_half_length(rng));
+        const bdl_vec3 eb = bdl_v3_scale(bdl_rng_direction(rng), random_half_length(rng));
         check_case(st, d, ea, eb, NULL, NULL);
     }
 }
@@ -134,11 +123,12 @@ static void random_pairs(stats *st, bdl_rng *rng, long n)
 static void random_scaled_pairs(stats *st, bdl_rng *rng, long n)
 {
     for (long k = 0; k < n; ++k) {
-        const bdl_vec3 d = bdl_v3_scale(random_unit(rng), pow(10.0, bdl_rng_range(rng, -3.0, 1.0)));
+        const bdl_vec3 d =
+            bdl_v3_scale(bdl_rng_direction(rng), pow(10.0, bdl_rng_range(rng, -3.0, 1.0)));
         const bdl_vec3 ea =
-            bdl_v3_scale(random_unit(rng), pow(10.0, bdl_rng_range(rng, -6.0, 0.0)));
+            bdl_v3_scale(bdl_rng_direction(rng), pow(10.0, bdl_rng_range(rng, -6.0, 0.0)));
         const bdl_vec3 eb =
-            bdl_v3_scale(random_unit(rng), pow(10.0, bdl_rng_range(rng, -6.0, 0.0)));
+            bdl_v3_scale(bdl_rng_direction(rng), pow(10.0, bdl_rng_range(rng, -6.0, 0.0)));
         check_case(st, d, ea, eb, NULL, NULL);
     }
 }
@@ -173,7 +163,7 @@ static void parallel_cases(stats *st, bdl_rng *rng)
     static const bdl_vec3 axes[] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {-1, 0, 0}, {0, 0, -1}};
     for (int k = 0; k < 400; ++k) {
         // Exactly parallel along the axes, parallel to rounding along random directions.
-        const bdl_vec3 u = k < 5 ? axes[k] : random_unit(rng);
+        const bdl_vec3 u = k < 5 ? axes[k] : bdl_rng_direction(rng);
         const double ha = k % 5 == 0 ? 0.5 : bdl_rng_range(rng, 0.1, 1.0);
         const double hb = k % 7 == 0 ? 1.0 : bdl_rng_range(rng, 0.1, 1.0);
         for (int j = 0; j < 9; ++j)
@@ -188,7 +178,7 @@ static void parallel_cases(stats *st, bdl_rng *rng)
 static void collinear_cases(stats *st, bdl_rng *rng)
 {
     for (int k = 0; k < 200; ++k) {
-        const bdl_vec3 u = random_unit(rng);
+        const bdl_vec3 u = bdl_rng_direction(rng);
         const double ha = bdl_rng_range(rng, 0.0, 1.0), hb = bdl_rng_range(rng, 0.0, 1.0);
         const double gap = k % 4 == 0 ? 0.0 : bdl_rng_range(rng, 0.0, 1.0);
         const double sign = k % 2 ? 1.0 : -1.0;
@@ -218,7 +208,7 @@ static void crossing_case(stats *st, bdl_vec3 ea, bdl_vec3 eb, bdl_vec3 n, doubl
 static void crossing_cases(stats *st, bdl_rng *rng)
 {
     for (int k = 0; k < 2000; ++k) {
-        const bdl_vec3 u = random_unit(rng), v = random_unit(rng);
+        const bdl_vec3 u = bdl_rng_direction(rng), v = bdl_rng_direction(rng);
         const bdl_vec3 n = bdl_v3_normalize(bdl_v3_cross(u, v));
         const bdl_vec3 ea = bdl_v3_scale(u, bdl_rng_range(rng, 0.05, 1.0));
         const bdl_vec3 eb = bdl_v3_scale(v, bdl_rng_range(rng, 0.05, 1.0));
@@ -232,7 +222,7 @@ static void crossing_cases(stats *st, bdl_rng *rng)
 static bdl_vec3 away_from(bdl_rng *rng, bdl_vec3 x, bdl_vec3 y)
 {
     for (;;) {
-        const bdl_vec3 w = random_unit(rng);
+        const bdl_vec3 w = bdl_rng_direction(rng);
         if (bdl_v3_dot(w, x) >= 0.0 && bdl_v3_dot(w, y) >= 0.0)
             return w;
     }
@@ -244,8 +234,8 @@ static bdl_vec3 away_from(bdl_rng *rng, bdl_vec3 x, bdl_vec3 y)
 static void tip_cases(stats *st, stats *st_shaft, bdl_rng *rng)
 {
     for (int k = 0; k < 2000; ++k) {
-        const bdl_vec3 ea = bdl_v3_scale(random_unit(rng), bdl_rng_range(rng, 0.05, 1.0));
-        const bdl_vec3 eb = bdl_v3_scale(random_unit(rng), bdl_rng_range(rng, 0.05, 1.0));
+        const bdl_vec3 ea = bdl_v3_scale(bdl_rng_direction(rng), bdl_rng_range(rng, 0.05, 1.0));
+        const bdl_vec3 eb = bdl_v3_scale(bdl_rng_direction(rng), bdl_rng_range(rng, 0.05, 1.0));
         const double gap = k % 2 ? 0.0 : bdl_rng_range(rng, 0.0, 1.0);
         const double scale = gap + bdl_v3_len(ea) + bdl_v3_len(eb);
         const bdl_vec3 w = away_from(rng, ea, eb);
@@ -253,7 +243,7 @@ static void tip_cases(stats *st, stats *st_shaft, bdl_rng *rng)
         double got = sqrt(check_case(st, bdl_v3_neg(b), ea, eb, NULL, NULL));
         CHECK_MSG(fabs(got - gap) <= tolerance * scale, "tip-tip: %.17g, gap %.17g", got, gap);
         // On the shaft: w perpendicular to e_b, on the side a's tip faces away from a.
-        bdl_vec3 across = bdl_v3_normalize(bdl_v3_cross(eb, random_unit(rng)));
+        bdl_vec3 across = bdl_v3_normalize(bdl_v3_cross(eb, bdl_rng_direction(rng)));
         if (bdl_v3_dot(across, ea) < 0.0)
             across = bdl_v3_neg(across);
         const double t0 = bdl_rng_range(rng, -1.0, 1.0);
@@ -269,7 +259,7 @@ static void tip_cases(stats *st, stats *st_shaft, bdl_rng *rng)
 static void nearly_parallel_cases(stats *st, bdl_rng *rng, double theta)
 {
     for (int k = 0; k < 400; ++k) {
-        const bdl_vec3 u = random_unit(rng), p = perpendicular(u), n = bdl_v3_cross(u, p);
+        const bdl_vec3 u = bdl_rng_direction(rng), p = perpendicular(u), n = bdl_v3_cross(u, p);
         const double ha = bdl_rng_range(rng, 0.1, 1.0), hb = bdl_rng_range(rng, 0.1, 1.0);
         const bdl_vec3 ea = bdl_v3_scale(u, ha);
         const bdl_vec3 eb = bdl_v3_scale(bdl_v3_madd(u, p, tan(theta)), (k % 2 ? 1 : -1) * hb);
@@ -323,7 +313,7 @@ static void neighbour_bounds(bdl_rng *rng)
         const double skin = 0.1 * k * diameter, D = diameter + skin, H = shaft + D;
         long exact = 0, compound = 0, missed = 0, n = 2000000;
         for (long m = 0; m < n; ++m) {
-            const bdl_vec3 ua = random_unit(rng), ub = random_unit(rng);
+            const bdl_vec3 ua = bdl_rng_direction(rng), ub = bdl_rng_direction(rng);
             const bdl_vec3 d = {bdl_rng_range(rng, -H, H), bdl_rng_range(rng, -H, H),
                                 bdl_rng_range(rng, -H, H)};
             double s, t;

@@ -325,6 +325,43 @@ static void test_depth(void)
     check_depth_order(&ss, "intersecting spheres");
 }
 
+/// Draws snapshot s with and without occlusion culling, in perspective and parallel projection,
+/// lit and multisampled: the images agree to the byte, and fewer than `most` particles are drawn.
+static void check_culling(bdl_gl_backend backend, const bdl_snapshot *s, long most,
+                          const char *what)
+{
+    const long N = s->count;
+    char why[1024];
+    bdl_renderer *r = NULL;
+    bdl_renderer_def rd = {.scene = &scene, .headless = 1, .width = W, .height = H, .samples = 4};
+    CHECK_MSG(bdl_renderer_create(&rd, &r, why, sizeof why) == BDL_OK, "%s", why);
+    if (!r)
+        return;
+    static uint8_t culled[W * H * 3], full[W * H * 3];
+    for (int ortho = 0; ortho < 2; ++ortho) {
+        bdl_view v;
+        base_view(&v, ortho);
+        v.camera.yaw = 30.0f;
+        v.camera.pitch = 25.0f;
+        v.lighting = 1;
+        bdl_renderer_draw(r, s, &v, W, H);
+        long drawn = bdl_renderer_drawn(r);
+        bdl_renderer_read(r, culled);
+        v.no_culling = 1;
+        bdl_renderer_draw(r, s, &v, W, H);
+        bdl_renderer_read(r, full);
+        int differ = 0;
+        for (int k = 0; k < W * H * 3; ++k)
+            differ += culled[k] != full[k];
+        printf("%s culling%s (%s): %ld of %ld drawn, %d bytes differ\n",
+               bdl_gl_backend_name(backend), what, ortho ? "orthographic" : "perspective", drawn, N,
+               differ);
+        CHECK(drawn < most);
+        CHECK(differ == 0);
+    }
+    bdl_renderer_destroy(r);
+}
+
 /// Occlusion culling leaves out only spheres that show no pixel: a dense random bed drawn with
 /// and without it gives the same image, in perspective and parallel projection, with
 /// multisampling.
@@ -347,35 +384,7 @@ static void test_culling(bdl_gl_backend backend)
         radius[i] = 0.002f + 0.001f * (float)(i % 3);
         species[i] = i % 2;
     }
-    char why[1024];
-    bdl_renderer *r = NULL;
-    bdl_renderer_def rd = {.scene = &scene, .headless = 1, .width = W, .height = H, .samples = 4};
-    CHECK_MSG(bdl_renderer_create(&rd, &r, why, sizeof why) == BDL_OK, "%s", why);
-    if (!r)
-        return;
-    static uint8_t culled[W * H * 3], full[W * H * 3];
-    for (int ortho = 0; ortho < 2; ++ortho) {
-        bdl_view v;
-        base_view(&v, ortho);
-        v.camera.yaw = 30.0f;
-        v.camera.pitch = 25.0f;
-        v.lighting = 1;
-        bdl_renderer_draw(r, &s, &v, W, H);
-        long drawn = bdl_renderer_drawn(r);
-        bdl_renderer_read(r, culled);
-        v.no_culling = 1;
-        bdl_renderer_draw(r, &s, &v, W, H);
-        bdl_renderer_read(r, full);
-        int differ = 0;
-        for (int k = 0; k < W * H * 3; ++k)
-            differ += culled[k] != full[k];
-        printf("%s culling (%s): %ld of %d spheres drawn, %d bytes differ\n",
-               bdl_gl_backend_name(backend), ortho ? "orthographic" : "perspective", drawn, N,
-               differ);
-        CHECK(drawn < N / 2);
-        CHECK(differ == 0);
-    }
-    bdl_renderer_destroy(r);
+    check_culling(backend, &s, N / 2, "");
 }
 
 static void test_overlay_and_png(const char *tag)
@@ -881,35 +890,7 @@ static void test_capsule_culling(bdl_gl_backend backend)
         radius[i] = 0.0015f + 0.001f * (float)(i % 2);
         species[i] = i % 3;
     }
-    char why[1024];
-    bdl_renderer *r = NULL;
-    bdl_renderer_def rd = {.scene = &scene, .headless = 1, .width = W, .height = H, .samples = 4};
-    CHECK_MSG(bdl_renderer_create(&rd, &r, why, sizeof why) == BDL_OK, "%s", why);
-    if (!r)
-        return;
-    static uint8_t culled[W * H * 3], full[W * H * 3];
-    for (int ortho = 0; ortho < 2; ++ortho) {
-        bdl_view v;
-        base_view(&v, ortho);
-        v.camera.yaw = 30.0f;
-        v.camera.pitch = 25.0f;
-        v.lighting = 1;
-        bdl_renderer_draw(r, &s, &v, W, H);
-        long drawn = bdl_renderer_drawn(r);
-        bdl_renderer_read(r, culled);
-        v.no_culling = 1;
-        bdl_renderer_draw(r, &s, &v, W, H);
-        bdl_renderer_read(r, full);
-        int differ = 0;
-        for (int k = 0; k < W * H * 3; ++k)
-            differ += culled[k] != full[k];
-        printf("%s culling of rods (%s): %ld of %d drawn, %d bytes differ\n",
-               bdl_gl_backend_name(backend), ortho ? "orthographic" : "perspective", drawn, N,
-               differ);
-        CHECK(drawn < N);
-        CHECK(differ == 0);
-    }
-    bdl_renderer_destroy(r);
+    check_culling(backend, &s, N, " of rods");
 }
 
 /// The picture of docs/rendering.md's rods (docs/img/render_rods.png), written when

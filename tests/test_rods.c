@@ -35,7 +35,7 @@ static void place(bdl_world *w, double z, bdl_vec3 u, bdl_vec3 v)
     bdl_particles *p = &w->particles;
     p->pos[0] = bdl_v3(0.0, 0.0, z);
     p->vel[0] = v;
-    p->orient[0] = bdl_q_from_z(bdl_v3_normalize(u));
+    bdl_particle_set_orient(p, 0, bdl_q_from_z(bdl_v3_normalize(u)));
     p->ang_mom[0] = p->omega[0] = bdl_v3_zero();
     CHECK(bdl_neighbor_build(&w->neighbor, p, &w->walls, NULL) == BDL_OK);
     CHECK(bdl_world_compute_forces(w) == BDL_OK);

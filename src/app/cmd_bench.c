@@ -51,24 +51,25 @@ static const char bench_usage[] =
     "  --quiet           no settling progress\n";
 
 // The protocol (docs/performance.md, "The bed").
-#define BED_D           1e-3 ///< diameter [m]
-#define BED_PHI         0.6  ///< solids fraction assumed for the settled bed (sizes the box)
-#define BED_FILL_PHI    0.33 ///< solids fraction of the random fill
-#define BED_G           9.81 ///< [m/s^2]
-#define BED_COMPACT_G   5.0  ///< gravity while falling and compacting [g]
-#define BED_FALL_DAMP   50.0 ///< background damping while falling [1/s]
-#define BED_UNLOAD_DAMP 1000.0
-#define BED_HOLD_DAMP   200.0
-#define BED_SETTLE_DT   0.05 ///< time step while settling [contact times at 1 m/s]
-#define BED_RUN_DT      0.02 ///< time step of the timed steps [contact times at 1 m/s]
-#define BED_SETTLED_KE  3e-3 ///< fall ends when KE per particle < this * m g d (at 5 g)
-#define BED_FALL_MIN    1000
-#define BED_FALL_MAX    40000
-#define BED_UNLOAD      2000 ///< steps from 5 g to 1 g
-#define BED_HOLD1       1000 ///< steps at 1 g with BED_UNLOAD_DAMP
-#define BED_HOLD2       2000 ///< steps at 1 g with BED_HOLD_DAMP
-#define BED_RELAX       1000 ///< undamped steps at the timed time step
-#define BED_ROD_ASPECT  4.0  ///< --shape rod: length / diameter
+#define BED_D            1e-3 ///< diameter [m]
+#define BED_PHI          0.6  ///< solids fraction assumed for the settled bed (sizes the box)
+#define BED_FILL_PHI     0.33 ///< solids fraction of the random fill
+#define BED_G            9.81 ///< [m/s^2]
+#define BED_COMPACT_G    5.0  ///< gravity while falling and compacting [g]
+#define BED_FALL_DAMP    50.0 ///< background damping while falling [1/s]
+#define BED_UNLOAD_DAMP  1000.0
+#define BED_HOLD_DAMP    200.0
+#define BED_SETTLE_DT    0.05 ///< time step while settling [contact times at 1 m/s]
+#define BED_RUN_DT       0.02 ///< time step of the timed steps [contact times at 1 m/s]
+#define BED_SETTLED_KE   3e-3 ///< fall ends when KE per particle < this * m g d (at 5 g)
+#define BED_FALL_MIN     1000
+#define BED_FALL_MAX     40000
+#define BED_UNLOAD       2000 ///< steps from 5 g to 1 g
+#define BED_HOLD1        1000 ///< steps at 1 g with BED_UNLOAD_DAMP
+#define BED_HOLD2        2000 ///< steps at 1 g with BED_HOLD_DAMP
+#define BED_RELAX        1000 ///< undamped steps at the timed time step
+#define BED_ROD_ASPECT   4.0  ///< --shape rod: length / diameter
+#define BED_ROD_FILL_PHI 0.2  ///< --shape rod: solids fraction of the random fill (rods jam sooner)
 
 typedef struct bench_opts {
     long particles;
@@ -188,8 +189,9 @@ static void bed_scene(long n, const bench_opts *o, char *text, size_t len, doubl
     *side = sqrt(solid / BED_PHI / (o->height * d));
     // The fill region's height gives the fill solids fraction in the volume the centres can
     // reach (the region less a radius at each side), which matters for small beds.
+    const double fill_phi = o->rods ? BED_ROD_FILL_PHI : BED_FILL_PHI;
     const double fill =
-        o->height * d * BED_PHI / BED_FILL_PHI * (*side * *side) / ((*side - d) * (*side - d)) + d;
+        o->height * d * BED_PHI / fill_phi * (*side * *side) / ((*side - d) * (*side - d)) + d;
     char skin[64] = "", shape[64] = "";
     if (o->skin > 0.0)
         snprintf(skin, sizeof skin, "skin = %.17g\n", o->skin);
@@ -226,9 +228,12 @@ static bdl_result bed_world(const char *text, bdl_world **w)
 }
 
 /// Loads the settled bed from the --bed-dir checkpoint when there is one, else settles it and
-/// keeps it there. mgd: m g d summed over the particles.
-static bdl_result settle_or_load(bdl_world *w, long n, const bench_opts *o, double tc, double mgd)
+/// keeps it there. A failed load leaves the world's state undefined, so the world is built again
+/// from the scene `text` before it settles. mgd: m g d summed over the particles.
+static bdl_result settle_or_load(bdl_world **wp, const char *text, long n, const bench_opts *o,
+                                 double tc, double mgd)
 {
+    bdl_world *w = *wp;
     char cached[1024] = "", why[256];
     if (o->bed_dir)
         snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g%s.chk", o->bed_dir, n, o->height,
@@ -238,8 +243,17 @@ static bdl_result settle_or_load(bdl_world *w, long n, const bench_opts *o, doub
     if (exists) {
         fclose(exists);
         loaded = bdl_checkpoint_load(w, cached, why, sizeof why) == BDL_OK;
-        if (!loaded)
+        if (!loaded) {
             fprintf(stderr, "bench: settling again: %s\n", why);
+            bdl_world_destroy(w);
+            *wp = w = NULL;
+            const bdl_result r = bed_world(text, wp);
+            if (r != BDL_OK)
+                return r == BDL_ERR_SCENE ? BDL_ERR_NOMEM : r;
+            w = *wp;
+            w->contact_time = tc;
+            w->dt = BED_SETTLE_DT * tc;
+        }
     }
     if (loaded) {
         w->scene.gravity = bdl_v3(0.0, 0.0, -BED_G);
@@ -294,7 +308,7 @@ static bdl_result make_bed(long n, const bench_opts *o, bed_info *info, bdl_worl
     w->dt = BED_SETTLE_DT * tc;
     const double m = 1.0 / w->particles.inv_mass[0];
     const double mgd = m * BED_G * BED_D * (double)w->particles.count;
-    if ((r = settle_or_load(w, n, o, tc, mgd)) != BDL_OK) {
+    if ((r = settle_or_load(&w, text, n, o, tc, mgd)) != BDL_OK) {
         bdl_world_destroy(w);
         return r;
     }

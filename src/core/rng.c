@@ -58,3 +58,12 @@ uint64_t bdl_hash_bytes(uint64_t h, const void *data, unsigned long n)
     }
     return h;
 }
+
+bdl_vec3 bdl_rng_direction(bdl_rng *rng)
+{
+    bdl_vec3 u;
+    u.x = bdl_rng_normal(rng); // one draw per statement: argument order is unspecified in C
+    u.y = bdl_rng_normal(rng);
+    u.z = bdl_rng_normal(rng);
+    return bdl_v3_normalize(u);
+}

@@ -7,6 +7,8 @@
 
 #include <stdint.h>
 
+#include "core/vec3.h"
+
 typedef struct bdl_rng {
     uint64_t s[4];
 } bdl_rng;
@@ -19,6 +21,8 @@ double bdl_rng_uniform(bdl_rng *rng);
 double bdl_rng_range(bdl_rng *rng, double lo, double hi);
 /// Standard normal (Box–Muller, no cached second value so the state stays a plain array).
 double bdl_rng_normal(bdl_rng *rng);
+/// A unit vector uniform over directions (three normal deviates, normalised).
+bdl_vec3 bdl_rng_direction(bdl_rng *rng);
 
 /// 64-bit FNV-1a over bytes, for state hashes.
 uint64_t bdl_hash_bytes(uint64_t h, const void *data, unsigned long n);

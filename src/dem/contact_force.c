@@ -879,30 +879,37 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
     }
 }
 
-bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                          const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
-                          double kick)
+bdl_result bdl_force_run(const bdl_force_pass *pass, bdl_particles *p, bdl_neighbor *nb,
+                         const bdl_walls *walls, const bdl_force_def *def, bdl_force_work *fw,
+                         uint8_t *coordination, double kick)
 {
-    long n = p->count;
-    int threads = n >= def->parallel_min ? omp_get_max_threads() : 1;
+    int threads = p->count >= def->parallel_min ? omp_get_max_threads() : 1;
     bdl_result r = bdl_force_partition(fw, nb, p, threads);
     if (r != BDL_OK)
         return r;
     threads = fw->threads;
     if (threads == 1) {
-        force_range(p, nb, walls, def, fw, coordination, kick, 0);
+        pass->range(p, nb, walls, def, fw, coordination, kick, 0);
         return BDL_OK;
     }
 #pragma omp parallel num_threads(threads)
     {
-        int t = omp_get_thread_num();
+        const int t = omp_get_thread_num();
         // Phase 1: this range's boundary pairs, stored for the owners of their j.
-        boundary_pairs(p, nb, def, fw, t);
+        pass->boundary(p, nb, def, fw, t);
 #pragma omp barrier
         // Phase 2: everything else, in index order.
-        force_range(p, nb, walls, def, fw, coordination, kick, t);
+        pass->range(p, nb, walls, def, fw, coordination, kick, t);
     }
     return BDL_OK;
+}
+
+bdl_result bdl_dem_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
+                          const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
+                          double kick)
+{
+    static const bdl_force_pass spheres = {boundary_pairs, force_range};
+    return bdl_force_run(&spheres, p, nb, walls, def, fw, coordination, kick);
 }
 
 void bdl_force_work_free(bdl_force_work *fw)

@@ -65,6 +65,22 @@ bdl_result bdl_force_partition(bdl_force_work *fw, const bdl_neighbor *nb, const
                                int threads);
 long bdl_force_work_bytes(const bdl_force_work *fw);
 
+/// The two halves of a force pass on thread t's range: the boundary pairs, stored for the owners
+/// of their second particle, then everything else in index order.
+typedef struct bdl_force_pass {
+    void (*boundary)(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def,
+                     bdl_force_work *fw, int t);
+    void (*range)(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
+                  const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination, double kick,
+                  int t);
+} bdl_force_pass;
+
+/// Partitions the particles and runs `pass` on every thread (one thread below
+/// def->parallel_min particles): the driver both force passes share.
+bdl_result bdl_force_run(const bdl_force_pass *pass, bdl_particles *p, bdl_neighbor *nb,
+                         const bdl_walls *walls, const bdl_force_def *def, bdl_force_work *fw,
+                         uint8_t *coordination, double kick);
+
 /// Evaluates all contacts in one pass over the particles: pair forces (each pair once), wall
 /// contacts and background damping (gravity is applied in the kicks), counts particle contacts
 /// into `coordination`, and with kick h > 0 applies the closing half kick v += h (F/m + g),

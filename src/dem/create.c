@@ -168,11 +168,7 @@ static void orient(body *b, const bdl_species_def *s, bdl_rng *rng)
 {
     if (s->shape != BDL_SHAPE_ROD)
         return;
-    bdl_vec3 u;
-    u.x = bdl_rng_normal(rng); // one draw per statement: argument order is unspecified in C
-    u.y = bdl_rng_normal(rng);
-    u.z = bdl_rng_normal(rng);
-    u = bdl_v3_normalize(u);
+    const bdl_vec3 u = bdl_rng_direction(rng);
     b->half_length = 0.5 * s->length - b->r;
     b->q = bdl_q_from_z(u);
     b->e = bdl_v3_scale(u, b->half_length);

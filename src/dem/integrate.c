@@ -56,11 +56,10 @@ static double kick_drift_rod(bdl_particles *p, long i, bdl_vec3 gravity, double 
     const bdl_wrench load = p->load[i];
     bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], gravity, h), load.force, h * p->inv_mass[i]);
     const bdl_vec3 L = bdl_v3_madd(p->ang_mom[i], load.torque, h);
-    const bdl_quat q = bdl_rigid_rotate(p->orient[i], L, p->inv_inertia[i], dt);
     p->vel[i] = v;
     p->ang_mom[i] = L;
-    p->orient[i] = q;
-    p->omega[i] = bdl_rigid_omega(q, L, p->inv_inertia[i]);
+    bdl_particle_set_orient(p, i, bdl_rigid_rotate(p->orient[i], L, p->inv_inertia[i], dt));
+    p->omega[i] = bdl_particle_omega(p, i, L);
     p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()}; // for the force pass
     p->pos[i] = bdl_v3_madd(p->pos[i], v, dt);
     return bdl_particle_move2(p, i);

@@ -37,6 +37,7 @@ static const particle_array arrays[] = {
     ARRAY(vel_mark,     WITH_GAS),
     ARRAY(drag_accel,   WITH_GAS),
     ARRAY(orient,        WITH_RODS),
+    ARRAY(axis,          WITH_RODS),
     ARRAY(ang_mom,       WITH_RODS),
     ARRAY(inv_inertia,   WITH_RODS),
     ARRAY(half_length,   WITH_RODS),
@@ -105,7 +106,7 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
     double mass = density * (4.0 / 3.0) * 3.14159265358979323846 * radius * radius * radius;
     if (p->rods) { // a sphere among rods: a rod without a shaft
         const double inv = 2.5 / (mass * radius * radius);
-        p->orient[i] = bdl_q_identity();
+        bdl_particle_set_orient(p, i, bdl_q_identity());
         p->inv_inertia[i] = bdl_v3(inv, inv, inv);
     }
     p->pos[i] = pos;
@@ -129,7 +130,7 @@ long bdl_particles_add_rod(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double 
     double mass, axial, transverse;
     bdl_rod_mass_properties(radius, 2.0 * half_length, density, &mass, &axial, &transverse);
     p->inv_mass[i] = 1.0 / mass;
-    p->orient[i] = orient;
+    bdl_particle_set_orient(p, i, orient);
     p->half_length[i] = half_length;
     p->inv_inertia[i] = bdl_v3(1.0 / transverse, 1.0 / transverse, 1.0 / axial);
     p->axis_at_build[i] = bdl_particle_half_axis(p, i);

@@ -47,9 +47,11 @@ typedef struct bdl_particles {
     bdl_vec3 *drag_accel;  ///< the drag's part of fluid_accel [m/s^2]
     // With rods only (NULL otherwise; set `rods` before the first reserve). A rod is a
     // spherocylinder: a shaft of 2 half_length along its body z axis with caps of `radius`; in a
-    // scene with rods a sphere is a rod of half_length 0.
+    // scene with rods a sphere is a rod of half_length 0. Every body is axisymmetric about its
+    // body z axis (inv_inertia x = y), which the inline helpers below use.
     int rods;                ///< keep the arrays below
-    bdl_quat *orient;        ///< orientation: body frame to world frame
+    bdl_quat *orient;        ///< orientation: body frame to world frame (set with set_orient)
+    bdl_vec3 *axis;          ///< body z in the world frame, the axis of orient (kept with it)
     bdl_vec3 *ang_mom;       ///< angular momentum in the world frame [kg m^2/s]
     bdl_vec3 *inv_inertia;   ///< principal moments of inertia (body x, y, z), inverted [1/(kg m^2)]
     double *half_length;     ///< half the shaft length [m]
@@ -68,10 +70,34 @@ long bdl_particles_add(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radi
 long bdl_particles_add_rod(bdl_particles *p, bdl_vec3 pos, bdl_vec3 vel, double radius,
                            double half_length, bdl_quat orient, double density, int species);
 
+/// Sets the orientation of rod-scene particle i, and its axis with it.
+static inline void bdl_particle_set_orient(bdl_particles *p, long i, bdl_quat q)
+{
+    p->orient[i] = q;
+    p->axis[i] = bdl_q_axis_z(q);
+}
+
 /// Half the shaft of particle i as a vector: half_length times its axis; zero for spheres [m].
 static inline bdl_vec3 bdl_particle_half_axis(const bdl_particles *p, long i)
 {
-    return p->rods ? bdl_v3_scale(bdl_q_axis_z(p->orient[i]), p->half_length[i]) : bdl_v3_zero();
+    return p->rods ? bdl_v3_scale(p->axis[i], p->half_length[i]) : bdl_v3_zero();
+}
+
+/// e . I^-1 e for rod-scene particle i, e a unit vector in the world frame: the inverse moment of
+/// inertia about e, 1/I_t + (1/I_a - 1/I_t)(e . u)^2 for an axisymmetric body of axis u.
+static inline double bdl_particle_inv_inertia_along(const bdl_particles *p, long i, bdl_vec3 e)
+{
+    const bdl_vec3 inv = p->inv_inertia[i];
+    const double c = bdl_v3_dot(e, p->axis[i]);
+    return inv.x + (inv.z - inv.x) * c * c;
+}
+
+/// The angular velocity of rod-scene particle i with angular momentum L (world frame):
+/// I^-1 L = L / I_t + (1/I_a - 1/I_t)(L . u) u.
+static inline bdl_vec3 bdl_particle_omega(const bdl_particles *p, long i, bdl_vec3 L)
+{
+    const bdl_vec3 inv = p->inv_inertia[i], u = p->axis[i];
+    return bdl_v3_madd(bdl_v3_scale(L, inv.x), u, (inv.z - inv.x) * bdl_v3_dot(L, u));
 }
 
 /// The larger squared displacement of particle i's two tips since the lists were built (of its

@@ -24,7 +24,6 @@
 // radius of a sphere.
 #include "dem/rod_force.h"
 
-#include <omp.h>
 #include <string.h>
 
 #include "dem/capsule.h"
@@ -53,12 +52,10 @@ int bdl_rod_contact_of(const bdl_particles *p, const bdl_neighbor *nb, long i, l
 
 double bdl_rod_inv_mass_at(const bdl_particles *p, long i, bdl_vec3 arm, bdl_vec3 n)
 {
-    const bdl_vec3 axn = bdl_v3_cross(arm, n);
-    const double l2 = bdl_v3_len2(axn);
-    if (!(l2 > 0.0))
-        return p->inv_mass[i];
-    return p->inv_mass[i] + l2 * bdl_rigid_inv_inertia_along(p->orient[i], p->inv_inertia[i],
-                                                             bdl_v3_scale(axn, 1.0 / sqrt(l2)));
+    // (a x n).I^-1 (a x n) of an axisymmetric body: |w|^2 / I_t + (1/I_a - 1/I_t)(w . u)^2.
+    const bdl_vec3 w = bdl_v3_cross(arm, n), inv = p->inv_inertia[i];
+    const double c = bdl_v3_dot(w, p->axis[i]);
+    return p->inv_mass[i] + inv.x * bdl_v3_len2(w) + (inv.z - inv.x) * c * c;
 }
 
 int bdl_rod_wall_contact_of(const bdl_particles *p, const bdl_walls *walls, long i, int prim,
@@ -97,9 +94,9 @@ static bdl_vec3 rolling(const bdl_particles *p, long a, long b, const bdl_contac
     if (!(spin > 0.0))
         return bdl_v3_zero();
     const bdl_vec3 e = bdl_v3_scale(w_rel, 1.0 / spin);
-    double inv = bdl_rigid_inv_inertia_along(p->orient[a], p->inv_inertia[a], e);
+    double inv = bdl_particle_inv_inertia_along(p, a, e);
     if (b >= 0)
-        inv += bdl_rigid_inv_inertia_along(p->orient[b], p->inv_inertia[b], e);
+        inv += bdl_particle_inv_inertia_along(p, b, e);
     return bdl_rolling_torque(cp, normal, lever, w_rel, inv, dt);
 }
 
@@ -198,7 +195,7 @@ static void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls 
         p->vel[i] =
             bdl_v3_madd(bdl_v3_madd(p->vel[i], def->gravity, kick), f, kick * p->inv_mass[i]);
         p->ang_mom[i] = bdl_v3_madd(p->ang_mom[i], t, kick);
-        p->omega[i] = bdl_rigid_omega(p->orient[i], p->ang_mom[i], p->inv_inertia[i]);
+        p->omega[i] = bdl_particle_omega(p, i, p->ang_mom[i]);
     }
 }
 
@@ -259,21 +256,6 @@ bdl_result bdl_rod_forces(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
                           const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
                           double kick)
 {
-    int threads = p->count >= def->parallel_min ? omp_get_max_threads() : 1;
-    bdl_result r = bdl_force_partition(fw, nb, p, threads);
-    if (r != BDL_OK)
-        return r;
-    threads = fw->threads;
-    if (threads == 1) {
-        force_range(p, nb, walls, def, fw, coordination, kick, 0);
-        return BDL_OK;
-    }
-#pragma omp parallel num_threads(threads)
-    {
-        const int t = omp_get_thread_num();
-        boundary_pairs(p, nb, def, fw, t);
-#pragma omp barrier
-        force_range(p, nb, walls, def, fw, coordination, kick, t);
-    }
-    return BDL_OK;
+    static const bdl_force_pass rods = {boundary_pairs, force_range};
+    return bdl_force_run(&rods, p, nb, walls, def, fw, coordination, kick);
 }

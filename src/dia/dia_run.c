@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -254,22 +255,22 @@ static bdl_result shoot(camera_state *c, const bdl_particle_view *v, const char 
             axis[i] = bdl_q_axis_z(v->orient[i]);
         s.axis = axis, s.half_length = v->half_length;
     }
+    const bool second = part[0] != '\0' && part[1] == 'b'; // the "_b" image of a pair
     bdl_dia_image im;
-    bdl_result r = bdl_dia_render(&c->camera, &s, c->frame * 2 + (part[1] == 'b'), &im);
+    bdl_result r = bdl_dia_render(&c->camera, &s, c->frame * 2 + second, &im);
     if (r != BDL_OK) {
         free(axis);
         return r;
     }
     long *visible = malloc((size_t)(v->count > 0 ? v->count : 1) * sizeof(long));
     const int ncells = c->truth.cells[0] * c->truth.cells[1];
-    bdl_dia_cell_truth *cells =
-        part[1] == 'b' ? NULL : malloc((size_t)ncells * sizeof(bdl_dia_cell_truth));
+    bdl_dia_cell_truth *cells = second ? NULL : malloc((size_t)ncells * sizeof(bdl_dia_cell_truth));
     char stem[1000], image[1100], parts[1100], cellp[1100];
     snprintf(stem, sizeof stem, "%s/frame_%06ld", c->dir, c->frame);
     snprintf(image, sizeof image, "%s%s.png", stem, part);
     snprintf(parts, sizeof parts, "%s%s_particles.csv", stem, part);
     snprintf(cellp, sizeof cellp, "%s_cells.csv", stem);
-    if (!visible || (part[1] != 'b' && !cells))
+    if (!visible || (!second && !cells))
         r = BDL_ERR_NOMEM;
     if (r == BDL_OK)
         r = bdl_dia_truth(&c->camera, &s, &im, &c->truth, cells, visible);

@@ -9,7 +9,7 @@
 
 // Version 2: the gas state and the inlet scale among the live parameters. 3: particles that left
 // through an outlet. 4: force and torque side by side in one record per particle.
-static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '4'};
+static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '5'};
 
 /// Fingerprint of the scene quantities a checkpoint depends on (species, walls, law, counts).
 static uint64_t scene_fingerprint(const bdl_scene *s)

@@ -14,7 +14,8 @@
 bdl_result bdl_checkpoint_save(const bdl_world *w, const char *path);
 
 /// Replaces the state of `w` (built from the same scene) by the checkpoint's. On a mismatch or a
-/// damaged file returns BDL_ERR_CHECKPOINT with a sentence in `why`.
+/// damaged file returns BDL_ERR_CHECKPOINT with a sentence in `why`; when it fails after the
+/// header (a truncated or damaged file) the state of `w` is undefined and `w` must be destroyed.
 bdl_result bdl_checkpoint_load(bdl_world *w, const char *path, char *why, size_t why_len);
 
 #endif

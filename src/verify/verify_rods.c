@@ -75,12 +75,12 @@ bdl_result bdl_verify_rod_bed_run(double dt_fraction, bdl_verify_rod_bed *out)
     if (!w)
         return BDL_ERR_SCENE;
     // Fall for 0.4 s (the top rods land after 0.3 s), then settle until the kinetic energy has
-    // died down to 1e-4 m g d per rod, checked every 0.02 s, for at most 3 s in all.
+    // died down to 1e-6 m g d per rod, checked every 0.02 s, for at most 3 s in all.
     bdl_result r = BDL_OK;
     const long check = (long)ceil(0.02 / w->dt), most = (long)ceil(3.0 / w->dt);
     for (long s = 0; r == BDL_OK && s < most; ++s) {
         r = bdl_world_step(w);
-        if (w->time > 0.4 && w->step % check == 0 && kinetic_per_mgd(w) < 1e-4)
+        if (w->time > 0.4 && w->step % check == 0 && kinetic_per_mgd(w) < 1e-6)
             break;
     }
     out->steps = w->step;
