@@ -12,6 +12,9 @@
 // |e_a| + |e_b| when the distance is smaller than those: rounding in forming d + s e_a - t e_b
 // (terms of the size of the segments) already puts the distance of the given numbers there.
 //
+// Both forms are checked: bdl_segments_closest (half axes, s and t in [-1, 1]) and the
+// bdl_shafts_closest it calls (unit axes and half lengths), which the force pass calls directly.
+//
 // Last, the neighbour bounds: the excluded volume of two rods with the exact distance against
 // Onsager's formula, and the thesis's three-sphere compound against it.
 #include <math.h>
@@ -76,7 +79,14 @@ static double check_case(stats *st, bdl_vec3 d, bdl_vec3 ea, bdl_vec3 eb, double
     const double got2 = bdl_segments_closest(d, ea, eb, &s, &t);
     const double ref = sqrt(brute_force(d, ea, eb)), got = sqrt(got2);
     const double scale = fmax(ref, bdl_v3_len(ea) + bdl_v3_len(eb));
-    const double err = scale > 0.0 ? fabs(got - ref) / scale : fabs(got - ref);
+    // The unit-axis form the force pass calls, directly: its own returned distance.
+    const double ha = bdl_v3_len(ea), hb = bdl_v3_len(eb);
+    const bdl_vec3 ua = ha > 0.0 ? bdl_v3_scale(ea, 1.0 / ha) : bdl_v3(1, 0, 0);
+    const bdl_vec3 ub = hb > 0.0 ? bdl_v3_scale(eb, 1.0 / hb) : bdl_v3(0, 1, 0);
+    double l = 0.0, m = 0.0;
+    const double got_unit = sqrt(bdl_shafts_closest(d, ua, ha, ub, hb, &l, &m));
+    CHECK(fabs(l) <= ha && fabs(m) <= hb);
+    const double err = fmax(fabs(got - ref), fabs(got_unit - ref)) / (scale > 0.0 ? scale : 1.0);
     const double realised = bdl_v3_len(bdl_v3_sub(bdl_v3_madd(d, ea, s), bdl_v3_scale(eb, t)));
     const double err_realise = scale > 0.0 ? fabs(realised - got) / scale : fabs(realised - got);
     ++st->count;

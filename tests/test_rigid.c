@@ -237,33 +237,58 @@ static void test_free_order(void)
     }
 }
 
-/// The free symmetric top (I_t = 2, I_3 = 1, 10^4 steps of 0.37, any step is exact): the axis
-/// precesses about L at |L| / I_t and the body spins about its axis at (1/I_3 - 1/I_t) pi_3, so
-/// q(t) = rot(L, |L| t / I_t) q0 rot(z, (1/I_3 - 1/I_t) pi_3 t).
-static void test_symmetric_exact(void)
+/// The free symmetric top (I_t = 2, I_3 = 1, any step is exact): the axis precesses about L at
+/// |L| / I_t and the body spins about its axis at (1/I_3 - 1/I_t) pi_3, so
+/// q(t) = rot(L, |L| t / I_t) q0 rot(z, (1/I_3 - 1/I_t) pi_3 t). Both rotations: the general one
+/// (axisymmetric = 0) and the rods' (1), with n steps of dt; the rods' takes the series of its
+/// half angles when they are below 1e-3 rad (dt = 1e-3 here) and the library's sine above.
+static void test_symmetric_exact(int axisymmetric, double dt, long n)
 {
     const bdl_vec3 inv = {0.5, 0.5, 1.0};
     const bdl_quat q0 = bdl_q_axis_angle(bdl_v3(1, 0, 0), 0.7);
     const bdl_vec3 L = {0.0, 0.0, 1.3}; // along world z: the axis's azimuth is the precession
-    const double dt = 0.37, pi3 = bdl_q_unrotate(q0, L).z;
-    const long n = 10000;
+    const double pi3 = bdl_q_unrotate(q0, L).z;
     bdl_quat q = q0;
     double precession = 0.0, azimuth = atan2(bdl_q_axis_z(q).y, bdl_q_axis_z(q).x);
     for (long k = 0; k < n; ++k) {
-        q = bdl_rigid_rotate(q, L, inv, dt);
+        q = axisymmetric ? bdl_rigid_rotate_axisymmetric(q, bdl_q_axis_z(q), L, inv.x, inv.z, dt)
+                         : bdl_rigid_rotate(q, L, inv, dt);
         const bdl_vec3 axis = bdl_q_axis_z(q);
         const double a = atan2(axis.y, axis.x);
-        precession += remainder(a - azimuth, 2.0 * BDL_PI); // unwrapped: each step turns 0.24 rad
+        precession += remainder(a - azimuth, 2.0 * BDL_PI); // unwrapped
         azimuth = a;
     }
     const double t = n * dt, expected = bdl_v3_len(L) * inv.x * t;
     const bdl_quat exact = bdl_q_mul(bdl_q_mul(bdl_q_axis_angle(bdl_v3(0, 0, 1), expected), q0),
                                      bdl_q_axis_angle(bdl_v3(0, 0, 1), (inv.z - inv.x) * pi3 * t));
-    printf("\nfree symmetric top, 1e4 steps of 0.37: precession %.15g rad, |L| t / I_t %.15g "
+    printf("\nfree symmetric top (%s), %ld steps of %g: precession %.15g rad, |L| t / I_t %.15g "
            "(rel. error %.1e); orientation error %.1e rad\n",
-           precession, expected, precession / expected - 1.0, angle_between(q, exact));
+           axisymmetric ? "rods' rotation" : "general rotation", n, dt, precession, expected,
+           precession / expected - 1.0, angle_between(q, exact));
     CHECK_CLOSE(precession, expected, 1e-12);
     CHECK(angle_between(q, exact) < 1e-12 * expected);
+}
+
+/// The rods' rotation against the general one, one step each, for random orientations, momenta
+/// and axisymmetric bodies (prolate and oblate), with steps that turn the body by 1e-9 to 1 rad
+/// (both sides of the series' edge): the same rotation to rounding.
+static void test_axisymmetric_rotation(bdl_rng *rng)
+{
+    double worst = 0.0;
+    for (int k = 0; k < 100000; ++k) {
+        const bdl_quat q = random_orientation(rng);
+        const double inv_t = bdl_rng_range(rng, 0.2, 5.0), inv_a = bdl_rng_range(rng, 0.2, 5.0);
+        const bdl_vec3 L = bdl_v3_scale(bdl_rng_direction(rng), bdl_rng_range(rng, 0.1, 2.0));
+        const double turn = pow(10.0, bdl_rng_range(rng, -9.0, 0.0));
+        const double dt = turn / (bdl_v3_len(L) * fmax(inv_t, inv_a));
+        const bdl_quat a = bdl_rigid_rotate_axisymmetric(q, bdl_q_axis_z(q), L, inv_t, inv_a, dt);
+        const bdl_quat b = bdl_rigid_rotate(q, L, bdl_v3(inv_t, inv_t, inv_a), dt);
+        worst = fmax(worst, angle_between(a, b));
+    }
+    printf("\nrods' rotation against the general one, 1e5 random steps turning 1e-9..1 rad: "
+           "largest difference %.1e rad\n",
+           worst);
+    CHECK(worst < 1e-14);
 }
 
 typedef struct spin_record {
@@ -508,7 +533,10 @@ int main(void)
     test_mass_properties(&rng);
     test_free_top();
     test_free_order();
-    test_symmetric_exact();
+    test_symmetric_exact(0, 0.37, 10000);
+    test_symmetric_exact(1, 0.37, 10000);
+    test_symmetric_exact(1, 1e-3, 100000);
+    test_axisymmetric_rotation(&rng);
     test_tennis_racket();
     test_constant_torque(&rng);
     test_heavy_top();

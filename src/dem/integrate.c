@@ -58,7 +58,9 @@ static double kick_drift_rod(bdl_particles *p, long i, bdl_vec3 gravity, double 
     const bdl_vec3 L = bdl_v3_madd(p->ang_mom[i], load.torque, h);
     p->vel[i] = v;
     p->ang_mom[i] = L;
-    bdl_particle_set_orient(p, i, bdl_rigid_rotate(p->orient[i], L, p->inv_inertia[i], dt));
+    const bdl_vec3 inv = p->inv_inertia[i];
+    bdl_particle_set_orient(
+        p, i, bdl_rigid_rotate_axisymmetric(p->orient[i], p->axis[i], L, inv.x, inv.z, dt));
     p->omega[i] = bdl_particle_omega(p, i, L);
     p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()}; // for the force pass
     p->pos[i] = bdl_v3_madd(p->pos[i], v, dt);

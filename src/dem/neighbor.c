@@ -141,9 +141,9 @@ static inline int listed(const bdl_neighbor *nb, const bdl_particles *p, long i,
     const double reach = cut + p->half_length[i] + p->half_length[j];
     if (!(bdl_v3_len2(d) < reach * reach))
         return 0;
-    double s, t;
-    const double d2 =
-        bdl_segments_closest(d, bdl_particle_half_axis(p, i), bdl_particle_half_axis(p, j), &s, &t);
+    double l, m;
+    const double d2 = bdl_shafts_closest(d, p->axis[i], p->half_length[i], p->axis[j],
+                                         p->half_length[j], &l, &m);
     return d2 < cut * cut;
 }
 

@@ -56,3 +56,33 @@ bdl_quat bdl_rigid_rotate(bdl_quat q, bdl_vec3 L, bdl_vec3 inv_inertia, double d
         q = flow_body_axis(q, L, axis[0], outer, 0.5 * dt);
     return bdl_q_normalize(q);
 }
+
+/// cos and sin of the half angle a / 2: the series 1 - h^2/2 + h^4/24 - h^6/720 and
+/// h - h^3/6 + h^5/120 below |h| = 1e-3 (the next terms, h^8/40320 and h^7/5040, are below 1e-24,
+/// under the rounding of 1 and of h), the library's cos and sin above.
+static void half_angle(double a, double *c, double *s)
+{
+    const double h = 0.5 * a, h2 = h * h;
+    if (fabs(h) < 1e-3) {
+        *c = 1.0 - h2 * (0.5 - h2 * (1.0 / 24.0 - h2 * (1.0 / 720.0)));
+        *s = h * (1.0 - h2 * (1.0 / 6.0 - h2 * (1.0 / 120.0)));
+    } else {
+        *c = cos(h);
+        *s = sin(h);
+    }
+}
+
+bdl_quat bdl_rigid_rotate_axisymmetric(bdl_quat q, bdl_vec3 u, bdl_vec3 L, double inv_t,
+                                       double inv_a, double dt)
+{
+    double c, s;
+    const double l = bdl_v3_len(L);
+    if (l > 0.0) { // about L, in the world frame
+        half_angle(inv_t * l * dt, &c, &s);
+        const double k = s / l;
+        q = bdl_q_mul((bdl_quat){c, L.x * k, L.y * k, L.z * k}, q);
+    }
+    half_angle((inv_a - inv_t) * bdl_v3_dot(L, u) * dt, &c, &s); // about the body axis
+    q = bdl_q_mul(q, (bdl_quat){c, 0.0, 0.0, s});
+    return bdl_q_normalize(q);
+}

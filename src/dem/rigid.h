@@ -58,4 +58,12 @@ static inline double bdl_rigid_inv_inertia_along(bdl_quat q, bdl_vec3 inv_inerti
 /// moments, about any of the body axes). Returns a unit quaternion.
 bdl_quat bdl_rigid_rotate(bdl_quat q, bdl_vec3 L, bdl_vec3 inv_inertia, double dt);
 
+/// bdl_rigid_rotate for a body symmetric about its body z axis (inverse moments inv_t about body
+/// x and y, inv_a about z) whose axis in the world frame is u: the same rotation in the order the
+/// solver's rods want it, with one turn about L by inv_t |L| dt and one about the body axis by
+/// (inv_a - inv_t)(L.u) dt (L.u does not change under either), and the sines and cosines of the
+/// small half angles of a time step by their series (exact to rounding below 2e-3 rad).
+bdl_quat bdl_rigid_rotate_axisymmetric(bdl_quat q, bdl_vec3 u, bdl_vec3 L, double inv_t,
+                                       double inv_a, double dt);
+
 #endif

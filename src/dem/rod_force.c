@@ -32,22 +32,44 @@
 
 typedef bdl_rod_contact rod_contact;
 
+/// The closest points of the shafts of a listed pair: the separation d of the centres (j's image
+/// nearest to i), the places l, m along the shafts and the squared distance.
+typedef struct shaft_pair {
+    bdl_vec3 d;
+    double l, m, d2;
+} shaft_pair;
+
+static inline shaft_pair shafts_of(const bdl_particles *p, const bdl_neighbor *nb, long i, long j)
+{
+    shaft_pair s;
+    s.d = bdl_neighbor_delta(nb, p->pos[i], p->pos[j]);
+    s.d2 = bdl_shafts_closest(s.d, p->axis[i], p->half_length[i], p->axis[j], p->half_length[j],
+                              &s.l, &s.m);
+    return s;
+}
+
+/// The contact of the pair (i, j) from its closest points; 0 when they do not touch.
+static inline int contact_from(const bdl_particles *p, long i, long j, const shaft_pair *s,
+                               bdl_rod_contact *c)
+{
+    const double cut = p->radius[i] + p->radius[j];
+    if (!(s->d2 < cut * cut) || s->d2 == 0.0)
+        return 0;
+    const bdl_vec3 ui = p->axis[i], uj = p->axis[j];
+    const double dist = sqrt(s->d2);
+    const bdl_vec3 w = bdl_v3_sub(bdl_v3_madd(s->d, ui, s->l), bdl_v3_scale(uj, s->m));
+    c->n = bdl_v3_scale(w, 1.0 / dist);
+    c->overlap = cut - dist;
+    c->arm_i = bdl_v3_madd(bdl_v3_scale(ui, s->l), c->n, -(p->radius[i] - 0.5 * c->overlap));
+    c->arm_j = bdl_v3_madd(bdl_v3_scale(uj, s->m), c->n, p->radius[j] - 0.5 * c->overlap);
+    return 1;
+}
+
 int bdl_rod_contact_of(const bdl_particles *p, const bdl_neighbor *nb, long i, long j,
                        bdl_rod_contact *c)
 {
-    const bdl_vec3 ei = bdl_particle_half_axis(p, i), ej = bdl_particle_half_axis(p, j);
-    const bdl_vec3 d = bdl_neighbor_delta(nb, p->pos[i], p->pos[j]);
-    double s, t;
-    const double d2 = bdl_segments_closest(d, ei, ej, &s, &t), cut = p->radius[i] + p->radius[j];
-    if (!(d2 < cut * cut) || d2 == 0.0)
-        return 0;
-    const double dist = sqrt(d2);
-    const bdl_vec3 w = bdl_v3_sub(bdl_v3_madd(d, ei, s), bdl_v3_scale(ej, t));
-    c->n = bdl_v3_scale(w, 1.0 / dist);
-    c->overlap = cut - dist;
-    c->arm_i = bdl_v3_madd(bdl_v3_scale(ei, s), c->n, -(p->radius[i] - 0.5 * c->overlap));
-    c->arm_j = bdl_v3_madd(bdl_v3_scale(ej, t), c->n, p->radius[j] - 0.5 * c->overlap);
-    return 1;
+    const shaft_pair s = shafts_of(p, nb, i, j);
+    return contact_from(p, i, j, &s, c);
 }
 
 double bdl_rod_inv_mass_at(const bdl_particles *p, long i, bdl_vec3 arm, bdl_vec3 n)
@@ -131,14 +153,16 @@ static void pair_force(const bdl_particles *p, const bdl_force_def *def, long i,
     }
 }
 
-/// Pair k = (i, partner[k]): evaluated, its touching flag and history kept up to date.
-static bdl_pair_result evaluate_pair(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def,
-                                     long i, int32_t k)
+/// Pair k = (i, partner[k]) with its closest points s: evaluated, its touching flag and history
+/// kept up to date.
+static bdl_pair_result evaluate_pair_at(bdl_particles *p, bdl_neighbor *nb,
+                                        const bdl_force_def *def, long i, int32_t k,
+                                        const shaft_pair *s)
 {
     bdl_pair_result r = {.touching = 0};
     rod_contact c;
     const long j = nb->partner[k];
-    if (bdl_rod_contact_of(p, nb, i, j, &c)) {
+    if (contact_from(p, i, j, s, &c)) {
         bdl_vec3 none = bdl_v3_zero();
         pair_force(p, def, i, j, &c, nb->history ? &nb->history[k] : &none, &r);
     } else if (nb->history && nb->touching[k]) {
@@ -146,6 +170,13 @@ static bdl_pair_result evaluate_pair(bdl_particles *p, bdl_neighbor *nb, const b
     }
     nb->touching[k] = (uint8_t)r.touching;
     return r;
+}
+
+static bdl_pair_result evaluate_pair(bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def,
+                                     long i, int32_t k)
+{
+    const shaft_pair s = shafts_of(p, nb, i, nb->partner[k]);
+    return evaluate_pair_at(p, nb, def, i, k, &s);
 }
 
 /// Wall contact k of particle i, added to f and t.
@@ -216,6 +247,9 @@ static void add_to_j(bdl_particles *p, uint8_t *coordination, long j, const bdl_
         coordination[j]++;
 }
 
+/// Pairs whose closest points are found together (see force_range).
+#define ROD_RUN 16
+
 /// Thread t's share: loads cleared, the boundary pairs of earlier ranges added to their j, then
 /// every particle in index order, its pairs in list order.
 static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
@@ -236,16 +270,25 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
     for (long i = lo; i < hi; ++i) {
         bdl_vec3 f = p->load[i].force, tq = p->load[i].torque;
         int contacts = coordination[i];
-        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-            const int boundary = o < out_end && fw->pair[o] == k;
-            const bdl_pair_result r = boundary ? fw->result[o++] : evaluate_pair(p, nb, def, i, k);
-            if (!r.touching)
-                continue;
-            if (!boundary)
-                add_to_j(p, coordination, nb->partner[k], &r);
-            ++contacts;
-            f = bdl_v3_add(f, r.force);
-            tq = bdl_v3_add(tq, r.torque_i);
+        // The closest points of a run of pairs first, then the forces: the runs' divisions and
+        // square roots are independent of one another, and the processor overlaps them.
+        for (int32_t k0 = nb->start[i]; k0 < nb->start[i + 1]; k0 += ROD_RUN) {
+            const int32_t k1 = k0 + ROD_RUN < nb->start[i + 1] ? k0 + ROD_RUN : nb->start[i + 1];
+            shaft_pair run[ROD_RUN];
+            for (int32_t k = k0; k < k1; ++k)
+                run[k - k0] = shafts_of(p, nb, i, nb->partner[k]);
+            for (int32_t k = k0; k < k1; ++k) {
+                const int boundary = o < out_end && fw->pair[o] == k;
+                const bdl_pair_result r =
+                    boundary ? fw->result[o++] : evaluate_pair_at(p, nb, def, i, k, &run[k - k0]);
+                if (!r.touching)
+                    continue;
+                if (!boundary)
+                    add_to_j(p, coordination, nb->partner[k], &r);
+                ++contacts;
+                f = bdl_v3_add(f, r.force);
+                tq = bdl_v3_add(tq, r.torque_i);
+            }
         }
         coordination[i] = (uint8_t)(contacts < 255 ? contacts : 255);
         finish_particle(p, nb, walls, def, i, f, tq, kick);
