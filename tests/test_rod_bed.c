@@ -1,7 +1,7 @@
 // The thesis's small bed of rods packed under gravity (Mahajan 2019, table 4.1; the bed of
 // scenes/rod_bed_packed.ini): 8070 rods of 6 x 1.5 mm dropped with random axes into a column
 // 0.1 x 0.014 m settle to the thesis's simulated packed height, 0.106 m within 5 %, and lie
-// mostly flat. Slow (about 10 minutes on one core): label slow, run by `bedlam verify rod_bed`
+// mostly flat. Slow (about 4 minutes on one core): label slow, run by `bedlam verify rod_bed`
 // and `ctest -L slow`.
 #include <math.h>
 #include <stdio.h>

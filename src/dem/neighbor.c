@@ -142,8 +142,8 @@ static inline int listed(const bdl_neighbor *nb, const bdl_particles *p, long i,
     if (!(bdl_v3_len2(d) < reach * reach))
         return 0;
     double l, m;
-    const double d2 = bdl_shafts_closest(d, p->axis[i], p->half_length[i], p->axis[j],
-                                         p->half_length[j], &l, &m);
+    const double d2 =
+        bdl_shafts_closest(d, p->axis[i], p->half_length[i], p->axis[j], p->half_length[j], &l, &m);
     return d2 < cut * cut;
 }
 
