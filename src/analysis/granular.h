@@ -123,10 +123,10 @@ double bdl_orientation_order(const bdl_orientation_sums *s);
 /// first reaches half the bulk fraction (linear between layer centres): where a camera at the
 /// front wall sees the bed end.
 typedef struct bdl_bed_surface {
-    double height;   ///< [m]
-    double bulk;     ///< solids fraction below the surface
-    double top;      ///< highest point of any particle [m]
-    long layers;     ///< of the profile
+    double height; ///< [m]
+    double bulk;   ///< solids fraction below the surface
+    double top;    ///< highest point of any particle [m]
+    long layers;   ///< of the profile
 } bdl_bed_surface;
 
 bdl_result bdl_bed_surface_of(const double *lo, const double *hi, const double *vol, long n,

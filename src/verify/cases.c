@@ -153,7 +153,8 @@ static bdl_result run_settling(int series, double n, bdl_verify_result *out)
     return r;
 }
 
-// clang-format off: the acceptance, quick-set, series and level fields of a case on one line each
+// The acceptance, quick-set, series and level fields of a case stand on one line each.
+// clang-format off
 static const bdl_verify_case cases[] = {
     {
         .name = "restitution",

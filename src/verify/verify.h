@@ -135,8 +135,8 @@ typedef struct bdl_verify_rod_bed {
     double order;        ///< nematic order parameter S
     double tilt[BDL_VERIFY_TILT_BINS]; ///< fraction of the rods at 0-10, 10-20, ... 80-90 degrees
                                        ///< from the horizontal
-    double kinetic;      ///< kinetic energy per rod / (m g d) at the end
-    double time;         ///< simulated [s]
+    double kinetic;                    ///< kinetic energy per rod / (m g d) at the end
+    double time;                       ///< simulated [s]
     long steps;
 } bdl_verify_rod_bed;
 /// 8070 rods dropped with random axes into the 0.1 x 0.014 m column, settled (kinetic energy
