@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/memory.h"
 #include "render/renderer_internal.h"
 
 /// Bytes per instance: centre and radius as 4 floats, the half shaft as 3, the colour as 4 bytes.
@@ -41,11 +42,9 @@ static int reserve(bdl_render_capsules *c, long n)
 {
     if (n <= c->instance_capacity)
         return 1;
-    long cap = n + n / 4 + 64;
-    uint8_t *a = realloc(c->instances, (size_t)cap * CAPSULE_BYTES);
-    if (!a)
+    const long cap = n + n / 4 + 64;
+    if (!bdl_grow((void **)&c->instances, cap, CAPSULE_BYTES))
         return 0;
-    c->instances = a;
     c->instance_capacity = cap;
     return 1;
 }

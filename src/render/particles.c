@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/memory.h"
 #include "render/renderer_internal.h"
 
 /// Bytes per instance: centre and radius as 4 floats, then the colour as 4 bytes.
@@ -66,11 +67,9 @@ static int reserve(bdl_render_particles *p, long n, int spheres)
     }
     if (!spheres || n <= p->instance_capacity)
         return 1;
-    long cap = n + n / 4 + 64;
-    uint8_t *a = realloc(p->instances, (size_t)cap * INSTANCE_BYTES);
-    if (!a)
+    const long cap = n + n / 4 + 64;
+    if (!bdl_grow((void **)&p->instances, cap, INSTANCE_BYTES))
         return 0;
-    p->instances = a;
     p->instance_capacity = cap;
     return 1;
 }
