@@ -4,13 +4,13 @@
 // ratio 4, the thesis's rods), placed with random axes; everything else is as for spheres.
 //
 // The bed (docs/performance.md): frictional Hertz-Mindlin spheres (d = 1 mm, 2500 kg/m^3,
-// E = 10 MPa, nu = 0.25, e = 0.5, mu = 0.5) on a floor, periodic in x and y. The box is as wide as
-// it takes for the settled bed to be `height` diameters deep whatever the particle count, so every
-// size has the same packing (that is what makes the 10^3..10^6 scaling series comparable). The
-// spheres are placed at random (solids fraction 0.33), fall and compact under 5 g with light
-// background damping until their kinetic energy has died down, are unloaded to 1 g under strong
-// damping, held, and relaxed without damping; then the steps are timed. Timings are reported,
-// never asserted.
+// E = 10 MPa, nu = 0.25, e = 0.5, mu = 0.5 or --friction) on a floor, periodic in x and y. The box
+// is as wide as it takes for the settled bed to be `height` diameters deep whatever the particle
+// count, so every size has the same packing (that is what makes the 10^3..10^6 scaling series
+// comparable). The spheres are placed at random (solids fraction 0.33), fall and compact under
+// 5 g with light background damping until their kinetic energy has died down, are unloaded to 1 g
+// under strong damping, held, and relaxed without damping; then the steps are timed. Timings are
+// reported, never asserted.
 #include <math.h>
 #include <omp.h>
 #include <stdio.h>
@@ -45,6 +45,8 @@ static const char bench_usage[] =
     "  --shape S         sphere (default) or rod: rods of aspect ratio 4 (length 4 d)\n"
     "  --skin X          neighbour-list skin as a fraction of the diameter (default: the scene\n"
     "                    default, 0.1)\n"
+    "  --friction MU     sliding friction of the particles and the floor (default 0.5): less\n"
+    "                    friction settles a denser bed with more contacts per particle\n"
     "  --csv FILE        append the rows to FILE\n"
     "  --bed-dir DIR     keep settled beds in DIR as checkpoints and start from them when they\n"
     "                    exist (same size, depth and skin): repeated timings skip the settling\n"
@@ -78,6 +80,7 @@ typedef struct bench_opts {
     int threads[16], thread_count;
     int scaling, quiet;
     double height, skin;
+    double friction; ///< sliding friction coefficient of the bed
     const char *csv;
     const char *bed_dir; ///< settled-bed cache (NULL: none)
     const char *shape;   ///< "sphere" or "rod"
@@ -202,13 +205,13 @@ static void bed_scene(long n, const bench_opts *o, char *text, size_t len, doubl
              "[domain]\nmin = 0 0 0\nmax = %.17g %.17g %.17g\nperiodic = x y\n"
              "[contact]\nlaw = %s\n%s"
              "[species glass]\n%sdiameter = %.17g\ndensity = 2500\nyoungs_modulus = 1e7\n"
-             "poisson_ratio = 0.25\nrestitution = 0.5\nfriction = 0.5\nbackground_damping = %g\n"
+             "poisson_ratio = 0.25\nrestitution = 0.5\nfriction = %.17g\nbackground_damping = %g\n"
              "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"
              "[create bed]\ntype = random\nspecies = glass\nregion_min = 0 0 0\n"
              "region_max = %.17g %.17g %.17g\ncount = %ld\n",
              -BED_COMPACT_G * BED_G, *side, *side, fill + 4.0 * d,
-             bdl_normal_law_names[BDL_LAW_HERTZ], skin, shape, d, BED_FALL_DAMP, *side, *side, fill,
-             n);
+             bdl_normal_law_names[BDL_LAW_HERTZ], skin, shape, d, o->friction, BED_FALL_DAMP, *side,
+             *side, fill, n);
 }
 
 /// The world of a scene text; prints why there is none.
@@ -234,10 +237,12 @@ static bdl_result settle_or_load(bdl_world **wp, const char *text, long n, const
                                  double tc, double mgd)
 {
     bdl_world *w = *wp;
-    char cached[1024] = "", why[256];
+    char cached[1024] = "", why[256], friction[64] = ""; // the default friction is not named
+    if (o->friction != 0.5)
+        snprintf(friction, sizeof friction, "-mu%g", o->friction);
     if (o->bed_dir)
-        snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g%s.chk", o->bed_dir, n, o->height,
-                 o->skin, o->rods ? "-rod" : "");
+        snprintf(cached, sizeof cached, "%s/bed-%ld-h%g-s%g%s%s.chk", o->bed_dir, n, o->height,
+                 o->skin, o->rods ? "-rod" : "", friction);
     FILE *exists = cached[0] ? fopen(cached, "rb") : NULL;
     int loaded = 0;
     if (exists) {
@@ -408,6 +413,7 @@ static const bdl_option bench_options[] = {
     {"--repeat", BDL_OPTION_INT, offsetof(bench_opts, repeat)},
     {"--height", BDL_OPTION_NUMBER, offsetof(bench_opts, height)},
     {"--skin", BDL_OPTION_NUMBER, offsetof(bench_opts, skin)},
+    {"--friction", BDL_OPTION_NUMBER, offsetof(bench_opts, friction)},
     {"--bed-dir", BDL_OPTION_TEXT, offsetof(bench_opts, bed_dir)},
     {"--csv", BDL_OPTION_TEXT, offsetof(bench_opts, csv)},
     {"--shape", BDL_OPTION_TEXT, offsetof(bench_opts, shape)},
@@ -447,9 +453,12 @@ static bdl_result parse_bench(int argc, char **argv, int k, bench_opts *o, int *
         bad_threads |= o->threads[t] < 1;
     const int shape_ok = strcmp(o->shape, "sphere") == 0 || strcmp(o->shape, "rod") == 0;
     if (o->particles < 100 || o->steps < 0 || o->repeat < 1 || bad_threads || !(o->height >= 2.0) ||
-        o->skin < 0.0 || o->skin > 1.0 || !shape_ok) {
-        fprintf(stderr, "error: bench needs --particles >= 100, --steps >= 1, --repeat >= 1, "
-                        "--threads >= 1, --height >= 2, 0 < --skin <= 1, --shape sphere or rod\n");
+        o->skin < 0.0 || o->skin > 1.0 || !(o->friction >= 0.0 && o->friction <= 2.0) ||
+        !shape_ok) {
+        fprintf(stderr,
+                "error: bench needs --particles >= 100, --steps >= 1, --repeat >= 1, "
+                "--threads >= 1, --height >= 2, 0 < --skin <= 1, 0 <= --friction <= 2, --shape "
+                "sphere or rod\n");
         return BDL_ERR_ARGS;
     }
     o->rods = strcmp(o->shape, "rod") == 0;
@@ -505,7 +514,7 @@ static bdl_result time_scaling(const bench_opts *o, FILE *csv)
 
 bdl_result bdl_cmd_bench(int argc, char **argv)
 {
-    bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, NULL, NULL, "sphere", 0};
+    bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, 0.5, NULL, NULL, "sphere", 0};
     int k = 1, help;
     if (k < argc && strcmp(argv[k], "render") == 0)
         return bdl_bench_render(argc - 1, argv + 1);

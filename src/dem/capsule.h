@@ -31,7 +31,11 @@
 static inline double bdl_clamp_unit(double x) { return x < -1.0 ? -1.0 : x > 1.0 ? 1.0 : x; }
 
 /// x clamped to [-h, h].
-static inline double bdl_clamp_half(double x, double h) { return x < -h ? -h : x > h ? h : x; }
+static inline double bdl_clamp_half(double x, double h)
+{
+    x = x < -h ? -h : x; // two selects, no branch (the same as one nested ?:)
+    return x > h ? h : x;
+}
 
 /// Closest points of the shafts a + l u_a (l in [-h_a, h_a]) and b + m u_b (m in [-h_b, h_b]),
 /// u_a and u_b unit axes, h_a, h_b >= 0 half lengths, given d = a - b: writes l and m [m] and
@@ -43,14 +47,15 @@ static inline double bdl_shafts_closest(bdl_vec3 d, bdl_vec3 ua, double ha, bdl_
     const double B = bdl_v3_dot(ua, ub), D = bdl_v3_dot(ua, d), E = bdl_v3_dot(ub, d);
     const bdl_vec3 n = bdl_v3_cross(ua, ub);
     const double n2 = bdl_v3_len2(n); // 1 - B^2 without the cancellation
-    double l;
-    if (n2 > 1e-26) {
-        l = bdl_clamp_half(bdl_v3_dot(n, bdl_v3_cross(ub, d)) / n2, ha);
-    } else { // parallel: the middle of the stretch of a facing b (or of a's nearer end)
-        const double l1 = B * hb - D, l2 = -B * hb - D; // b's ends projected onto a
-        const double lo = l1 < l2 ? l1 : l2, hi = l1 < l2 ? l2 : l1;
-        l = bdl_clamp_half(0.5 * ((lo > -ha ? lo : -ha) + (hi < ha ? hi : ha)), ha);
-    }
+    // Both candidates, then a select: no branch, so that a loop over pairs vectorises.
+    const int parallel = !(n2 > 1e-26);
+    // (The denominator is never 1: x / 1 would be folded into a branch around the division.)
+    const double l_lines = bdl_v3_dot(n, bdl_v3_cross(ub, d)) / (parallel ? 1e-26 : n2);
+    // parallel: the middle of the stretch of a facing b (or of a's nearer end)
+    const double l1 = B * hb - D, l2 = -B * hb - D; // b's ends projected onto a
+    const double lo = l1 < l2 ? l1 : l2, hi = l1 < l2 ? l2 : l1;
+    const double l_middle = 0.5 * ((lo > -ha ? lo : -ha) + (hi < ha ? hi : ha));
+    double l = bdl_clamp_half(parallel ? l_middle : l_lines, ha);
     const double m = bdl_clamp_half(E + l * B, hb);
     l = bdl_clamp_half(m * B - D, ha);
     *l_out = l;
