@@ -24,7 +24,13 @@
     X(DRAG_DI_FELICE, "di_felice", "Di Felice (1994): eps^-chi(Re)")                               \
     X(DRAG_BEETSTRA, "beetstra",                                                                   \
       "Beetstra, van der Hoef & Kuipers (2007), from lattice-Boltzmann")                           \
-    X(DRAG_TENNETI, "tenneti", "Tenneti, Garg & Subramaniam (2011), from particle-resolved DNS")
+    X(DRAG_TENNETI, "tenneti", "Tenneti, Garg & Subramaniam (2011), from particle-resolved DNS")   \
+    X(DRAG_HDF, "hdf",                                                                             \
+      "HDF: Hoelzer & Sommerfeld (2008) x Di Felice (1994), Ergun cap where dense (Mahajan 2019)") \
+    X(DRAG_STE, "ste",                                                                             \
+      "STE: Sanjeevi et al. (2018) AR-4 rod x Tenneti et al. (2011) ratio (Mahajan 2019)")         \
+    X(DRAG_STA, "sta",                                                                             \
+      "STA: Sanjeevi et al. (2018) AR-4 rod x Tang et al. (2015) ratio (Mahajan 2019)")
 
 typedef enum bdl_drag_law { BDL_DRAG_LAWS(BDL_ENUM_ITEM) BDL_DRAG_LAW_COUNT } bdl_drag_law;
 
@@ -43,6 +49,40 @@ bdl_drag_params bdl_drag_default_params(void);
 /// beta / phi [kg/(m^3 s)]: the drag on one particle is this times V_p (u - v).
 double bdl_drag_per_volume(bdl_drag_law law, const bdl_drag_params *p, double eps, double d,
                            double slip, double rho, double mu);
+
+/// The shape the drag laws see: a sphere (shaft 0) or a spherocylinder, and how it lies in the
+/// slip. Sphere laws use the volume-equivalent diameter of a rod; the rod laws (hdf, ste, sta) its
+/// orientation too (docs/theory-rods.md, "Drag").
+typedef struct bdl_drag_shape {
+    double diameter;  ///< d_p [m]
+    double shaft;     ///< L_rod, the cylinder between the caps (tip to tip less d_p) [m]; 0: sphere
+    double cos_theta; ///< cosine of the angle between the axis and the slip velocity
+} bdl_drag_shape;
+
+/// Sphericity phi, crosswise phi_perp and lengthwise phi_par (Hoelzer & Sommerfeld 2008, in
+/// Mahajan's 2019 form: A_perp = pi d^2/4 + d L sin theta, A_par = pi d^2/4 + d L cos theta) and
+/// volume-equivalent diameter d_e of a shape.
+typedef struct bdl_drag_sphericity {
+    double phi, phi_perp, phi_par, d_e;
+} bdl_drag_sphericity;
+bdl_drag_sphericity bdl_drag_sphericities(const bdl_drag_shape *s);
+
+/// Hoelzer & Sommerfeld (2008) single-particle C_D at Re (log10 in the last term, as in the
+/// original paper).
+double bdl_drag_hs_cd(double re, const bdl_drag_sphericity *sp);
+/// Sanjeevi, Kuipers & Padding (2018) single AR-4 spherocylinder C_D at Re, sin^2 theta blend.
+double bdl_drag_sanjeevi_cd(double re, double sin2);
+/// Voidage corrections at voidage eps and Re = eps rho d_e |slip| / mu: Di Felice's eps^(2-beta)
+/// (log10 in beta), and the ratios g = F(eps, Re) / F(1, Re) of Tang et al. (2015) and Tenneti
+/// et al. (2011).
+double bdl_drag_di_felice_factor(double eps, double re);
+double bdl_drag_tang_ratio(double eps, double re);
+double bdl_drag_tenneti_ratio(double eps, double re);
+
+/// As bdl_drag_per_volume for a particle of shape s (V_p its volume): the drag on it is this
+/// times V_p (u - v).
+double bdl_drag_shape_per_volume(bdl_drag_law law, const bdl_drag_params *p, double eps,
+                                 const bdl_drag_shape *s, double slip, double rho, double mu);
 
 /// beta [kg/(m^3 s)] = phi * bdl_drag_per_volume.
 double bdl_drag_beta(bdl_drag_law law, const bdl_drag_params *p, double eps, double d, double slip,
