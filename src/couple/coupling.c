@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/memory.h"
 #include "core/vec3.h"
 
 bdl_coupling_def bdl_default_coupling_def(const bdl_grid *grid)
@@ -37,6 +38,7 @@ bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const
 
 void bdl_coupling_free(bdl_coupling *c)
 {
+    free(c->first);
     free(c->offset);
     free(c->span);
     for (int a = 0; a < 3; ++a)
@@ -49,33 +51,25 @@ void bdl_coupling_free(bdl_coupling *c)
     *c = (bdl_coupling){0};
 }
 
-static bdl_result reserve(bdl_coupling *c, long n)
+/// Room for n particles with `points` kernel points.
+static bdl_result reserve(bdl_coupling *c, long n, long points)
 {
+    if (points > c->point_capacity) {
+        const long cap = points + points / 2 + 16;
+        if (!bdl_grow((void **)&c->offset, cap, 6 * BDL_KERNEL_MAX * sizeof(int)) ||
+            !bdl_grow((void **)&c->span, cap, 6 * sizeof(int)) ||
+            !bdl_grow((void **)&c->weight, cap, 6 * BDL_KERNEL_MAX * sizeof(double)))
+            return BDL_ERR_NOMEM;
+        c->point_capacity = cap;
+    }
     if (n <= c->capacity)
         return BDL_OK;
-    long cap = n + n / 2 + 16;
-    int *offset = realloc(c->offset, (size_t)cap * 6 * BDL_KERNEL_MAX * sizeof(int));
-    if (offset)
-        c->offset = offset;
-    int *span = realloc(c->span, (size_t)cap * 6 * sizeof(int));
-    if (span)
-        c->span = span;
-    double *w = realloc(c->weight, (size_t)cap * 6 * BDL_KERNEL_MAX * sizeof(double));
-    if (w)
-        c->weight = w;
-    double *f = realloc(c->factor, (size_t)cap * sizeof(double));
-    if (f)
-        c->factor = f;
-    bdl_vec3 *accel = realloc(c->accel, (size_t)cap * sizeof(bdl_vec3));
-    if (accel)
-        c->accel = accel;
-    bdl_vec3 *drag = realloc(c->drag, (size_t)cap * sizeof(bdl_vec3));
-    if (drag)
-        c->drag = drag;
-    bdl_vec3 *pressure = realloc(c->pressure, (size_t)cap * sizeof(bdl_vec3));
-    if (pressure)
-        c->pressure = pressure;
-    if (!offset || !span || !w || !f || !accel || !drag || !pressure)
+    const long cap = n + n / 2 + 16;
+    if (!bdl_grow((void **)&c->first, cap + 1, sizeof(long)) ||
+        !bdl_grow((void **)&c->factor, cap, sizeof(double)) ||
+        !bdl_grow((void **)&c->accel, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&c->drag, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)))
         return BDL_ERR_NOMEM;
     c->capacity = cap;
     return BDL_OK;
@@ -150,42 +144,78 @@ static int wrap(int m, int n)
     return m < 0 ? m + n : m;
 }
 
+/// Kernel points of particle i: a rod's satellites, else its centre.
+static int point_count(const bdl_particles *p, long i)
+{
+    return p->rods && p->half_length[i] > 0.0 ? BDL_ROD_SATELLITES : 1;
+}
+
+bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k)
+{
+    if (point_count(p, i) == 1)
+        return p->pos[i];
+    // Four stations at -3/4, -1/4, 1/4, 3/4 of the half length tip to tip, h + r; at each, four
+    // points at 1/sqrt(2) of the local radius (the circle that halves the cross-section's area),
+    // in the body's x and y directions, so that they turn with the rod.
+    const double h = p->half_length[i], r = p->radius[i];
+    const double z = (0.5 * (k / 4) - 0.75) * (h + r), beyond = fabs(z) > h ? fabs(z) - h : 0.0;
+    const double rho = sqrt(0.5 * (r * r - beyond * beyond));
+    const bdl_quat q = p->orient[i];
+    const int side = k % 4;
+    const bdl_vec3 across =
+        bdl_q_rotate(q, side % 2 ? bdl_v3(0.0, 1.0, 0.0) : bdl_v3(1.0, 0.0, 0.0));
+    return bdl_v3_madd(bdl_v3_madd(p->pos[i], p->axis[i], z), across, side < 2 ? rho : -rho);
+}
+
+/// Kernel weights of point pt at x: the cell centres and the momentum faces along each axis.
+static void locate_point(bdl_coupling *c, const bdl_grid *g, const int flo[3], const int fhi[3],
+                         long pt, bdl_vec3 x)
+{
+    for (int a = 0; a < 3; ++a)
+        for (int slot = a; slot < 6; slot += 3) { // 0-2: cell centres; 3-5: faces of component a
+            const long at = 6 * pt + slot;
+            int first;
+            if (slot < 3)
+                axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, bdl_v3_comp(x, a), &first, &c->span[at],
+                             &c->weight[at * BDL_KERNEL_MAX]);
+            else
+                axis_weights(c, g, a, 0.0, flo[a], fhi[a], bdl_v3_comp(x, a), &first, &c->span[at],
+                             &c->weight[at * BDL_KERNEL_MAX]);
+            int *off = &c->offset[at * BDL_KERNEL_MAX];
+            for (int m = 0; m < c->span[at]; ++m) {
+                int pt_m = first + m;
+                if (g->periodic[a])
+                    pt_m = wrap(pt_m, g->n[a]);
+                off[m] = (pt_m + BDL_GRID_GHOST) * (int)g->stride[a];
+            }
+        }
+}
+
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p)
 {
     const long count = p->count;
-    const bdl_vec3 *pos = p->pos;
-    if (reserve(c, count) != BDL_OK)
+    long points = 0;
+    for (long i = 0; i < count; ++i)
+        points += point_count(p, i);
+    if (reserve(c, count, points) != BDL_OK)
         return BDL_ERR_NOMEM;
+    c->first[0] = 0;
+    for (long i = 0; i < count; ++i)
+        c->first[i + 1] = c->first[i] + point_count(p, i);
     int flo[3], fhi[3];
     for (int a = 0; a < 3; ++a)
         momentum_faces(gas, a, &flo[a], &fhi[a]);
     const bdl_grid *g = &gas->grid;
     BDL_PARALLEL_FOR(
-        count >= c->parallel_min, for (long i = 0; i < count; ++i) for (int a = 0; a < 3; ++a) {
-            // Slots 0-2: cell centres per axis; 3-5: the momentum faces of component a.
-            for (int slot = a; slot < 6; slot += 3) {
-                const long at = 6 * i + slot;
-                int first;
-                if (slot < 3)
-                    axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, bdl_v3_comp(pos[i], a), &first,
-                                 &c->span[at], &c->weight[at * BDL_KERNEL_MAX]);
-                else
-                    axis_weights(c, g, a, 0.0, flo[a], fhi[a], bdl_v3_comp(pos[i], a), &first,
-                                 &c->span[at], &c->weight[at * BDL_KERNEL_MAX]);
-                int *off = &c->offset[at * BDL_KERNEL_MAX];
-                for (int m = 0; m < c->span[at]; ++m) {
-                    int pt = first + m;
-                    if (g->periodic[a])
-                        pt = wrap(pt, g->n[a]);
-                    off[m] = (pt + BDL_GRID_GHOST) * (int)g->stride[a];
-                }
-            }
+        count >= c->parallel_min, for (long i = 0; i < count; ++i) {
+            for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+                locate_point(c, g, flo, fhi, pt, bdl_coupling_point(p, i, (int)(pt - c->first[i])));
         });
     return BDL_OK;
 }
 
 /// Calls body with `idx` (padded index) and `w` (weight) for every point of the separable
-/// kernel made of slots sx, sy, sz of particle i.
+/// kernel made of slots sx, sy, sz of kernel point i.
 #define FOR_SLOTS(c, i, sx, sy, sz, ...)                                                           \
     do {                                                                                           \
         const long at_ = 6 * (i);                                                                  \
@@ -209,21 +239,26 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_pa
             }                                                                                      \
     } while (0)
 
-/// Over the cell centres of particle i.
+/// Over the cell centres of kernel point i.
 #define FOR_KERNEL(c, i, ...) FOR_SLOTS(c, i, 0, 1, 2, __VA_ARGS__)
 
-/// Over the momentum faces of component a: face weights along a, cell weights across.
+/// Over the momentum faces of component a of kernel point i: face weights along a, cell weights
+/// across.
 #define FOR_FACE_KERNEL(c, i, a, ...)                                                              \
     FOR_SLOTS(c, i, (a) == 0 ? 3 : 0, (a) == 1 ? 4 : 1, (a) == 2 ? 5 : 2, __VA_ARGS__)
 
 static double cell_volume(const bdl_grid *g) { return g->h[0] * g->h[1] * g->h[2]; }
 
-static double sphere_volume(double r) { return 4.0 / 3.0 * BDL_PI * r * r * r; }
-
 /// Density of particle i from its mass and volume [kg/m^3].
 static double particle_density(const bdl_particles *p, long i)
 {
-    return 1.0 / (p->inv_mass[i] * sphere_volume(p->radius[i]));
+    return 1.0 / (p->inv_mass[i] * bdl_particle_volume(p, i));
+}
+
+/// The share of each of particle i's kernel points: 1 / their count.
+static double point_share(const bdl_coupling *c, long i)
+{
+    return 1.0 / (double)(c->first[i + 1] - c->first[i]);
 }
 
 void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p)
@@ -233,8 +268,9 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particl
     double *solid = gas->rhs; // scratch: the gas step overwrites it
     memset(solid, 0, (size_t)g->size * sizeof(double));
     for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
-        const double v = sphere_volume(p->radius[i]);
-        FOR_KERNEL(c, i, solid[idx] += w * v);
+        const double v = bdl_particle_volume(p, i) * point_share(c, i);
+        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+            FOR_KERNEL(c, pt, solid[idx] += w * v);
     }
     const double lowest = 1.0 - c->def.max_solids;
     for (int k = 0; k < g->n[2]; ++k)
@@ -247,19 +283,51 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particl
 
 double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f)
 {
-    double sum = 0.0;
-    FOR_KERNEL(c, i, sum += w * f[idx]);
-    return sum;
+    const double share = point_share(c, i);
+    double total = 0.0;
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
+        double sum = 0.0;
+        FOR_KERNEL(c, pt, sum += w * f[idx]);
+        total += share * sum;
+    }
+    return total;
 }
 
-/// Gas velocity at particle i: each component from its momentum faces.
+/// Gas velocity at particle i, the mean over its kernel points: each component from its momentum
+/// faces.
 static void gas_velocity_at(const bdl_coupling *c, const bdl_gas *gas, long i, double u[3])
 {
+    const double share = point_share(c, i);
     for (int a = 0; a < 3; ++a) {
-        double sum = 0.0;
-        FOR_FACE_KERNEL(c, i, a, sum += w * gas->u[a][idx]);
-        u[a] = sum;
+        u[a] = 0.0;
+        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
+            double sum = 0.0;
+            FOR_FACE_KERNEL(c, pt, a, sum += w * gas->u[a][idx]);
+            u[a] += share * sum;
+        }
     }
+}
+
+/// The drag law's K = beta / phi for particle i at voidage eps, gas velocity u and slip: a sphere
+/// by its diameter, a rod by its shape and the angle between its axis and the slip.
+static double drag_per_volume(const bdl_coupling *c, const bdl_particles *p, long i, double eps,
+                              const double u[3], double slip, double rho, double mu)
+{
+    const double d = 2.0 * p->radius[i];
+    if (point_count(p, i) == 1)
+        return bdl_drag_per_volume(c->def.drag, &c->def.drag_params, eps, d, slip, rho, mu);
+    const bdl_vec3 s = bdl_v3_sub(bdl_v3(u[0], u[1], u[2]), p->vel[i]);
+    const bdl_drag_shape shape = {.diameter = d,
+                                  .shaft = 2.0 * p->half_length[i],
+                                  .cos_theta = slip > 0.0 ? bdl_v3_dot(s, p->axis[i]) / slip : 1.0};
+    return bdl_drag_shape_per_volume(c->def.drag, &c->def.drag_params, eps, &shape, slip, rho, mu);
+}
+
+bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, long i)
+{
+    double u[3];
+    gas_velocity_at(c, gas, i, u);
+    return bdl_v3(u[0], u[1], u[2]);
 }
 
 void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
@@ -275,10 +343,9 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
                                (u[2] - v[2]) * (u[2] - v[2]));
             double eps = bdl_coupling_interpolate(c, i, gas->eps);
-            double d = 2.0 * p->radius[i];
-            double K = bdl_drag_per_volume(c->def.drag, &c->def.drag_params, eps, d, slip, rho, mu);
+            double K = drag_per_volume(c, p, i, eps, u, slip, rho, mu);
             const double density = particle_density(p, i);
-            double D = K / density, m = density * sphere_volume(p->radius[i]);
+            double D = K / density, m = density * bdl_particle_volume(p, i);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
     for (int a = 0; a < 3; ++a) {
@@ -286,15 +353,16 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
         memset(gas->bv[a], 0, (size_t)g->size * sizeof(double));
     }
     for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
-        const double f = c->factor[i] / vc;
+        const double f = c->factor[i] / vc * point_share(c, i);
         double target[3];
         for (int a = 0; a < 3; ++a)
             target[a] = bdl_v3_comp(p->vel[i], a) + dt * (accel ? bdl_v3_comp(accel[i], a) : 0.0);
-        for (int a = 0; a < 3; ++a)
-            FOR_FACE_KERNEL(c, i, a, {
-                gas->beta[a][idx] += w * f;
-                gas->bv[a][idx] += w * f * target[a];
-            });
+        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+            for (int a = 0; a < 3; ++a)
+                FOR_FACE_KERNEL(c, pt, a, {
+                    gas->beta[a][idx] += w * f;
+                    gas->bv[a][idx] += w * f * target[a];
+                });
     }
 }
 
@@ -347,13 +415,19 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_pa
                 drag[i] = (bdl_vec3){f[0], f[1], f[2]};
             }
             if (pressure) {
+                const double share = point_share(c, i);
                 double grad[3] = {0, 0, 0};
-                FOR_KERNEL(c, i, {
-                    grad[0] += w * c->grad[0][idx];
-                    grad[1] += w * c->grad[1][idx];
-                    grad[2] += w * c->grad[2][idx];
-                });
-                const double v = sphere_volume(p->radius[i]);
+                for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
+                    double at[3] = {0, 0, 0};
+                    FOR_KERNEL(c, pt, {
+                        at[0] += w * c->grad[0][idx];
+                        at[1] += w * c->grad[1][idx];
+                        at[2] += w * c->grad[2][idx];
+                    });
+                    for (int a = 0; a < 3; ++a)
+                        grad[a] += share * at[a];
+                }
+                const double v = bdl_particle_volume(p, i);
                 pressure[i] = (bdl_vec3){-v * grad[0], -v * grad[1], -v * grad[2]};
             }
         });

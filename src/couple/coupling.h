@@ -3,7 +3,9 @@
 // approach", Int. J. Multiphase Flow 27, on the staggered grid.
 //
 // Every particle spreads over the points near it with a tent kernel of half-width w (at least one
-// cell): weight prod_a max(0, 1 - |x_p,a - x_a| / w_a), normalised per particle. Volume goes to
+// cell): weight prod_a max(0, 1 - |x_p,a - x_a| / w_a), normalised per particle. A rod spreads
+// through BDL_ROD_SATELLITES points distributed through its volume (Mahajan 2019, sec. 3.3), each
+// with its own kernel and an equal share of the rod's volume and drag. Volume goes to
 // the cell centres inside the domain (periodic axes wrap), so it is conserved exactly. Drag goes
 // to the faces of each velocity component that carry a momentum equation (not those on walls or
 // inlets), and the gas velocity at the particle is interpolated from the same faces with the same
@@ -31,6 +33,8 @@
 #include "dem/particles.h"
 
 #define BDL_KERNEL_MAX 8 ///< cells per axis a particle may touch (w <= 4 cells)
+/// Points a rod spreads through: four stations along the axis, four points around it at each.
+#define BDL_ROD_SATELLITES 16
 
 /// Per-particle loops over fewer particles than this run on one thread (as the force pass: see
 /// BDL_PARALLEL_MIN in core/parallel.h).
@@ -49,9 +53,12 @@ bdl_coupling_def bdl_default_coupling_def(const bdl_grid *grid);
 
 typedef struct bdl_coupling {
     bdl_coupling_def def;
-    long capacity;
-    // Per particle, six separable kernels: slots 0-2 over the cell centres along x, y, z;
-    // slots 3-5 over the momentum faces of component x, y, z along its own axis.
+    long capacity;       ///< particles
+    long point_capacity; ///< kernel points
+    long *first;         ///< per particle: its first kernel point (count + 1 entries)
+    // Per kernel point (a sphere's centre, a rod's satellites), six separable kernels: slots 0-2
+    // over the cell centres along x, y, z; slots 3-5 over the momentum faces of component x, y, z
+    // along its own axis.
     int *offset;       ///< BDL_KERNEL_MAX padded-index offsets per slot (periodic axes wrapped)
     int *span;         ///< points touched in each slot
     double *weight;    ///< BDL_KERNEL_MAX normalised weights per slot
@@ -102,9 +109,13 @@ double bdl_coupling_work(const bdl_particles *p, long i, double span);
 
 /// The steps one by one (bdl_coupling_step runs them in order).
 
-/// Kernel weights of every particle at its current position.
+/// Kernel weights of every particle at its current position (and orientation).
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p);
 
+/// Where kernel point k of particle i lies (k < BDL_ROD_SATELLITES for a rod, 0 otherwise).
+bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k);
+/// The gas velocity at particle i, as the drag sees it (after bdl_coupling_locate) [m/s].
+bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, long i);
 /// Sets gas->eps from the particle volumes (gas->eps_old is left alone).
 void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p);
 

@@ -54,7 +54,8 @@ double bdl_dem_kick_drift(bdl_particles *p, bdl_vec3 gravity, double h, double d
 static double kick_drift_rod(bdl_particles *p, long i, bdl_vec3 gravity, double h, double dt)
 {
     const bdl_wrench load = p->load[i];
-    bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], gravity, h), load.force, h * p->inv_mass[i]);
+    const bdl_vec3 g = p->fluid_accel ? bdl_v3_add(gravity, p->fluid_accel[i]) : gravity;
+    bdl_vec3 v = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, h), load.force, h * p->inv_mass[i]);
     const bdl_vec3 L = bdl_v3_madd(p->ang_mom[i], load.torque, h);
     p->vel[i] = v;
     p->ang_mom[i] = L;

@@ -111,6 +111,13 @@ static inline double bdl_particle_move2(const bdl_particles *p, long i)
     return bdl_v3_len2(dx) + bdl_v3_len2(de) + 2.0 * fabs(bdl_v3_dot(dx, de));
 }
 
+/// Volume of particle i: a sphere, or a rod's cylinder and two caps [m^3].
+static inline double bdl_particle_volume(const bdl_particles *p, long i)
+{
+    const double r = p->radius[i], sphere = 4.0 / 3.0 * BDL_PI * r * r * r;
+    return p->rods ? sphere + 2.0 * BDL_PI * r * r * p->half_length[i] : sphere;
+}
+
 /// Moment of inertia of a solid sphere: I = 2/5 m r^2, returned as 1/I.
 static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 {

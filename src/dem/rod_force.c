@@ -149,7 +149,7 @@ static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wa
 }
 
 /// Walls, background damping, storage and the closing half kick of particle i, once all its
-/// pairs are in: v += h (F/m + g), L += h T, and the angular velocity of the new momentum.
+/// pairs are in: v += h (F/m + g + a_gas), L += h T, and the angular velocity of the new momentum.
 static void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
                             const bdl_force_def *def, long i, bdl_vec3 f, bdl_vec3 t, double kick)
 {
@@ -160,8 +160,9 @@ static void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls 
         f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
     p->load[i] = (bdl_wrench){f, t};
     if (kick > 0.0) {
-        p->vel[i] =
-            bdl_v3_madd(bdl_v3_madd(p->vel[i], def->gravity, kick), f, kick * p->inv_mass[i]);
+        const bdl_vec3 g =
+            p->fluid_accel ? bdl_v3_add(def->gravity, p->fluid_accel[i]) : def->gravity;
+        p->vel[i] = bdl_v3_madd(bdl_v3_madd(p->vel[i], g, kick), f, kick * p->inv_mass[i]);
         p->ang_mom[i] = bdl_v3_madd(p->ang_mom[i], t, kick);
         p->omega[i] = bdl_particle_omega(p, i, p->ang_mom[i]);
     }

@@ -163,9 +163,8 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
     if (!g->periodic[a] && g_len > 0.0) {
         double weight = 0.0;
         for (long i = 0; i < n; ++i) {
-            const double r = w->particles.radius[i], m = 1.0 / w->particles.inv_mass[i];
-            const double volume = 4.0 / 3.0 * BDL_PI * r * r * r;
-            weight += (m - rho * volume) * g_len;
+            const double m = 1.0 / w->particles.inv_mass[i];
+            weight += (m - rho * bdl_particle_volume(&w->particles, i)) * g_len;
         }
         const double area = g->n[b] * g->h[b] * g->n[c] * g->h[c];
         const double column = rho * g_len * (g->n[a] - 1) * g->h[a]; // between the layer centres

@@ -347,14 +347,6 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
                            "[coupling] needs a [gas] section");
         return;
     }
-    for (int k = 0; k < p->scene->species_count; ++k)
-        if (p->scene->species[k].shape == BDL_SHAPE_ROD) {
-            bdl_scene_fail(p, &(bdl_scene_where){.line = gas->line, .title = "gas"},
-                           "rods in a gas are not modelled yet (the drag and voidage of rods; "
-                           "[species %s] is a rod): a scene with rods has no [gas]",
-                           p->scene->species[k].name);
-            return;
-        }
     if (!given(gas, key_of(gas, "cells"))) {
         fail_missing(p, gas, "cells", " (the gas grid: cells along x, y, z)");
         return;
