@@ -62,7 +62,7 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
             return BDL_ERR_NOMEM;
         c->point_capacity = cap;
     }
-    if (n <= c->capacity)
+    if (n <= c->capacity && c->first)
         return BDL_OK;
     const long cap = n + n / 2 + 16;
     if (!bdl_grow((void **)&c->first, cap + 1, sizeof(long)) ||
