@@ -10,3 +10,4 @@ bdl_cli_expect(cli_calibrate_missing 2 "cannot read" calibrate ${CMAKE_CURRENT_S
 bdl_add_test(test_bed_height SOURCES test_bed_height.c LABELS dia)
 bdl_add_test(test_orient SOURCES test_orient.c LABELS dia)
 bdl_add_test(test_piv SOURCES test_piv.c LABELS dia)
+bdl_add_test(test_ptv SOURCES test_ptv.c LABELS dia)
