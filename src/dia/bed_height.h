@@ -1,4 +1,4 @@
-// bedlam — bed height as the level of the steepest row-averaged gradient (Mahajan 2019, §2.3.4):
+// bedlam — bed height as the level of the steepest row-averaged gradient (Mahajan 2019, ch. 2):
 // no threshold, the same definition for a camera image and for a simulated density field.
 #ifndef BDL_DIA_BED_HEIGHT_H
 #define BDL_DIA_BED_HEIGHT_H

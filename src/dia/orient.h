@@ -1,5 +1,5 @@
 // bedlam — orientation of rods lying parallel to the front wall, from an image (Mahajan 2019,
-// §2.3.5): adaptive threshold, blobs labelled and kept by area, and each blob's angle as the one
+// ch. 2): adaptive threshold, blobs labelled and kept by area, and each blob's angle as the one
 // of largest aspect ratio over rotated axes; and the coalignment of the detected rods.
 //
 // Angles are in degrees in the image, 0 = upright (the rod's axis along the image's vertical), +90

@@ -1,5 +1,5 @@
 // bedlam — particle image velocimetry by multi-pass FFT cross-correlation with window offset
-// (Mahajan 2019, §2.3.6: one pass of 256 px windows at 50 % overlap, then three of 128 px at
+// (Mahajan 2019, ch. 2: one pass of 256 px windows at 50 % overlap, then three of 128 px at
 // 75 %), and the solids mass flux per cell from a voidage field and a velocity field.
 #ifndef BDL_DIA_PIV_H
 #define BDL_DIA_PIV_H

@@ -1,5 +1,5 @@
 // bedlam — particle tracking velocimetry by nearest-neighbour linking of detected centroids
-// between consecutive frames (Mahajan 2019, §2.3.10, after Adrian and Westerweel 2011), and the
+// between consecutive frames (Mahajan 2019, ch. 2, after Adrian and Westerweel 2011), and the
 // 2D coordination number of the tracked particles.
 #ifndef BDL_DIA_PTV_H
 #define BDL_DIA_PTV_H
