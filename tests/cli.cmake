@@ -75,3 +75,13 @@ set_tests_properties(cli_bench_bed_dir PROPERTIES LABELS cli TIMEOUT 300)
 # The rod bed refuses the thesis's own step (5e-5 s is about the rods' shortest contact time).
 bdl_cli_expect(cli_rods_thesis_dt 2 "of the contact time .* of species 'rod' with 'rod'" run
   ${PROJECT_SOURCE_DIR}/scenes/rod_bed_packed.ini --set run.dt=5e-5 --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/rods_dt)
+
+# analyze dia: a small rod scene's synthetic camera images through the image-analysis chain.
+add_test(NAME cli_dia_rods_run COMMAND ${CMAKE_COMMAND} -DEXPECT=0 -DCONTAINS=
+  "-DCMD=$<TARGET_FILE:bedlam>;run;${S}/dia_rods.ini;--quiet;--out;${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods"
+  -P ${BDL_EXPECT})
+set_tests_properties(cli_dia_rods_run PROPERTIES LABELS cli FIXTURES_SETUP dia_rods)
+bdl_cli_expect(cli_analyze_dia 0 "rods along the front wall: [0-9]+ in the truth.*PIV against"
+  analyze dia ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/front)
+set_tests_properties(cli_analyze_dia PROPERTIES FIXTURES_REQUIRED dia_rods)
+bdl_cli_expect(cli_analyze_dia_missing 2 "camera.json" analyze dia ${S}/no_such_camera)

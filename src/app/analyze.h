@@ -27,5 +27,7 @@ bdl_result bdl_analyze_mean(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_phase(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_profile(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_networks(const bdl_analyze_opts *o);
+/// A synthetic camera's folder (RUN/dia/NAME): the image-analysis chain against the truth.
+bdl_result bdl_analyze_dia(const bdl_analyze_opts *o);
 
 #endif
