@@ -1,7 +1,9 @@
 // bedlam — entry point: dispatches to the subcommands.
+#define _POSIX_C_SOURCE 200809L // setenv, execv
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "app/app.h"
 
@@ -47,8 +49,23 @@ int bdl_exit_code(bdl_result r)
     }
 }
 
+/// OpenMP threads waiting at a barrier spin on their core by default (libgomp: about 300 000
+/// rounds before they sleep). On a machine shared with other work that steals the core from a
+/// thread that has work, and a parallel region then waits for a thread that cannot run. Unless the
+/// user chose a policy, bedlam runs with OMP_WAIT_POLICY=passive: waiting threads sleep at once.
+/// libgomp reads the variable when it loads, before main, so the program starts itself again with
+/// it set (if that fails, it goes on as it is).
+static void passive_wait(char **argv)
+{
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT"))
+        return;
+    if (setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+        execv("/proc/self/exe", argv);
+}
+
 int main(int argc, char **argv)
 {
+    passive_wait(argv);
     static const command commands[] = {
         {"run", bdl_cmd_run},         {"view", bdl_cmd_view},     {"check", bdl_cmd_check},
         {"bench", bdl_cmd_bench},     {"verify", bdl_cmd_verify}, {"calibrate", bdl_cmd_calibrate},
