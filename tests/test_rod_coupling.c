@@ -3,6 +3,7 @@
 // the drag the gas feels equal and opposite to the drag on the rods for the rod laws; and the
 // drag of a single rod in a uniform stream depending on its angle as the single-particle law says.
 #include <math.h>
+#include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -250,11 +251,50 @@ static void test_falling_rod(void)
     bdl_world_destroy(w);
 }
 
+/// Rods and a few spheres fluidized by an inlet, every loop parallel: the same bits on one and two
+/// threads.
+static void test_threads(void)
+{
+    uint64_t hash[2] = {0, 0};
+    for (int t = 1; t <= 2; ++t) {
+        omp_set_num_threads(t);
+        bdl_world *w = bdl_test_world(
+            "[run]\nend_time = 1\ngravity = 0 0 -9.81\n[domain]\nmin = 0 0 0\nmax = 0.03 0.012 "
+            "0.1\n[contact]\nlaw = linear\n"
+            "[species rod]\nshape = rod\ndiameter = 1.5e-3\nlength = 6e-3\ndensity = 1395\n"
+            "stiffness = 6000\nrestitution = 0.43\nfriction = 0.46\n"
+            "[species ball]\ndiameter = 2e-3\ndensity = 1395\nstiffness = 6000\n"
+            "restitution = 0.43\nfriction = 0.46\n"
+            "[wall box]\ntype = box\nmin = 0 0 0\nmax = 0.03 0.012 0.1\n"
+            "[create rods]\ntype = random\nspecies = rod\ncount = 300\nregion_min = 0 0 0\n"
+            "region_max = 0.03 0.012 0.06\n"
+            "[create balls]\ntype = random\nspecies = ball\ncount = 30\nregion_min = 0 0 0\n"
+            "region_max = 0.03 0.012 0.06\n"
+            "[gas]\ncells = 4 2 12\nzmin = inlet\nzmax = outlet\ninlet_velocity = 1.5\n"
+            "[coupling]\ndrag = sta\n");
+        CHECK(w != NULL);
+        if (!w)
+            return;
+        w->parallel_min = 1;
+        w->coupling->parallel_min = 1;
+        for (int s = 0; s < 3000 && bdl_world_step(w) == BDL_OK; ++s)
+            ;
+        hash[t - 1] = bdl_world_hash(w);
+        printf("rods in gas, threads %d: t = %.4f s, hash %016llx\n", t, w->time,
+               (unsigned long long)hash[t - 1]);
+        bdl_world_destroy(w);
+    }
+    omp_set_num_threads(1);
+    CHECK(hash[0] != 0);
+    CHECK_MSG(hash[0] == hash[1], "rods in gas differ between 1 and 2 threads");
+}
+
 int main(void)
 {
     test_sweep();
     test_balance();
     test_single_rod();
     test_falling_rod();
+    test_threads();
     return bdl_test_summary("test_rod_coupling");
 }
