@@ -80,15 +80,22 @@ bdl_umf_result bdl_umf_from_sweep(const double *u, const double *dp, int n)
     return r;
 }
 
-/// Averages rows [i, j) of one stage over its second half in time; 0 when no row is there.
-static int stage_average(const double *t, const double *dp, const double *ratio, long i, long j,
-                         bdl_sweep_stage *g)
+void bdl_sweep_span_at(const double *t, const double *u, long n, long i, bdl_sweep_span *s)
 {
-    const double mid = 0.5 * (t[i] + t[j - 1]);
+    long j = i;
+    while (j < n && fabs(u[j] - u[i]) < 1e-9)
+        ++j;
+    *s = (bdl_sweep_span){.first = i, .end = j, .u = u[i], .from = 0.5 * (t[i] + t[j - 1])};
+}
+
+/// Averages the rows of one stage over its second half in time; 0 when no row is there.
+static int stage_average(const double *t, const double *dp, const double *ratio,
+                         const bdl_sweep_span *sp, bdl_sweep_stage *g)
+{
     double s = 0, s2 = 0, r = 0;
     long c = 0;
-    for (long k = i; k < j; ++k)
-        if (t[k] >= mid) {
+    for (long k = sp->first; k < sp->end; ++k)
+        if (t[k] >= sp->from) {
             s += dp[k], s2 += dp[k] * dp[k], r += ratio[k], ++c;
         }
     if (c == 0)
@@ -103,14 +110,12 @@ int bdl_sweep_stages(const double *t, const double *u, const double *dp, const d
                      long n, bdl_sweep_stage *out)
 {
     int count = 0;
-    for (long i = 0; i < n;) {
-        long j = i;
-        while (j < n && fabs(u[j] - u[i]) < 1e-9)
-            ++j;
+    bdl_sweep_span sp;
+    for (long i = 0; i < n; i = sp.end) {
+        bdl_sweep_span_at(t, u, n, i, &sp);
         bdl_sweep_stage *g = &out[count];
-        if (u[i] > 0.0 && stage_average(t, dp, ratio, i, j, g))
-            g->u = u[i], ++count;
-        i = j;
+        if (sp.u > 0.0 && stage_average(t, dp, ratio, &sp, g))
+            g->u = sp.u, ++count;
     }
     for (int k = 0; k < count; ++k) {
         const double prev = k > 0 ? out[k - 1].u : NAN, next = k + 1 < count ? out[k + 1].u : NAN;

@@ -36,12 +36,24 @@ typedef struct bdl_sweep_stage {
     int branch;    ///< +1 increasing, -1 decreasing: the way the velocity moved to get here
 } bdl_sweep_stage;
 
+/// The rows of one stage of a sweep: [first, end), at inlet velocity u; the rows from time
+/// `from` on (the middle of the stage's time span) are its second half, the ones averaged.
+typedef struct bdl_sweep_span {
+    long first, end;
+    double u;    ///< [m/s]
+    double from; ///< [s]
+} bdl_sweep_span;
+
+/// The stage that starts at row i < n of a time series (times t, inlet velocities u): the
+/// stretch of consecutive rows whose velocity differs from row i's by less than 1e-9 m/s. The
+/// next stage starts at s->end.
+void bdl_sweep_span_at(const double *t, const double *u, long n, long i, bdl_sweep_span *s);
+
 /// The stages of a sweep from a run's time series (time t, inlet velocity u, pressure drop dp,
-/// weight ratio; n rows): stretches of consecutive rows whose velocity differs from the
-/// stretch's first by less than 1e-9 m/s, each averaged over its rows from the middle of its time
-/// span on (the first half is the transient after the step), those with u > 0 kept. The first
-/// stage's branch is the way the velocity goes next. `out` has room for n stages; returns their
-/// number.
+/// weight ratio; n rows): the stretches of bdl_sweep_span_at, each averaged over its rows from
+/// the middle of its time span on (the first half is the transient after the step), those with
+/// u > 0 kept. The first stage's branch is the way the velocity goes next. `out` has room for n
+/// stages; returns their number.
 int bdl_sweep_stages(const double *t, const double *u, const double *dp, const double *ratio,
                      long n, bdl_sweep_stage *out);
 
