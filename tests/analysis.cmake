@@ -13,3 +13,8 @@ add_test(NAME cli_granular COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedla
   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/granular_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/granular_cli.cmake)
 set_tests_properties(cli_granular PROPERTIES LABELS "analysis;cli" TIMEOUT 600)
+add_test(NAME cli_orientation COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/rod_sweep.ini
+  -DWORK=${CMAKE_CURRENT_BINARY_DIR}/orientation_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/orientation_cli.cmake)
+set_tests_properties(cli_orientation PROPERTIES LABELS "analysis;cli" TIMEOUT 600)

@@ -12,6 +12,7 @@
 #include "output/capture.h"
 #include "output/checkpoint.h"
 #include "output/granular_out.h"
+#include "output/rod_angles_out.h"
 #include "output/world_vtk.h"
 
 static void path_join(char *out, size_t len, const char *a, const char *b)
@@ -85,6 +86,13 @@ static bdl_result write_diagnostics(bdl_run_outputs *o, bdl_diagnostics *d)
     return r;
 }
 
+static bdl_result write_orientation(bdl_run_outputs *o)
+{
+    double row[BDL_ROD_ANGLE_COLUMNS];
+    bdl_rod_angle_row(o->world, row);
+    return bdl_csv_row(o->orientation_csv, row);
+}
+
 static bdl_result write_contacts(bdl_run_outputs *o)
 {
     char rel[64], path[1200];
@@ -154,6 +162,20 @@ static bdl_result open_series(bdl_run_outputs *o, int resume)
     return r;
 }
 
+/// orientation.csv, in scenes with rods when [output] orientation_interval is set.
+static bdl_result open_orientation(bdl_run_outputs *o, int resume)
+{
+    const bdl_world *w = o->world;
+    if (!w->particles.rods || !(w->scene.output.orientation_interval > 0.0))
+        return BDL_OK;
+    char names[BDL_ROD_ANGLE_COLUMNS][BDL_ROD_ANGLE_COLUMN_LEN];
+    const char *pointers[BDL_ROD_ANGLE_COLUMNS];
+    const int count = bdl_rod_angle_columns(names);
+    for (int c = 0; c < count; ++c)
+        pointers[c] = names[c];
+    return open_csv(o, "orientation.csv", pointers, count, resume, &o->orientation_csv);
+}
+
 /// The diagnostics, the series, the contact folder and the VTK collections.
 static bdl_result open_files(bdl_run_outputs *o, int resume)
 {
@@ -163,6 +185,8 @@ static bdl_result open_files(bdl_run_outputs *o, int resume)
                             bdl_diagnostics_columns_for(w), resume, &o->csv);
     if (r == BDL_OK)
         r = open_series(o, resume);
+    if (r == BDL_OK)
+        r = open_orientation(o, resume);
     char sub[1200];
     if (r == BDL_OK && out->contacts_interval > 0.0) {
         path_join(sub, sizeof sub, o->out, "contacts");
@@ -196,6 +220,7 @@ static bdl_result schedule(bdl_run_outputs *o, bdl_diagnostics *d0, int resume)
     if (resume) {
         o->next_diag = next_multiple(t0, out->diagnostics_interval);
         o->next_contacts = next_multiple(t0, out->contacts_interval);
+        o->next_orientation = next_multiple(t0, out->orientation_interval);
         o->next_vtk = t0;
         if (out->vtk_interval > 0.0) {
             long k = (long)floor(t0 / out->vtk_interval + 1e-9);
@@ -214,7 +239,10 @@ static bdl_result schedule(bdl_run_outputs *o, bdl_diagnostics *d0, int resume)
         r = write_vtk(o);
     if (r == BDL_OK && out->contacts_interval > 0.0)
         r = write_contacts(o);
+    if (r == BDL_OK && o->orientation_csv)
+        r = write_orientation(o);
     o->next_diag = t0 + out->diagnostics_interval;
+    o->next_orientation = t0 + out->orientation_interval;
     o->next_vtk = t0 + out->vtk_interval;
     o->next_contacts = t0 + out->contacts_interval;
     if (r != BDL_OK)
@@ -340,6 +368,10 @@ bdl_result bdl_run_outputs_step(void *user, bdl_world *w)
         r = write_contacts(o);
         advance(w, &o->next_contacts, out->contacts_interval);
     }
+    if (r == BDL_OK && o->orientation_csv && due(w, o->next_orientation)) {
+        r = write_orientation(o);
+        advance(w, &o->next_orientation, out->orientation_interval);
+    }
     if (r == BDL_OK && o->frames && due(w, o->next_frame)) {
         r = write_frame(o);
         advance(w, &o->next_frame, out->frame_interval);
@@ -403,6 +435,7 @@ bdl_result bdl_run_outputs_close(bdl_run_outputs *o, int solved, bdl_result *r)
     bdl_csv_close(o->csv);
     bdl_csv_close(o->species_csv);
     bdl_csv_close(o->profile_csv);
+    bdl_csv_close(o->orientation_csv);
     free(o->species_row);
     free(o->profile_row);
     bdl_pvd_destroy(o->pvd);

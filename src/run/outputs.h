@@ -26,12 +26,13 @@ typedef struct bdl_run_outputs {
     double *species_row;
     bdl_csv *profile_csv; ///< profile.csv, with a gas only
     double *profile_row;
+    bdl_csv *orientation_csv; ///< orientation.csv, with rods and [output] orientation_interval
     bdl_pvd *pvd;
     bdl_pvd *gas_pvd; ///< gas fields, with [gas] only
     bdl_guard_state guard;
     double energy0;
     double start_wall; ///< wall clock when the outputs opened [s]
-    double next_diag, next_vtk, next_checkpoint, next_contacts, next_frame;
+    double next_diag, next_vtk, next_checkpoint, next_contacts, next_frame, next_orientation;
     long vtk_index, frame_index;
     bdl_frames *frames; ///< NULL: no frames
     bdl_dia_run *dia;   ///< synthetic cameras ([camera NAME]); NULL without

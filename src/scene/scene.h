@@ -37,6 +37,7 @@ typedef struct bdl_output_def {
     int frame_samples;             ///< multisample anti-aliasing samples (0 = none)
     double contacts_interval;      ///< [s] between contact files in contacts/; 0 = none
     bdl_vec3 mixing_cells;         ///< Lacey index grid in species.csv; 0 0 0 = the default
+    double orientation_interval;   ///< [s] between rows of orientation.csv (rods); 0 = none
 } bdl_output_def;
 
 /// Preset camera orientations ([camera] view).

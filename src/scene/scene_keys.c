@@ -342,6 +342,11 @@ const bdl_scene_key bdl_scene_keys[] = {
      .default_text = "the gas grid's cells, else 10 10 10",
      .doc = "cells along x y z of the grid on which species.csv's Lacey indices are taken "
             "(scenes of two species; whole numbers >= 1)"},
+    {S(OUTPUT), "orientation_interval", NUM, "s", IN_SCENE(output.orientation_interval), .def = {0},
+     .default_text = "0 (none)", GE(0),
+     .doc =
+         "simulated time between rows of orientation.csv (scenes with rods: histograms of the "
+         "rods' angle in the x-z plane near the front and back walls and in the bulk); 0 = none"},
 
     // [camera]
     {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},
