@@ -18,3 +18,8 @@ add_test(NAME cli_orientation COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:be
   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/orientation_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/orientation_cli.cmake)
 set_tests_properties(cli_orientation PROPERTIES LABELS "analysis;cli" TIMEOUT 600)
+add_test(NAME cli_orientation_hand COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DRUN=${CMAKE_CURRENT_SOURCE_DIR}/scenes/orientation/hand
+  -DWORK=${CMAKE_CURRENT_BINARY_DIR}/orientation_hand
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/orientation_hand.cmake)
+set_tests_properties(cli_orientation_hand PROPERTIES LABELS "analysis;cli" TIMEOUT 60)

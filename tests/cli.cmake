@@ -66,6 +66,17 @@ add_test(NAME verify_quick COMMAND ${CMAKE_COMMAND} -DEXPECT=0 "-DCONTAINS= 0 fa
 set_tests_properties(verify_quick PROPERTIES LABELS verify TIMEOUT 900)
 bdl_cli_expect(cli_analyze_help 0 "usage: bedlam analyze" analyze --help)
 bdl_cli_expect(cli_analyze_bad 2 "expected 'sweep RUN'" analyze nonsense somewhere)
+# analyze orientation refuses what it cannot read (runs/ keeps --out out of the source tree).
+set(O ${S}/orientation)
+set(AO ${CMAKE_CURRENT_BINARY_DIR}/runs/orientation_errors)
+bdl_cli_expect(cli_orientation_missing 2 "cannot read .*orientation_interval" analyze orientation ${O}/missing --out ${AO})
+bdl_cli_expect(cli_orientation_no_rods 2 "no rods in 2 rows" analyze orientation ${O}/norods --out ${AO})
+bdl_cli_expect(cli_orientation_bad_count 2 "orientation.csv:3: a bin count is not a whole number" analyze orientation ${O}/badcount --out ${AO})
+bdl_cli_expect(cli_orientation_bad_number 2 "--from abc: not a number" analyze orientation ${O}/hand --from abc --out ${AO})
+bdl_cli_expect(cli_orientation_bad_window 2 "--from must be below --to" analyze orientation ${O}/hand --from 3 --to 1 --out ${AO})
+bdl_cli_expect(cli_orientation_empty_window 1 "no rows between 10 and inf" analyze orientation ${O}/hand --from 10 --no-plots --out ${AO})
+bdl_cli_expect(cli_orientation_not_table 2 "not an orientation table" analyze orientation ${O}/notable --out ${AO})
+bdl_cli_expect(cli_orientation_help 0 "orientation RUN .*--by-velocity" analyze --help)
 
 
 add_test(NAME cli_bench_bed_dir COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>

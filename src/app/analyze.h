@@ -6,7 +6,8 @@
 #include "core/error.h"
 
 typedef struct bdl_analyze_opts {
-    const char *what;   ///< the analysis: sweep, spectrum, mean, phase, profile or networks
+    const char *what;   ///< the analysis: sweep, spectrum, mean, phase, profile, networks or
+                        ///< orientation
     const char *run;    ///< the run folder (networks: the contact file)
     const char *out;    ///< the folder the files go to
     const char *file;   ///< the run's CSV file (spectrum, mean, phase)
@@ -17,8 +18,9 @@ typedef struct bdl_analyze_opts {
     double start;       ///< phase: time the first cycle starts [s]
     double below;       ///< phase: threshold of the intervals reported (NAN: none)
     long from_cycle, to_cycle;
-    int bins;  ///< phase bins, or force bins of networks
-    int plots; ///< run gnuplot
+    int bins;        ///< phase bins, or force bins of networks
+    int plots;       ///< run gnuplot
+    int by_velocity; ///< orientation: one PDF per stage of the inlet velocity
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);
@@ -29,5 +31,6 @@ bdl_result bdl_analyze_profile(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_networks(const bdl_analyze_opts *o);
 /// A synthetic camera's folder (RUN/dia/NAME): the image-analysis chain against the truth.
 bdl_result bdl_analyze_dia(const bdl_analyze_opts *o);
+bdl_result bdl_analyze_orientation(const bdl_analyze_opts *o);
 
 #endif

@@ -20,6 +20,8 @@ static const char analyze_usage[] =
     "       bedlam analyze profile RUN [--from T] [--to T] [--out DIR] [--no-plots]\n"
     "       bedlam analyze networks CONTACTS.csv [--bins N] [--fmax F] [--out DIR] [--no-plots]\n"
     "       bedlam analyze dia RUN/dia/NAME [--out DIR]\n"
+    "       bedlam analyze orientation RUN [--from T] [--to T] [--by-velocity] [--out DIR]\n"
+    "                                  [--no-plots]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
     "the run with --file NAME, e.g. --file species.csv).\n"
@@ -64,6 +66,16 @@ static const char analyze_usage[] =
     "each double frame against the true displacement of the visible particles per cell; the\n"
     "coalignment length of the detected and of the true rods. Writes dia_scores.csv.\n"
     "\n"
+    "orientation: the rods' in-plane angle (RUN/orientation.csv, runs with rods and [output]\n"
+    "orientation_interval): the axis projected on the x-z plane, its angle from the vertical z\n"
+    "(0 upright, +-90 lying, positive leaning to +x), as a camera at the front wall sees it. The\n"
+    "histograms of the rows between --from and --to are pooled into a PDF [1/deg] near the walls\n"
+    "(centres within one rod length of the front or back wall, y) and in the bulk; with\n"
+    "--by-velocity one PDF per stage of the inlet velocity, over its second half as sweep takes\n"
+    "it. Writes orientation.csv (stage, inlet_velocity, angle, wall_pdf, bulk_pdf),\n"
+    "orientation_summary.csv (per stage: rows, rods, mean |cos| of the 3D angle to the vertical)\n"
+    "and orientation.png.\n"
+    "\n"
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
     "codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
@@ -83,6 +95,7 @@ static const bdl_option options[] = {
     {"--bins", BDL_OPTION_INT, offsetof(bdl_analyze_opts, bins)},
     {"--out", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, out)},
     {"--no-plots", BDL_OPTION_CLEAR, offsetof(bdl_analyze_opts, plots)},
+    {"--by-velocity", BDL_OPTION_SET, offsetof(bdl_analyze_opts, by_velocity)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.
@@ -97,6 +110,27 @@ static int take_run(void *opts, int argc, char **argv, int i)
     }
     o->run = a;
     return 1;
+}
+
+/// The values of the options that take numbers are numbers (atof would read "abc" as 0).
+static bdl_result check_numbers(int argc, char **argv)
+{
+    for (int i = 2; i + 1 < argc; ++i) {
+        const bdl_option *opt = bdl_option_find(options, BDL_OPTION_COUNT(options), argv[i]);
+        if (!opt || opt->kind == BDL_OPTION_TEXT || opt->kind == BDL_OPTION_SET ||
+            opt->kind == BDL_OPTION_CLEAR)
+            continue;
+        char *end;
+        const double v = strtod(argv[i + 1], &end);
+        if (end == argv[i + 1] || *end != '\0' || isnan(v) ||
+            (opt->kind != BDL_OPTION_NUMBER && v != floor(v))) {
+            fprintf(stderr, "error: %s %s: not a%s number\n", argv[i], argv[i + 1],
+                    opt->kind == BDL_OPTION_NUMBER ? "" : " whole");
+            return BDL_ERR_ARGS;
+        }
+        ++i;
+    }
+    return BDL_OK;
 }
 
 /// Reads argv[2..] into *o; *help when --help was printed.
@@ -116,7 +150,9 @@ static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int 
                             .to_cycle = 1L << 40,
                             .bins = -1,
                             .plots = 1};
-    return bdl_option_parse(&parser, argc, argv, 2, o, help);
+    *help = 0;
+    const bdl_result rc = check_numbers(argc, argv);
+    return rc != BDL_OK ? rc : bdl_option_parse(&parser, argc, argv, 2, o, help);
 }
 
 /// The defaults that depend on the analysis, and the checks of the options every analysis but
@@ -130,6 +166,10 @@ static bdl_result check_options(bdl_analyze_opts *o)
         o->bins = networks ? 40 : 50;
     if (!(o->fmax > o->fmin) || o->bins < 3 || o->bins > 100000) {
         fprintf(stderr, "error: --fmax must be above --fmin, --bins from 3 to 100000\n");
+        return BDL_ERR_ARGS;
+    }
+    if (!(o->from < o->to)) {
+        fprintf(stderr, "error: --from must be below --to\n");
         return BDL_ERR_ARGS;
     }
     if (strcmp(o->what, "phase") == 0 && !(o->period > 0.0)) {
@@ -166,7 +206,7 @@ static const analysis analyses[] = {
     {"sweep", bdl_analyze_sweep},       {"spectrum", bdl_analyze_spectrum},
     {"mean", bdl_analyze_mean},         {"phase", bdl_analyze_phase},
     {"networks", bdl_analyze_networks}, {"profile", bdl_analyze_profile},
-    {"dia", bdl_analyze_dia},
+    {"dia", bdl_analyze_dia},           {"orientation", bdl_analyze_orientation},
 };
 
 bdl_result bdl_cmd_analyze(int argc, char **argv)
@@ -185,10 +225,11 @@ bdl_result bdl_cmd_analyze(int argc, char **argv)
         if (strcmp(o.what, analyses[k].name) == 0)
             a = &analyses[k];
     if (!o.run || !a) {
-        fprintf(stderr,
-                "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
-                "'profile RUN', 'networks CONTACTS.csv' or 'dia RUN/dia/NAME'\n\n%s",
-                analyze_usage);
+        fprintf(
+            stderr,
+            "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
+            "'profile RUN', 'orientation RUN', 'networks CONTACTS.csv' or 'dia RUN/dia/NAME'\n\n%s",
+            analyze_usage);
         return BDL_ERR_ARGS;
     }
     if (a->fn == bdl_analyze_mean) // prints only: no folder, no bins

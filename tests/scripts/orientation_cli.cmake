@@ -23,3 +23,11 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E compare_files
 if(NOT same EQUAL 0)
   message(FATAL_ERROR "orientation.csv differs between one thread and two threads with a resume")
 endif()
+# The run's PDFs per stage of its sweep (0.5, 1, 1.5, 1, 0.5 m/s): five, each integrating to 1.
+execute_process(COMMAND ${BEDLAM} analyze orientation ${WORK}/one --by-velocity --no-plots
+  RESULT_VARIABLE rc)
+file(STRINGS ${WORK}/one/analysis/orientation_summary.csv stages)
+list(LENGTH stages n)
+if(NOT rc EQUAL 0 OR NOT n EQUAL 6)
+  message(FATAL_ERROR "analyze orientation --by-velocity: exit ${rc}, ${n} lines, expected 6")
+endif()
