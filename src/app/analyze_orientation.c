@@ -210,7 +210,8 @@ static int pdf_of(const orientation_data *d, long first, long end, double from, 
     return p->mean.rows > 0;
 }
 
-/// The PDFs asked for into p (room for d->s.rows): one over [--from, --to], or with
+/// The PDFs asked for into p (room for d->s.rows with --by-velocity): one over [--from, --to], or
+/// with
 /// --by-velocity one per stage of the inlet velocity (u > 0) over its second half (the stages of
 /// analyze sweep, bdl_sweep_span_at) within [--from, --to]. Returns their number.
 static int pdfs_of(const bdl_analyze_opts *o, const orientation_data *d, orientation_pdf *p)
@@ -322,7 +323,8 @@ bdl_result bdl_analyze_orientation(const bdl_analyze_opts *o)
         fprintf(stderr, "error: %s/orientation.csv: no rods in %ld rows\n", o->run, d.s.rows);
         rc = BDL_ERR_ARGS;
     }
-    const long rows = rc == BDL_OK ? d.s.rows : 0, bins = d.s.bins;
+    // Room for a PDF per row (--by-velocity: at most one stage per row), else one.
+    const long rows = rc != BDL_OK ? 0 : o->by_velocity ? d.s.rows : 1, bins = d.s.bins;
     orientation_pdf *p = rows > 0 ? calloc((size_t)rows, sizeof *p) : NULL;
     double *store = rows > 0 ? malloc((size_t)(rows * BDL_ROD_ZONES * bins) * sizeof *store) : NULL;
     if (rc == BDL_OK && (!p || !store)) {
