@@ -10,7 +10,9 @@
 #include "app/options.h"
 #include "core/file.h"
 
-static const char analyze_usage[] =
+// The usage in two literals (C11 promises string literals of 4095 characters only), joined on
+// first use.
+static const char usage_first[] =
     "usage: bedlam analyze sweep RUN [--out DIR] [--no-plots]\n"
     "       bedlam analyze spectrum RUN [--column NAME] [--from T] [--to T] [--fmin F] [--fmax F]\n"
     "                               [--out DIR] [--no-plots]\n"
@@ -57,7 +59,8 @@ static const char analyze_usage[] =
     "particles, contacts, mean coordination and length), those of the forces above the mean, and\n"
     "the distribution of f = F_n/<F_n> in N bins (default 40) up to F (default 5), fitted with\n"
     "P(f) = a (1 - b exp(-f^2)) exp(-beta f). Writes force_pdf.csv and force_pdf.png.\n"
-    "\n"
+    "\n";
+static const char usage_second[] =
     "dia: a synthetic camera's images (an orthographic [camera NAME] kind = dia) through the\n"
     "thesis's image analysis, scored against the truth beside them: the bed height from the\n"
     "row-averaged intensity gradient against the same definition on the true solids fraction;\n"
@@ -79,6 +82,7 @@ static const char analyze_usage[] =
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
     "codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
+static char analyze_usage[sizeof usage_first + sizeof usage_second];
 
 static const bdl_option options[] = {
     {"--column", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, column)},
@@ -211,6 +215,8 @@ static const analysis analyses[] = {
 
 bdl_result bdl_cmd_analyze(int argc, char **argv)
 {
+    if (!analyze_usage[0])
+        snprintf(analyze_usage, sizeof analyze_usage, "%s%s", usage_first, usage_second);
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
         fputs(analyze_usage, argc < 2 ? stderr : stdout);
         return argc < 2 ? BDL_ERR_ARGS : BDL_OK;
