@@ -120,7 +120,7 @@ static double angle_gap(double a, double b)
 
 /// Scores of all frames together.
 typedef struct dia_totals {
-    long frames, truth_rods, matched, within10;
+    long frames, truth_rods, matched, within10, detections;
     double angle_err, level_err_max, level_err_sum;
     double *piv_err; ///< |PIV - truth| per cell with particles [px]
     double truth_disp;
@@ -172,7 +172,7 @@ static double coalignment_length(const double *u, const double *v, const double 
 }
 
 /// Detects the rods of an image and scores them against the true wall rods (the nearest
-/// detection within half a rod length): adds to the totals.
+/// detection within half a rod length not taken by another): adds to the totals.
 static void score_rods(const dia_camera *cam, const double *img, const table *parts, double lp,
                        dia_totals *tot)
 {
@@ -196,17 +196,19 @@ static void score_rods(const dia_camera *cam, const double *img, const table *pa
         double best_d2 = 0.25 * lp * lp;
         for (long m = 0; m < count; ++m) {
             const double du = found[m].u - u[k], dv = found[m].v - v[k];
-            if (du * du + dv * dv < best_d2)
+            if (found[m].area > 0 && du * du + dv * dv < best_d2)
                 best = m, best_d2 = du * du + dv * dv;
         }
         if (best < 0)
             continue;
+        found[best].area = -found[best].area; // taken: one true rod per blob
         const double err = angle_gap(found[best].angle, angle[k]);
         ++tot->matched;
         tot->within10 += err <= 10.0;
         tot->angle_err += err;
     }
     tot->truth_rods += truth;
+    tot->detections += count;
     const double xi_truth = coalignment_length(u, v, angle, truth, lp);
     for (long m = 0; m < count; ++m)
         u[m] = found[m].u, v[m] = found[m].v, angle[m] = found[m].angle;
@@ -329,10 +331,12 @@ static void report(const dia_totals *t)
            100.0 * t->level_err_max);
     if (t->truth_rods > 0)
         printf("rods along the front wall: %ld in the truth, %.1f %% detected, %.1f %% of those "
-               "within 10 degrees (mean error %.2f degrees)\n",
+               "within 10 degrees (mean error %.2f degrees); %ld blobs taken for rods, %.1f %% of "
+               "them on a true wall rod\n",
                t->truth_rods, 100.0 * t->matched / t->truth_rods,
                t->matched ? 100.0 * t->within10 / t->matched : 0.0,
-               t->matched ? t->angle_err / t->matched : 0.0);
+               t->matched ? t->angle_err / t->matched : 0.0, t->detections,
+               t->detections ? 100.0 * t->matched / t->detections : 0.0);
     if (t->xi_frames > 0)
         printf("coalignment length: %.2f rod lengths from the detected rods, %.2f from the true "
                "ones (mean over %ld frames)\n",
