@@ -122,7 +122,8 @@ static double angle_gap(double a, double b)
 typedef struct dia_totals {
     long frames, truth_rods, matched, within10, detections;
     double angle_err, level_err_max, level_err_sum;
-    double *piv_err; ///< |PIV - truth| per cell with particles [px]
+    double *level_err; ///< |relative error| of the bed height per frame
+    double *piv_err;   ///< |PIV - truth| per cell with particles [px]
     double truth_disp;
     long piv_n, piv_cap;
     double xi_img, xi_truth;
@@ -307,6 +308,9 @@ static int score_frame(const char *dir, long frame, const dia_camera *cam, bdl_d
         const double err = (level_img - level_truth) / level_truth;
         tot->level_err_max = fmax(tot->level_err_max, fabs(err));
         tot->level_err_sum += fabs(err);
+        double *grown = realloc(tot->level_err, (size_t)(tot->frames + 1) * sizeof(double));
+        if (grown)
+            tot->level_err = grown, grown[tot->frames] = fabs(err);
         const long matched = tot->matched, truth = tot->truth_rods, piv_n = tot->piv_n;
         if (rod >= 0)
             score_rods(cam, a, &parts, lp, tot);
@@ -325,10 +329,11 @@ static int score_frame(const char *dir, long frame, const dia_camera *cam, bdl_d
 /// The summary of all frames on stdout.
 static void report(const dia_totals *t)
 {
+    qsort(t->level_err, (size_t)t->frames, sizeof(double), compare_doubles);
     printf("%ld frames: bed height from the images against the same definition on the true solids "
-           "fraction: mean |error| %.2f %%, largest %.2f %%\n",
-           t->frames, 100.0 * t->level_err_sum / (double)(t->frames ? t->frames : 1),
-           100.0 * t->level_err_max);
+           "fraction: |error| median %.2f %%, mean %.2f %%, largest %.2f %%\n",
+           t->frames, 100.0 * t->level_err[t->frames / 2],
+           100.0 * t->level_err_sum / (double)t->frames, 100.0 * t->level_err_max);
     if (t->truth_rods > 0)
         printf("rods along the front wall: %ld in the truth, %.1f %% detected, %.1f %% of those "
                "within 10 degrees (mean error %.2f degrees); %ld blobs taken for rods, %.1f %% of "
@@ -390,6 +395,6 @@ bdl_result bdl_analyze_dia(const bdl_analyze_opts *o)
     if (tot.frames > 0)
         report(&tot);
     printf("per frame: %s\n", path);
-    free(frame), free(tot.piv_err), bdl_dia_piv_destroy(piv);
+    free(frame), free(tot.piv_err), free(tot.level_err), bdl_dia_piv_destroy(piv);
     return r;
 }
