@@ -10,12 +10,12 @@
 #include <string.h>
 
 #include "app/analyze.h"
+#include "app/analyze_files.h"
 #include "core/file.h"
 #include "core/vec3.h"
 #include "dia/bed_height.h"
 #include "dia/orient.h"
 #include "dia/piv.h"
-#include "io/csv.h"
 #include "io/png.h"
 
 /// What the analysis needs of camera.json.
@@ -74,20 +74,22 @@ typedef struct table {
     double *col[12];
 } table;
 
-static int read_table(const char *path, const char *const *names, int count, table *t)
+/// Reads the columns `names` of DIR/FILE (bdl_analyze_read_column); 0 when the first is missing.
+/// The columns must have the same length as the first (else they are left out, NULL).
+static int read_table(const char *dir, const char *file, const char *const *names, int count,
+                      table *t)
 {
     memset(t, 0, sizeof *t);
-    t->rows = bdl_csv_read_column(path, names[0], NULL, 0);
-    if (t->rows <= 0)
-        return 0;
     for (int c = 0; c < count; ++c) {
-        t->col[c] = malloc((size_t)t->rows * sizeof(double));
-        if (!t->col[c] || bdl_csv_read_column(path, names[c], t->col[c], t->rows) != t->rows) {
+        long n = 0;
+        if (bdl_analyze_read_column(dir, file, names[c], &t->col[c], &n) && c > 0 && n != t->rows) {
             free(t->col[c]);
             t->col[c] = NULL;
         }
+        if (c == 0)
+            t->rows = t->col[0] ? n : 0;
     }
-    return 1;
+    return t->rows > 0;
 }
 
 static void free_table(table *t)
@@ -292,10 +294,11 @@ static int score_frame(const char *dir, long frame, const dia_camera *cam, bdl_d
         return 0;
     }
     table parts, cells;
-    snprintf(path, sizeof path, "%s%s_particles.csv", stem, pair ? "_a" : "");
-    int ok = read_table(path, particle_columns, 8, &parts);
-    snprintf(path, sizeof path, "%s_cells.csv", stem);
-    ok = read_table(path, cell_columns, 9, &cells) && ok;
+    char file[64];
+    snprintf(file, sizeof file, "frame_%06ld%s_particles.csv", frame, pair ? "_a" : "");
+    int ok = read_table(dir, file, particle_columns, 8, &parts);
+    snprintf(file, sizeof file, "frame_%06ld_cells.csv", frame);
+    ok = read_table(dir, file, cell_columns, 9, &cells) && ok;
     long rod = -1;
     for (long k = 0; ok && k < parts.rows && rod < 0; ++k)
         rod = parts.col[6] && parts.col[6][k] > 0.0 ? k : -1;
@@ -362,14 +365,10 @@ bdl_result bdl_analyze_dia(const bdl_analyze_opts *o)
     if (r != BDL_OK)
         return r;
     char path[1200];
-    snprintf(path, sizeof path, "%s/frames.csv", o->run);
-    const long frames = bdl_csv_read_column(path, "frame", NULL, 0);
-    double *frame = frames > 0 ? malloc((size_t)frames * sizeof(double)) : NULL;
-    if (!frame || bdl_csv_read_column(path, "frame", frame, frames) != frames) {
-        fprintf(stderr, "error: %s: no frames\n", path);
-        free(frame);
+    double *frame = NULL;
+    long frames = 0;
+    if (!bdl_analyze_read_column(o->run, "frames.csv", "frame", &frame, &frames))
         return BDL_ERR_ARGS;
-    }
     bdl_dia_piv *piv = NULL;
     const bdl_dia_piv_def def = bdl_default_piv_def();
     if (cam.pair_dt > 0.0 && bdl_dia_piv_create(&def, cam.width, cam.height, &piv) != BDL_OK)
