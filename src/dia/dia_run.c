@@ -136,10 +136,10 @@ static bdl_result write_camera_json(const camera_state *c, double dt)
             c->truth.cells[1]);
     fprintf(f, "  \"front_depth\": %.17g,\n  \"back_depth\": %.17g,\n  \"layer_depth\": %.17g,\n",
             c->truth.front, c->truth.back, c->truth.layer);
-    fprintf(
-        f,
-        "  \"start\": %.17g,\n  \"interval\": %.17g,\n  \"pair_dt\": %.17g,\n  \"dt\": %.17g\n}\n",
-        c->def->start, c->def->interval, c->def->pair_dt, dt);
+    fprintf(f,
+            "  \"start\": %.17g,\n  \"stop\": %.17g,\n  \"interval\": %.17g,\n  \"pair_dt\": "
+            "%.17g,\n  \"dt\": %.17g\n}\n",
+            c->def->start, c->def->stop, c->def->interval, c->def->pair_dt, dt);
     return bdl_atomic_commit(&af);
 }
 
@@ -304,6 +304,10 @@ bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v)
             c->pending_b = -1.0;
             c->frame++;
         } else if (c->pending_b < 0.0 && due(v, c->next)) {
+            if (c->def->stop > 0.0 && c->next > c->def->stop + 0.5 * v->dt) {
+                c->next = INFINITY; // the burst is over
+                continue;
+            }
             int pair = c->def->pair_dt > 0.0;
             if (pair && v->time + c->def->pair_dt > r->end_time + 0.5 * v->dt) {
                 c->next = INFINITY; // the run ends before the pair's second frame

@@ -165,6 +165,7 @@ typedef struct bdl_dia_scene_def {
     double blur, noise, gamma;
     int bits;
     double start, interval, pair_dt; ///< first image, images (or pairs) apart, pair separation [s]
+    double stop;                     ///< no image after this time [s]; 0 = to the end
     int cells_across, cells_down;    ///< ground-truth grid of image cells
     uint64_t seed;
 } bdl_dia_scene_def;

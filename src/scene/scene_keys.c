@@ -466,6 +466,9 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "simulated time of the first image"},
     {S(DIA), "interval", NUM, "s", IN_DIA(interval), REQUIRED, GT(0),
      .doc = "simulated time between images (or between the first frames of PIV pairs)"},
+    {S(DIA), "stop", NUM, "s", IN_DIA(stop), .def = {0}, GE(0),
+     .doc = "simulated time after which no image is taken (a high-speed burst for PTV: a short "
+            "interval between start and stop); 0 = to the end of the run"},
     {S(DIA), "pair_dt", NUM, "s", IN_DIA(pair_dt), .def = {0}, GE(0),
      .doc = "0: single images; > 0: double frames this far apart for PIV (rounded to whole "
             "time steps)"},

@@ -452,6 +452,8 @@ static void check_dia(bdl_scene_parser *p, bdl_scene_section *s)
         fail_at_key(p, s, "pair_dt", 0, "must be shorter than interval");
     else if (d->dark >= d->bright)
         fail_at_key(p, s, "dark", 0, "must be below bright");
+    else if (d->stop > 0.0 && d->stop < d->start)
+        fail_at_key(p, s, "stop", 0, "must be at or after start (0: no stop)");
 }
 
 int bdl_scene_validate(bdl_scene_parser *p)
