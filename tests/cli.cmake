@@ -96,3 +96,11 @@ bdl_cli_expect(cli_analyze_dia 0 "rods along the front wall: [0-9]+ in the truth
   analyze dia ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/front)
 set_tests_properties(cli_analyze_dia PROPERTIES FIXTURES_REQUIRED dia_rods)
 bdl_cli_expect(cli_analyze_dia_missing 2 "camera.json" analyze dia ${S}/no_such_camera)
+# analyze ptv: the high-speed camera's frames tracked; falling rods a few pixels apart per frame
+# are linked to themselves (at least 95 % of the links; a linking or matching error shows here).
+bdl_cli_expect(cli_analyze_ptv 0 "links joining the same particle: (9[5-9]|100)[.][0-9]+ %.*coordination"
+  analyze ptv ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/ptv)
+set_tests_properties(cli_analyze_ptv PROPERTIES FIXTURES_REQUIRED dia_rods)
+bdl_cli_expect(cli_analyze_ptv_pairs 2 "double frames" analyze ptv
+  ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/front)
+set_tests_properties(cli_analyze_ptv_pairs PROPERTIES FIXTURES_REQUIRED dia_rods)

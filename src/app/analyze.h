@@ -21,6 +21,7 @@ typedef struct bdl_analyze_opts {
     int bins;        ///< phase bins, or force bins of networks
     int plots;       ///< run gnuplot
     int by_velocity; ///< orientation: one PDF per stage of the inlet velocity
+    double max_step; ///< ptv: longest link [px] (0: half a rod length)
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);
@@ -32,5 +33,7 @@ bdl_result bdl_analyze_networks(const bdl_analyze_opts *o);
 /// A synthetic camera's folder (RUN/dia/NAME): the image-analysis chain against the truth.
 bdl_result bdl_analyze_dia(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_orientation(const bdl_analyze_opts *o);
+/// A high-speed synthetic camera's folder: PTV tracks and coordination numbers against the truth.
+bdl_result bdl_analyze_ptv(const bdl_analyze_opts *o);
 
 #endif

@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "io/csv.h"
 
@@ -36,6 +37,39 @@ int bdl_analyze_read_series(const char *run, const char *file, const char *colum
     free(*t), free(*x);
     *t = *x = NULL;
     return 0;
+}
+
+int bdl_analyze_read_text(const char *dir, const char *file, char *text, size_t len)
+{
+    char path[1200];
+    snprintf(path, sizeof path, "%s/%s", dir, file);
+    FILE *f = fopen(path, "rb");
+    const size_t n = f ? fread(text, 1, len - 1, f) : 0;
+    if (f)
+        fclose(f);
+    text[n] = 0;
+    return f != NULL;
+}
+
+/// Where the value of "key" starts in text (NULL when the key is missing).
+static const char *json_value(const char *text, const char *key)
+{
+    char quoted[80];
+    snprintf(quoted, sizeof quoted, "\"%s\":", key);
+    const char *at = strstr(text, quoted);
+    return at ? at + strlen(quoted) : NULL;
+}
+
+int bdl_analyze_json_number(const char *text, const char *key, double *out)
+{
+    const char *at = json_value(text, key);
+    return at && sscanf(at, " %lf", out) == 1;
+}
+
+int bdl_analyze_json_vec3(const char *text, const char *key, double out[3])
+{
+    const char *at = json_value(text, key);
+    return at && sscanf(at, " [%lf, %lf, %lf]", &out[0], &out[1], &out[2]) == 3;
 }
 
 void bdl_analyze_plot(const char *script_path, const char *format, ...)

@@ -2,6 +2,8 @@
 #ifndef BDL_ANALYZE_FILES_H
 #define BDL_ANALYZE_FILES_H
 
+#include <stddef.h>
+
 /// Reads one column of RUN/FILE (a CSV with a header) into a malloc'ed array; prints an error
 /// and returns 0 when it is missing or empty.
 int bdl_analyze_read_column(const char *run, const char *file, const char *column, double **out,
@@ -11,6 +13,15 @@ int bdl_analyze_read_column(const char *run, const char *file, const char *colum
 /// 0 (nothing to free) when either is missing or their lengths differ.
 int bdl_analyze_read_series(const char *run, const char *file, const char *column, double **t,
                             double **x, long *n);
+
+/// Reads DIR/FILE (at most len - 1 bytes) into text, NUL-terminated; 0 when it cannot be read.
+int bdl_analyze_read_text(const char *dir, const char *file, char *text, size_t len);
+
+/// The number after "key": in a JSON text written by bedlam (camera.json, fit.json); 0 if none.
+int bdl_analyze_json_number(const char *text, const char *key, double *out);
+
+/// The three numbers of "key": [x, y, z] in such a text; 0 if none.
+int bdl_analyze_json_vec3(const char *text, const char *key, double out[3]);
 
 /// Writes a gnuplot script (a printf format and its arguments) to `script_path`, runs gnuplot on
 /// it and deletes it; warns when gnuplot is missing. Nothing happens when the script cannot be

@@ -24,6 +24,7 @@ static const char usage_first[] =
     "       bedlam analyze dia RUN/dia/NAME [--out DIR]\n"
     "       bedlam analyze orientation RUN [--from T] [--to T] [--by-velocity] [--out DIR]\n"
     "                                  [--no-plots]\n"
+    "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
     "the run with --file NAME, e.g. --file species.csv).\n"
@@ -79,6 +80,18 @@ static const char usage_second[] =
     "orientation_summary.csv (per stage: rows, rods, mean |cos| of the 3D angle to the vertical)\n"
     "and orientation.png.\n"
     "\n"
+    "ptv: a high-speed synthetic camera's single images (a [camera NAME] kind = dia with a short\n"
+    "interval, e.g. scenes/dia_rod_bed.ini's [camera ptv]) through the thesis's particle "
+    "tracking:\n"
+    "the rods detected in every frame as dia does, linked to the nearest detection of the next\n"
+    "frame (conflicts to the smallest displacement, links of at most --max-step px, default half\n"
+    "a rod length), tracks of 4 frames or more. Each detection is matched to the visible true\n"
+    "particle nearest its centroid; reports the share of links joining the same particle, the\n"
+    "tracks' velocities (central differences) against the true ones, and the 2D coordination\n"
+    "number of the tracked rods (neighbours within one rod length, corrected for the part of\n"
+    "that disc outside the image) against that of the true rods along the wall, in the thesis's\n"
+    "classes with each class's mean vertical velocity. Writes ptv_tracks.csv.\n"
+    "\n"
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
     "codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
@@ -100,6 +113,7 @@ static const bdl_option options[] = {
     {"--out", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, out)},
     {"--no-plots", BDL_OPTION_CLEAR, offsetof(bdl_analyze_opts, plots)},
     {"--by-velocity", BDL_OPTION_SET, offsetof(bdl_analyze_opts, by_velocity)},
+    {"--max-step", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, max_step)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.
@@ -211,6 +225,7 @@ static const analysis analyses[] = {
     {"mean", bdl_analyze_mean},         {"phase", bdl_analyze_phase},
     {"networks", bdl_analyze_networks}, {"profile", bdl_analyze_profile},
     {"dia", bdl_analyze_dia},           {"orientation", bdl_analyze_orientation},
+    {"ptv", bdl_analyze_ptv},
 };
 
 bdl_result bdl_cmd_analyze(int argc, char **argv)
@@ -231,11 +246,11 @@ bdl_result bdl_cmd_analyze(int argc, char **argv)
         if (strcmp(o.what, analyses[k].name) == 0)
             a = &analyses[k];
     if (!o.run || !a) {
-        fprintf(
-            stderr,
-            "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
-            "'profile RUN', 'orientation RUN', 'networks CONTACTS.csv' or 'dia RUN/dia/NAME'\n\n%s",
-            analyze_usage);
+        fprintf(stderr,
+                "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
+                "'profile RUN', 'orientation RUN', 'networks CONTACTS.csv', 'dia RUN/dia/NAME' or "
+                "'ptv RUN/dia/NAME'\n\n%s",
+                analyze_usage);
         return BDL_ERR_ARGS;
     }
     if (a->fn == bdl_analyze_mean) // prints only: no folder, no bins

@@ -170,23 +170,29 @@ bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, co
             bdl_dia_run_close(r);
             return BDL_ERR_IO;
         }
-        // Image k is at start + k interval: a resumed run continues the numbering.
+        // Image k is at start + k interval: a resumed run continues the numbering. A camera whose
+        // index is not in the output folder yet (a camera added on resuming, or a resumed run
+        // writing to a new folder) starts its index with the header and takes the image due now.
+        char path[1024];
+        snprintf(path, sizeof path, "%s/frames.csv", c->dir);
+        FILE *old = resume ? fopen(path, "rb") : NULL;
+        const int continues = old && fgetc(old) != EOF;
+        if (old)
+            fclose(old);
         double t0 = now->time;
         long frame =
             t0 <= c->def->start ? 0 : (long)ceil((t0 - c->def->start) / c->def->interval - 1e-9);
-        if (resume && due(now, c->def->start + frame * c->def->interval))
+        if (continues && due(now, c->def->start + frame * c->def->interval))
             ++frame; // written by the first run
         c->frame = frame;
         c->next = c->def->start + frame * c->def->interval;
-        char path[1024];
-        snprintf(path, sizeof path, "%s/frames.csv", c->dir);
-        c->index = fopen(path, resume ? "a" : "w");
+        c->index = fopen(path, continues ? "a" : "w");
         if (!c->index) {
             snprintf(why, len, "cannot write %s: %s", path, strerror(errno));
             bdl_dia_run_close(r);
             return BDL_ERR_IO;
         }
-        if (!resume)
+        if (!continues)
             fprintf(c->index, "frame,time,image,particles,cells\n");
     }
     *out = r;
