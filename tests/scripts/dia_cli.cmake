@@ -36,3 +36,17 @@ message("${out}${err}")
 if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/applied/frame_000001_a_voidage.csv)
   message(FATAL_ERROR "calibrate --apply failed (${rc})")
 endif()
+# Resumed into a new folder: the camera's index there starts with its header and goes on with
+# the images after the checkpoint (t = 0.07, 0.08: two pairs).
+file(REMOVE_RECURSE ${WORK}_resumed)
+execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --resume ${WORK} --out ${WORK}_resumed
+  --until 0.085 RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "resumed run failed (${rc}):\n${out}\n${err}")
+endif()
+file(STRINGS ${WORK}_resumed/dia/front/frames.csv rows)
+list(LENGTH rows n)
+list(GET rows 0 head)
+if(NOT head STREQUAL "frame,time,image,particles,cells" OR NOT n EQUAL 5)
+  message(FATAL_ERROR "resumed frames.csv: '${head}' and ${n} lines, expected the header and 4 images")
+endif()
