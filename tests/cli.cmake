@@ -104,3 +104,16 @@ set_tests_properties(cli_analyze_ptv PROPERTIES FIXTURES_REQUIRED dia_rods)
 bdl_cli_expect(cli_analyze_ptv_pairs 2 "double frames" analyze ptv
   ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/front)
 set_tests_properties(cli_analyze_ptv_pairs PROPERTIES FIXTURES_REQUIRED dia_rods)
+# With a calibration fit of the same images: the solids mass flux and the coalignment by zone.
+bdl_cli_expect(cli_dia_rods_calibrate 0 "rational" calibrate
+  ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/front --normalise --cap 0.49 --method adaptive
+  --no-plots --out ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods_fit)
+set_tests_properties(cli_dia_rods_calibrate PROPERTIES FIXTURES_REQUIRED dia_rods
+  FIXTURES_SETUP dia_rods_fit)
+bdl_cli_expect(cli_analyze_dia_flux 0 "0-2 +L_p: detected.*upward solids mass flux.*correlation"
+  analyze dia ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods/dia/front --fit
+  ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods_fit/fit.json --density 1395 --height 0.02
+  --out ${CMAKE_CURRENT_BINARY_DIR}/runs/dia_rods_flux)
+set_tests_properties(cli_analyze_dia_flux PROPERTIES FIXTURES_REQUIRED "dia_rods;dia_rods_fit")
+bdl_cli_expect(cli_analyze_dia_fit_density 2 "--fit needs --density" analyze dia
+  ${S}/no_such_camera --fit ${S}/no_such_fit.json)

@@ -22,6 +22,9 @@ typedef struct bdl_analyze_opts {
     int plots;       ///< run gnuplot
     int by_velocity; ///< orientation: one PDF per stage of the inlet velocity
     double max_step; ///< ptv: longest link [px] (0: half a rod length)
+    const char *fit; ///< dia: a calibrate fit.json, for the mass flux (NULL: none)
+    double density;  ///< dia: the particles' density with --fit [kg/m^3] (NAN: not given)
+    double height;   ///< dia: height of the mass-flux profile [m]
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);

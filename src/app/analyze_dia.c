@@ -3,13 +3,15 @@
 // written beside them: the bed height from the row-averaged intensity gradient against the same
 // definition on the true solids fraction, the orientation of the rods lying along the front wall
 // (detection rate, angle error), PIV against the true velocities of what the camera sees per
-// cell, and the coalignment length of the detected rods against that of the true ones.
+// cell, and the coalignment length of the detected rods against that of the true ones; by wall
+// zone, and with a calibration fit the solids mass flux, in analyze_dia_flux.c.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "app/analyze.h"
+#include "app/analyze_dia.h"
 #include "app/analyze_files.h"
 #include "core/file.h"
 #include "core/vec3.h"
@@ -17,21 +19,6 @@
 #include "dia/orient.h"
 #include "dia/piv.h"
 #include "io/png.h"
-
-/// What the analysis needs of camera.json.
-typedef struct dia_camera {
-    int width, height, cells[2];
-    double pixel_size, pair_dt;
-    bdl_vec3 position, right, down, forward;
-} dia_camera;
-
-static int json_number(const char *text, const char *key, double *out)
-{
-    char quoted[64];
-    snprintf(quoted, sizeof quoted, "\"%s\":", key);
-    const char *at = strstr(text, quoted);
-    return at && sscanf(at + strlen(quoted), " %lf", out) == 1;
-}
 
 static int json_vec(const char *text, const char *key, bdl_vec3 *out)
 {
@@ -52,9 +39,9 @@ static bdl_result read_camera(const char *dir, dia_camera *cam)
     text[n] = 0;
     double w = 0, h = 0;
     const char *cells = strstr(text, "\"cells\":");
-    const int ok = json_number(text, "width", &w) && json_number(text, "height", &h) &&
-                   json_number(text, "pixel_size", &cam->pixel_size) &&
-                   json_number(text, "pair_dt", &cam->pair_dt) &&
+    const int ok = dia_json_number(text, "width", &w) && dia_json_number(text, "height", &h) &&
+                   dia_json_number(text, "pixel_size", &cam->pixel_size) &&
+                   dia_json_number(text, "pair_dt", &cam->pair_dt) &&
                    json_vec(text, "position", &cam->position) &&
                    json_vec(text, "right", &cam->right) && json_vec(text, "down", &cam->down) &&
                    json_vec(text, "forward", &cam->forward) && cells &&
@@ -65,19 +52,14 @@ static bdl_result read_camera(const char *dir, dia_camera *cam)
         return BDL_ERR_ARGS;
     }
     cam->width = (int)w, cam->height = (int)h;
+    cam->back_lit = strstr(text, "\"lighting\": \"back\"") != NULL;
     return BDL_OK;
 }
-
-/// A CSV file's columns, read whole (NULL where a column is missing).
-typedef struct table {
-    long rows;
-    double *col[12];
-} table;
 
 /// Reads the columns `names` of DIR/FILE (bdl_analyze_read_column); 0 when the first is missing.
 /// The columns must have the same length as the first (else they are left out, NULL).
 static int read_table(const char *dir, const char *file, const char *const *names, int count,
-                      table *t)
+                      dia_table *t)
 {
     memset(t, 0, sizeof *t);
     for (int c = 0; c < count; ++c) {
@@ -92,16 +74,10 @@ static int read_table(const char *dir, const char *file, const char *const *name
     return t->rows > 0;
 }
 
-static void free_table(table *t)
+static void free_table(dia_table *t)
 {
     for (int c = 0; c < 12; ++c)
         free(t->col[c]);
-}
-
-/// Height above the floor (z = 0 along -down) of image row level v [m].
-static double row_height(const dia_camera *cam, double v)
-{
-    return -bdl_v3_dot(cam->position, cam->down) - (v - 0.5 * cam->height) * cam->pixel_size;
 }
 
 /// The angle in the image of a rod of world axis a: 0 upright, +-90 lying, positive leaning right
@@ -130,23 +106,25 @@ typedef struct dia_totals {
     long piv_n, piv_cap;
     double xi_img, xi_truth;
     long xi_frames;
+    dia_coalign zones; ///< C(r) by wall zone, pooled
+    dia_flux *flux;    ///< with --fit: the solids mass flux
 } dia_totals;
 
 /// Bed heights from the image and from the true solids fraction of the cells, the same way [m].
-static void bed_heights(const dia_camera *cam, const double *img, const table *cells,
+static void bed_heights(const dia_camera *cam, const double *img, const dia_table *cells,
                         double smooth_px, double *from_image, double *truth)
 {
     const int nx = cam->cells[0], ny = cam->cells[1];
     const double cell_h = cells->col[3][0] - cells->col[1][0]; // v1 - v0 of row 0 [px]
-    *from_image = row_height(cam, bdl_dia_bed_level_image(img, cam->width, cam->height, smooth_px,
-                                                          BDL_DIA_RISES_INTO_BED));
+    *from_image = dia_row_height(cam, bdl_dia_bed_level_image(img, cam->width, cam->height,
+                                                              smooth_px, BDL_DIA_RISES_INTO_BED));
     const double level = bdl_dia_bed_level_field(cells->col[5], nx, ny, smooth_px / cell_h);
-    *truth = row_height(cam, cells->col[1][0] + level * cell_h);
+    *truth = dia_row_height(cam, cells->col[1][0] + level * cell_h);
 }
 
 /// The true rods the camera sees lying along the front wall: mostly visible, axis within 20
 /// degrees of the image plane. Writes their pixel centres and image angles; returns their count.
-static long wall_rods(const dia_camera *cam, const table *parts, double *u, double *v,
+static long wall_rods(const dia_camera *cam, const dia_table *parts, double *u, double *v,
                       double *angle)
 {
     long n = 0;
@@ -176,7 +154,7 @@ static double coalignment_length(const double *u, const double *v, const double 
 
 /// Detects the rods of an image and scores them against the true wall rods (the nearest
 /// detection within half a rod length not taken by another): adds to the totals.
-static void score_rods(const dia_camera *cam, const double *img, const table *parts, double lp,
+static void score_rods(const dia_camera *cam, const double *img, const dia_table *parts, double lp,
                        dia_totals *tot)
 {
     const long n = parts->rows;
@@ -213,9 +191,11 @@ static void score_rods(const dia_camera *cam, const double *img, const table *pa
     tot->truth_rods += truth;
     tot->detections += count;
     const double xi_truth = coalignment_length(u, v, angle, truth, lp);
+    dia_coalign_add(&tot->zones, 1, u, v, angle, truth, lp, cam->width);
     for (long m = 0; m < count; ++m)
         u[m] = found[m].u, v[m] = found[m].v, angle[m] = found[m].angle;
     const double xi_img = coalignment_length(u, v, angle, count, lp);
+    dia_coalign_add(&tot->zones, 0, u, v, angle, count, lp, cam->width);
     if (isfinite(xi_img) && isfinite(xi_truth)) {
         tot->xi_img += xi_img, tot->xi_truth += xi_truth;
         ++tot->xi_frames;
@@ -225,23 +205,22 @@ static void score_rods(const dia_camera *cam, const double *img, const table *pa
 
 /// PIV of a double frame against the true displacement of what the camera sees in each cell
 /// (the cells' du, dv times the pair's interval): the PIV vectors whose window centre lies in a
-/// cell with visible particles are averaged and compared; the errors go to the totals.
+/// cell with visible particles are averaged and compared; the errors go to the totals. With a fit,
+/// the mass flux of the pair too.
 static void score_piv(const dia_camera *cam, bdl_dia_piv *piv, const double *a, const double *b,
-                      const table *cells, dia_totals *tot)
+                      const dia_table *cells, dia_totals *tot)
 {
     bdl_dia_piv_field f;
     if (bdl_dia_piv_run(piv, a, b, &f) != BDL_OK)
         return;
+    if (tot->flux && dia_flux_add(tot->flux, cam, a, &f, cells) != BDL_OK)
+        fprintf(stderr, "warning: no mass flux from a frame: its cells do not match the camera or "
+                        "lack the fit's truth\n");
     for (long c = 0; c < cells->rows; ++c) {
-        if (!(cells->col[6][c] > 0.0))
-            continue;
-        double su = 0.0, sv = 0.0;
-        long n = 0;
-        for (long k = 0; k < (long)f.nx * f.ny; ++k)
-            if (!f.outlier[k] && f.u[k] >= cells->col[0][c] && f.u[k] < cells->col[2][c] &&
-                f.v[k] >= cells->col[1][c] && f.v[k] < cells->col[3][c])
-                su += f.du[k], sv += f.dv[k], ++n;
-        if (n == 0)
+        double su, sv;
+        if (!(cells->col[6][c] > 0.0) ||
+            dia_piv_cell_mean(&f, cells->col[0][c], cells->col[1][c], cells->col[2][c],
+                              cells->col[3][c], &su, &sv) == 0)
             continue;
         const double tu = cells->col[7][c] * cam->pair_dt, tv = cells->col[8][c] * cam->pair_dt;
         if (tot->piv_n == tot->piv_cap) {
@@ -251,7 +230,7 @@ static void score_piv(const dia_camera *cam, bdl_dia_piv *piv, const double *a, 
                 return;
             tot->piv_err = grown, tot->piv_cap = cap;
         }
-        tot->piv_err[tot->piv_n++] = hypot(su / n - tu, sv / n - tv);
+        tot->piv_err[tot->piv_n++] = hypot(su - tu, sv - tv);
         tot->truth_disp += hypot(tu, tv);
     }
 }
@@ -273,7 +252,8 @@ static int compare_doubles(const void *a, const void *b)
 static const char *const particle_columns[] = {"u",  "v",  "visible_fraction", "ux",
                                                "uy", "uz", "half_length",      "radius"};
 static const char *const cell_columns[] = {
-    "u0", "v0", "u1", "v1", "area_fraction", "solids_depth", "visible_particles", "du", "dv"};
+    "u0", "v0", "u1",          "v1", "area_fraction", "solids_depth", "visible_particles",
+    "du", "dv", "solids_layer"};
 
 /// Frame `frame` of the camera in `dir`: the images (a pair when there is one), its particles
 /// and cells; scores what it can. Returns 0 when the frame's files are missing.
@@ -293,12 +273,12 @@ static int score_frame(const char *dir, long frame, const dia_camera *cam, bdl_d
         free(a);
         return 0;
     }
-    table parts, cells;
+    dia_table parts, cells;
     char file[64];
     snprintf(file, sizeof file, "frame_%06ld%s_particles.csv", frame, pair ? "_a" : "");
     int ok = read_table(dir, file, particle_columns, 8, &parts);
     snprintf(file, sizeof file, "frame_%06ld_cells.csv", frame);
-    ok = read_table(dir, file, cell_columns, 9, &cells) && ok;
+    ok = read_table(dir, file, cell_columns, 10, &cells) && ok;
     long rod = -1;
     for (long k = 0; ok && k < parts.rows && rod < 0; ++k)
         rod = parts.col[6] && parts.col[6][k] > 0.0 ? k : -1;
@@ -361,14 +341,18 @@ static void report(const dia_totals *t)
 bdl_result bdl_analyze_dia(const bdl_analyze_opts *o)
 {
     dia_camera cam;
-    bdl_result r = read_camera(o->run, &cam);
-    if (r != BDL_OK)
-        return r;
+    dia_totals tot = {0};
     char path[1200];
     double *frame = NULL;
     long frames = 0;
-    if (!bdl_analyze_read_column(o->run, "frames.csv", "frame", &frame, &frames))
-        return BDL_ERR_ARGS;
+    bdl_result r = dia_flux_open(o, &tot.flux);
+    if (r == BDL_OK && (r = read_camera(o->run, &cam)) == BDL_OK &&
+        !bdl_analyze_read_column(o->run, "frames.csv", "frame", &frame, &frames))
+        r = BDL_ERR_ARGS;
+    if (r != BDL_OK) {
+        dia_flux_free(tot.flux);
+        return r;
+    }
     bdl_dia_piv *piv = NULL;
     const bdl_dia_piv_def def = bdl_default_piv_def();
     if (cam.pair_dt > 0.0 && bdl_dia_piv_create(&def, cam.width, cam.height, &piv) != BDL_OK)
@@ -378,10 +362,9 @@ bdl_result bdl_analyze_dia(const bdl_analyze_opts *o)
     if ((r = bdl_atomic_open_csv(&af, path,
                                  "frame,bed_height_image,bed_height_truth,"
                                  "relative_error,wall_rods,matched,piv_cells")) != BDL_OK) {
-        free(frame), bdl_dia_piv_destroy(piv);
+        free(frame), bdl_dia_piv_destroy(piv), dia_flux_free(tot.flux);
         return r;
     }
-    dia_totals tot = {0};
     for (long k = 0; k < frames; ++k)
         if (k > 0 && frame[k] == frame[k - 1])
             continue; // a double frame's second image has a row of its own
@@ -394,6 +377,12 @@ bdl_result bdl_analyze_dia(const bdl_analyze_opts *o)
     if (tot.frames > 0)
         report(&tot);
     printf("per frame: %s\n", path);
+    bdl_result w = BDL_OK;
+    if (tot.frames > 0 && tot.truth_rods + tot.detections > 0)
+        w = dia_coalign_report(&tot.zones, o->out);
+    if (tot.frames > 0 && tot.flux && w == BDL_OK)
+        w = dia_flux_report(tot.flux, o->height, o->out);
     free(frame), free(tot.piv_err), free(tot.level_err), bdl_dia_piv_destroy(piv);
-    return r;
+    dia_flux_free(tot.flux);
+    return r != BDL_OK ? r : w;
 }

@@ -21,7 +21,8 @@ static const char usage_first[] =
     "                            [--to-cycle B] [--bins N] [--below X] [--out DIR] [--no-plots]\n"
     "       bedlam analyze profile RUN [--from T] [--to T] [--out DIR] [--no-plots]\n"
     "       bedlam analyze networks CONTACTS.csv [--bins N] [--fmax F] [--out DIR] [--no-plots]\n"
-    "       bedlam analyze dia RUN/dia/NAME [--out DIR]\n"
+    "       bedlam analyze dia RUN/dia/NAME [--fit FIT.json --density RHO [--height H]]\n"
+    "                          [--out DIR]\n"
     "       bedlam analyze orientation RUN [--from T] [--to T] [--by-velocity] [--out DIR]\n"
     "                                  [--no-plots]\n"
     "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
@@ -68,7 +69,18 @@ static const char usage_second[] =
     "the rods lying along the front wall detected (adaptive threshold, blobs, the angle of\n"
     "largest aspect ratio) and their angle errors; PIV (256 px at 50 %, then 128 px at 75 %) of\n"
     "each double frame against the true displacement of the visible particles per cell; the\n"
-    "coalignment length of the detected and of the true rods. Writes dia_scores.csv.\n"
+    "coalignment length of the detected and of the true rods; C(r) pooled over the frames with\n"
+    "its length in three zones by the reference rod's distance from the nearer side wall (< 2,\n"
+    "2-6, > 6 rod lengths; the walls are taken to be the image's left and right edges, so the\n"
+    "camera must see the bed's full width). Writes dia_scores.csv and coalignment.csv.\n"
+    "With --fit (a fit.json of bedlam calibrate) and --density RHO [kg/m^3], which it then needs:\n"
+    "the solids mass flux rho (1 - eps) v per image cell of each double frame: eps from the f2D\n"
+    "of the first image, measured as calibrate did for the fit (its threshold and normalisation),\n"
+    "through the fit; v from the PIV vectors in the cell. Against rho times the true solids\n"
+    "fraction and the true velocity of the visible particles; cells without a PIV vector or\n"
+    "visible particles are left out. Prints the time-mean vertical flux across the width at the\n"
+    "cell row nearest --height H (default 0.0991 m, the thesis's small bed) and the error over\n"
+    "all cells. Writes mass_flux.csv.\n"
     "\n"
     "orientation: the rods' in-plane angle (RUN/orientation.csv, runs with rods and [output]\n"
     "orientation_interval): the axis projected on the x-z plane, its angle from the vertical z\n"
@@ -114,6 +126,9 @@ static const bdl_option options[] = {
     {"--no-plots", BDL_OPTION_CLEAR, offsetof(bdl_analyze_opts, plots)},
     {"--by-velocity", BDL_OPTION_SET, offsetof(bdl_analyze_opts, by_velocity)},
     {"--max-step", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, max_step)},
+    {"--fit", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, fit)},
+    {"--density", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, density)},
+    {"--height", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, height)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.
@@ -165,6 +180,8 @@ static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int 
                             .fmax = NAN,
                             .period = NAN,
                             .below = NAN,
+                            .density = NAN,
+                            .height = 0.0991,
                             .to_cycle = 1L << 40,
                             .bins = -1,
                             .plots = 1};
