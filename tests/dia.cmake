@@ -13,5 +13,6 @@ bdl_add_test(test_piv SOURCES test_piv.c LABELS dia)
 bdl_add_test(test_ptv SOURCES test_ptv.c LABELS dia)
 # analyze dia's coalignment by wall zone and mass flux: app code, built into the test with it.
 bdl_add_test(test_dia_flux SOURCES test_dia_flux.c ${PROJECT_SOURCE_DIR}/src/app/analyze_dia_flux.c
+  ${PROJECT_SOURCE_DIR}/src/app/analyze_files.c
   LABELS dia)
 target_include_directories(test_dia_flux PRIVATE ${PROJECT_BINARY_DIR}/layers/app)

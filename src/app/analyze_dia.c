@@ -22,33 +22,31 @@
 
 static int json_vec(const char *text, const char *key, bdl_vec3 *out)
 {
-    char quoted[64];
-    snprintf(quoted, sizeof quoted, "\"%s\":", key);
-    const char *at = strstr(text, quoted);
-    return at && sscanf(at + strlen(quoted), " [%lf, %lf, %lf]", &out->x, &out->y, &out->z) == 3;
+    double v[3];
+    if (!bdl_analyze_json_vec3(text, key, v))
+        return 0;
+    *out = bdl_v3(v[0], v[1], v[2]);
+    return 1;
 }
 
 static bdl_result read_camera(const char *dir, dia_camera *cam)
 {
-    char path[1200], text[8192];
-    snprintf(path, sizeof path, "%s/camera.json", dir);
-    FILE *f = fopen(path, "rb");
-    const size_t n = f ? fread(text, 1, sizeof text - 1, f) : 0;
-    if (f)
-        fclose(f);
-    text[n] = 0;
+    char text[8192];
     double w = 0, h = 0;
+    const int read = bdl_analyze_read_text(dir, "camera.json", text, sizeof text);
     const char *cells = strstr(text, "\"cells\":");
-    const int ok = dia_json_number(text, "width", &w) && dia_json_number(text, "height", &h) &&
-                   dia_json_number(text, "pixel_size", &cam->pixel_size) &&
-                   dia_json_number(text, "pair_dt", &cam->pair_dt) &&
+    const int ok = read && bdl_analyze_json_number(text, "width", &w) &&
+                   bdl_analyze_json_number(text, "height", &h) &&
+                   bdl_analyze_json_number(text, "pixel_size", &cam->pixel_size) &&
+                   bdl_analyze_json_number(text, "pair_dt", &cam->pair_dt) &&
                    json_vec(text, "position", &cam->position) &&
                    json_vec(text, "right", &cam->right) && json_vec(text, "down", &cam->down) &&
                    json_vec(text, "forward", &cam->forward) && cells &&
                    sscanf(cells + 8, " [%d, %d]", &cam->cells[0], &cam->cells[1]) == 2 &&
                    strstr(text, "\"orthographic\"");
     if (!ok) {
-        fprintf(stderr, "error: %s: not the camera.json of an orthographic dia camera\n", path);
+        fprintf(stderr,
+                "error: %s/camera.json: not the camera.json of an orthographic dia camera\n", dir);
         return BDL_ERR_ARGS;
     }
     cam->width = (int)w, cam->height = (int)h;

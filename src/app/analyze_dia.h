@@ -44,9 +44,6 @@ static inline double dia_row_height(const dia_camera *cam, double v)
     return -bdl_v3_dot(cam->position, cam->down) - (v - 0.5 * cam->height) * cam->pixel_size;
 }
 
-/// The number after `"key":` in a small flat JSON text; 0 when there is none.
-int dia_json_number(const char *text, const char *key, double *out);
-
 /// The mean displacement (*du, *dv) [px] of the PIV vectors not flagged as outliers whose window
 /// centre lies in u0 <= u < u1, v0 <= v < v1; returns how many there are (0: none, *du, *dv 0).
 long dia_piv_cell_mean(const bdl_dia_piv_field *f, double u0, double v0, double u1, double v1,

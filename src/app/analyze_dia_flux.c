@@ -7,16 +7,9 @@
 #include <string.h>
 
 #include "app/analyze_dia.h"
+#include "app/analyze_files.h"
 #include "core/file.h"
 #include "dia/orient.h"
-
-int dia_json_number(const char *text, const char *key, double *out)
-{
-    char quoted[64];
-    snprintf(quoted, sizeof quoted, "\"%s\":", key);
-    const char *at = strstr(text, quoted);
-    return at && sscanf(at + strlen(quoted), " %lf", out) == 1;
-}
 
 long dia_piv_cell_mean(const bdl_dia_piv_field *f, double u0, double v0, double u1, double v1,
                        double *du, double *dv)
@@ -131,14 +124,15 @@ bdl_result dia_flux_read_fit(const char *path, dia_flux_fit *fit)
     double window = 0.0, normalise = 0.0;
     fit->adaptive = json_is(json, "method", "adaptive");
     fit->layer = json_is(json, "measure", "layer");
-    const int ok =
-        (fit->adaptive || json_is(json, "method", "otsu")) &&
-        (fit->layer || json_is(json, "measure", "depth")) &&
-        dia_json_number(json, "window", &window) && dia_json_number(json, "offset", &fit->offset) &&
-        dia_json_number(json, "normalise", &normalise) && dia_json_number(json, "cap", &fit->cap) &&
-        rational && dia_json_number(rational, "p0", &fit->fit.p[0]) &&
-        dia_json_number(rational, "p1", &fit->fit.p[1]) && fit->cap > 0.0 && window >= 1.0 &&
-        isfinite(fit->fit.p[0]) && isfinite(fit->fit.p[1]);
+    const int ok = (fit->adaptive || json_is(json, "method", "otsu")) &&
+                   (fit->layer || json_is(json, "measure", "depth")) &&
+                   bdl_analyze_json_number(json, "window", &window) &&
+                   bdl_analyze_json_number(json, "offset", &fit->offset) &&
+                   bdl_analyze_json_number(json, "normalise", &normalise) &&
+                   bdl_analyze_json_number(json, "cap", &fit->cap) && rational &&
+                   bdl_analyze_json_number(rational, "p0", &fit->fit.p[0]) &&
+                   bdl_analyze_json_number(rational, "p1", &fit->fit.p[1]) && fit->cap > 0.0 &&
+                   window >= 1.0 && isfinite(fit->fit.p[0]) && isfinite(fit->fit.p[1]);
     free(json);
     fit->window = (int)window, fit->normalise = normalise != 0.0;
     if (!ok) {

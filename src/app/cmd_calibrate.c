@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "app/analyze_files.h"
 #include "app/app.h"
 #include "app/options.h"
 #include "dia/analysis.h"
@@ -58,10 +59,8 @@ typedef struct options {
 /// The value of a numeric key in a small flat JSON text (`"key": number`), or NAN.
 static double json_number(const char *text, const char *key)
 {
-    char pattern[80];
-    snprintf(pattern, sizeof pattern, "\"%s\":", key);
-    const char *s = strstr(text, pattern);
-    return s ? strtod(s + strlen(pattern), NULL) : NAN;
+    double v;
+    return bdl_analyze_json_number(text, key, &v) ? v : NAN;
 }
 
 /// The string value of a key, copied into out (empty when absent).
