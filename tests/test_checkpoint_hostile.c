@@ -129,7 +129,7 @@ static bdl_result load(const char *scene, const unsigned char *data, size_t size
     return r;
 }
 
-/// Where the patched fields lie (the layout of docs/output.md), and where the payload ends.
+/// Where the patched fields lie (the layout of docs/checkpoints.md), and where the payload ends.
 typedef struct layout {
     size_t dt, time, rng, poured, counts, species, start, partner, touching, history, wall_prim,
         half_length, gas_every, eps, end;
@@ -223,6 +223,7 @@ static void damage(const char *scene, const blob *b, int count, int cuts, uint64
         CHECK_MSG(r == BDL_ERR_CHECKPOINT, "cut at %zu: result %d (%s)", length, (int)r, why);
         cut_refused += r == BDL_ERR_CHECKPOINT;
     }
+    free(copy);
     printf("  %d of %d changed bytes refused (%d in the header, %d by the payload's checksum); "
            "%d of %d truncations refused\n",
            refused_count, count, header, checksum, cut_refused, cuts);
@@ -259,6 +260,9 @@ static void test_patches(const char *scene, const blob *b)
     refused(scene, b, L.dt, &negative, 8, "its time step is -1 s");
     refused(scene, b, L.dt, &nan, 8, "its time step is nan s");
     refused(scene, b, L.dt, &inf, 8, "its time step is inf s");
+    const double tiny = 1e-300, huge_dt = 1e3;
+    refused(scene, b, L.dt, &tiny, 8, "its time step is 1e-300 s, not within a factor 1e+06");
+    refused(scene, b, L.dt, &huge_dt, 8, "its time step is 1000 s, not within a factor 1e+06");
     refused(scene, b, L.time, &nan, 8, "its time is nan s");
     refused(scene, b, L.time, &negative, 8, "its time is -1 s");
     const long minus5 = -5;
@@ -281,9 +285,11 @@ static void test_patches(const char *scene, const blob *b)
     refused(scene, b, 16, &payload, 8, "is truncated: its header announces");
     refused(scene, b, 7, "5", 1, "another version of bedlam (checkpoint format '5'");
     refused(scene, b, 0, "GARBAGE!", 8, "is not a bedlam checkpoint");
-    // A position (particle 2's x) that is not finite.
+    // A position (particle 2's x) that is not finite, or far outside the domain.
     const size_t pos = L.counts + 56 + 2 * 24;
     refused(scene, b, pos, &nan, 8, "particle 2 (id");
+    const double far_x = 1e200;
+    refused(scene, b, pos, &far_x, 8, "is at (1e+200, ");
 }
 
 /// The gas's and the rods' own fields.

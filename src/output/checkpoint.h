@@ -12,7 +12,7 @@
 // written for, the scalars, the counts and the arrays. Loading refuses a file whose header,
 // size or checksum is wrong before it reads any count, then checks the record against the scene
 // and every count, index and number of the state against what the next step relies on. The
-// layout and every check are in docs/output.md, "Checkpoints".
+// layout and every check are in docs/checkpoints.md.
 #ifndef BDL_CHECKPOINT_H
 #define BDL_CHECKPOINT_H
 

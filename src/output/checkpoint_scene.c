@@ -8,7 +8,7 @@
 // and the same gas grid (its fields are saved cell by cell). A difference there refuses the
 // checkpoint and names what differs. The contact parameters (stiffness, Young's modulus,
 // restitution, friction ...) may change on a resume: they are listed, and the run reports them
-// and steps with the time step of the scene (docs/output.md, "Checkpoints").
+// and steps with the time step of the scene (docs/checkpoints.md).
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -62,6 +62,19 @@ static const char *particle_fault(const bdl_particles *p, long i)
     return NULL;
 }
 
+/// Whether x lies within the domain grown by its own length on every side. A run stops when a
+/// particle leaves the domain (the guards); one that has flown further is no state to go on from.
+static int near_domain(const bdl_scene *s, bdl_vec3 x)
+{
+    for (int a = 0; a < 3; ++a) {
+        const double lo = bdl_v3_comp(s->domain_min, a), hi = bdl_v3_comp(s->domain_max, a);
+        const double v = bdl_v3_comp(x, a);
+        if (!(v >= lo - (hi - lo) && v <= hi + (hi - lo)))
+            return 0;
+    }
+    return 1;
+}
+
 /// The particles' state, species and ids.
 static int check_particles(const bdl_world *w, char *why, size_t len)
 {
@@ -70,6 +83,13 @@ static int check_particles(const bdl_world *w, char *why, size_t len)
         const char *fault = particle_fault(p, i);
         if (fault) {
             snprintf(why, len, "particle %ld (id %u) has %s", i, p->id[i], fault);
+            return 0;
+        }
+        if (!near_domain(&w->scene, p->pos[i])) {
+            snprintf(why, len,
+                     "particle %ld (id %u) is at (%g, %g, %g) m, more than the domain's "
+                     "size outside it",
+                     i, p->id[i], p->pos[i].x, p->pos[i].y, p->pos[i].z);
             return 0;
         }
         if (p->species[i] < 0 || p->species[i] >= w->scene.species_count) {
@@ -86,11 +106,22 @@ static int check_particles(const bdl_world *w, char *why, size_t len)
     return 1;
 }
 
+/// How far the time step a checkpoint was written with may lie from the scene's.
+#define DT_FACTOR 1e6
+
 /// Time, step, counters, energies, live parameters and the random generator.
 static int check_scalars(const bdl_world *w, double saved_dt, char *why, size_t len)
 {
     if (!isfinite(saved_dt) || !(saved_dt > 0.0)) {
         snprintf(why, len, "its time step is %g s (must be finite and > 0)", saved_dt);
+        return 0;
+    }
+    // The run steps with the scene's time step; the saved one only tells how the state was made.
+    // Changed contact parameters move it by the square root of their ratio: a million-fold
+    // difference is no changed scene but a damaged or crafted file.
+    if (saved_dt < w->dt / DT_FACTOR || saved_dt > w->dt * DT_FACTOR) {
+        snprintf(why, len, "its time step is %g s, not within a factor %g of the scene's %g s",
+                 saved_dt, DT_FACTOR, w->dt);
         return 0;
     }
     if (!isfinite(w->time) || w->time < 0.0 || w->step < 0) {
