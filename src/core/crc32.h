@@ -2,8 +2,8 @@
 //
 // The CRC-32 of zlib, PNG and gzip (reflected polynomial 0xEDB88320, initial and final value
 // 0xFFFFFFFF): a checksum any tool can recompute (Python's zlib.crc32, `gzip -l`). It detects
-// every error confined to 32 consecutive bits and every odd number of flipped bits; other damage
-// passes with a chance of 2^-32. Checkpoints carry one over their payload (output/checkpoint.h).
+// every error confined to 32 consecutive bits (so every changed byte); other damage passes with a
+// chance of about 2^-32. Checkpoints carry one over their payload (output/checkpoint.h).
 #ifndef BDL_CRC32_H
 #define BDL_CRC32_H
 
