@@ -117,3 +117,10 @@ bdl_cli_expect(cli_analyze_dia_flux 0 "0-2 +L_p: detected.*upward solids mass fl
 set_tests_properties(cli_analyze_dia_flux PROPERTIES FIXTURES_REQUIRED "dia_rods;dia_rods_fit")
 bdl_cli_expect(cli_analyze_dia_fit_density 2 "--fit needs --density" analyze dia
   ${S}/no_such_camera --fit ${S}/no_such_fit.json)
+
+# --resume refuses damaged checkpoints (exit 2, the reason) and resumes stiffer contacts with the
+# scene's time step (docs/checkpoints.md).
+add_test(NAME cli_resume_hostile COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/vibrated_pair.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume_hostile
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_hostile_cli.cmake)
+set_tests_properties(cli_resume_hostile PROPERTIES LABELS cli TIMEOUT 300)

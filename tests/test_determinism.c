@@ -82,7 +82,7 @@ static void test_coupled(void)
     CHECK(bdl_checkpoint_save(a, path) == BDL_OK);
     uint64_t straight = run_steps(a, 600);
     char why[256];
-    CHECK(bdl_checkpoint_load(b, path, why, sizeof why) == BDL_OK);
+    CHECK(bdl_checkpoint_load(b, path, NULL, why, sizeof why) == BDL_OK);
     uint64_t resumed = run_steps(b, 600);
     printf("coupled: uninterrupted %016llx, resumed %016llx (%ld gas steps)\n",
            (unsigned long long)straight, (unsigned long long)resumed, b->gas_steps);
@@ -125,7 +125,7 @@ int main(void)
     uint64_t straight = run_steps(a, steps - steps / 2);
     bdl_world *b = make_world();
     char why[256];
-    CHECK(bdl_checkpoint_load(b, path, why, sizeof why) == BDL_OK);
+    CHECK(bdl_checkpoint_load(b, path, NULL, why, sizeof why) == BDL_OK);
     uint64_t resumed = run_steps(b, steps - steps / 2);
     printf("uninterrupted %016llx, resumed %016llx\n", (unsigned long long)straight,
            (unsigned long long)resumed);
@@ -137,7 +137,7 @@ int main(void)
         fputs("garbage!", f);
         fclose(f);
     }
-    CHECK(bdl_checkpoint_load(b, path, why, sizeof why) == BDL_ERR_CHECKPOINT);
+    CHECK(bdl_checkpoint_load(b, path, NULL, why, sizeof why) == BDL_ERR_CHECKPOINT);
     unlink(path);
     bdl_world_destroy(a);
     bdl_world_destroy(b);

@@ -171,7 +171,7 @@ static void test_threads_and_resume(void)
     CHECK(bdl_checkpoint_save(a, path) == BDL_OK);
     const uint64_t straight = run(a, 3000);
     char why[256];
-    CHECK(bdl_checkpoint_load(b, path, why, sizeof why) == BDL_OK);
+    CHECK(bdl_checkpoint_load(b, path, NULL, why, sizeof why) == BDL_OK);
     const uint64_t resumed = run(b, 3000);
     printf("rods: uninterrupted %016llx, resumed %016llx\n", (unsigned long long)straight,
            (unsigned long long)resumed);

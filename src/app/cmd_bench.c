@@ -247,7 +247,7 @@ static bdl_result settle_or_load(bdl_world **wp, const char *text, long n, const
     int loaded = 0;
     if (exists) {
         fclose(exists);
-        loaded = bdl_checkpoint_load(w, cached, why, sizeof why) == BDL_OK;
+        loaded = bdl_checkpoint_load(w, cached, NULL, why, sizeof why) == BDL_OK;
         if (!loaded) {
             fprintf(stderr, "bench: settling again: %s\n", why);
             bdl_world_destroy(w);
@@ -260,9 +260,11 @@ static bdl_result settle_or_load(bdl_world **wp, const char *text, long n, const
             w->dt = BED_SETTLE_DT * tc;
         }
     }
-    if (loaded) {
+    if (loaded) { // as settle() leaves it: 1 g, no damping, the timed time step
         w->scene.gravity = bdl_v3(0.0, 0.0, -BED_G);
         w->background_damping[0] = 0.0;
+        w->dt = BED_RUN_DT * tc;
+        w->contact_time_dt_ratio = w->dt / tc;
         if (!o->quiet)
             printf("  settled bed loaded from %s\n", cached);
         return BDL_OK;

@@ -92,6 +92,10 @@ static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double
     }
     const double reach = c->reach[a], inv_reach = 1.0 / reach;
     double u = (x - g->origin[a]) * c->inv_h[a] - offset; // position in point units
+    // A runaway particle (or a NaN) is held far outside the grid, where it stays outside, so that
+    // the conversions to int below are defined.
+    const double far = 4.0 * (n + BDL_KERNEL_MAX);
+    u = !(u > -far) ? -far : u < far ? u : far;
     // ceil and floor by truncation: libm's are calls here, and this runs 6 times per particle.
     double lo_x = u - reach, hi_x = u + reach;
     int from = (int)lo_x, to = (int)hi_x;

@@ -55,10 +55,11 @@ static void grid_free(placement_grid *g)
 static long grid_cell(const placement_grid *g, bdl_vec3 x, int c[3])
 {
     for (int a = 0; a < 3; ++a) {
-        int k = (int)floor((bdl_v3_comp(x, a) - bdl_v3_comp(g->lo, a)) / g->cell);
-        if (k < 0 || k >= g->dims[a])
+        // In floating point first: a runaway position converts to no int.
+        const double k = floor((bdl_v3_comp(x, a) - bdl_v3_comp(g->lo, a)) / g->cell);
+        if (!(k >= 0.0) || k >= (double)g->dims[a])
             return -1;
-        c[a] = k;
+        c[a] = (int)k;
     }
     return c[0] + (long)g->dims[0] * (c[1] + (long)g->dims[1] * c[2]);
 }
@@ -516,9 +517,8 @@ long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, d
     bdl_rng *rng = ctx->rng;
     if (t < def->start_time || *poured >= def->count)
         return 0;
-    long due = (long)floor((t - def->start_time) * def->rate) + 1;
-    if (due > def->count)
-        due = def->count;
+    const double due_now = floor((t - def->start_time) * def->rate) + 1.0;
+    const long due = due_now < (double)def->count ? (long)due_now : def->count;
     if (due <= *poured)
         return 0;
     placement_grid g;

@@ -4,6 +4,7 @@
 #include "core/parallel.h"
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -107,10 +108,12 @@ void bdl_neighbor_free(bdl_neighbor *nb)
     memset(nb, 0, sizeof *nb);
 }
 
+/// The cell of coordinate x along an axis, clamped to the grid; clamped before the conversion, so
+/// that a runaway particle (or a NaN) gives an edge cell instead of an undefined conversion.
 static inline int clamp_cell(double x, double size, int dims)
 {
-    int c = (int)floor(x / size);
-    return c < 0 ? 0 : (c >= dims ? dims - 1 : c);
+    const double c = floor(x / size);
+    return !(c >= 0.0) ? 0 : (c >= (double)dims ? dims - 1 : (int)c);
 }
 
 static inline void cell_of(const bdl_neighbor *nb, bdl_vec3 x, int c[3])
@@ -521,4 +524,82 @@ bdl_result bdl_neighbor_reserve(bdl_neighbor *nb, long particles, long pairs, lo
     if (r == BDL_OK)
         r = reserve_wall_pairs(nb, wall_pairs);
     return r;
+}
+
+/// Offsets start[0..n] of lists holding `count` entries: from 0, never decreasing, to count.
+static int check_offsets(const int32_t *start, long n, long count, const char *what, char *why,
+                         size_t len)
+{
+    if (start[0] != 0) {
+        snprintf(why, len, "the %s of particle 0 start at %d, not 0", what, (int)start[0]);
+        return 0;
+    }
+    for (long i = 0; i < n; ++i)
+        if (start[i + 1] < start[i]) {
+            snprintf(why, len, "the %s of particle %ld end at %d, before they start (%d)", what, i,
+                     (int)start[i + 1], (int)start[i]);
+            return 0;
+        }
+    if (start[n] != count) {
+        snprintf(why, len, "the %s of %ld particles end at %d, but %ld are stored", what, n,
+                 (int)start[n], count);
+        return 0;
+    }
+    return 1;
+}
+
+static int check_pairs(const bdl_neighbor *nb, long n, char *why, size_t len)
+{
+    for (long i = 0; i < n; ++i)
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            const int32_t j = nb->partner[k];
+            if (j < 0 || j >= n) {
+                snprintf(why, len, "pair %d refers to particle %d of %ld", (int)k, (int)j, n);
+                return 0;
+            }
+            if (j <= i) {
+                snprintf(why, len,
+                         "pair %d of particle %ld refers to particle %d (a pair is listed with "
+                         "its lower particle, for the higher one)",
+                         (int)k, i, (int)j);
+                return 0;
+            }
+            if (nb->touching[k] > 1 || (nb->history && !bdl_v3_isfinite(nb->history[k]))) {
+                snprintf(why, len,
+                         "pair %d has a contact flag of %d or a tangential spring that "
+                         "is not finite",
+                         (int)k, (int)nb->touching[k]);
+                return 0;
+            }
+        }
+    return 1;
+}
+
+int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, size_t len)
+{
+    if (!check_offsets(nb->start, n, nb->pair_count, "pairs", why, len) ||
+        !check_pairs(nb, n, why, len) ||
+        !check_offsets(nb->wall_start, n, nb->wall_pair_count, "wall contacts", why, len))
+        return 0;
+    for (long k = 0; k < nb->wall_pair_count; ++k) {
+        if (nb->wall_prim[k] < 0 || nb->wall_prim[k] >= prims) {
+            snprintf(why, len, "wall contact %ld refers to wall primitive %d of %d", k,
+                     (int)nb->wall_prim[k], prims);
+            return 0;
+        }
+        if (nb->wall_touching[k] > 1 || !bdl_v3_isfinite(nb->wall_history[k]) ||
+            !bdl_v3_isfinite(nb->wall_force[k])) {
+            snprintf(why, len,
+                     "wall contact %ld has a contact flag of %d or a spring or force "
+                     "that is not finite",
+                     k, (int)nb->wall_touching[k]);
+            return 0;
+        }
+    }
+    for (int w = 0; w < BDL_MAX_WALLS; ++w)
+        if (!bdl_v3_isfinite(nb->wall_offset_at_build[w])) {
+            snprintf(why, len, "the offset of wall %d at the last list build is not finite", w);
+            return 0;
+        }
+    return 1;
 }

@@ -17,6 +17,7 @@
 #ifndef BDL_NEIGHBOR_H
 #define BDL_NEIGHBOR_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "dem/particles.h"
@@ -124,5 +125,12 @@ long bdl_neighbor_bytes(const bdl_neighbor *nb);
 /// Makes room for `particles` particles, `pairs` pairs and `wall_pairs` wall contacts (used when
 /// a checkpoint restores the lists verbatim).
 bdl_result bdl_neighbor_reserve(bdl_neighbor *nb, long particles, long pairs, long wall_pairs);
+
+/// Checks lists restored from a file against what the force pass relies on, for `n` particles and
+/// `prims` wall primitives: the offsets of each particle's pairs and wall contacts rise from 0 to
+/// the counts stored, every pair (i, j) has i < j < n, every wall contact names a primitive in
+/// [0, prims), contact flags are 0 or 1, springs and forces are finite. Returns 1, or 0 with the
+/// first violation in `why` ("pair 1234 refers to particle 99999 of 8070").
+int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, size_t len);
 
 #endif

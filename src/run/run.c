@@ -133,6 +133,39 @@ static void log_setup(const run *r)
              s->guards.energy_growth);
 }
 
+/// The checkpoint a run resumes from, restored into the world built from the scene. The run
+/// steps with the scene's time step (checked against the contact time already): when the
+/// checkpoint's differs, or the scene's contact parameters do, it says so.
+static bdl_result resume(run *r)
+{
+    bdl_world *w = r->world;
+    char ckpt[1200], why[1024];
+    bdl_checkpoint_info info;
+    bdl_run_checkpoint_path(r->def->resume, ckpt, sizeof ckpt);
+    bdl_result res = bdl_checkpoint_load(w, ckpt, &info, why, sizeof why);
+    if (res != BDL_OK) {
+        bdl_error("%s", why);
+        return res;
+    }
+    bdl_info("resumed from %s at t = %.17g s, step %ld", ckpt, w->time, w->step);
+    if (info.changes[0])
+        bdl_warn("the scene's contact parameters differ from the checkpoint's: %s", info.changes);
+    if (info.dt != w->dt) {
+        const double limit = w->scene.guards.dt_refuse * w->contact_time;
+        char above[160] = "";
+        if (info.dt > limit)
+            snprintf(above, sizeof above,
+                     "; the checkpoint's would be %.3g times the scene's stable "
+                     "limit %g s ([guards] dt_refuse = %g of the contact time)",
+                     info.dt / limit, limit, w->scene.guards.dt_refuse);
+        bdl_warn("the checkpoint was written with dt = %g s; the run continues with the scene's "
+                 "dt = %g s (%.3g of its contact time %g s)%s. The resumed run does not repeat an "
+                 "uninterrupted one bit for bit",
+                 info.dt, w->dt, w->contact_time_dt_ratio, w->contact_time, above);
+    }
+    return BDL_OK;
+}
+
 /// Phase 3: the world, its time step checked against the contact time, and the checkpoint it
 /// resumes from.
 static bdl_result build_world(run *r)
@@ -156,15 +189,8 @@ static bdl_result build_world(run *r)
     }
     if (warning[0])
         bdl_warn("%s", warning);
-    if (r->def->resume) {
-        char ckpt[1200], why[512];
-        bdl_run_checkpoint_path(r->def->resume, ckpt, sizeof ckpt);
-        if ((res = bdl_checkpoint_load(r->world, ckpt, why, sizeof why)) != BDL_OK) {
-            bdl_error("%s", why);
-            return res;
-        }
-        bdl_info("resumed from %s at t = %.17g s, step %ld", ckpt, r->world->time, r->world->step);
-    }
+    if (r->def->resume && (res = resume(r)) != BDL_OK)
+        return res;
     log_setup(r);
     return BDL_OK;
 }

@@ -19,7 +19,8 @@
 /// counts as that number).
 static long steps_in(const bdl_world *w, double span)
 {
-    return (long)floor(span / w->dt * (1.0 + 1e-12));
+    const double steps = floor(span / w->dt * (1.0 + 1e-12));
+    return !(steps > 0.0) ? 0 : steps < 1e15 ? (long)steps : (long)1e15; // defined for any span
 }
 
 /// The gas of the scene's [gas] section on the domain's grid, at rest.
@@ -138,7 +139,8 @@ double bdl_world_inlet_velocity(const bdl_world *w, double t)
         // Stages from inlet_velocity towards sweep_to (and back for up_down), sweep_step apart.
         const long stages = lround(fabs(g->sweep_to - u) / g->sweep_step);
         const double sign = g->sweep_to >= u ? 1.0 : -1.0;
-        long k = (long)floor((t - g->sweep_start) / g->sweep_dwell + 1e-9);
+        const double stage = floor((t - g->sweep_start) / g->sweep_dwell + 1e-9);
+        long k = stage < 2.0 * stages + 1.0 ? (long)stage : 2 * stages + 1; // after the sweep
         if (g->sweep == BDL_SWEEP_UP_DOWN) // out and back, then hold at the start
             k = k <= stages ? k : k <= 2 * stages ? 2 * stages - k : 0;
         else if (k > stages)
