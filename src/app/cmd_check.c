@@ -13,10 +13,11 @@
 static const char check_usage[] =
     "usage: bedlam check SCENE [--set SECTION.KEY=VALUE]... [--threads N]\n"
     "\n"
-    "Parses and validates SCENE, builds its particles, and prints the active modules, the contact\n"
-    "time of every species pair and wall, the stable time-step limit, and the estimated cost of\n"
-    "the run (measured on a few steps). Exit codes: 0 valid, 2 invalid (the message names file,\n"
-    "line, key, value and the allowed range).\n";
+    "Parses and validates SCENE, estimates its memory and steps against [guards] max_memory and\n"
+    "max_steps before anything is built, builds its particles, and prints the active modules, the\n"
+    "contact time of every species pair and wall, the estimate, the stable time-step limit, and\n"
+    "the estimated cost of the run (measured on a few steps). Exit codes: 0 valid, 2 invalid (the\n"
+    "message names file, line, key, value and the allowed range or limit).\n";
 
 /// One line of the contacts table: the pair, its contact time and parameters.
 static void print_contact(const bdl_world *w, const char *a, const char *b, double tc,
