@@ -48,14 +48,9 @@ static double particle_bytes(const bdl_scene *s, const bdl_species_def *sp)
            (images ? BUDGET_SNAPSHOT : 0) + pairs_each(sp) * BUDGET_PAIR;
 }
 
-static double creator_particles(const bdl_scene *s, int c)
+static double creator_bytes(const bdl_scene *s, const bdl_budget *b, int c)
 {
-    return bdl_create_expected(&s->creates[c], &s->species[s->creates[c].species]);
-}
-
-static double creator_bytes(const bdl_scene *s, int c)
-{
-    return creator_particles(s, c) * particle_bytes(s, &s->species[s->creates[c].species]);
+    return b->create_particles[c] * particle_bytes(s, &s->species[s->creates[c].species]);
 }
 
 /// Cells of the padded gas grid (cfd/grid.h: ghost layers and one more plane on each axis).
@@ -98,10 +93,12 @@ void bdl_budget_estimate(const bdl_world *w, bdl_budget *b)
     const bdl_scene *s = &w->scene;
     *b = (bdl_budget){0};
     for (int c = 0; c < s->create_count; ++c) {
-        const double n = creator_particles(s, c);
+        const bdl_species_def *sp = &s->species[s->creates[c].species];
+        const double n = bdl_create_expected(&s->creates[c], sp);
+        b->create_particles[c] = n;
         b->particles += n;
-        b->pairs += n * pairs_each(&s->species[s->creates[c].species]);
-        b->particle_bytes += creator_bytes(s, c);
+        b->pairs += n * pairs_each(sp);
+        b->particle_bytes += creator_bytes(s, b, c);
     }
     b->gas_cells = gas_cells(s);
     b->gas_bytes = b->gas_cells * BUDGET_GAS_CELL;
@@ -151,10 +148,10 @@ static void find_culprit(const bdl_scene *s, const bdl_budget *b, culprit *c)
 {
     *c = (culprit){.bytes = -1.0};
     for (int k = 0; k < s->create_count; ++k)
-        if (creator_bytes(s, k) > c->bytes) {
-            c->bytes = creator_bytes(s, k);
+        if (creator_bytes(s, b, k) > c->bytes) {
+            c->bytes = creator_bytes(s, b, k);
             describe_creator(s, k, c->where, sizeof c->where);
-            snprintf(c->what, sizeof c->what, "%.3g particles", creator_particles(s, k));
+            snprintf(c->what, sizeof c->what, "%.3g particles", b->create_particles[k]);
         }
     if (b->gas_bytes > c->bytes) {
         c->bytes = b->gas_bytes;

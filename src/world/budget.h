@@ -32,16 +32,17 @@
 struct bdl_world;
 
 typedef struct bdl_budget {
-    double particles;      ///< particles at most over the run
-    double pairs;          ///< neighbour-list pairs
-    double gas_cells;      ///< cells of the padded gas grid
-    double particle_bytes; ///< particles and their pairs [bytes]
-    double gas_bytes;      ///< the gas, its solver and the coupling's grid fields [bytes]
-    double image_bytes;    ///< frame and synthetic-camera buffers [bytes]
-    double bytes;          ///< all of it [bytes]
-    double max_memory;     ///< the limit: [guards] max_memory, or 80 % of physical memory [bytes]
-    double dt;             ///< the time step [s]
-    double steps;          ///< end_time / dt
+    double particles;                         ///< particles at most over the run
+    double create_particles[BDL_MAX_CREATES]; ///< of each creator (a file's rows counted once)
+    double pairs;                             ///< neighbour-list pairs
+    double gas_cells;                         ///< cells of the padded gas grid
+    double particle_bytes;                    ///< particles and their pairs [bytes]
+    double gas_bytes;   ///< the gas, its solver and the coupling's grid fields [bytes]
+    double image_bytes; ///< frame and synthetic-camera buffers [bytes]
+    double bytes;       ///< all of it [bytes]
+    double max_memory;  ///< the limit: [guards] max_memory, or 80 % of physical memory [bytes]
+    double dt;          ///< the time step [s]
+    double steps;       ///< end_time / dt
 } bdl_budget;
 
 /// The estimate for a world whose contacts and walls are built and which holds no particle yet.
