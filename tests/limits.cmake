@@ -61,6 +61,9 @@ bdl_limit_expect(cli_limits_until 2
 # Particle files: values and coincident particles.
 bdl_limit_expect(cli_limits_csv_nan 2 "limits_nan.csv:3: column 2 \\(y\\) is nan: not a finite number"
   check ${L}/limits_file.ini --set create.bed.file=limits_nan.csv)
+bdl_limit_expect(cli_limits_csv_diameter 2
+  "limits_huge.csv:3: diameter 1e\\+300 m is outside the sizes of \\[species glass\\], \\[0.001, 0.001\\] m"
+  check ${L}/limits_file.ini --set create.bed.file=limits_huge.csv)
 bdl_limit_expect(cli_limits_csv_coincident 2
   "limits_coincident.csv: lines 3 and 5: two particles at \\(0.005, 0.005, 0.005\\) m, closer than 1e-06 of the smaller diameter"
   check ${L}/limits_file.ini --set create.bed.file=limits_coincident.csv)

@@ -456,6 +456,16 @@ static int file_body(const double *v, const int col[COL_COUNT], const bdl_specie
         snprintf(what, what_len, "diameter %g must be > 0", d);
         return 0;
     }
+    // The neighbour lists' cutoff and the time step come from the species' sizes: a particle
+    // larger would miss contacts, a smaller one have contacts shorter than the step resolves.
+    if (d < species->diameter_min * (1.0 - 1e-9) || d > species->diameter_max * (1.0 + 1e-9)) {
+        snprintf(what, what_len,
+                 "diameter %g m is outside the sizes of [species %s], [%g, %g] m (the neighbour "
+                 "lists and the time step are sized from them: give the species a distribution "
+                 "that covers the file)",
+                 d, species->name, species->diameter_min, species->diameter_max);
+        return 0;
+    }
     *b = sphere_at(bdl_v3(v[col[COL_X]], v[col[COL_Y]], v[col[COL_Z]]), 0.5 * d);
     if (species->shape != BDL_SHAPE_ROD)
         return 1;
