@@ -721,7 +721,7 @@ long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, d
 /// regular file (a FIFO would block here).
 static long count_rows(const char *path)
 {
-    char why[256], block[1 << 16];
+    char why[256], block[1 << 14];
     FILE *f = bdl_open_regular(path, why, sizeof why);
     if (!f)
         return 0;
