@@ -69,7 +69,7 @@ bdl_cli_expect(cli_analyze_bad 2 "expected 'sweep RUN'" analyze nonsense somewhe
 # analyze orientation refuses what it cannot read (runs/ keeps --out out of the source tree).
 set(O ${S}/orientation)
 set(AO ${CMAKE_CURRENT_BINARY_DIR}/runs/orientation_errors)
-bdl_cli_expect(cli_orientation_missing 2 "cannot read .*orientation_interval" analyze orientation ${O}/missing --out ${AO})
+bdl_cli_expect(cli_orientation_missing 2 "orientation.csv cannot be read: .*orientation_interval" analyze orientation ${O}/missing --out ${AO})
 bdl_cli_expect(cli_orientation_no_rods 2 "no rods in 2 rows" analyze orientation ${O}/norods --out ${AO})
 bdl_cli_expect(cli_orientation_bad_count 2 "orientation.csv:3: a bin count is not a whole number" analyze orientation ${O}/badcount --out ${AO})
 bdl_cli_expect(cli_orientation_bad_number 2 "--from abc: not a number" analyze orientation ${O}/hand --from abc --out ${AO})

@@ -5,7 +5,7 @@ add_test(NAME dia_cli COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/dia_cli.cmake)
 set_tests_properties(dia_cli PROPERTIES LABELS "dia;cli" TIMEOUT 300)
 bdl_cli_expect(cli_calibrate_help 0 "usage: bedlam calibrate" calibrate --help)
-bdl_cli_expect(cli_calibrate_missing 2 "cannot read" calibrate ${CMAKE_CURRENT_SOURCE_DIR}/scenes)
+bdl_cli_expect(cli_calibrate_missing 2 "camera.json cannot be read" calibrate ${CMAKE_CURRENT_SOURCE_DIR}/scenes)
 # The thesis's image-analysis chain on synthetic images with known answers.
 bdl_add_test(test_bed_height SOURCES test_bed_height.c LABELS dia)
 bdl_add_test(test_orient SOURCES test_orient.c LABELS dia)

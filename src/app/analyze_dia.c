@@ -235,10 +235,8 @@ static void score_piv(const dia_camera *cam, bdl_dia_piv *piv, const double *a, 
 
 static int file_exists(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (f)
-        fclose(f);
-    return f != NULL;
+    char why[256];
+    return bdl_check_regular_file(path, NULL, why, sizeof why) == BDL_OK;
 }
 
 static int compare_doubles(const void *a, const void *b)

@@ -113,9 +113,12 @@ static int json_is(const char *text, const char *key, const char *word)
 bdl_result dia_flux_read_fit(const char *path, dia_flux_fit *fit)
 {
     size_t length;
-    char *json = bdl_read_file(path, &length);
+    char why[256];
+    char *json = bdl_check_regular_file(path, NULL, why, sizeof why) == BDL_OK
+                     ? bdl_read_file(path, &length)
+                     : NULL;
     if (!json) {
-        fprintf(stderr, "error: --fit %s: cannot read it\n", path);
+        fprintf(stderr, "error: --fit %s %s\n", path, why);
         return BDL_ERR_ARGS;
     }
     memset(fit, 0, sizeof *fit);

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/file.h"
 #include "io/csv.h"
 
 int bdl_analyze_read_column(const char *run, const char *file, const char *column, double **out,
@@ -43,7 +44,8 @@ int bdl_analyze_read_text(const char *dir, const char *file, char *text, size_t 
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/%s", dir, file);
-    FILE *f = fopen(path, "rb");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     const size_t n = f ? fread(text, 1, len - 1, f) : 0;
     if (f)
         fclose(f);

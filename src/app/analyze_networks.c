@@ -70,9 +70,10 @@ static int add_contact(contact_file *cf, const char *line)
 /// Reads a contacts file of a run (see output/granular_out.h); prints an error unless BDL_OK.
 static bdl_result read_contacts(const char *path, contact_file *cf)
 {
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     if (!f) {
-        fprintf(stderr, "error: cannot open %s\n", path);
+        fprintf(stderr, "error: %s %s\n", path, why);
         return BDL_ERR_ARGS;
     }
     *cf = (contact_file){.capacity = 4096};

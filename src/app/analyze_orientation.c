@@ -144,16 +144,17 @@ static bdl_result read_orientation(const char *run, orientation_data *d)
 {
     char path[1300];
     snprintf(path, sizeof path, "%s/orientation.csv", run);
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     char *line = malloc(LINE_MAX_CHARS);
     d->angle = malloc(MAX_COLUMNS * sizeof(double));
     d->dest = malloc(MAX_COLUMNS * sizeof(int));
     bdl_result rc = BDL_ERR_ARGS;
     if (!f)
         fprintf(stderr,
-                "error: cannot read %s (written by runs with rods and [output] "
+                "error: %s %s (written by runs with rods and [output] "
                 "orientation_interval)\n",
-                path);
+                path, why);
     else if (!line || !d->angle || !d->dest)
         fprintf(stderr, "error: out of memory\n"), rc = BDL_ERR_NOMEM;
     else if (!fgets(line, LINE_MAX_CHARS, f) || !parse_header(line, d))

@@ -147,7 +147,8 @@ static int read_profile_header(const char *run, char *header, int len)
 {
     char path[1300];
     snprintf(path, sizeof path, "%s/profile.csv", run);
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     const int ok = f && fgets(header, len, f);
     if (f)
         fclose(f);

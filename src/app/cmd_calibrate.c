@@ -137,7 +137,8 @@ static bdl_result image_fractions(const options *o, const char *path, int nx, in
 /// Reads the truth column of a cells CSV (solids_depth or solids_layer) into f3d (n values).
 static int read_truth(const char *path, int layer, double *f3d, long n)
 {
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     if (!f)
         return 0;
     char line[1024];
@@ -168,9 +169,12 @@ static bdl_result read_camera(const char *dir, int *nx, int *ny, int *back_lit)
     char path[1200];
     snprintf(path, sizeof path, "%s/camera.json", dir);
     size_t length;
-    char *json = bdl_read_file(path, &length);
+    char why[256];
+    char *json = bdl_check_regular_file(path, NULL, why, sizeof why) == BDL_OK
+                     ? bdl_read_file(path, &length)
+                     : NULL;
     if (!json) {
-        fprintf(stderr, "error: cannot read %s: %s\n", path, strerror(errno));
+        fprintf(stderr, "error: %s %s\n", path, why);
         return BDL_ERR_ARGS;
     }
     char lighting[16];
@@ -237,9 +241,10 @@ static bdl_result collect(const options *o, camera_set *cs, point_set *p, int *f
         return rc;
     char path[1200];
     snprintf(path, sizeof path, "%s/frames.csv", cs->dir);
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     if (!f) {
-        fprintf(stderr, "error: cannot read %s: %s\n", path, strerror(errno));
+        fprintf(stderr, "error: %s %s\n", path, why);
         return BDL_ERR_ARGS;
     }
     char line[1200];
@@ -366,9 +371,12 @@ static void plot(const char *out, const bdl_dia_fit *fits, double cap)
 static bdl_result read_fit(const options *o, bdl_dia_fit *fit, double *cap)
 {
     size_t length;
-    char *json = bdl_read_file(o->apply, &length);
+    char why[256];
+    char *json = bdl_check_regular_file(o->apply, NULL, why, sizeof why) == BDL_OK
+                     ? bdl_read_file(o->apply, &length)
+                     : NULL;
     if (!json) {
-        fprintf(stderr, "error: cannot read %s: %s\n", o->apply, strerror(errno));
+        fprintf(stderr, "error: %s %s\n", o->apply, why);
         return BDL_ERR_ARGS;
     }
     const char *rat = strstr(json, "\"rational\":");

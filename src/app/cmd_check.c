@@ -13,10 +13,11 @@
 static const char check_usage[] =
     "usage: bedlam check SCENE [--set SECTION.KEY=VALUE]... [--threads N]\n"
     "\n"
-    "Parses and validates SCENE, builds its particles, and prints the active modules, the contact\n"
-    "time of every species pair and wall, the stable time-step limit, and the estimated cost of\n"
-    "the run (measured on a few steps). Exit codes: 0 valid, 2 invalid (the message names file,\n"
-    "line, key, value and the allowed range).\n";
+    "Parses and validates SCENE, estimates its memory and steps against [guards] max_memory and\n"
+    "max_steps before anything is built, builds its particles, and prints the active modules, the\n"
+    "contact time of every species pair and wall, the estimate, the stable time-step limit, and\n"
+    "the estimated cost of the run (measured on a few steps). Exit codes: 0 valid, 2 invalid (the\n"
+    "message names file, line, key, value and the allowed range or limit).\n";
 
 /// One line of the contacts table: the pair, its contact time and parameters.
 static void print_contact(const bdl_world *w, const char *a, const char *b, double tc,
@@ -95,11 +96,26 @@ static bdl_result print_time_step(const bdl_world *w)
     return r;
 }
 
+/// What the scene was estimated to need before anything was built, against the limits.
+static void print_resources(const bdl_world *w)
+{
+    const bdl_budget *b = &w->budget;
+    const bdl_guard_def *g = &w->scene.guards;
+    printf("resources (estimated before anything was built): %.3g particles, %.3g neighbour "
+           "pairs, %.3g gas cells (ghost layers included)\n",
+           b->particles, b->pairs, b->gas_cells);
+    printf("  memory: about %.3g MB (particles and pairs %.3g MB, gas %.3g MB, images %.3g MB); "
+           "limit [guards] max_memory = %.3g MB%s\n",
+           b->bytes / 1e6, b->particle_bytes / 1e6, b->gas_bytes / 1e6, b->image_bytes / 1e6,
+           b->max_memory / 1e6, g->max_memory > 0.0 ? "" : " (80 % of the physical memory)");
+    printf("  steps: %.4g; limit [guards] max_steps = %g\n", b->steps, g->max_steps);
+}
+
 /// The cost of the run, from a few timed steps of this very scene.
 static void print_cost(bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
-    long steps_total = (long)ceil(s->end_time / w->dt);
+    const double steps_total = ceil(w->budget.steps);
     double t0 = bdl_wall_seconds();
     long trial = 0;
     while (trial < 2000 && (trial < 5 || bdl_wall_seconds() - t0 < 0.5)) {
@@ -114,8 +130,8 @@ static void print_cost(bdl_world *w)
     long total = bdl_create_estimate_total(s->creates, s->create_count, s->species);
     if (total < n)
         total = n;
-    double wall = (double)total / rate * (double)steps_total;
-    printf("cost: %ld steps to t = %g s; measured %.3g particle-steps/s on %d threads (%ld "
+    double wall = (double)total / rate * steps_total;
+    printf("cost: %.0f steps to t = %g s; measured %.3g particle-steps/s on %d threads (%ld "
            "particles) -> about %.3g s wall time for %ld particles (%.3gx real time)\n",
            steps_total, s->end_time, rate, omp_get_max_threads(), n, wall, total,
            s->end_time / wall);
@@ -134,6 +150,7 @@ bdl_result bdl_cmd_check(int argc, char **argv)
         return r;
     print_modules(w);
     print_contacts(w, bdl_world_reference_speed(w));
+    print_resources(w);
     if ((r = print_time_step(w)) == BDL_OK)
         print_cost(w);
     bdl_world_destroy(w);

@@ -83,9 +83,10 @@ typedef struct viewer {
 
 static int load_script(viewer *v, const char *path)
 {
-    FILE *f = fopen(path, "r");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     if (!f) {
-        fprintf(stderr, "error: --script %s: cannot open\n", path);
+        fprintf(stderr, "error: --script %s %s\n", path, why);
         return 0;
     }
     char line[256];

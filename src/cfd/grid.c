@@ -1,7 +1,10 @@
 // bedlam — staggered grid layout.
 #include "cfd/grid.h"
 
+#include <limits.h>
 #include <stdlib.h>
+
+#include "core/memory.h"
 
 int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double hi[3],
                   const int periodic[3])
@@ -16,10 +19,16 @@ int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double 
         g->periodic[a] = periodic ? periodic[a] != 0 : 0;
     }
     const int G = BDL_GRID_GHOST;
+    size_t sy = (size_t)g->n[0] + 2 * G + 1, sz, size, bytes;
+    // Sizes checked: the padded layout of n^3 cells, and its bytes, must fit.
+    if (!bdl_size_mul(sy, (size_t)g->n[1] + 2 * G + 1, &sz) ||
+        !bdl_size_mul(sz, (size_t)g->n[2] + 2 * G + 1, &size) ||
+        !bdl_size_mul(size, sizeof(double), &bytes) || size > (size_t)LONG_MAX)
+        return 0;
     g->stride[0] = 1;
-    g->stride[1] = g->n[0] + 2 * G + 1;
-    g->stride[2] = g->stride[1] * (g->n[1] + 2 * G + 1);
-    g->size = g->stride[2] * (g->n[2] + 2 * G + 1);
+    g->stride[1] = (long)sy;
+    g->stride[2] = (long)sz;
+    g->size = (long)size;
     return 1;
 }
 

@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -187,9 +188,58 @@ bdl_result bdl_write_file_atomic(const char *path, const void *data, size_t size
     return bdl_atomic_commit(&af);
 }
 
-/// Reads a whole file; NULL with errno set on failure. The text is NUL-terminated.
+/// What a file that is not regular is, for messages.
+static const char *file_kind(mode_t mode)
+{
+    if (S_ISDIR(mode))
+        return "a folder";
+    if (S_ISFIFO(mode))
+        return "a FIFO";
+    if (S_ISCHR(mode))
+        return "a character device";
+    if (S_ISBLK(mode))
+        return "a block device";
+    if (S_ISSOCK(mode))
+        return "a socket";
+    return "not a file";
+}
+
+bdl_result bdl_check_regular_file(const char *path, long *size, char *why, size_t why_len)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        snprintf(why, why_len, "cannot be read: %s", strerror(errno));
+        return BDL_ERR_IO;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        snprintf(why, why_len, "is not a regular file (%s)", file_kind(st.st_mode));
+        return BDL_ERR_IO;
+    }
+    if (size)
+        *size = (long)st.st_size;
+    return BDL_OK;
+}
+
+FILE *bdl_open_regular(const char *path, char *why, size_t why_len)
+{
+    if (bdl_check_regular_file(path, NULL, why, why_len) != BDL_OK)
+        return NULL;
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        snprintf(why, why_len, "cannot be read: %s", strerror(errno));
+    return file;
+}
+
+/// Reads a whole regular file; NULL with errno set on failure. The text is NUL-terminated.
 char *bdl_read_file(const char *path, size_t *length)
 {
+    char why[256];
+    errno = 0;
+    if (bdl_check_regular_file(path, NULL, why, sizeof why) != BDL_OK) {
+        if (errno == 0)
+            errno = EINVAL;
+        return NULL;
+    }
     FILE *file = fopen(path, "rb");
     if (!file)
         return NULL;

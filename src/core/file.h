@@ -1,4 +1,4 @@
-// bedlam — files: crash-safe writing, output folders, whole-file reads.
+// bedlam — files: crash-safe writing, output folders, whole-file reads, regular files only.
 //
 // Output files are written to a temporary sibling ("path.tmp.PID") and renamed over the final
 // name only once everything reached the disk, so readers (ParaView, --resume) never see a
@@ -48,8 +48,20 @@ bdl_result bdl_check_writable_dir(const char *path, char *why, size_t why_len);
 /// Writes `size` bytes to `path` atomically (see bdl_atomic_open and bdl_atomic_commit).
 bdl_result bdl_write_file_atomic(const char *path, const void *data, size_t size);
 
-/// Reads a whole file into a NUL-terminated, malloc'ed buffer (*length bytes before the NUL);
-/// NULL with errno set on failure.
+/// Whether `path` is a regular file (symbolic links followed), asked with stat() before anything
+/// opens it: a FIFO blocks its reader until a writer comes, a device such as /dev/zero never
+/// ends, and a folder reads as empty. Every reader of input files checks with this first. Returns
+/// BDL_OK with the file's size in *size (may be NULL), or BDL_ERR_IO with a phrase that follows
+/// the path in `why` ("is not a regular file (a FIFO)", "cannot be read: No such file or
+/// directory").
+bdl_result bdl_check_regular_file(const char *path, long *size, char *why, size_t why_len);
+
+/// fopen(path, "rb") after bdl_check_regular_file; NULL with the phrase in `why` on failure.
+FILE *bdl_open_regular(const char *path, char *why, size_t why_len);
+
+/// Reads a whole regular file into a NUL-terminated, malloc'ed buffer (*length bytes before the
+/// NUL); NULL with errno set on failure (EINVAL for a FIFO, a device or a folder: call
+/// bdl_check_regular_file first for a message).
 char *bdl_read_file(const char *path, size_t *length);
 
 #endif

@@ -1,11 +1,14 @@
 #include "dem/create.h"
 
-#include <errno.h>
+#include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/file.h"
+#include "core/memory.h"
 #include "dem/capsule.h"
 
 BDL_CHOICE_WORDS(bdl_create_kind, BDL_CREATE_KINDS);
@@ -20,28 +23,36 @@ typedef struct placement_grid {
     long next_capacity;
 } placement_grid;
 
+enum { GRID_MAX_CELLS = 8000000 };
+
 static int grid_init(placement_grid *g, bdl_vec3 lo, bdl_vec3 hi, double cell)
 {
     memset(g, 0, sizeof *g);
     g->lo = lo;
-    // Keep the cell count modest for very large regions.
-    for (;;) {
-        long total = 1;
+    // Keep the cell count modest for very large regions or very small particles. The count is
+    // taken in doubles: cells of a nanometre over a centimetre are 1e21, beyond int and long.
+    double cells[3] = {0.0, 0.0, 0.0};
+    for (int k = 0; k < 4096; ++k, cell *= 1.5) {
+        double total = 1.0;
         for (int a = 0; a < 3; ++a) {
-            double len = bdl_v3_comp(hi, a) - bdl_v3_comp(lo, a);
-            g->dims[a] = (int)(len / cell) + 1;
-            total *= g->dims[a];
+            cells[a] = floor((bdl_v3_comp(hi, a) - bdl_v3_comp(lo, a)) / cell) + 1.0;
+            total *= cells[a];
         }
-        if (total <= 8000000)
+        if (total <= GRID_MAX_CELLS)
             break;
-        cell *= 1.5;
+    }
+    size_t total = 1;
+    for (int a = 0; a < 3; ++a) {
+        if (!(cells[a] >= 1.0 && cells[a] <= GRID_MAX_CELLS))
+            return 0; // a region that is not finite
+        g->dims[a] = (int)cells[a];
+        total *= (size_t)g->dims[a];
     }
     g->cell = cell;
-    long total = (long)g->dims[0] * g->dims[1] * g->dims[2];
-    g->head = malloc((size_t)total * sizeof(long));
-    if (!g->head)
+    size_t bytes;
+    if (!bdl_size_mul(total, sizeof(long), &bytes) || !(g->head = malloc(bytes)))
         return 0;
-    for (long c = 0; c < total; ++c)
+    for (size_t c = 0; c < total; ++c)
         g->head[c] = -1;
     return 1;
 }
@@ -52,14 +63,23 @@ static void grid_free(placement_grid *g)
     free(g->next);
 }
 
+/// The cell along axis a of coordinate x, clamped to [-1, dims[a]]: a position far outside the
+/// grid (or not finite) gives a cell just beyond it rather than an int that overflows.
+static int cell_along(const placement_grid *g, double x, int a)
+{
+    const double k = floor((x - bdl_v3_comp(g->lo, a)) / g->cell);
+    if (!(k >= -1.0))
+        return -1;
+    return k > g->dims[a] ? g->dims[a] : (int)k;
+}
+
 static long grid_cell(const placement_grid *g, bdl_vec3 x, int c[3])
 {
     for (int a = 0; a < 3; ++a) {
-        // In floating point first: a runaway position converts to no int.
-        const double k = floor((bdl_v3_comp(x, a) - bdl_v3_comp(g->lo, a)) / g->cell);
-        if (!(k >= 0.0) || k >= (double)g->dims[a])
+        int k = cell_along(g, bdl_v3_comp(x, a), a);
+        if (k < 0 || k >= g->dims[a])
             return -1;
-        c[a] = (int)k;
+        c[a] = k;
     }
     return c[0] + (long)g->dims[0] * (c[1] + (long)g->dims[1] * c[2]);
 }
@@ -115,8 +135,8 @@ static int grid_overlaps(const placement_grid *g, const bdl_particles *p, const 
                          double r_max)
 {
     int c[3];
-    for (int a = 0; a < 3; ++a)
-        c[a] = (int)floor((bdl_v3_comp(b->x, a) - bdl_v3_comp(g->lo, a)) / g->cell);
+    for (int a = 0; a < 3; ++a) // clamped: the exact test below rejects what is not near
+        c[a] = cell_along(g, bdl_v3_comp(b->x, a), a);
     int reach = (int)ceil((b->r + b->half_length + r_max) / g->cell);
     for (int z = c[2] - reach; z <= c[2] + reach; ++z) {
         if (z < 0 || z >= g->dims[2])
@@ -236,6 +256,15 @@ static double region_volume(const bdl_create_def *c)
     return l.x * l.y * l.z;
 }
 
+/// Sites of a creator's lattice along axis a (as create_lattice lays them), as a number.
+static double lattice_sites(const bdl_create_def *c, double extent, double spacing, int a)
+{
+    const double n =
+        floor((bdl_v3_comp(c->region_max, a) - bdl_v3_comp(c->region_min, a) - extent) / spacing) +
+        1.0;
+    return n > 0.0 ? n : 0.0;
+}
+
 static long add_checked(bdl_particles *p, placement_grid *g, const body *b, bdl_vec3 v,
                         const bdl_create_context *ctx, int species)
 {
@@ -312,9 +341,11 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
     long placed = 0;
     long limit = c->count > 0 ? c->count : -1;
     bdl_vec3 lo = c->region_min;
-    int nx = (int)floor((c->region_max.x - lo.x - d_species) / h) + 1;
-    int ny = (int)floor((c->region_max.y - lo.y - d_species) / h) + 1;
-    int nz = (int)floor((c->region_max.z - lo.z - d_species) / h) + 1;
+    // Taken as numbers first: sites along an axis beyond an int are refused long before this
+    // (the scene's memory estimate), but the cast must not overflow all the same.
+    const int nx = (int)fmin(lattice_sites(c, d_species, h, 0), INT_MAX);
+    const int ny = (int)fmin(lattice_sites(c, d_species, h, 1), INT_MAX);
+    const int nz = (int)fmin(lattice_sites(c, d_species, h, 2), INT_MAX);
     for (int k = 0; k < nz && placed != limit; ++k)
         for (int j = 0; j < ny && placed != limit; ++j)
             for (int i = 0; i < nx && placed != limit; ++i) {
@@ -425,6 +456,16 @@ static int file_body(const double *v, const int col[COL_COUNT], const bdl_specie
         snprintf(what, what_len, "diameter %g must be > 0", d);
         return 0;
     }
+    // The neighbour lists' cutoff and the time step come from the species' sizes: a particle
+    // larger would miss contacts, a smaller one have contacts shorter than the step resolves.
+    if (d < species->diameter_min * (1.0 - 1e-9) || d > species->diameter_max * (1.0 + 1e-9)) {
+        snprintf(what, what_len,
+                 "diameter %g m is outside the sizes of [species %s], [%g, %g] m (the neighbour "
+                 "lists and the time step are sized from them: give the species a distribution "
+                 "that covers the file)",
+                 d, species->name, species->diameter_min, species->diameter_max);
+        return 0;
+    }
     *b = sphere_at(bdl_v3(v[col[COL_X]], v[col[COL_Y]], v[col[COL_Z]]), 0.5 * d);
     if (species->shape != BDL_SHAPE_ROD)
         return 1;
@@ -444,55 +485,181 @@ static int file_body(const double *v, const int col[COL_COUNT], const bdl_specie
     return 1;
 }
 
+/// A row's numbers, all finite; else 0 with the column (1-based, and its name when the header
+/// gives one of ours) in what.
+static int finite_row(const double *v, int n, const int col[COL_COUNT], char *what, size_t what_len)
+{
+    static const char *const names[COL_COUNT] = {"x",  "y",  "z",  "diameter", "vx",
+                                                 "vy", "vz", "ux", "uy",       "uz"};
+    for (int c = 0; c < n; ++c) {
+        if (isfinite(v[c]))
+            continue;
+        const char *name = "";
+        for (int k = 0; k < COL_COUNT; ++k)
+            if (col[k] == c)
+                name = names[k];
+        snprintf(what, what_len, "column %d%s%s%s is %g: not a finite number", c + 1,
+                 *name ? " (" : "", name, *name ? ")" : "", v[c]);
+        return 0;
+    }
+    return 1;
+}
+
+/// Particles of a file closer than this fraction of the smaller diameter are the same particle
+/// written twice: refused with both lines rather than reported later as an overlap.
+#define COINCIDENT 1e-6
+
+/// Particles of a file in cells of `cell` metres, hashed: a chain per bucket through `next`.
+/// Any file gives a few particles per cell, however far apart its particles lie.
+typedef struct cell_hash {
+    double cell;
+    size_t mask; ///< buckets - 1 (a power of two)
+    long *head;  ///< first particle (index from the file's first) of each bucket, -1 if none
+    long *next;
+} cell_hash;
+
+static size_t hash_bucket(const cell_hash *h, const double k[3])
+{
+    const double key[3] = {k[0] + 0.0, k[1] + 0.0, k[2] + 0.0}; // -0 and +0: the same cell
+    uint64_t bits[3], x = 0x9e3779b97f4a7c15u;
+    memcpy(bits, key, sizeof bits);
+    for (int a = 0; a < 3; ++a) {
+        x = (x ^ bits[a]) * 0xff51afd7ed558ccdu;
+        x ^= x >> 33;
+    }
+    return (size_t)x & h->mask;
+}
+
+static int hash_init(cell_hash *h, long n, double cell)
+{
+    size_t buckets = 64, bytes;
+    while (buckets < 2 * (size_t)n)
+        buckets *= 2;
+    *h = (cell_hash){.cell = cell, .mask = buckets - 1};
+    if (!bdl_size_mul(buckets, sizeof(long), &bytes) || !(h->head = malloc(bytes)) ||
+        !bdl_size_mul((size_t)n, sizeof(long), &bytes) || !(h->next = malloc(bytes)))
+        return 0;
+    memset(h->head, 0xff, buckets * sizeof(long)); // every bucket -1
+    return 1;
+}
+
+/// The first particle of [first, p->count) whose centre coincides with an earlier one of the
+/// range, with the file line of each (`rows`, per particle from `first`); BDL_OK when none.
+/// Cells as large as the largest distance that counts keep the search to 27 cells a particle.
+static bdl_result find_coincident(const bdl_particles *p, long first, const long *rows, char *what,
+                                  size_t what_len)
+{
+    double r_max = 0.0;
+    for (long i = first; i < p->count; ++i)
+        r_max = fmax(r_max, p->radius[i]);
+    cell_hash h;
+    if (!hash_init(&h, p->count - first, 2.0 * COINCIDENT * r_max)) {
+        free(h.head);
+        return BDL_ERR_NOMEM;
+    }
+    bdl_result r = BDL_OK;
+    for (long i = first; i < p->count && r == BDL_OK; ++i) {
+        const double k[3] = {floor(p->pos[i].x / h.cell), floor(p->pos[i].y / h.cell),
+                             floor(p->pos[i].z / h.cell)};
+        for (int m = 0; m < 27 && r == BDL_OK; ++m) {
+            const double near[3] = {k[0] + m % 3 - 1, k[1] + m / 3 % 3 - 1, k[2] + m / 9 - 1};
+            for (long j = h.head[hash_bucket(&h, near)]; j >= 0; j = h.next[j]) {
+                const double cut = COINCIDENT * 2.0 * fmin(p->radius[i], p->radius[first + j]);
+                if (bdl_v3_len2(bdl_v3_sub(p->pos[i], p->pos[first + j])) < cut * cut) {
+                    snprintf(what, what_len,
+                             "lines %ld and %ld: two particles at (%g, %g, %g) m, closer than "
+                             "%g of the smaller diameter",
+                             rows[j], rows[i - first], p->pos[i].x, p->pos[i].y, p->pos[i].z,
+                             COINCIDENT);
+                    r = BDL_ERR_SCENE;
+                    break;
+                }
+            }
+        }
+        const size_t b = hash_bucket(&h, k);
+        h.next[i - first] = h.head[b];
+        h.head[b] = i - first;
+    }
+    free(h.head);
+    free(h.next);
+    return r;
+}
+
+/// Adds the particle of one data row (numbers v, n of them) of a particle file; 0 with the
+/// reason in `reason` for a row that describes no particle, -1 when out of memory.
+static int file_row(const bdl_create_def *c, const bdl_create_context *ctx, const double *v, int n,
+                    int ncols, const int col[COL_COUNT], bdl_particles *p, char *reason,
+                    size_t reason_len)
+{
+    const bdl_species_def *species = &ctx->species[c->species];
+    body b;
+    if (n < ncols) {
+        snprintf(reason, reason_len, "expected %d numbers, found %d", ncols, n);
+        return 0;
+    }
+    if (!finite_row(v, n, col, reason, reason_len) ||
+        !file_body(v, col, species, ctx->rng, &b, reason, reason_len))
+        return 0;
+    bdl_vec3 vel = c->velocity;
+    if (col[COL_VX] >= 0 && col[COL_VY] >= 0 && col[COL_VZ] >= 0)
+        vel = bdl_v3(v[col[COL_VX]], v[col[COL_VY]], v[col[COL_VZ]]);
+    const double density = species->density;
+    const long i = b.half_length > 0.0 ? bdl_particles_add_rod(p, b.x, vel, b.r, b.half_length, b.q,
+                                                               density, c->species)
+                                       : bdl_particles_add(p, b.x, vel, b.r, density, c->species);
+    return i < 0 ? -1 : 1;
+}
+
 /// Particles from a CSV file: a header naming x, y, z and optionally diameter (spheres), vx, vy,
-/// vz, and ux, uy, uz (a rod's axis; rods without them get random axes).
+/// vz, and ux, uy, uz (a rod's axis; rods without them get random axes). Every number must be
+/// finite, and no two centres may coincide.
 static bdl_result create_file(const bdl_create_def *c, const bdl_create_context *ctx,
                               bdl_particles *p, char *why, size_t why_len)
 {
-    const bdl_species_def *species = &ctx->species[c->species];
-    FILE *f = fopen(c->file, "r");
-    char what[600], reason[200];
+    char what[600], reason[300];
+    FILE *f = bdl_open_regular(c->file, reason, sizeof reason);
     if (!f) {
-        snprintf(what, sizeof what, "cannot open '%s': %s", c->file, strerror(errno));
+        snprintf(what, sizeof what, "'%s' %s", c->file, reason);
         return fail(why, why_len, what);
     }
     int col[COL_COUNT];
-    const int ncols = file_header(f, species, col, reason, sizeof reason);
+    const int ncols = file_header(f, &ctx->species[c->species], col, reason, sizeof reason);
     if (ncols < 0) {
         fclose(f);
         snprintf(what, sizeof what, "%s: %s", c->file, reason);
         return fail(why, why_len, what);
     }
+    const long first = p->count;
+    long *rows = NULL, capacity = 0, row = 1; // the file line of each particle, for messages
     char line[4096];
-    long row = 1;
     bdl_result result = BDL_OK;
-    while (result == BDL_OK && fgets(line, sizeof line, f)) {
+    what[0] = '\0';
+    while (fgets(line, sizeof line, f)) {
         ++row;
         if (line[0] == '\n' || line[0] == '#')
             continue;
         double v[64];
         const int n = parse_numbers(line, v);
-        body b;
-        if (n < ncols)
-            snprintf(reason, sizeof reason, "expected %d numbers, found %d", ncols, n);
-        if (n < ncols || !file_body(v, col, species, ctx->rng, &b, reason, sizeof reason)) {
+        const int added = file_row(c, ctx, v, n, ncols, col, p, reason, sizeof reason);
+        const long k = p->count - 1 - first;
+        if (added == 0) {
             snprintf(what, sizeof what, "%s:%ld: %s", c->file, row, reason);
-            result = fail(why, why_len, what);
+            result = BDL_ERR_SCENE;
             break;
         }
-        bdl_vec3 vel = c->velocity;
-        if (col[COL_VX] >= 0 && col[COL_VY] >= 0 && col[COL_VZ] >= 0)
-            vel = bdl_v3(v[col[COL_VX]], v[col[COL_VY]], v[col[COL_VZ]]);
-        const double density = species->density;
-        const long i =
-            b.half_length > 0.0
-                ? bdl_particles_add_rod(p, b.x, vel, b.r, b.half_length, b.q, density, c->species)
-                : bdl_particles_add(p, b.x, vel, b.r, density, c->species);
-        if (i < 0)
+        if (added < 0 || (k >= capacity && !bdl_grow((void **)&rows, 2 * k + 64, sizeof(long)))) {
             result = BDL_ERR_NOMEM;
+            break;
+        }
+        capacity = k >= capacity ? 2 * k + 64 : capacity;
+        rows[k] = row;
     }
     fclose(f);
-    return result;
+    if (result == BDL_OK && p->count > first &&
+        (result = find_coincident(p, first, rows, reason, sizeof reason)) == BDL_ERR_SCENE)
+        snprintf(what, sizeof what, "%s: %s", c->file, reason);
+    free(rows);
+    return result == BDL_ERR_SCENE ? fail(why, why_len, what) : result;
 }
 
 bdl_result bdl_create_initial(const bdl_create_def *def, const bdl_create_context *ctx,
@@ -549,23 +716,44 @@ long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, d
     return added;
 }
 
-/// Data rows of a particle file (lines after the header), 0 if it cannot be read.
+/// Data rows of a particle file (lines after the header), 0 if it cannot be read or is not a
+/// regular file (a FIFO would block here).
 static long count_rows(const char *path)
 {
-    FILE *f = fopen(path, "r");
+    char why[256], block[1 << 14];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     if (!f)
         return 0;
     long lines = 0;
-    int c, last = '\n';
-    while ((c = fgetc(f)) != EOF) {
-        if (c == '\n')
+    char last = '\n';
+    size_t got;
+    while ((got = fread(block, 1, sizeof block, f)) > 0) {
+        for (const char *c = block; (c = memchr(c, '\n', got - (size_t)(c - block))); ++c)
             ++lines;
-        last = c;
+        last = block[got - 1];
     }
     if (last != '\n')
         ++lines;
     fclose(f);
     return lines > 0 ? lines - 1 : 0;
+}
+
+double bdl_create_expected(const bdl_create_def *c, const bdl_species_def *s)
+{
+    if (c->kind == BDL_CREATE_FILE)
+        return (double)count_rows(c->file);
+    const double count = c->count > 0 ? (double)c->count : INFINITY;
+    if (c->kind == BDL_CREATE_LATTICE) {
+        const double extent = bdl_species_max_extent(s);
+        const double h = c->spacing > 0.0 ? c->spacing : 1.0001 * extent;
+        const double sites = lattice_sites(c, extent, h, 0) * lattice_sites(c, extent, h, 1) *
+                             lattice_sites(c, extent, h, 2);
+        return fmin(count, sites);
+    }
+    if (c->kind == BDL_CREATE_RANDOM && c->count <= 0)
+        return floor(c->volume_fraction * region_volume(c) / bdl_species_volume(s, s->diameter) +
+                     0.5);
+    return c->count > 0 ? (double)c->count : 0.0;
 }
 
 long bdl_create_estimate_total(const bdl_create_def *creates, int count,

@@ -56,6 +56,13 @@ bdl_result bdl_create_initial(const bdl_create_def *c, const bdl_create_context 
 long bdl_create_pour(const bdl_create_def *c, const bdl_create_context *ctx, double t, long *poured,
                      bdl_particles *p);
 
+/// The number of particles creator c will make over a run, as a number (no count overflows):
+/// its count; a random fill's volume fraction of the region over the volume of a particle of
+/// the species' (mean) diameter; a lattice's sites (at most its count); a file's data rows (a
+/// file that is not regular counts none); a pour's count. For estimating what a scene will need
+/// before anything is allocated.
+double bdl_create_expected(const bdl_create_def *c, const bdl_species_def *s);
+
 /// Upper bound of the number of particles `count` creators will make (for sizing the cell grid).
 long bdl_create_estimate_total(const bdl_create_def *creates, int count,
                                const bdl_species_def *species);

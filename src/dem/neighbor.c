@@ -69,11 +69,9 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
         long total = 1;
         for (int a = 0; a < 3; ++a) {
             double len = bdl_v3_comp(nb->length, a);
-            int d = (int)floor(len / size);
-            if (d < 1)
-                d = 1;
-            if (d > 1 << 20)
-                d = 1 << 20;
+            // Clamped as a number: a nanometre cutoff over a metre is beyond an int.
+            const double n = floor(len / size);
+            const int d = n >= (double)(1 << 20) ? 1 << 20 : (n < 1.0 ? 1 : (int)n);
             nb->dims[a] = d;
             nb->cell[a] = len / d;
             nb->periodic[a] = periodic[a];

@@ -187,10 +187,16 @@ void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
             permute_array(*array_pointer(p, &arrays[a]), arrays[a].elem, p->count, perm, scratch);
 }
 
+size_t bdl_particles_bytes_each(int fluid, int rods)
+{
+    const bdl_particles p = {.fluid = fluid, .rods = rods};
+    size_t bytes = 0;
+    for (int a = 0; a < ARRAY_COUNT; ++a)
+        bytes += has_array(&p, &arrays[a]) ? arrays[a].elem : 0;
+    return bytes;
+}
+
 long bdl_particles_bytes(const bdl_particles *p)
 {
-    long per_particle = 0;
-    for (int a = 0; a < ARRAY_COUNT; ++a)
-        per_particle += has_array(p, &arrays[a]) ? (long)arrays[a].elem : 0;
-    return p->capacity * per_particle;
+    return p->capacity * (long)bdl_particles_bytes_each(p->fluid, p->rods);
 }

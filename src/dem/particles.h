@@ -148,4 +148,7 @@ int bdl_particles_arrays(const bdl_particles *p, int when, bdl_particle_array *o
 /// Bytes allocated for particle storage.
 long bdl_particles_bytes(const bdl_particles *p);
 
+/// Bytes each particle takes in the store's arrays, in a scene with (or without) a gas and rods.
+size_t bdl_particles_bytes_each(int fluid, int rods);
+
 #endif

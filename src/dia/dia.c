@@ -11,6 +11,7 @@
 
 #include "core/rng.h"
 #include "core/file.h"
+#include "core/memory.h"
 #include "dia/capsule.h"
 
 /// Half the shaft length of particle i: 0 for a sphere.
@@ -268,9 +269,12 @@ static void blur(double *img, int w, int h, double sigma)
 /// The image's buffers, every sample empty (no hit, infinitely far).
 static bdl_result allocate_image(const bdl_dia_def *d, int ns, bdl_dia_image *im)
 {
-    const size_t npx = (size_t)d->width * (size_t)d->height;
-    const size_t nsm = npx * (size_t)ns * (size_t)ns;
+    size_t npx, nsm, bytes;
     memset(im, 0, sizeof *im);
+    if (!bdl_size_mul((size_t)d->width, (size_t)d->height, &npx) ||
+        !bdl_size_mul3(npx, (size_t)ns, (size_t)ns, &nsm) ||
+        !bdl_size_mul(nsm, sizeof(int32_t), &bytes) || !bdl_size_mul(npx, sizeof(double), &bytes))
+        return BDL_ERR_NOMEM;
     im->width = d->width, im->height = d->height, im->samples = ns;
     im->value = malloc(npx * sizeof(float));
     im->final = malloc(npx * sizeof(double));

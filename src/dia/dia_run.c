@@ -175,7 +175,8 @@ bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, co
         // writing to a new folder) starts its index with the header and takes the image due now.
         char path[1024];
         snprintf(path, sizeof path, "%s/frames.csv", c->dir);
-        FILE *old = resume ? fopen(path, "rb") : NULL;
+        char why_not[256];
+        FILE *old = resume ? bdl_open_regular(path, why_not, sizeof why_not) : NULL;
         const int continues = old && fgetc(old) != EOF;
         if (old)
             fclose(old);

@@ -57,7 +57,9 @@ static int scan_existing(const char *path, char **first_line, long *complete_siz
 {
     *first_line = NULL;
     *complete_size = 0;
-    FILE *file = fopen(path, "rb");
+    char why[256];
+    errno = 0;
+    FILE *file = bdl_open_regular(path, why, sizeof why); // a FIFO here would block
     if (!file)
         return errno == ENOENT ? 0 : -1;
     char *line = NULL;
@@ -198,7 +200,9 @@ static int copy_kept_rows(FILE *in, FILE *out, double t_keep)
 
 bdl_result bdl_csv_truncate_after(const char *path, double t_keep)
 {
-    FILE *in = fopen(path, "rb");
+    char why[256];
+    errno = 0;
+    FILE *in = bdl_open_regular(path, why, sizeof why);
     if (!in)
         return errno == ENOENT ? BDL_OK : BDL_ERR_IO;
     bdl_atomic_file af;
@@ -255,7 +259,8 @@ static double field_value(const char *line, int index)
 
 long bdl_csv_read_column(const char *path, const char *column, double *out, long max)
 {
-    FILE *file = fopen(path, "rb");
+    char why[256];
+    FILE *file = bdl_open_regular(path, why, sizeof why);
     if (!file)
         return -1;
     char *line = NULL;

@@ -96,7 +96,8 @@ typedef struct gray_read {
 bdl_result bdl_png_read_gray(const char *path, double **values, int *width, int *height, int *bits)
 {
     *values = NULL;
-    FILE *f = fopen(path, "rb");
+    char why[256];
+    FILE *f = bdl_open_regular(path, why, sizeof why);
     gray_read *g = calloc(1, sizeof *g);
     png_structp png =
         f && g ? png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL) : NULL;

@@ -9,6 +9,7 @@
 #include <time.h>
 
 #include "core/log.h"
+#include "core/memory.h"
 #include "io/png.h"
 #include "render/renderer.h"
 
@@ -110,8 +111,10 @@ bdl_result bdl_frames_open(const bdl_frames_def *def, bdl_frames **out, char *wh
     f->height = o->frame_height;
     pthread_mutex_init(&f->lock, NULL);
     pthread_cond_init(&f->changed, NULL);
+    size_t bytes = 0; // RGB, three bytes a pixel
+    const int sized = bdl_size_mul3((size_t)f->width, (size_t)f->height, 3, &bytes);
     for (int k = 0; k < IMAGES; ++k)
-        if (!(f->images[k].rgb = malloc((size_t)f->width * (size_t)f->height * 3))) {
+        if (!sized || !(f->images[k].rgb = malloc(bytes))) {
             bdl_frames_close(f, NULL);
             return BDL_ERR_NOMEM;
         }

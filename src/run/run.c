@@ -65,8 +65,11 @@ static bdl_result read_scene(run *r)
         bdl_error("%s", err.message);
         return res;
     }
-    if (def->until > 0.0)
-        r->scene->end_time = def->until;
+    // --until is checked as [run] end_time is: its range, and the outputs it asks for.
+    if (def->until > 0.0 && (res = bdl_scene_set_end_time(r->scene, def->until, &err)) != BDL_OK) {
+        bdl_error("%s", err.message);
+        return res;
+    }
     int threads = def->threads > 0 ? def->threads : r->scene->threads;
     if (threads > 0)
         omp_set_num_threads(threads);
@@ -142,6 +145,10 @@ static bdl_result resume(run *r)
     char ckpt[1200], why[1024];
     bdl_checkpoint_info info;
     bdl_run_checkpoint_path(r->def->resume, ckpt, sizeof ckpt);
+    if (bdl_check_regular_file(ckpt, NULL, why, sizeof why) != BDL_OK) {
+        bdl_error("checkpoint %s %s", ckpt, why); // a FIFO would block the reader
+        return BDL_ERR_CHECKPOINT;
+    }
     bdl_result res = bdl_checkpoint_load(w, ckpt, &info, why, sizeof why);
     if (res != BDL_OK) {
         bdl_error("%s", why);

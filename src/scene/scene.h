@@ -27,6 +27,18 @@
 #define BDL_MAX_CREATES 16
 #define BDL_MAX_DIA     4
 
+/// Largest length of [run] gravity [m/s^2]: about 1e5 g, above the strongest fields granular
+/// beds are studied in (geotechnical and rotating-bed centrifuges reach a few hundred g); a
+/// typo in an exponent is refused rather than run with forces near overflow.
+#define BDL_MAX_GRAVITY 1e6
+/// Largest |coordinate| of the domain's corners [m]: a thousand kilometres, with a resolution of
+/// doubles there (1e-10 m) still far below any particle's size.
+#define BDL_MAX_COORDINATE 1e6
+/// Most outputs of one kind a run may write (rows, files or images up to end_time): the output
+/// times are stepped through one interval at a time, so an interval of 1e-300 s would never
+/// advance.
+#define BDL_MAX_OUTPUTS 1e9
+
 typedef struct bdl_output_def {
     double diagnostics_interval;   ///< [s] between rows of diagnostics.csv
     double vtk_interval;           ///< [s] between particle VTK files; 0 = none
@@ -177,6 +189,8 @@ typedef struct bdl_guard_def {
     double dt_warn;         ///< warn for dt above this fraction
     double energy_growth;   ///< stop when energy grows by this fraction over work supplied
     int check_interval;     ///< steps between in-run checks
+    double max_memory;      ///< refuse an estimate above this [bytes]; < 0: 80 % of the machine's
+    double max_steps;       ///< refuse more steps than this (end_time / dt)
 } bdl_guard_def;
 
 /// [gas]: the gas phase. Absent: no grid, no gas, no cost.
@@ -271,6 +285,12 @@ void bdl_scene_defaults(bdl_scene *scene);
 /// `species.glass.density=2500`. On failure returns BDL_ERR_SCENE and fills `err`.
 bdl_result bdl_scene_load(const char *path, const char *const *overrides, int override_count,
                           bdl_scene *scene, bdl_scene_error *err);
+
+/// Changes the end time of a loaded scene (bedlam run --until), checked as [run] end_time is:
+/// its range, and that no output interval then asks for more than BDL_MAX_OUTPUTS outputs. On
+/// failure returns BDL_ERR_SCENE with a message starting "--until T:" and leaves the scene as it
+/// was.
+bdl_result bdl_scene_set_end_time(bdl_scene *scene, double end_time, bdl_scene_error *err);
 
 /// Same from a string (tests); `name` stands for the file name in messages.
 bdl_result bdl_scene_load_string(const char *text, const char *name, const char *const *overrides,

@@ -75,8 +75,9 @@ typedef struct bdl_scene_key {
     size_t offset;
     int has_flag; ///< 1: an int flag at flag_offset is set to 1 when the key is given
     size_t flag_offset;
-    int normalise; ///< vector keys: a direction, must be nonzero, stored as a unit vector
-    double def[3]; ///< default: numbers use def[0], enums the index; names/paths are ""
+    int normalise;     ///< vector keys: a direction, must be nonzero, stored as a unit vector
+    double max_length; ///< vector keys: the largest length allowed (0: any)
+    double def[3];     ///< default: numbers use def[0], enums the index; names/paths are ""
     const char *default_text; ///< overrides the text generated from def (docs and messages)
     bdl_bound lo_kind, hi_kind;
     double lo, hi;
@@ -100,6 +101,9 @@ extern const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT];
 #define BDL_LINE_SET (-1)
 /// Longest line accepted in a scene file (characters, without the newline).
 #define BDL_SCENE_MAX_LINE 4096
+/// Largest scene file read (bytes): scenes are a few kilobytes; the bound keeps a huge file from
+/// being read into memory whole.
+#define BDL_SCENE_MAX_BYTES (16 << 20)
 
 /// Parse-time record of one section: where it was written and which keys were given.
 typedef struct bdl_scene_section {

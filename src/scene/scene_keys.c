@@ -109,19 +109,20 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "time step; 0 = dt_fraction times the smallest contact time, chosen by the solver"},
     {S(RUN), "dt_fraction", NUM, "-", IN_SCENE(dt_fraction), .def = {0.02}, GT(0), LE(0.2),
      .doc = "fraction of the smallest contact time used as the step when dt is 0"},
-    {S(RUN), "end_time", NUM, "s", IN_SCENE(end_time), REQUIRED, GT(0),
+    {S(RUN), "end_time", NUM, "s", IN_SCENE(end_time), REQUIRED, GT(0), LE(1e9),
      .doc = "simulated time at which the run stops"},
     {S(RUN), "gravity", VEC, "m/s^2", IN_SCENE(gravity), .def = {0, 0, -9.81},
-     .doc = "gravitational acceleration vector"},
+     .max_length = BDL_MAX_GRAVITY, .doc = "gravitational acceleration vector"},
     {S(RUN), "seed", .type = BDL_KEY_U64, "-", IN_SCENE(seed), .def = {1}, GE(0),
      .doc = "seed of the random number generator (creation, velocity jitter)"},
     {S(RUN), "threads", .type = BDL_KEY_INT, "-", IN_SCENE(threads), .def = {0},
      .default_text = "0 (all cores)", GE(0), LE(256), .doc = "worker threads; 0 = all cores"},
 
     // [domain]
-    {S(DOMAIN), "min", VEC, "m", IN_SCENE(domain_min), REQUIRED,
-     .doc = "lower corner of the simulation box"},
-    {S(DOMAIN), "max", VEC, "m", IN_SCENE(domain_max), REQUIRED,
+    {S(DOMAIN), "min", VEC, "m", IN_SCENE(domain_min), REQUIRED, GE(-BDL_MAX_COORDINATE),
+     LE(BDL_MAX_COORDINATE), .doc = "lower corner of the simulation box"},
+    {S(DOMAIN), "max", VEC, "m", IN_SCENE(domain_max), REQUIRED, GE(-BDL_MAX_COORDINATE),
+     LE(BDL_MAX_COORDINATE),
      .doc = "upper corner of the simulation box; larger than min on every axis"},
     {S(DOMAIN), "periodic", .type = BDL_KEY_AXES, "-", IN_SCENE(periodic),
      .doc = "periodic axes: none, or letters among x y z (e.g. \"x y\")"},
@@ -291,7 +292,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR)),
      .required = BIT(BDL_CREATE_POUR), .def = {-1},
      .default_text = "required for pour; random: count or volume_fraction; lattice: fill", GT(0),
-     .doc = "number of particles"},
+     LE(1e15), .doc = "number of particles"},
     {S(CREATE), "volume_fraction", NUM, "-", IN_CREATE(volume_fraction),
      WHEN("type", BIT(BDL_CREATE_RANDOM)), .def = {-1},
      .default_text = "random: count or volume_fraction", GT(0), LE(0.64),
@@ -567,6 +568,13 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "stop when the energy grows by this fraction more than the work supplied"},
     {S(GUARDS), "check_interval", .type = BDL_KEY_INT, "steps", IN_SCENE(guards.check_interval),
      .def = {100}, GE(1), .doc = "steps between the in-run checks"},
+    {S(GUARDS), "max_memory", NUM, "bytes", IN_SCENE(guards.max_memory), .def = {-1},
+     .default_text = "80 % of the physical memory", GT(0),
+     .doc = "refuse a scene whose estimated memory (particles, neighbour pairs, gas grid, image "
+            "buffers) is above this, before anything is allocated"},
+    {S(GUARDS), "max_steps", NUM, "steps", IN_SCENE(guards.max_steps), .def = {1e10}, GE(1),
+     .doc = "refuse a run of more time steps than this (end_time / dt), before anything is "
+            "allocated"},
 };
 
 const int bdl_scene_key_count = (int)(sizeof bdl_scene_keys / sizeof bdl_scene_keys[0]);
@@ -611,13 +619,30 @@ static int is_integer_type(bdl_key_type type)
     return type == BDL_KEY_INT || type == BDL_KEY_LONG || type == BDL_KEY_U64;
 }
 
+/// A vector key's range: its components' bounds (each one) or its length's.
+static void vector_range_text(const bdl_scene_key *key, char *buf, size_t size)
+{
+    if (key->normalise)
+        append(buf, size, "3 numbers, not all 0");
+    else if (key->lo_kind != BDL_BOUND_NONE && key->hi_kind != BDL_BOUND_NONE)
+        append(buf, size, "3 numbers, each in %s%g, %g%s",
+               key->lo_kind == BDL_BOUND_OPEN ? "(" : "[", key->lo, key->hi,
+               key->hi_kind == BDL_BOUND_OPEN ? ")" : "]");
+    else if (key->lo_kind != BDL_BOUND_NONE)
+        append(buf, size, "3 numbers, each %s %g",
+               key->lo_kind == BDL_BOUND_OPEN ? ">" : ">=", key->lo);
+    else if (key->max_length > 0.0)
+        append(buf, size, "3 numbers, length <= %g", key->max_length);
+    else
+        append(buf, size, "3 numbers separated by spaces");
+}
+
 void bdl_scene_key_range_text(const bdl_scene_key *key, char *buf, size_t size)
 {
     buf[0] = '\0';
     switch (key->type) {
     case BDL_KEY_VECTOR:
-        append(buf, size, "%s",
-               key->normalise ? "3 numbers, not all 0" : "3 numbers separated by spaces");
+        vector_range_text(key, buf, size);
         return;
     case BDL_KEY_BOOL:
         append(buf, size, "true, false, yes, no, on, off, 1, 0");
@@ -633,7 +658,7 @@ void bdl_scene_key_range_text(const bdl_scene_key *key, char *buf, size_t size)
         append(buf, size, "name of a [species NAME] section");
         return;
     case BDL_KEY_PATH:
-        append(buf, size, "readable file, relative to the scene folder");
+        append(buf, size, "readable regular file, relative to the scene folder");
         return;
     default:
         break;

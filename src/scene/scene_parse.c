@@ -306,6 +306,27 @@ static int in_range(const bdl_scene_key *key, double v)
     return 1;
 }
 
+/// A vector within its key's bounds: each component's, or its length's (taken with hypot, so
+/// that components near the largest double do not overflow to an infinite length).
+static int store_vector(const bdl_scene_key *key, const char *text, bdl_vec3 *field, char *why)
+{
+    bdl_vec3 v;
+    if (!parse_vector(text, &v, why))
+        return 0;
+    for (int a = 0; a < 3; ++a)
+        if (!in_range(key, bdl_v3_comp(v, a))) {
+            snprintf(why, WHY_LEN, "component %d (%g) out of range", a + 1, bdl_v3_comp(v, a));
+            return 0;
+        }
+    const double length = hypot(hypot(v.x, v.y), v.z);
+    if (key->max_length > 0.0 && !(length <= key->max_length)) {
+        snprintf(why, WHY_LEN, "length %.3g out of range", length);
+        return 0;
+    }
+    *field = v;
+    return 1;
+}
+
 /// Parses `text` as the key's type, checks the range and stores it; 0 with `why` on failure.
 static int store_value(bdl_scene_parser *p, const bdl_scene_key *key, bdl_scene_section *section,
                        const char *text, char *why)
@@ -325,7 +346,7 @@ static int store_value(bdl_scene_parser *p, const bdl_scene_key *key, bdl_scene_
             return 0;
         break;
     case BDL_KEY_VECTOR:
-        return parse_vector(text, field, why);
+        return store_vector(key, text, field, why);
     case BDL_KEY_BOOL:
         return parse_bool(text, field, why);
     case BDL_KEY_ENUM:
@@ -340,7 +361,9 @@ static int store_value(bdl_scene_parser *p, const bdl_scene_key *key, bdl_scene_
     case BDL_KEY_PATH:
         return resolve_path(p->scene, text, field, why);
     }
-    if (!in_range(key, number) || (key->type == BDL_KEY_INT && fabs(number) > 2147483647.0)) {
+    // Integers are held as doubles on the way: a long beyond 2^53 would not be the one written.
+    if (!in_range(key, number) || (key->type == BDL_KEY_INT && fabs(number) > 2147483647.0) ||
+        (key->type == BDL_KEY_LONG && fabs(number) > 9007199254740992.0)) {
         snprintf(why, WHY_LEN, "out of range");
         return 0;
     }
@@ -804,6 +827,20 @@ bdl_result bdl_scene_load(const char *path, const char *const *overrides, int ov
     if (strlen(path) >= BDL_PATH_LEN) {
         snprintf(err->message, sizeof err->message, "%.80s...: path longer than %d characters",
                  path, BDL_PATH_LEN - 1);
+        return BDL_ERR_SCENE;
+    }
+    // Asked before opening: a FIFO would block the reader and /dev/zero would never end.
+    char why[WHY_LEN];
+    long bytes = 0;
+    if (bdl_check_regular_file(path, &bytes, why, sizeof why) != BDL_OK) {
+        snprintf(err->message, sizeof err->message, "%s %s; a scene is read from a file", path,
+                 why);
+        return BDL_ERR_SCENE;
+    }
+    if (bytes > BDL_SCENE_MAX_BYTES) {
+        snprintf(err->message, sizeof err->message,
+                 "%s: %ld bytes; a scene file is at most %d bytes of text", path, bytes,
+                 BDL_SCENE_MAX_BYTES);
         return BDL_ERR_SCENE;
     }
     size_t length = 0;

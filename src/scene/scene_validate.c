@@ -5,11 +5,11 @@
 // wall or creator types, unit vectors) are checked generically; the rest are written out below.
 // Checks that need the particles themselves (overlaps, particles outside the domain) belong to
 // the solver.
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "core/file.h"
 #include "scene/scene_internal.h"
 
 enum { TEXT_LEN = 128 };
@@ -305,10 +305,12 @@ static void check_create(bdl_scene_parser *p, bdl_scene_section *s)
         return;
     double diameter = largest_diameter(p->scene, create->species);
     if (create->kind == BDL_CREATE_FILE) {
-        FILE *file = fopen(create->file, "r");
+        // A FIFO, a device or a folder is refused before anything opens it (a FIFO would block).
+        char why[TEXT_LEN * 2];
+        FILE *file = bdl_open_regular(create->file, why, sizeof why);
         if (!file) {
-            char what[TEXT_LEN + BDL_PATH_LEN];
-            snprintf(what, sizeof what, "cannot open '%s': %s", create->file, strerror(errno));
+            char what[TEXT_LEN * 3 + BDL_PATH_LEN];
+            snprintf(what, sizeof what, "'%s' %s", create->file, why);
             fail_at_key(p, s, "file", 1, what);
         } else {
             fclose(file);
@@ -456,6 +458,84 @@ static void check_dia(bdl_scene_parser *p, bdl_scene_section *s)
         fail_at_key(p, s, "stop", 0, "must be at or after start (0: no stop)");
 }
 
+/// An output interval that would ask for more than BDL_MAX_OUTPUTS outputs up to end_time.
+typedef struct output_excess {
+    int dia;         ///< the [camera NAME] index, or -1 for [output]
+    const char *key; ///< the interval's key
+    double interval; ///< [s]
+    double count;    ///< outputs it asks for
+} output_excess;
+
+/// The first output interval of the scene that asks for too many outputs up to end_time; 0 when
+/// none does. Zero intervals write nothing (or only at the end) and pass.
+static int find_output_excess(const bdl_scene *scene, double end_time, output_excess *e)
+{
+    const bdl_output_def *o = &scene->output;
+    static const char *const keys[] = {"diagnostics_interval", "vtk_interval",
+                                       "checkpoint_interval",  "frame_interval",
+                                       "contacts_interval",    "orientation_interval"};
+    const double intervals[] = {o->diagnostics_interval, o->vtk_interval,
+                                o->checkpoint_interval,  o->frame_interval,
+                                o->contacts_interval,    o->orientation_interval};
+    for (int k = 0; k < 6 + scene->dia_count; ++k) {
+        const double interval = k < 6 ? intervals[k] : scene->dias[k - 6].interval;
+        if (interval > 0.0 && end_time / interval > BDL_MAX_OUTPUTS) {
+            *e = (output_excess){k < 6 ? -1 : k - 6, k < 6 ? keys[k] : "interval", interval,
+                                 end_time / interval};
+            return 1;
+        }
+    }
+    return 0;
+}
+
+static void excess_text(const output_excess *e, double end_time, char *buf, size_t size)
+{
+    snprintf(buf, size,
+             "%.3g outputs up to end_time = %g s; at most %g per run: the interval must be >= "
+             "end_time / %g = %g s",
+             e->count, end_time, BDL_MAX_OUTPUTS, BDL_MAX_OUTPUTS, end_time / BDL_MAX_OUTPUTS);
+}
+
+/// Every output interval against the end time, at the interval's line.
+static void check_output_counts(bdl_scene_parser *p)
+{
+    output_excess e;
+    if (!find_output_excess(p->scene, p->scene->end_time, &e))
+        return;
+    for (int i = 0; i < p->section_count; ++i) {
+        bdl_scene_section *s = &p->sections[i];
+        if ((e.dia < 0 && s->kind == BDL_SECTION_OUTPUT) ||
+            (e.dia >= 0 && s->kind == BDL_SECTION_DIA && s->index == e.dia)) {
+            char what[TEXT_LEN * 2];
+            excess_text(&e, p->scene->end_time, what, sizeof what);
+            fail_at_key(p, s, e.key, 0, what);
+            return;
+        }
+    }
+}
+
+bdl_result bdl_scene_set_end_time(bdl_scene *scene, double end_time, bdl_scene_error *err)
+{
+    const bdl_scene_key *key = bdl_scene_key_find(BDL_SECTION_RUN, "end_time");
+    char text[TEXT_LEN * 2];
+    output_excess e;
+    if (!(end_time > key->lo && end_time <= key->hi)) {
+        bdl_scene_key_range_text(key, text, sizeof text);
+        snprintf(err->message, sizeof err->message, "--until %g: out of range; allowed: %s (%s)",
+                 end_time, text, key->unit);
+        return BDL_ERR_SCENE;
+    }
+    if (find_output_excess(scene, end_time, &e)) {
+        excess_text(&e, end_time, text, sizeof text);
+        snprintf(err->message, sizeof err->message, "--until %g: [%s%s] %s = %g: %s", end_time,
+                 e.dia < 0 ? "output" : "camera ", e.dia < 0 ? "" : scene->dias[e.dia].name, e.key,
+                 e.interval, text);
+        return BDL_ERR_SCENE;
+    }
+    scene->end_time = end_time;
+    return BDL_OK;
+}
+
 int bdl_scene_validate(bdl_scene_parser *p)
 {
     check_singletons(p);
@@ -485,5 +565,7 @@ int bdl_scene_validate(bdl_scene_parser *p)
                 check_create(p, s);
         }
     }
+    if (!p->failed)
+        check_output_counts(p);
     return !p->failed;
 }

@@ -618,12 +618,20 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     bdl_rng_seed(&w->rng, scene->seed);
     build_contacts(w);
     build_walls(w);
+    // What the scene will need, before any of it is allocated.
+    bdl_budget_estimate(w, &w->budget);
     long first_id[BDL_MAX_CREATES], expected = 0;
-    bdl_result r = create_particles(w, first_id, &expected, err);
+    bdl_result r = bdl_budget_check(w, &w->budget, err);
+    if (r == BDL_OK)
+        r = create_particles(w, first_id, &expected, err);
     if (r == BDL_OK)
         r = build_neighbor(w, expected, err);
     if (r == BDL_OK)
         r = choose_time_step(w, err);
+    if (r == BDL_OK) // the particles' own speeds may have shortened the step
+        r = bdl_budget_check_steps(w, w->dt, err);
+    w->budget.dt = w->dt;
+    w->budget.steps = w->scene.end_time / w->dt;
     if (r == BDL_OK && scene->gas.enabled)
         r = bdl_world_gas_init(w, err);
     // The first neighbour build sorts the particles for locality; forces are consistent with it.

@@ -22,6 +22,7 @@
 #include "dem/particles.h"
 #include "dem/walls.h"
 #include "scene/scene.h"
+#include "world/budget.h"
 
 struct bdl_gas;
 struct bdl_coupling;
@@ -64,6 +65,8 @@ typedef struct bdl_world {
     double damping_work;    ///< work done by background damping (negative)
     double removed_energy;  ///< kinetic + potential energy carried out through outlets
     double energy0;         ///< total mechanical energy when the run started
+
+    bdl_budget budget; ///< what the scene was estimated to need before it was built
 
     double contact_time;          ///< smallest contact time over all pairs [s]
     double contact_time_dt_ratio; ///< dt / contact_time
