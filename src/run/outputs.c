@@ -450,6 +450,23 @@ static bdl_result open_cameras(bdl_run_outputs *o, int resume)
     return BDL_OK;
 }
 
+/// A new run's first checkpoint, of its start, once the outputs of the start are on the disk: a
+/// run killed before its first checkpoint_interval resumes from here, never from a checkpoint an
+/// earlier run left in the folder. (This is the caller's thread, which draws the frames: it draws
+/// the first one before waiting for it.)
+static bdl_result start_checkpoint(bdl_run_outputs *o)
+{
+    if (o->frames)
+        bdl_frames_pump(o->frames, 0.0);
+    bdl_result r = sync_outputs(o);
+    if (r == BDL_OK &&
+        (r = write_checkpoint(o, "state.bdlckpt", o->failure, sizeof o->failure)) != BDL_OK)
+        o->write_failed = 1;
+    if (r != BDL_OK)
+        bdl_error("cannot write the outputs of the start: %s", o->failure);
+    return r;
+}
+
 /// Left-overs of a killed run: its temporary files (never renamed into place), and for a new
 /// run the failed state of an earlier one.
 static void clear_leftovers(const bdl_run_outputs *o, int resume)
@@ -499,6 +516,8 @@ bdl_result bdl_run_outputs_open(bdl_run_outputs *o, bdl_world *w, const char *ou
         r = open_frames(o, resume, gl_backend);
     if (r == BDL_OK && w->scene.dia_count > 0)
         r = open_cameras(o, resume);
+    if (r == BDL_OK && !resume)
+        r = start_checkpoint(o);
     return r;
 }
 
@@ -621,15 +640,15 @@ void bdl_run_outputs_status(bdl_run_outputs *o, bdl_run_status *s)
 // ---------------------------------------------------------------------------------------------
 // Closing.
 
-/// Another failure while closing: the run's own when it had none yet, else reported at once.
+/// A failure while closing: the run's own when it had none yet, else reported after it.
 static void close_failed(bdl_run_outputs *o, bdl_result *r, bdl_result failure, const char *why)
 {
     if (*r == BDL_OK || *r == BDL_ERR_INTERRUPTED) {
         *r = failure;
         snprintf(o->failure, sizeof o->failure, "%s", why);
         o->write_failed = failure != BDL_ERR_UNSTABLE;
-    } else {
-        bdl_error("%s", why);
+    } else if (!o->also[0]) {
+        snprintf(o->also, sizeof o->also, "%s", why);
     }
 }
 
@@ -683,20 +702,23 @@ static int close_solved(bdl_run_outputs *o, bdl_result *r)
     const double interval = w->scene.output.diagnostics_interval;
     bdl_diagnostics d;
     bdl_diagnostics_compute(w, o->energy0, &d);
-    // The state is sound after a clean end, a stop, or a failed write: the guards say whether it
-    // still is (the last check may be up to check_interval steps back).
-    const int sound = *r == BDL_OK || *r == BDL_ERR_INTERRUPTED || o->write_failed;
+    // The state is sound after a clean end, a stop, or a failed write, if it passes the guards of
+    // the state now (the last check may be up to check_interval steps back).
+    int broken = !(*r == BDL_OK || *r == BDL_ERR_INTERRUPTED || o->write_failed);
     char why[1400];
-    if (sound && bdl_guards_check_state(w, &o->guard, &d, why, sizeof why) != BDL_OK) {
-        close_failed(o, r, BDL_ERR_UNSTABLE, why);
-        if (o->write_failed) // the write failed first; this is news as well
-            bdl_error("%s", why);
+    if (!broken && bdl_guards_check_state(w, &o->guard, &d, why, sizeof why) != BDL_OK) {
+        broken = 1;
+        if (*r == BDL_OK || *r == BDL_ERR_INTERRUPTED)
+            close_failed(o, r, BDL_ERR_UNSTABLE, why);
+        else // after a failed write: the instability is news as well
+            snprintf(o->also, sizeof o->also, "%s", why);
     }
-    if (*r == BDL_OK && !due(w, o->next_diag - interval) && write_diagnostics(o, &d) != BDL_OK)
+    if (*r == BDL_OK && !due(w, o->next_diag - interval) && write_diagnostics(o, &d) != BDL_OK) {
+        broken = !o->write_failed;
         *r = o->write_failed ? BDL_ERR_IO : BDL_ERR_UNSTABLE;
-    const int failed = !sound || *r == BDL_ERR_UNSTABLE;
+    }
     close_series(o, r);
-    const char *name = failed ? "failed.bdlckpt" : "state.bdlckpt";
+    const char *name = broken ? "failed.bdlckpt" : "state.bdlckpt";
     const bdl_result cr = write_checkpoint(o, name, why, sizeof why);
     snprintf(o->final_checkpoint, sizeof o->final_checkpoint, "%s", cr == BDL_OK ? name : "");
     if (cr != BDL_OK) {
@@ -704,7 +726,7 @@ static int close_solved(bdl_run_outputs *o, bdl_result *r)
         snprintf(line, sizeof line, "cannot write the checkpoint: %s", why);
         close_failed(o, r, cr, line);
     }
-    return failed;
+    return broken;
 }
 
 int bdl_run_outputs_close(bdl_run_outputs *o, int solved, bdl_result *r)

@@ -49,6 +49,7 @@ typedef struct bdl_run_outputs {
     bdl_dia_run *dia;   ///< synthetic cameras ([camera NAME]); NULL without
     char failure[1400]; ///< what stopped the run: an unstable state, or a write that failed
     int write_failed;   ///< the run stopped on a failed write (the state itself is sound)
+    char also[1400];    ///< a failure of the close after the run's own, reported after it
     // The last checkpoint of a state that passed every guard: the one a resume starts from.
     char good_path[1200]; ///< empty: none yet
     double good_time;     ///< its time [s]

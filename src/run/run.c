@@ -305,6 +305,8 @@ static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *rep
         bdl_error("run failed: %s",
                   r->outputs.failure[0] ? r->outputs.failure : bdl_result_text(res));
     }
+    if (solved && r->outputs.also[0])
+        bdl_error("%s", r->outputs.also);
     if (solved)
         bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s",
                  w->time, w->step, w->particles.count, wall,
