@@ -43,6 +43,20 @@ add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.s
   ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)
 set_tests_properties(cli_sigint PROPERTIES LABELS cli TIMEOUT 120)
 
+# Nothing lost to kill -9: 20 kills at fixed steps, each resumed, end with the files of a run
+# never interrupted (the final checkpoint and every output, byte for byte).
+add_test(NAME cli_kill COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/kill_cli.sh
+  $<TARGET_FILE:bedlam> ${S}/kill.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/kill 20)
+set_tests_properties(cli_kill PROPERTIES LABELS cli TIMEOUT 300)
+
+# Failures: a blow-up and a gas stop keep the last good checkpoint and write no non-finite
+# number; checkpoints that cannot be written and a full disk exit with the path.
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME cli_failure COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/failure_cli.sh
+  $<TARGET_FILE:bedlam> ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_BINARY_DIR}/runs/failure)
+set_tests_properties(cli_failure PROPERTIES LABELS cli TIMEOUT 300
+  ENVIRONMENT PYTHON=${Python3_EXECUTABLE})
+
 add_test(NAME cli_threads COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/settling_box.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/threads
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/threads_cli.cmake)

@@ -45,7 +45,7 @@ int main(void)
     bdl_diagnostics d;
     bdl_diagnostics_compute(w, 0.0, &d);
     bdl_guard_state guard;
-    bdl_guards_init(&guard, &d);
+    bdl_guards_init(&guard, w, &d);
     const double energy0 = bdl_diagnostics_total_energy(&d);
     char message[1024] = "";
     bdl_result r = BDL_OK;

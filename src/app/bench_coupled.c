@@ -49,14 +49,16 @@ static bdl_result time_window(const char *path, double warmup, double timed, tim
     }
     while (code == BDL_OK && w->time < warmup)
         if ((code = bdl_world_step(w)) != BDL_OK)
-            fprintf(stderr, "error: the scene failed during the warm-up at t = %g s\n", w->time);
+            fprintf(stderr, "error: the scene failed during the warm-up: %s\n", w->failure);
     if (code == BDL_OK) {
         w->gas_seconds = w->coupling_seconds = 0.0;
         long steps0 = w->step, gas0 = w->gas_steps;
         double t0 = bdl_wall_seconds(), sim0 = w->time;
         while (w->time < sim0 + timed)
-            if (bdl_world_step(w) != BDL_OK)
+            if (bdl_world_step(w) != BDL_OK) {
+                fprintf(stderr, "error: %s\n", w->failure);
                 break;
+            }
         t->wall = bdl_wall_seconds() - t0;
         t->sim = w->time - sim0;
         t->steps = w->step - steps0;

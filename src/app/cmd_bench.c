@@ -19,6 +19,7 @@
 
 #include "app/app.h"
 #include "app/options.h"
+#include "core/log.h"
 #include "core/timer.h"
 #include "core/file.h"
 #include "dem/material.h"
@@ -143,6 +144,8 @@ static bdl_result steps(bdl_world *w, long count)
     bdl_result r = BDL_OK;
     for (long s = 0; r == BDL_OK && s < count; ++s)
         r = bdl_world_step(w);
+    if (r != BDL_OK)
+        bdl_error("%s", w->failure);
     return r;
 }
 

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "app/app.h"
+#include "core/log.h"
 #include "core/timer.h"
 #include "dem/create.h"
 #include "run/guards.h"
@@ -119,8 +120,10 @@ static void print_cost(bdl_world *w)
     double t0 = bdl_wall_seconds();
     long trial = 0;
     while (trial < 2000 && (trial < 5 || bdl_wall_seconds() - t0 < 0.5)) {
-        if (bdl_world_step(w) != BDL_OK)
+        if (bdl_world_step(w) != BDL_OK) {
+            bdl_error("%s", w->failure);
             break;
+        }
         ++trial;
     }
     double per_step = (bdl_wall_seconds() - t0) / (double)(trial > 0 ? trial : 1);

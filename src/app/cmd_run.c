@@ -30,8 +30,11 @@ static const char run_usage[] =
     "  --gl BACKEND              frames: auto (EGL, then OSMesa), egl or osmesa\n"
     "  --quiet                   no progress line\n"
     "\n"
-    "Ctrl-C stops cleanly: the diagnostics are flushed and a checkpoint is written.\n"
-    "Exit codes: 0 done, 1 instability or interrupted, 2 bad scene or options.\n";
+    "Ctrl-C stops cleanly: the diagnostics are flushed and a checkpoint is written. A run\n"
+    "killed outright resumes from its last checkpoint with every output up to it. After an\n"
+    "instability the state goes to checkpoint/failed.bdlckpt, beside the last good one.\n"
+    "Exit codes: 0 done, 1 instability, a file that could not be written, or interrupted,\n"
+    "2 bad scene or options.\n";
 
 /// The progress line on stderr: rewritten in place on a terminal every [output]
 /// progress_interval, a line every ten intervals otherwise.

@@ -143,6 +143,7 @@ static bdl_result start_world(viewer *v)
     ld.end_time = v->scene->end_time;
     ld.threads = v->opts->threads > 0 ? v->opts->threads : v->scene->threads;
     ld.publish = 1;
+    ld.log_failures = 1;
     ld.start_paused = v->paused;
     v->loop = bdl_loop_start(&ld);
     if (!v->loop) {

@@ -2,8 +2,10 @@
 #define _POSIX_C_SOURCE 200809L
 #include "core/file.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -68,13 +70,19 @@ bdl_result bdl_atomic_commit(bdl_atomic_file *af)
         return BDL_ERR_IO;
     FILE *file = af->file;
     af->file = NULL;
-    int ok = fflush(file) == 0 && !ferror(file);
-    ok = ok && fsync(fileno(file)) == 0;
+    // The first failure's errno is the one reported: a full disk seen by fflush stays ENOSPC
+    // whatever fclose and unlink do afterwards.
+    int saved = 0;
+    if (fflush(file) != 0 || ferror(file))
+        saved = errno ? errno : EIO;
+    if (!saved && fsync(fileno(file)) != 0)
+        saved = errno;
     // fclose can be the first call to see a full disk, so its result matters too.
-    int close_ok = fclose(file) == 0;
-    ok = ok && close_ok && rename(af->temp_path, af->final_path) == 0;
-    if (!ok) {
-        int saved = errno;
+    if (fclose(file) != 0 && !saved)
+        saved = errno;
+    if (!saved && rename(af->temp_path, af->final_path) != 0)
+        saved = errno;
+    if (saved) {
         unlink(af->temp_path);
         errno = saved;
         return BDL_ERR_IO;
@@ -87,9 +95,71 @@ void bdl_atomic_abort(bdl_atomic_file *af)
 {
     if (!af->file)
         return;
+    const int saved = errno; // the caller reports the failure that made it abort
     fclose(af->file);
     af->file = NULL;
     unlink(af->temp_path);
+    errno = saved;
+}
+
+bdl_result bdl_sync_file(FILE *file)
+{
+    if (fflush(file) != 0 || ferror(file)) {
+        if (errno == 0)
+            errno = EIO;
+        return BDL_ERR_IO;
+    }
+    return fsync(fileno(file)) == 0 ? BDL_OK : BDL_ERR_IO;
+}
+
+void bdl_describe_write_error(char *out, size_t len, const char *path, int error)
+{
+    if (len == 0)
+        return;
+    if (error == ENOSPC) {
+        snprintf(out, len, "%s: no space left on device (ENOSPC): the disk is full", path);
+        return;
+    }
+    if (error == EDQUOT) {
+        snprintf(out, len, "%s: disk quota exceeded (EDQUOT)", path);
+        return;
+    }
+    char text[256];
+    if (error == 0 || strerror_r(error, text, sizeof text) != 0)
+        snprintf(text, sizeof text, "%s", error == 0 ? "write failed" : "unknown error");
+    if (text[0] >= 'A' && text[0] <= 'Z') // a clause after the path, as the two above
+        text[0] = (char)(text[0] - 'A' + 'a');
+    snprintf(out, len, "%s: %s", path, text);
+}
+
+/// Whether `name` is "STEM.tmp.PID" and returns PID, else 0.
+static long temporary_pid(const char *name)
+{
+    const char *tmp = strstr(name, ".tmp.");
+    if (!tmp || tmp == name)
+        return 0;
+    char *end;
+    long pid = strtol(tmp + 5, &end, 10);
+    return *end == '\0' && end != tmp + 5 && pid > 0 ? pid : 0;
+}
+
+int bdl_remove_stale_temporaries(const char *folder)
+{
+    DIR *dir = opendir(folder);
+    if (!dir)
+        return 0;
+    int removed = 0;
+    char path[1300];
+    for (struct dirent *e; (e = readdir(dir));) {
+        const long pid = temporary_pid(e->d_name);
+        // A temporary of a live process is someone's file being written: left alone.
+        if (pid == 0 || pid == (long)getpid() || kill((pid_t)pid, 0) == 0 || errno != ESRCH)
+            continue;
+        snprintf(path, sizeof path, "%s/%s", folder, e->d_name);
+        removed += unlink(path) == 0;
+    }
+    closedir(dir);
+    return removed;
 }
 
 /// mkdir that accepts an existing folder and reports ENOTDIR for anything else in the way.

@@ -29,12 +29,25 @@ bdl_result bdl_atomic_open_csv(bdl_atomic_file *af, const char *path, const char
 
 /// Flushes, fsyncs and closes the temporary file, then renames it over the final path. Any
 /// failure along the way (write error, disk full at flush or close, rename refused) removes the
-/// temporary file and returns BDL_ERR_IO; the previous content of the final path is then intact.
+/// temporary file and returns BDL_ERR_IO with errno of the first failure (ENOSPC for a full
+/// disk); the previous content of the final path is then intact.
 bdl_result bdl_atomic_commit(bdl_atomic_file *af);
 
-/// Closes and deletes the temporary file, leaving the final path untouched. Safe to call on an
-/// already committed or aborted file.
+/// Closes and deletes the temporary file, leaving the final path untouched; errno is kept for the
+/// caller's message. Safe to call on an already committed or aborted file.
 void bdl_atomic_abort(bdl_atomic_file *af);
+
+/// Flushes a stdio stream and fsyncs its file, so that what was written survives a kill or a
+/// power cut. BDL_ERR_IO with errno set on failure.
+bdl_result bdl_sync_file(FILE *file);
+
+/// "PATH: reason" for a write that failed with `error` (an errno value): a full disk reads
+/// "PATH: no space left on device (ENOSPC): the disk is full", others the system's text.
+void bdl_describe_write_error(char *out, size_t len, const char *path, int error);
+
+/// Deletes the temporary files ("NAME.tmp.PID") a killed process left in `folder`: those whose
+/// process no longer exists. Returns how many were deleted (0 when the folder cannot be read).
+int bdl_remove_stale_temporaries(const char *folder);
 
 /// Creates a folder and its missing parents, like `mkdir -p`. Existing folders are fine; returns
 /// BDL_ERR_IO (errno set, ENOTDIR when a component is not a folder) on failure.

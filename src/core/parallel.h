@@ -14,6 +14,20 @@
 /// they lose (figures: docs/performance.md, "Why these thresholds").
 #define BDL_PARALLEL_MIN 4096
 
+/// Vectorised kernels are compiled for AVX2 and for any x86-64, and the loader picks one through
+/// an ifunc resolver. ThreadSanitizer instruments the resolver, which runs before its runtime is
+/// set up and crashes the program at start: a TSan build keeps the portable version only.
+#if defined(__SANITIZE_THREAD__)
+#define BDL_SIMD_CLONES
+#elif defined(__has_feature)
+#if __has_feature(thread_sanitizer)
+#define BDL_SIMD_CLONES
+#endif
+#endif
+#ifndef BDL_SIMD_CLONES
+#define BDL_SIMD_CLONES __attribute__((target_clones("avx2", "default")))
+#endif
+
 #define BDL_PARALLEL_FOR(cond, ...)                                                                \
     do {                                                                                           \
         if (cond) {                                                                                \

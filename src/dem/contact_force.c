@@ -13,6 +13,7 @@
 // state after N steps is bitwise the same for any thread count.
 #include "dem/contact_force.h"
 #include "core/memory.h"
+#include "core/parallel.h"
 
 #include <math.h>
 #include <omp.h>
@@ -303,9 +304,9 @@ static BDL_FORCE_INLINE void kernel_loop(pair_batch *restrict b, int m, const bd
 }
 
 /// Evaluates slots [0, m) of a batch: the contact law, then rolling resistance.
-__attribute__((target_clones("avx2", "default"))) static void
-eval_batch(pair_batch *b, int m, const bdl_particles *p, const bdl_force_def *def,
-           const bdl_force_work *fw, const gather_view *v)
+BDL_SIMD_CLONES static void eval_batch(pair_batch *b, int m, const bdl_particles *p,
+                                       const bdl_force_def *def, const bdl_force_work *fw,
+                                       const gather_view *v)
 {
     int torques = def->friction || def->rolling;
     gather_motion(b, m, v);

@@ -25,6 +25,7 @@
 
 #include <string.h>
 
+#include "core/parallel.h"
 #include "dem/capsule.h"
 #include "dem/contact_law.h"
 #include "dem/rigid.h"
@@ -230,8 +231,7 @@ static inline bdl_vec3 slot_v3(const double *x, const double *y, const double *z
 }
 
 /// The closest points of slots [0, n): l, m, the gap w between them and the touching flag.
-__attribute__((target_clones("avx2", "default"))) static void closest_loop(rod_batch *restrict b,
-                                                                           int n)
+BDL_SIMD_CLONES static void closest_loop(rod_batch *restrict b, int n)
 {
 #if defined(_OPENMP)
 #pragma omp simd
@@ -359,8 +359,7 @@ static BDL_FORCE_INLINE void kernel_loop(rod_batch *restrict b, int c, const bdl
             rod_slot_full(b, q, table, hertz, dt);
 }
 
-__attribute__((target_clones("avx2", "default"))) static void kernel(rod_batch *b, int c,
-                                                                     const bdl_force_def *def)
+BDL_SIMD_CLONES static void kernel(rod_batch *b, int c, const bdl_force_def *def)
 {
     if (def->hertz)
         def->friction ? kernel_loop(b, c, def, 1, 1) : kernel_loop(b, c, def, 1, 0);

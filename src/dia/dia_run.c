@@ -1,4 +1,5 @@
 // bedlam — writes the synthetic camera images of a run and their ground truth.
+#define _POSIX_C_SOURCE 200809L // getline
 #include "dia/dia_run.h"
 
 #include <errno.h>
@@ -28,7 +29,15 @@ struct bdl_dia_run {
     int count;
     double end_time; ///< the run's end: a pair that would end after it is not started [s]
     camera_state cam[BDL_MAX_DIA];
+    char failure[1200]; ///< the file a write failed on, and why
 };
+
+/// Records a failed write of `path` (errno says why) and returns BDL_ERR_IO.
+static bdl_result write_failed(bdl_dia_run *r, const char *path)
+{
+    bdl_describe_write_error(r->failure, sizeof r->failure, path, errno);
+    return BDL_ERR_IO;
+}
 
 /// Times are due when the step lands within half a step of them.
 static int due(const bdl_particle_view *v, double t) { return v->time >= t - 0.5 * v->dt; }
@@ -143,6 +152,103 @@ static bdl_result write_camera_json(const camera_state *c, double dt)
     return bdl_atomic_commit(&af);
 }
 
+/// The last row kept of a camera's index on resuming.
+typedef struct index_row {
+    long frame;   ///< its image number; -1: no row kept
+    double time;  ///< when it was taken [s]
+    int first_of; ///< its image is the first of a PIV pair ("_a")
+} index_row;
+
+/// Reads one row "frame,time,image,..." into `row`; 0 when it is not one.
+static int parse_row(const char *line, index_row *row)
+{
+    char *end;
+    const long frame = strtol(line, &end, 10);
+    if (end == line || *end != ',')
+        return 0;
+    const char *t = end + 1;
+    const double time = strtod(t, &end);
+    if (end == t || *end != ',')
+        return 0;
+    const char *comma = strchr(end + 1, ',');
+    *row = (index_row){frame, time,
+                       comma && comma - (end + 1) > 6 && !strncmp(comma - 6, "_a.png", 6)};
+    return 1;
+}
+
+/// A resumed camera's frames.csv rewritten (atomically) without the rows of images taken after
+/// t_keep [s], which the run is about to take again; `last` is the last row kept. Returns 0 when
+/// there is no index with a header to continue, 1 when there is, -1 on a failure.
+static int trim_index(const char *path, double t_keep, index_row *last)
+{
+    last->frame = -1;
+    char why[256];
+    FILE *in = bdl_open_regular(path, why, sizeof why);
+    if (!in)
+        return 0;
+    bdl_atomic_file af;
+    if (bdl_atomic_open(&af, path) != BDL_OK) {
+        fclose(in);
+        return -1;
+    }
+    char *line = NULL;
+    size_t capacity = 0;
+    long lines = 0;
+    ssize_t length;
+    while ((length = getline(&line, &capacity, in)) > 0 && line[length - 1] == '\n') {
+        index_row row;
+        const int keep = lines++ == 0 || (parse_row(line, &row) && row.time <= t_keep);
+        if (keep)
+            fputs(line, af.file);
+        if (keep && lines > 1)
+            *last = row;
+    }
+    free(line);
+    const int read_error = ferror(in);
+    fclose(in);
+    if (read_error || lines == 0) {
+        bdl_atomic_abort(&af);
+        return read_error ? -1 : 0;
+    }
+    return bdl_atomic_commit(&af) == BDL_OK ? 1 : -1;
+}
+
+/// frames.csv of camera c, and where its numbering stands. Image k is at start + k interval: a
+/// resumed run drops the rows after its checkpoint and continues the numbering after the last
+/// image kept (and takes the second frame of a PIV pair whose first one it kept). A camera whose
+/// index is not in the output folder yet (a camera added on resuming, or a resumed run writing
+/// to a new folder) starts its index with the header and takes the image due now.
+static bdl_result open_index(camera_state *c, const bdl_particle_view *now, int resume, char *why,
+                             size_t len)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/frames.csv", c->dir);
+    const double t0 = now->time, start = c->def->start, interval = c->def->interval;
+    index_row last = {-1, 0.0, 0};
+    const int continues = resume ? trim_index(path, t0 + 0.5 * now->dt, &last) : 0;
+    if (continues < 0) {
+        bdl_describe_write_error(why, len, path, errno);
+        return BDL_ERR_IO;
+    }
+    long frame = t0 <= start ? 0 : (long)ceil((t0 - start) / interval - 1e-9);
+    if (continues && due(now, start + frame * interval))
+        ++frame; // taken by the first run
+    c->frame = frame;
+    c->next = start + frame * interval;
+    if (continues && last.first_of && c->def->pair_dt > 0.0) { // the pair's second frame is due
+        c->frame = last.frame;
+        c->pending_b = last.time + c->def->pair_dt;
+    }
+    c->index = fopen(path, continues ? "a" : "w");
+    if (!c->index) {
+        bdl_describe_write_error(why, len, path, errno);
+        return BDL_ERR_IO;
+    }
+    if (!continues)
+        fprintf(c->index, "frame,time,image,particles,cells\n");
+    return BDL_OK;
+}
+
 bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, const char *out_dir,
                             int resume, bdl_dia_run **out, char *why, size_t len)
 {
@@ -170,31 +276,10 @@ bdl_result bdl_dia_run_open(const bdl_scene *s, const bdl_particle_view *now, co
             bdl_dia_run_close(r);
             return BDL_ERR_IO;
         }
-        // Image k is at start + k interval: a resumed run continues the numbering. A camera whose
-        // index is not in the output folder yet (a camera added on resuming, or a resumed run
-        // writing to a new folder) starts its index with the header and takes the image due now.
-        char path[1024];
-        snprintf(path, sizeof path, "%s/frames.csv", c->dir);
-        char why_not[256];
-        FILE *old = resume ? bdl_open_regular(path, why_not, sizeof why_not) : NULL;
-        const int continues = old && fgetc(old) != EOF;
-        if (old)
-            fclose(old);
-        double t0 = now->time;
-        long frame =
-            t0 <= c->def->start ? 0 : (long)ceil((t0 - c->def->start) / c->def->interval - 1e-9);
-        if (continues && due(now, c->def->start + frame * c->def->interval))
-            ++frame; // written by the first run
-        c->frame = frame;
-        c->next = c->def->start + frame * c->def->interval;
-        c->index = fopen(path, continues ? "a" : "w");
-        if (!c->index) {
-            snprintf(why, len, "cannot write %s: %s", path, strerror(errno));
+        if (open_index(c, now, resume, why, len) != BDL_OK) {
             bdl_dia_run_close(r);
             return BDL_ERR_IO;
         }
-        if (!continues)
-            fprintf(c->index, "frame,time,image,particles,cells\n");
     }
     *out = r;
     return BDL_OK;
@@ -251,7 +336,8 @@ static bdl_result write_cells(const char *path, const bdl_dia_truth_def *t,
 
 /// Renders one image of camera c and writes it with its truth; `part` is "" (single), "_a" or
 /// "_b". Cell truth goes with single images and first frames.
-static bdl_result shoot(camera_state *c, const bdl_particle_view *v, const char *part)
+static bdl_result shoot(bdl_dia_run *run, camera_state *c, const bdl_particle_view *v,
+                        const char *part)
 {
     bdl_dia_scene s = {v->count, v->pos, v->vel, v->radius, v->id, NULL, NULL};
     bdl_vec3 *axis = NULL;
@@ -281,17 +367,22 @@ static bdl_result shoot(camera_state *c, const bdl_particle_view *v, const char 
         r = BDL_ERR_NOMEM;
     if (r == BDL_OK)
         r = bdl_dia_truth(&c->camera, &s, &im, &c->truth, cells, visible);
-    if (r == BDL_OK)
-        r = bdl_dia_write_png(&im, c->camera.def.bits, image);
-    if (r == BDL_OK)
-        r = write_particles(parts, &c->camera, &s, visible, im.samples);
-    if (r == BDL_OK && cells)
-        r = write_cells(cellp, &c->truth, cells);
+    if (r == BDL_OK && (r = bdl_dia_write_png(&im, c->camera.def.bits, image)) == BDL_ERR_IO)
+        write_failed(run, image);
+    if (r == BDL_OK &&
+        (r = write_particles(parts, &c->camera, &s, visible, im.samples)) == BDL_ERR_IO)
+        write_failed(run, parts);
+    if (r == BDL_OK && cells && (r = write_cells(cellp, &c->truth, cells)) == BDL_ERR_IO)
+        write_failed(run, cellp);
     if (r == BDL_OK) {
         const char *base = strrchr(stem, '/') + 1;
         fprintf(c->index, "%ld,%.9g,%s%s.png,%s%s_particles.csv,%s\n", c->frame, v->time, base,
                 part, base, part, cells ? strrchr(cellp, '/') + 1 : "");
-        fflush(c->index);
+        if (fflush(c->index) != 0 || ferror(c->index)) {
+            char index[1024];
+            snprintf(index, sizeof index, "%s/frames.csv", c->dir);
+            r = write_failed(run, index);
+        }
         c->written++;
     }
     free(visible);
@@ -307,7 +398,7 @@ bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v)
         camera_state *c = &r->cam[k];
         bdl_result res = BDL_OK;
         if (c->pending_b >= 0.0 && due(v, c->pending_b)) {
-            res = shoot(c, v, "_b");
+            res = shoot(r, c, v, "_b");
             c->pending_b = -1.0;
             c->frame++;
         } else if (c->pending_b < 0.0 && due(v, c->next)) {
@@ -320,7 +411,7 @@ bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v)
                 c->next = INFINITY; // the run ends before the pair's second frame
                 continue;
             }
-            res = shoot(c, v, pair ? "_a" : "");
+            res = shoot(r, c, v, pair ? "_a" : "");
             if (pair)
                 c->pending_b = v->time + c->def->pair_dt;
             else
@@ -333,6 +424,29 @@ bdl_result bdl_dia_run_step(bdl_dia_run *r, const bdl_particle_view *v)
     }
     return BDL_OK;
 }
+
+int bdl_dia_run_due(const bdl_dia_run *r, const bdl_particle_view *v)
+{
+    for (int k = 0; r && k < r->count; ++k) {
+        const camera_state *c = &r->cam[k];
+        if (c->pending_b >= 0.0 ? due(v, c->pending_b) : due(v, c->next))
+            return 1;
+    }
+    return 0;
+}
+
+bdl_result bdl_dia_run_sync(bdl_dia_run *r)
+{
+    for (int k = 0; r && k < r->count; ++k)
+        if (bdl_sync_file(r->cam[k].index) != BDL_OK) {
+            char index[1024];
+            snprintf(index, sizeof index, "%s/frames.csv", r->cam[k].dir);
+            return write_failed(r, index);
+        }
+    return BDL_OK;
+}
+
+const char *bdl_dia_run_failure(const bdl_dia_run *r) { return r ? r->failure : ""; }
 
 long bdl_dia_run_count(const bdl_dia_run *r)
 {

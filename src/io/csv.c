@@ -15,7 +15,19 @@ struct bdl_csv {
     FILE *file;
     int column_count;
     int failed; ///< a write already failed; reported again by close
+    int error;  ///< errno of the first failure (ENOSPC: the disk is full)
 };
+
+/// Marks the file failed with the errno of the first failure, and sets errno to it.
+static bdl_result failure(bdl_csv *csv)
+{
+    if (!csv->failed) {
+        csv->failed = 1;
+        csv->error = errno ? errno : EIO;
+    }
+    errno = csv->error;
+    return BDL_ERR_IO;
+}
 
 /// Reads one line with getline; returns its length, or -1 at the end of the file.
 static long read_line(FILE *file, char **line, size_t *capacity)
@@ -121,7 +133,7 @@ bdl_csv *bdl_csv_open(const char *path, const char *const *columns, int column_c
     csv->column_count = column_count;
     csv->file = need_header >= 0 ? fopen(path, append ? "ab" : "wb") : NULL;
     if (csv->file && need_header == 1 && fprintf(csv->file, "%s\n", header) < 0)
-        csv->failed = 1;
+        failure(csv);
     free(header);
     if (!csv->file) {
         free(csv);
@@ -151,25 +163,38 @@ bdl_result bdl_csv_row(bdl_csv *csv, const double *values)
         format_number(text, sizeof text, values[i]);
         if (fputs(text, csv->file) < 0 ||
             fputc(i + 1 < csv->column_count ? ',' : '\n', csv->file) == EOF)
-            csv->failed = 1;
+            failure(csv);
     }
-    return csv->failed ? BDL_ERR_IO : BDL_OK;
+    return csv->failed ? failure(csv) : BDL_OK;
 }
 
 bdl_result bdl_csv_flush(bdl_csv *csv)
 {
     if (fflush(csv->file) != 0)
-        csv->failed = 1;
-    return csv->failed ? BDL_ERR_IO : BDL_OK;
+        failure(csv);
+    return csv->failed ? failure(csv) : BDL_OK;
+}
+
+bdl_result bdl_csv_sync(bdl_csv *csv)
+{
+    if (!csv)
+        return BDL_OK;
+    if (!csv->failed && bdl_sync_file(csv->file) != BDL_OK)
+        failure(csv);
+    return csv->failed ? failure(csv) : BDL_OK;
 }
 
 bdl_result bdl_csv_close(bdl_csv *csv)
 {
     if (!csv)
         return BDL_OK;
-    int failed = csv->failed || fflush(csv->file) != 0 || ferror(csv->file);
-    failed = fclose(csv->file) != 0 || failed;
+    if (fflush(csv->file) != 0 || ferror(csv->file))
+        failure(csv);
+    if (fclose(csv->file) != 0)
+        failure(csv);
+    const int failed = csv->failed, error = csv->error;
     free(csv);
+    errno = error;
     return failed ? BDL_ERR_IO : BDL_OK;
 }
 

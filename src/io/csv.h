@@ -26,8 +26,15 @@ bdl_result bdl_csv_row(bdl_csv *csv, const double *values);
 /// Pushes buffered rows to the operating system, so another program reading the file sees them.
 bdl_result bdl_csv_flush(bdl_csv *csv);
 
+/// Pushes buffered rows to the disk (flush and fsync), so that they survive a kill -9 or a power
+/// cut: a run calls it before every checkpoint. NULL is allowed.
+bdl_result bdl_csv_sync(bdl_csv *csv);
+
 /// Flushes and closes the file and frees `csv` (NULL is allowed). Returns BDL_ERR_IO if a row
 /// could not be written (e.g. disk full), including one still buffered.
+///
+/// Every function here that returns BDL_ERR_IO leaves errno at the first failure's value
+/// (ENOSPC for a full disk), for the caller's message.
 bdl_result bdl_csv_close(bdl_csv *csv);
 
 /// For --resume: rewrites `path` atomically keeping the header and the complete rows whose first

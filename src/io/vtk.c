@@ -1,4 +1,5 @@
 // bedlam — VTK XML PolyData writer (appended raw binary) and .pvd collections.
+#define _POSIX_C_SOURCE 200809L // getline
 #include "io/vtk.h"
 
 #include <stdint.h>
@@ -287,6 +288,79 @@ bdl_result bdl_pvd_add(bdl_pvd *pvd, double time, const char *relative_file)
         return BDL_ERR_NOMEM;
     pvd->entries[pvd->count++] = (pvd_entry){time, file};
     return pvd_write(pvd);
+}
+
+/// The value of attribute `name` (`name="..."`) in `line`, with the five XML entities undone,
+/// into `out`; 0 when the line has no such attribute or it does not fit.
+static int xml_attribute(const char *line, const char *name, char *out, size_t len)
+{
+    char key[32];
+    snprintf(key, sizeof key, " %s=\"", name);
+    const char *v = strstr(line, key);
+    if (!v)
+        return 0;
+    v += strlen(key);
+    static const char *const entities[][2] = {
+        {"&amp;", "&"}, {"&lt;", "<"}, {"&gt;", ">"}, {"&quot;", "\""}, {"&apos;", "'"}};
+    size_t n = 0;
+    while (*v && *v != '"' && n + 1 < len) {
+        int matched = 0;
+        for (int k = 0; k < 5 && !matched; ++k)
+            if (strncmp(v, entities[k][0], strlen(entities[k][0])) == 0) {
+                out[n++] = entities[k][1][0];
+                v += strlen(entities[k][0]);
+                matched = 1;
+            }
+        if (!matched)
+            out[n++] = *v++;
+    }
+    out[n] = '\0';
+    return *v == '"';
+}
+
+/// Appends the entries of an existing collection file with times <= t_keep to `pvd`.
+static bdl_result read_entries(bdl_pvd *pvd, FILE *in, double t_keep)
+{
+    char *line = NULL, time_text[64], file[1024];
+    size_t capacity = 0;
+    bdl_result r = BDL_OK;
+    while (r == BDL_OK && getline(&line, &capacity, in) >= 0) {
+        if (!strstr(line, "<DataSet") || !xml_attribute(line, "timestep", time_text, 64) ||
+            !xml_attribute(line, "file", file, sizeof file))
+            continue;
+        char *end;
+        const double time = strtod(time_text, &end);
+        if (end == time_text || *end != '\0' || !(time <= t_keep))
+            continue;
+        char *copy = copy_string(file);
+        if (!copy || pvd_reserve(pvd) != BDL_OK) {
+            free(copy);
+            r = BDL_ERR_NOMEM;
+            break;
+        }
+        pvd->entries[pvd->count++] = (pvd_entry){time, copy};
+    }
+    free(line);
+    return r;
+}
+
+bdl_pvd *bdl_pvd_continue(const char *pvd_path, double t_keep)
+{
+    bdl_pvd *pvd = calloc(1, sizeof *pvd);
+    if (!pvd || !(pvd->path = copy_string(pvd_path))) {
+        bdl_pvd_destroy(pvd);
+        return NULL;
+    }
+    char why[256];
+    FILE *in = bdl_open_regular(pvd_path, why, sizeof why); // none yet: an empty collection
+    bdl_result r = in ? read_entries(pvd, in, t_keep) : BDL_OK;
+    if (in)
+        fclose(in);
+    if (r != BDL_OK || pvd_write(pvd) != BDL_OK) {
+        bdl_pvd_destroy(pvd);
+        return NULL;
+    }
+    return pvd;
 }
 
 void bdl_pvd_destroy(bdl_pvd *pvd)

@@ -45,6 +45,12 @@ typedef struct bdl_pvd bdl_pvd;
 /// be written.
 bdl_pvd *bdl_pvd_create(const char *pvd_path);
 
+/// For a resumed run: the collection at `pvd_path` as it stands on disk, with the entries of
+/// times <= t_keep [s] kept (their files, written before the checkpoint the run resumes from, and
+/// their true times) and later ones dropped, written back at once. A missing file gives an empty
+/// collection. NULL if memory is short or the file cannot be written.
+bdl_pvd *bdl_pvd_continue(const char *pvd_path, double t_keep);
+
 /// Appends a snapshot at simulated `time` [s]. `relative_file` is stored as given and is resolved
 /// by ParaView relative to the .pvd's folder (e.g. "vtk/particles_000012.vtp"). The whole .pvd
 /// is rewritten atomically, so it is valid after every call. On BDL_ERR_IO the entry is kept and

@@ -236,6 +236,12 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
                         w->wall_work - w->inserted_energy - d->gas_work;
 }
 
+int bdl_diagnostics_may_be_undefined(int column)
+{
+    // Columns of bdl_diagnostics_row: probe_pressure_drop, weight_ratio, mean_height and the rods'.
+    return column == 18 || column == 19 || column == 23 || column == 26 || column == 27;
+}
+
 double bdl_diagnostics_total_energy(const bdl_diagnostics *d)
 {
     return d->kinetic_energy + d->rotational_energy + d->potential_energy + d->elastic_energy;

@@ -56,6 +56,11 @@ extern const int bdl_diagnostics_column_count;
 /// (the rods' orientation).
 int bdl_diagnostics_columns_for(const bdl_world *w);
 
+/// Whether column `column` may hold NaN in a sound state, meaning "not defined here": the probe
+/// pressure drop without probes, the weight ratio and mean height without a gas or particles, the
+/// rods' orientation without rods. Every other column of a row is finite unless the state is not.
+int bdl_diagnostics_may_be_undefined(int column);
+
 /// Computes every diagnostic for the current state. `energy0` is the total energy at the start
 /// (pass 0 when unknown).
 void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics *d);

@@ -8,6 +8,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "core/file.h"
 #include "core/log.h"
 #include "core/memory.h"
 #include "io/png.h"
@@ -37,6 +38,7 @@ struct bdl_frames {
     int image_head, image_count; ///< queued images, in order
     int closing;
     bdl_result error;
+    char failure[1200]; ///< the file a write failed on, and why
     long written;
     pthread_t encoder;
     int encoder_started;
@@ -63,7 +65,14 @@ static void *encoder_main(void *arg)
         char path[1100];
         snprintf(path, sizeof path, "%s/frame_%06ld.png", f->folder, im->index);
         bdl_result r = bdl_png_write(path, im->rgb, f->width, f->height, 3, 0);
+        char why[1200];
+        if (r == BDL_ERR_IO)
+            bdl_describe_write_error(why, sizeof why, path, errno);
+        else if (r != BDL_OK)
+            snprintf(why, sizeof why, "%s: %s", path, bdl_result_text(r));
         pthread_mutex_lock(&f->lock);
+        if (r != BDL_OK && f->error == BDL_OK)
+            memcpy(f->failure, why, sizeof f->failure);
         if (r != BDL_OK)
             fail(f, r);
         else
@@ -164,6 +173,19 @@ bdl_result bdl_frames_commit(bdl_frames *f, long index, int filled)
         f->slot_count++;
         pthread_cond_broadcast(&f->changed);
     }
+    pthread_mutex_unlock(&f->lock);
+    return r;
+}
+
+const char *bdl_frames_failure(const bdl_frames *f) { return f->failure; }
+
+bdl_result bdl_frames_sync(bdl_frames *f)
+{
+    pthread_mutex_lock(&f->lock);
+    // The caller's thread draws the queued snapshots and the encoder writes them; both signal.
+    while ((f->slot_count > 0 || f->image_count > 0) && f->error == BDL_OK)
+        pthread_cond_wait(&f->changed, &f->lock);
+    const bdl_result r = f->error;
     pthread_mutex_unlock(&f->lock);
     return r;
 }

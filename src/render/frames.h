@@ -33,6 +33,16 @@ bdl_snapshot *bdl_frames_slot(bdl_frames *f);
 /// (`filled` 0: filling it ran out of memory). Returns the first error of any thread.
 bdl_result bdl_frames_commit(bdl_frames *f, long index, int filled);
 
+/// Solver thread: waits until every committed frame is written to its file (and on the disk:
+/// PNG files are written atomically), while the caller's thread goes on pumping. A run calls it
+/// before a checkpoint, so that a run killed after the checkpoint lacks none of the frames before
+/// it. Returns the first error of any thread.
+bdl_result bdl_frames_sync(bdl_frames *f);
+
+/// After an error from bdl_frames_commit or bdl_frames_sync: the file a write failed on, and
+/// why ("PATH: no space left on device ..."); empty for other errors.
+const char *bdl_frames_failure(const bdl_frames *f);
+
 /// Caller thread: draws every queued frame, waiting up to `timeout` seconds for the first.
 /// Returns the number drawn.
 int bdl_frames_pump(bdl_frames *f, double timeout);

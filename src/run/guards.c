@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "cfd/gas.h"
 #include "dem/create.h"
 
 bdl_result bdl_guards_check_dt(const bdl_world *w, char *message, size_t len, char *warning,
@@ -30,30 +31,109 @@ bdl_result bdl_guards_check_dt(const bdl_world *w, char *message, size_t len, ch
     return BDL_OK;
 }
 
-void bdl_guards_init(bdl_guard_state *g, const bdl_diagnostics *d)
+void bdl_guards_init(bdl_guard_state *g, const bdl_world *w, const bdl_diagnostics *d)
 {
     g->energy0 = bdl_diagnostics_total_energy(d);
     g->active_max = d->kinetic_energy + d->rotational_energy + d->elastic_energy;
+    g->finite_step = w->step;
 }
 
 static const char *const axis_names[3] = {"x", "y", "z"};
 
-static bdl_result check_finite(const bdl_world *w, char *message, size_t len)
+/// One array of the state the finite check walks: `components` doubles per particle, `stride`
+/// doubles apart.
+typedef struct state_array {
+    const char *name;
+    const double *data; ///< NULL: not in this world
+    int stride, components;
+} state_array;
+
+static const char *const vector_components[3] = {"x", "y", "z"};
+static const char *const quat_components[4] = {"w", "x", "y", "z"};
+
+/// The particles' arrays the next step starts from, in the order they are checked.
+static int particle_arrays(const bdl_particles *p, state_array *a)
+{
+    int n = 0;
+    a[n++] = (state_array){"position", &p->pos[0].x, 3, 3};
+    a[n++] = (state_array){"velocity", &p->vel[0].x, 3, 3};
+    a[n++] = (state_array){"spin", &p->omega[0].x, 3, 3};
+    a[n++] = (state_array){"force", &p->load[0].force.x, 6, 3};
+    a[n++] = (state_array){"torque", &p->load[0].torque.x, 6, 3};
+    if (p->rods) {
+        a[n++] = (state_array){"orientation", &p->orient[0].w, 4, 4};
+        a[n++] = (state_array){"angular momentum", &p->ang_mom[0].x, 3, 3};
+    }
+    if (p->fluid)
+        a[n++] = (state_array){"gas force", &p->fluid_accel[0].x, 3, 3};
+    return n;
+}
+
+/// The first non-finite number of the particles' state, described; 0 when all are finite.
+static int particles_finite(const bdl_world *w, char *what, size_t len)
 {
     const bdl_particles *p = &w->particles;
-    for (long i = 0; i < p->count; ++i) {
-        if (bdl_v3_isfinite(p->pos[i]) && bdl_v3_isfinite(p->vel[i]) &&
-            bdl_v3_isfinite(p->omega[i]))
-            continue;
-        snprintf(
-            message, len,
-            "particle %u has a non-finite position, velocity or spin at t = %.6g s (step %ld), "
-            "last position (%g, %g, %g) m. Likely fix: a smaller dt (now %.3g of the contact time)",
-            p->id[i], w->time, w->step, p->pos[i].x, p->pos[i].y, p->pos[i].z,
-            w->contact_time_dt_ratio);
-        return BDL_ERR_UNSTABLE;
+    if (p->count == 0)
+        return 1;
+    state_array arrays[8];
+    const int count = particle_arrays(p, arrays);
+    for (long i = 0; i < p->count; ++i)
+        for (int k = 0; k < count; ++k)
+            for (int c = 0; c < arrays[k].components; ++c) {
+                const double v = arrays[k].data[i * arrays[k].stride + c];
+                if (isfinite(v))
+                    continue;
+                snprintf(what, len, "the %s of particle %u (%s component) is %g", arrays[k].name,
+                         p->id[i],
+                         (arrays[k].components == 4 ? quat_components : vector_components)[c], v);
+                return 0;
+            }
+    return 1;
+}
+
+/// The first non-finite value of the gas's fields, described; 0 when all are finite.
+static int gas_finite(const bdl_world *w, char *what, size_t len)
+{
+    const bdl_gas *g = w->gas;
+    if (!g)
+        return 1;
+    const struct {
+        const double *v;
+        const char *name;
+    } fields[] = {{g->u[0], "gas velocity x"},
+                  {g->u[1], "gas velocity y"},
+                  {g->u[2], "gas velocity z"},
+                  {g->p, "gas pressure"},
+                  {g->eps, "voidage"}};
+    const bdl_grid *grid = &g->grid;
+    for (int f = 0; f < 5; ++f)
+        for (long m = 0; m < grid->size; ++m) {
+            if (isfinite(fields[f].v[m]))
+                continue;
+            // The padded index back to the cell (ghost layers have indices outside 0..n-1).
+            const long k = m / grid->stride[2], j = (m % grid->stride[2]) / grid->stride[1],
+                       i = m % grid->stride[1];
+            snprintf(what, len, "the %s in cell (%ld, %ld, %ld) is %g", fields[f].name,
+                     i - BDL_GRID_GHOST, j - BDL_GRID_GHOST, k - BDL_GRID_GHOST, fields[f].v[m]);
+            return 0;
+        }
+    return 1;
+}
+
+bdl_result bdl_guards_check_finite(const bdl_world *w, bdl_guard_state *g, char *message,
+                                   size_t len)
+{
+    char what[320];
+    if (particles_finite(w, what, sizeof what) && gas_finite(w, what, sizeof what)) {
+        g->finite_step = w->step;
+        return BDL_OK;
     }
-    return BDL_OK;
+    snprintf(message, len,
+             "%s at t = %.6g s (step %ld); the state was finite at step %ld, the last check. "
+             "Something grew without bound in between: see max_speed, max_overlap_ratio and the "
+             "energies in diagnostics.csv up to here (dt is %.3g of the contact time)",
+             what, w->time, w->step, g->finite_step, w->contact_time_dt_ratio);
+    return BDL_ERR_UNSTABLE;
 }
 
 static bdl_result check_domain(const bdl_world *w, char *message, size_t len)
@@ -81,13 +161,13 @@ static bdl_result check_domain(const bdl_world *w, char *message, size_t len)
     return BDL_OK;
 }
 
-bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_diagnostics *d,
-                            char *message, size_t len)
+bdl_result bdl_guards_check_state(const bdl_world *w, bdl_guard_state *g, const bdl_diagnostics *d,
+                                  char *message, size_t len)
 {
-    bdl_result r = check_finite(w, message, len);
-    if (r == BDL_OK)
-        r = check_domain(w, message, len);
+    bdl_result r = bdl_guards_check_finite(w, g, message, len);
     if (r != BDL_OK)
+        return r;
+    if ((r = check_domain(w, message, len)) != BDL_OK)
         return r;
     const bdl_guard_def *gd = &w->scene.guards;
     if (d->max_overlap_ratio > gd->max_overlap) {
@@ -99,6 +179,16 @@ bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_di
             d->max_overlap_ratio, w->time, w->step, gd->max_overlap, w->contact_time_dt_ratio);
         return BDL_ERR_UNSTABLE;
     }
+    return BDL_OK;
+}
+
+bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_diagnostics *d,
+                            char *message, size_t len)
+{
+    bdl_result r = bdl_guards_check_state(w, g, d, message, len);
+    if (r != BDL_OK)
+        return r;
+    const bdl_guard_def *gd = &w->scene.guards;
     double active = d->kinetic_energy + d->rotational_energy + d->elastic_energy;
     if (active > g->active_max)
         g->active_max = active;
@@ -113,6 +203,28 @@ bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_di
             "a smaller dt (now %.3g of the contact time)",
             growth, growth / scale, scale, w->time, w->step, gd->energy_growth,
             w->contact_time_dt_ratio);
+        return BDL_ERR_UNSTABLE;
+    }
+    return BDL_OK;
+}
+
+bdl_result bdl_guards_check_row(const bdl_world *w, const char *file, const char *const *names,
+                                const double *row, int count, int (*may_be_nan)(int), char *message,
+                                size_t len)
+{
+    for (int c = 0; c < count; ++c) {
+        if (isfinite(row[c]) || (isnan(row[c]) && may_be_nan && may_be_nan(c)))
+            continue;
+        char column[64];
+        if (names)
+            snprintf(column, sizeof column, "%s", names[c]);
+        else
+            snprintf(column, sizeof column, "column %d", c + 1);
+        snprintf(message, len,
+                 "%s: the %s of t = %.6g s (step %ld) would be %g, with every position, velocity, "
+                 "spin, force and torque finite: a value overflowed (see max_speed in the rows "
+                 "before; dt is %.3g of the contact time)",
+                 file, column, w->time, w->step, row[c], w->contact_time_dt_ratio);
         return BDL_ERR_UNSTABLE;
     }
     return BDL_OK;

@@ -168,6 +168,8 @@ static void *solver_main(void *arg)
         atomic_store(&loop->progress_step, w->step);
         atomic_store(&loop->progress_particles, w->particles.count);
         if (r != BDL_OK) {
+            if (loop->def.log_failures && w->failure[0])
+                bdl_error("%s", w->failure);
             loop->result = r;
             break;
         }

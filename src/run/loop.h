@@ -40,6 +40,7 @@ typedef struct bdl_loop_def {
     bdl_step_callback on_step;
     void *user;
     int publish;             ///< publish snapshots (a viewer is attached)
+    int log_failures;        ///< log why a step failed (world->failure); bdl_run reports it itself
     double publish_interval; ///< wall seconds between snapshots
     int start_paused;
 } bdl_loop_def;

@@ -2,6 +2,7 @@
 #define _POSIX_C_SOURCE 200809L
 #include "run/run.h"
 
+#include <errno.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -91,12 +92,17 @@ static bdl_result open_folder(run *r)
         bdl_error("output folder '%s' is not writable: %s", out, why);
         return BDL_ERR_OUTPUT_DIR;
     }
+    // A file where a folder should be is found now, not at the first output hours later.
     static const char *const folders[] = {"vtk", "frames", "checkpoint"};
     for (int k = 0; k < 3; ++k) {
         if (k == 1 && !(r->scene->output.frame_interval > 0.0))
             continue;
         snprintf(sub, sizeof sub, "%s/%s", out, folders[k]);
-        bdl_mkdir_p(sub);
+        if (bdl_mkdir_p(sub) != BDL_OK) {
+            bdl_describe_write_error(why, sizeof why, sub, errno);
+            bdl_error("output folder '%s' is not writable: %s", out, why);
+            return BDL_ERR_OUTPUT_DIR;
+        }
     }
     snprintf(sub, sizeof sub, "%s/run.log", out);
     r->log = fopen(sub, r->def->resume ? "a" : "w");
@@ -155,6 +161,7 @@ static bdl_result resume(run *r)
         return res;
     }
     bdl_info("resumed from %s at t = %.17g s, step %ld", ckpt, w->time, w->step);
+    snprintf(r->outputs.good_path, sizeof r->outputs.good_path, "%s", ckpt);
     if (info.changes[0])
         bdl_warn("the scene's contact parameters differ from the checkpoint's: %s", info.changes);
     if (info.dt != w->dt) {
@@ -228,13 +235,14 @@ static bdl_result solve(run *r)
     ld.threads = r->threads;
     ld.on_step = bdl_run_outputs_step;
     ld.user = &r->outputs;
+    // Where the run starts, read before the solver thread owns the world.
+    const double t0 = r->world->time, interval = r->world->scene.output.progress_interval;
+    const long step0 = r->world->step;
     bdl_loop *loop = bdl_loop_start(&ld);
     if (!loop) {
         bdl_error("cannot start the solver thread");
         return BDL_ERR_NOMEM;
     }
-    const double t0 = r->world->time, interval = r->world->scene.output.progress_interval;
-    const long step0 = r->world->step;
     double last = r->outputs.start_wall;
     for (;;) {
         double t;
@@ -260,25 +268,49 @@ static bdl_result solve(run *r)
     return res;
 }
 
+/// After an instability: what stopped the run, where its state went, and the checkpoint a resume
+/// takes.
+static void report_stop(const run *r, int failed_written)
+{
+    const bdl_run_outputs *o = &r->outputs;
+    const char *out = r->def->out_dir;
+    bdl_error("run stopped: %s", o->failure);
+    if (failed_written)
+        bdl_error("the state at the stop is in %s/checkpoint/failed.bdlckpt, for inspection; it "
+                  "is not resumed",
+                  out);
+    if (o->good_path[0])
+        bdl_error("the last good checkpoint is %s (t = %.9g s, step %ld): after changing the "
+                  "scene, 'bedlam run %s --resume %s' continues from it",
+                  o->good_path, o->good_time, o->good_step, r->def->scene_path, out);
+    else
+        bdl_error("no checkpoint was written before the stop ([output] checkpoint_interval)");
+}
+
 /// Phase 6: the last outputs and the summary in the log, whatever the outcome.
 static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *report)
 {
     bdl_world *w = r->world;
-    bdl_result cr = w ? bdl_run_outputs_close(&r->outputs, solved, &res) : BDL_OK;
+    if (solved && !r->outputs.failure[0] && w->failure[0]) // the world's own failure
+        snprintf(r->outputs.failure, sizeof r->outputs.failure, "%s", w->failure);
+    const int failed_written = w ? bdl_run_outputs_close(&r->outputs, solved, &res) : 0;
     const double wall = w ? bdl_wall_seconds() - r->outputs.start_wall : 0.0;
     if (solved && res == BDL_ERR_UNSTABLE) {
-        bdl_error("run stopped: %s", r->outputs.failure);
-        bdl_error("a checkpoint of the last state is in %s/checkpoint/", r->def->out_dir);
+        report_stop(r, failed_written);
     } else if (solved && res == BDL_ERR_INTERRUPTED) {
         bdl_warn("interrupted at t = %g s (step %ld); state saved in %s/checkpoint/ — continue "
                  "with 'bedlam run %s --resume %s'",
                  w->time, w->step, r->def->out_dir, r->def->scene_path, r->def->out_dir);
     } else if (solved && res != BDL_OK) {
-        bdl_error("run failed: %s", bdl_result_text(res));
+        bdl_error("run failed: %s",
+                  r->outputs.failure[0] ? r->outputs.failure : bdl_result_text(res));
     }
+    if (solved && r->outputs.also[0])
+        bdl_error("%s", r->outputs.also);
     if (solved)
         bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s",
-                 w->time, w->step, w->particles.count, wall, cr == BDL_OK ? "written" : "FAILED");
+                 w->time, w->step, w->particles.count, wall,
+                 r->outputs.final_checkpoint[0] ? r->outputs.final_checkpoint : "NOT written");
     if (report && w)
         *report = (bdl_run_report){w->time, w->step, w->particles.count, wall};
     bdl_world_destroy(w);

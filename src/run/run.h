@@ -4,7 +4,9 @@
 //   OUT/diagnostics.csv  one row per [output] diagnostics_interval
 //   OUT/vtk/particles_NNNNNN.vtp + OUT/particles.pvd   every vtk_interval (ParaView)
 //   OUT/frames/frame_NNNNNN.png  every frame_interval (render/frames.h)
-//   OUT/checkpoint/state.bdlckpt  every checkpoint_interval, at the end, on a stop and on failure
+//   OUT/checkpoint/state.bdlckpt  every checkpoint_interval, at the end and on a stop, of a state
+//                                 that passes the guards; the state at a failure goes beside it,
+//                                 to OUT/checkpoint/failed.bdlckpt
 //
 // The driver goes through named phases: read the scene, open the output folder, build the world
 // (and resume it), open the outputs, run the solver thread while reporting progress, and close
@@ -72,7 +74,10 @@ bdl_run_def bdl_default_run_def(void);
 
 /// Runs to the end time (or max_steps, or a stop). Returns BDL_ERR_SCENE, BDL_ERR_ARGS,
 /// BDL_ERR_OUTPUT_DIR or BDL_ERR_CHECKPOINT for bad input, another error for a failure while
-/// running (each logged with what, where and when); `report` (may be NULL) says where it stopped.
+/// running (each logged with what, where and when): BDL_ERR_UNSTABLE, or BDL_ERR_IO when an
+/// output or the last checkpoint could not be written (the message names the file and says
+/// why, "no space left on device" for a full disk); `report` (may be NULL) says where it
+/// stopped.
 bdl_result bdl_run(const bdl_run_def *def, bdl_run_report *report);
 
 /// The checkpoint file of a --resume path: the path itself, or PATH/checkpoint/state.bdlckpt

@@ -322,8 +322,9 @@ const bdl_scene_key bdl_scene_keys[] = {
      .default_text = "0 (none)", GE(0),
      .doc = "simulated time between particle VTK files; 0 = none"},
     {S(OUTPUT), "checkpoint_interval", NUM, "s", IN_SCENE(output.checkpoint_interval), .def = {0},
-     .default_text = "0 (end only)", GE(0),
-     .doc = "simulated time between checkpoints; 0 = only at the end or on failure"},
+     .default_text = "0 (start and end only)", GE(0),
+     .doc = "simulated time between checkpoints (checkpoint/state.bdlckpt; the time series reach "
+            "the disk at each); 0 = only at the start, at the end and on Ctrl-C"},
     {S(OUTPUT), "progress_interval", NUM, "s", IN_SCENE(output.progress_interval), .def = {1},
      GT(0), .doc = "wall-clock time between progress lines"},
     {S(OUTPUT), "frame_interval", NUM, "s", IN_SCENE(output.frame_interval), .def = {0},
@@ -567,7 +568,9 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(GUARDS), "energy_growth", NUM, "-", IN_SCENE(guards.energy_growth), .def = {0.05}, GT(0),
      .doc = "stop when the energy grows by this fraction more than the work supplied"},
     {S(GUARDS), "check_interval", .type = BDL_KEY_INT, "steps", IN_SCENE(guards.check_interval),
-     .def = {100}, GE(1), .doc = "steps between the in-run checks"},
+     .def = {100}, GE(1),
+     .doc = "steps between the in-run checks (besides: the state is checked to be finite before "
+            "every output, and all but the energy balance before every checkpoint)"},
     {S(GUARDS), "max_memory", NUM, "bytes", IN_SCENE(guards.max_memory), .def = {-1},
      .default_text = "80 % of the physical memory", GT(0),
      .doc = "refuse a scene whose estimated memory (particles, neighbour pairs, gas grid, image "

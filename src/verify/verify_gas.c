@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "analysis/umf.h"
+#include "core/log.h"
 #include "cfd/gas.h"
 #include "couple/coupling.h"
 #include "output/diagnostics.h"
@@ -291,8 +292,10 @@ static bdl_result run_until(bdl_world *w, double t, long *steps)
 {
     while (w->time < t) {
         bdl_result r = bdl_world_step(w);
-        if (r != BDL_OK)
+        if (r != BDL_OK) {
+            bdl_error("%s", w->failure);
             return r;
+        }
         ++*steps;
     }
     return BDL_OK;
@@ -368,8 +371,10 @@ static bdl_result mean_pressure_drop(bdl_world *w, double duration, double *mean
     long seen = -1;
     while (w->time < end) {
         bdl_result r = bdl_world_step(w);
-        if (r != BDL_OK)
+        if (r != BDL_OK) {
+            bdl_error("%s", w->failure);
             return r;
+        }
         ++*steps;
         if (w->time > start && w->gas_steps != seen) { // just after a gas step
             seen = w->gas_steps;
@@ -502,8 +507,10 @@ bdl_result bdl_verify_suspension(double phi, int substeps, bdl_verify_settling *
     bdl_result r = BDL_OK;
     while (w->time < 0.06) {
         r = bdl_world_step(w);
-        if (r != BDL_OK)
+        if (r != BDL_OK) {
+            bdl_error("%s", w->failure);
             break;
+        }
         ++out->steps;
         if (w->time < 0.03)
             continue;

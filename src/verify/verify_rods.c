@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "analysis/granular.h"
+#include "core/log.h"
 #include "dem/species.h"
 #include "verify/verify.h"
 
@@ -79,7 +80,8 @@ bdl_result bdl_verify_rod_bed_run(double dt_fraction, bdl_verify_rod_bed *out)
     bdl_result r = BDL_OK;
     const long check = (long)ceil(0.02 / w->dt), most = (long)ceil(3.0 / w->dt);
     for (long s = 0; r == BDL_OK && s < most; ++s) {
-        r = bdl_world_step(w);
+        if ((r = bdl_world_step(w)) != BDL_OK)
+            bdl_error("%s", w->failure);
         if (w->time > 0.4 && w->step % check == 0 && kinetic_per_mgd(w) < 1e-6)
             break;
     }

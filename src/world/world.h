@@ -96,6 +96,9 @@ typedef struct bdl_world {
     double gas_work;         ///< work of the gas's forces on the particles since the start [J]
     double gas_seconds;      ///< wall-clock time spent in gas steps [s]
     double coupling_seconds; ///< wall-clock time spent coupling (deposit, interpolate, forces) [s]
+
+    /// Why the last bdl_world_step failed, for the caller to report (the world prints nothing).
+    char failure[512];
 } bdl_world;
 
 /// Builds every module the scene needs and creates the initial particles. Bad initial
@@ -104,7 +107,8 @@ typedef struct bdl_world {
 bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err);
 void bdl_world_destroy(bdl_world *world);
 
-/// Advances the world by one time step dt (velocity Verlet).
+/// Advances the world by one time step dt (velocity Verlet). On a failure (BDL_ERR_UNSTABLE: the
+/// gas cannot be advanced) `failure` says what, where and when.
 bdl_result bdl_world_step(bdl_world *world);
 
 /// The acceleration every particle and the gas feel at time t: gravity, plus, in a vibrating

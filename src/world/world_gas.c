@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "cfd/gas.h"
-#include "core/log.h"
 #include "core/timer.h"
 #include "couple/coupling.h"
 #include "world/world.h"
@@ -183,13 +182,16 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     if (report.stable_dt > 0.0)
         w->gas_stable = report.stable_dt;
     if (r == BDL_ERR_UNSTABLE && report.stable_dt > 0.0)
-        bdl_error("gas step at t = %.6g s: the gas step %.3g s is above twice the stable limit "
-                  "%.3g s (CFL 1 or the viscous limit); set [gas] dt to %.3g s or less",
-                  w->time, dt, report.stable_dt, report.stable_dt);
+        snprintf(w->failure, sizeof w->failure,
+                 "gas step at t = %.6g s (step %ld): the gas step %.3g s is above twice the "
+                 "stable limit %.3g s (CFL 1 or the viscous limit); set [gas] dt to %.3g s or less",
+                 w->time, w->step, dt, report.stable_dt, report.stable_dt);
     else if (r == BDL_ERR_UNSTABLE)
-        bdl_error("gas step at t = %.6g s failed: the pressure solver did not converge (residual "
-                  "%.3g after %d iterations) or a velocity is not finite; try a smaller [gas] dt",
-                  w->time, w->gas->last_solve.residual, w->gas->last_solve.iterations);
+        snprintf(w->failure, sizeof w->failure,
+                 "gas step at t = %.6g s (step %ld) failed: the pressure solver did not converge "
+                 "(residual %.3g after %d iterations) or a velocity is not finite; try a smaller "
+                 "[gas] dt",
+                 w->time, w->step, w->gas->last_solve.residual, w->gas->last_solve.iterations);
     if (r != BDL_OK)
         return r;
     w->gas_work += report.work;
