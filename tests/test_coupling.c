@@ -199,10 +199,98 @@ static void test_threads(void)
     omp_set_num_threads(1);
 }
 
+/// Pressure differences across the faces of axis a, as the particles' share of them: the sum
+/// over the faces with a momentum equation of (1 - eps_f) times the dynamic part of the
+/// difference, (p_hi - p_lo - rho g_a h) A (the top outlet face is left out: no particle reaches
+/// its cells).
+static double solid_share(const bdl_gas *g, int a)
+{
+    const bdl_grid *gr = &g->grid;
+    const long s = gr->stride[a];
+    const double h = gr->h[a], area = gr->h[0] * gr->h[1] * gr->h[2] / h;
+    const double hydro = g->def.density * g->def.gravity[a];
+    double sum = 0.0;
+    bdl_grid_wrap_cells(gr, g->eps);
+    for (int k = 0; k < gr->n[2]; ++k)
+        for (int j = 0; j < gr->n[1]; ++j)
+            for (int i = 0; i < gr->n[0]; ++i) {
+                const int m = a == 0 ? i : a == 1 ? j : k;
+                if (m == 0 && !gr->periodic[a])
+                    continue; // a wall or inlet face: no momentum equation
+                const long idx = bdl_grid_index(gr, i, j, k);
+                const double solid = 1.0 - 0.5 * (g->eps[idx] + g->eps[idx - s]);
+                sum += solid * (g->p[idx] - g->p[idx - s] - hydro * h) * area;
+            }
+    return sum;
+}
+
+/// The particles take from the pressure what the gas leaves: summed over all particles, the
+/// pressure force is the buoyancy -rho g V_s plus minus the particles' share (1 - eps_f) of the
+/// dynamic pressure difference on every momentum face, so that with the gas's share eps_f the
+/// mixture's pressure force telescopes to the end layers' pressures (the particle momentum
+/// balance of a bed on its inlet, bedlam verify bed_balance). Any pressure field; particles
+/// next to walls, on the inlet layer, across the periodic axis. And in a fluid at rest
+/// (hydrostatic pressure) every particle, on the inlet layer too, feels exactly its buoyancy.
+static void test_pressure_shares(void)
+{
+    bdl_gas *g = make_gas(6, 5, 10, 2e-3, 1, 1);
+    g->def.side[4].type = BDL_SIDE_INLET;
+    g->def.density = 1000.0; // a liquid: buoyancy well above round-off
+    bdl_gas_set_gravity(g, (double[3]){0.0, 0.0, -9.81});
+    unsigned seed = 5;
+    bdl_particles p = {0};
+    for (int i = 0; i < 300; ++i) // below z = 7 cells: the kernels stay out of the top layer
+        bdl_particles_add(&p,
+                          bdl_v3(uniform(&seed, 0.0, 12e-3), uniform(&seed, 0.0, 10e-3),
+                                 uniform(&seed, 0.0, 14e-3)),
+                          bdl_v3_zero(), uniform(&seed, 0.2e-3, 0.5e-3), 2500.0, 0);
+    bdl_coupling_def def = bdl_default_coupling_def(&g->grid);
+    bdl_coupling k;
+    bdl_coupling_init(&k, &def, g);
+    CHECK(bdl_coupling_locate(&k, g, &p) == BDL_OK);
+    bdl_coupling_voidage(&k, g, &p);
+    bdl_vec3 *f = malloc((size_t)p.count * sizeof(bdl_vec3));
+    double volume = 0.0;
+    for (long i = 0; i < p.count; ++i)
+        volume += bdl_particle_volume(&p, i);
+    for (int field = 0; field < 2; ++field) { // random, then hydrostatic
+        const bdl_grid *gr = &g->grid;
+        for (int kk = 0; kk < gr->n[2]; ++kk)
+            for (int j = 0; j < gr->n[1]; ++j)
+                for (int i = 0; i < gr->n[0]; ++i)
+                    g->p[bdl_grid_index(gr, i, j, kk)] =
+                        field == 0 ? uniform(&seed, -50.0, 50.0)
+                                   : 1e5 - 1000.0 * 9.81 * (kk + 0.5) * gr->h[2];
+        bdl_grid_wrap_cells(gr, g->p); // the periodic ghosts, as the gas step leaves them
+        bdl_coupling_forces(&k, g, &p, NULL, 1e-4, NULL, f);
+        double total[3] = {0, 0, 0}, worst = 0.0;
+        for (long i = 0; i < p.count; ++i) {
+            total[0] += f[i].x, total[1] += f[i].y, total[2] += f[i].z;
+            const double buoyancy = 1000.0 * 9.81 * bdl_particle_volume(&p, i);
+            worst = fmax(worst, fabs(f[i].z - buoyancy) / buoyancy + fabs(f[i].x) / buoyancy +
+                                    fabs(f[i].y) / buoyancy);
+        }
+        const double share[3] = {-solid_share(g, 0), -solid_share(g, 1),
+                                 1000.0 * 9.81 * volume - solid_share(g, 2)};
+        const double scale = 1000.0 * 9.81 * volume + fabs(share[2]);
+        for (int a = 0; a < 3; ++a)
+            CHECK_MSG(fabs(total[a] - share[a]) < 1e-12 * scale,
+                      "pressure field %d, axis %d: particles %.15g N, their share %.15g N", field,
+                      a, total[a], share[a]);
+        if (field == 1)
+            CHECK_MSG(worst < 1e-10, "hydrostatic: worst relative buoyancy error %g", worst);
+    }
+    free(f);
+    bdl_coupling_free(&k);
+    bdl_particles_free(&p);
+    bdl_gas_destroy(g);
+}
+
 int main(void)
 {
     test_threads();
     test_linear_interpolation();
+    test_pressure_shares();
     test_conservation_and_balance(0, 1.0);
     test_conservation_and_balance(1, 2.5);
     test_terminal(40e-6, 1000.0, BDL_DRAG_SCHILLER_NAUMANN);  // Re about 0.1

@@ -20,8 +20,14 @@
 //  3. the gas step (drag implicit in the gas);
 //  4. forces on the particles for the whole macro step:
 //     drag f_i = a_i (u_i - v_i - dt A_i), u_i the new gas velocity at the particle — the
-//     backward-Euler drag, stable for any D_i dt — and pressure force -V_i grad p.
-// The drag the gas feels, summed over the faces, equals minus the sum of the f_i to round-off.
+//     backward-Euler drag, stable for any D_i dt — and pressure force -V_i grad p, grad p the
+//     kernel average of cell gradients: the hydrostatic rho g whole, the rest the mean of the
+//     cell's two face differences, where a wall or inlet face (no momentum equation) carries
+//     none.
+// The drag the gas feels, summed over the faces, equals minus the sum of the f_i to round-off;
+// the pressure force on the particles, summed, is their share (1 - eps_f) of every momentum
+// face's pressure difference, so that the mixture's pressure force telescopes to the pressures
+// of the end layers (what the measured pressure drop carries).
 // (Along an axis with no momentum face at all — one cell between two walls — the gas does not
 // move and the particles' drag in that direction goes to the walls.)
 #ifndef BDL_COUPLING_H

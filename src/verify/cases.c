@@ -153,6 +153,23 @@ static bdl_result run_settling(int series, double n, bdl_verify_result *out)
     return r;
 }
 
+// The particle momentum balance of a slugging bed with its floor on the inlet plane or raised
+// two cells (series), averaged over N seconds after one second of start-up.
+static bdl_result run_bed_balance(int series, double n, bdl_verify_result *out)
+{
+    bdl_verify_balance b;
+    bdl_result r = bdl_verify_bed_balance(series == 0 ? 0 : 2, 1.0, n, &b);
+    printf("  bed balance, floor %s, %g s: pressure drop - gas column %.2f Pa, weight %.2f Pa, "
+           "walls %.2f Pa, momentum rate %.2f Pa: residual %.2f Pa (%.2f %% of the weight)\n",
+           series == 0 ? "at the inlet" : "raised 2 cells", n, b.pressure, b.weight, b.wall,
+           b.momentum_rate, b.residual, 100.0 * b.residual / b.weight);
+    out->value = b.residual;
+    out->exact = 0.0;
+    out->error = r == BDL_OK ? finite_or_inf(fabs(b.residual / b.weight)) : INFINITY;
+    out->steps = b.steps;
+    return r;
+}
+
 // The acceptance, quick-set, series and level fields of a case stand on one line each.
 // clang-format off
 static const bdl_verify_case cases[] = {
@@ -388,6 +405,26 @@ static const bdl_verify_case cases[] = {
         .series_count = 1, .series = {"sweep"},
         .level_count = 3, .level = {40, 80, 160},
         .run = run_umf,
+    },
+    {
+        .name = "bed_balance",
+        .tolerance = 0.01, .tolerance_level = 1, .order_min = 0.0, .no_order = 1,
+        .breaks = "the balance holds while every bead stays in the slot; a jet or a bed that "
+                  "throws beads through the outlet loses them (particles_out) and the case stops.",
+        .title = "Particle momentum balance of a slugging bed",
+        .model = "pressure force on the particles as the complement of the gas's share on every "
+                 "momentum face (the hydrostatic part whole), drag with both sides equal",
+        .reference = "Newton for the beads: pressure drop - gas column - weight/area + walls/area "
+                     "- d(momentum)/dt/area = 0, each term measured on its own",
+        .measure = "|residual| / (weight less buoyancy per base area)",
+        .param = "N = averaging window [s] after 1 s of start-up",
+        .order_note = "none: a time average of a slugging bed; the momentum-rate term falls like "
+                      "1/N, and what stays is the gas's own momentum budget (its acceleration "
+                      "through the bed and the shear on the side walls, a few tenths of a per cent)",
+        .quick = 1, .quick_levels = 1,
+        .series_count = 2, .series = {"floor at the inlet", "floor raised"},
+        .level_count = 3, .level = {1, 2, 4},
+        .run = run_bed_balance,
     },
 };
 // clang-format on

@@ -177,6 +177,22 @@ double bdl_verify_ergun(double eps, double U, double d, double rho, double mu);
 bdl_result bdl_verify_packed_bed(int cells_z, const double *U, int n, double *ratio,
                                  double *eps_mean, long *steps);
 
+/// The particle momentum balance of a slugging bed, per base area [Pa], time-averaged over a
+/// window: the pressure drop between the lowest and highest cell layers less the gas column
+/// between them, the beads' weight less buoyancy, the walls' vertical force on the beads (their
+/// contact forces summed: every pair's action and reaction cancel), and the rate of change of
+/// the beads' vertical momentum. residual = pressure - weight + wall - momentum_rate, 0 when the
+/// pressure drop carries exactly what the gas does to the beads.
+typedef struct bdl_verify_balance {
+    double pressure, weight, wall, momentum_rate, residual;
+    long steps;
+} bdl_verify_balance;
+/// scenes/fluidized_bed.ini's slugging slot (800 beads of 3 mm, air at 3.2 m/s) with its floor
+/// on the inlet plane (raised 0) or `raised` gas cells above it, averaged over `window` seconds
+/// after `settle` seconds. BDL_ERR_UNSTABLE if a bead leaves the slot.
+bdl_result bdl_verify_bed_balance(int raised, double settle, double window,
+                                  bdl_verify_balance *out);
+
 /// Minimum fluidization from a decreasing then an increasing velocity sweep (dwell seconds per
 /// velocity): U_mf of each and Wen-Yu's for the same beads [m/s]. With `table`, prints the sweeps.
 bdl_result bdl_verify_umf(double dwell, double *umf_down, double *umf_up, double *wen_yu, int table,
