@@ -24,6 +24,11 @@ bdl_limit_expect(cli_limits_fill 2
 bdl_limit_expect(cli_limits_lattice 2
   "\\[create stack\\] type = lattice of \\[species coarse\\] diameter = 1e-06 m.*for 8e\\+11 particles, above \\[guards\\] max_memory"
   check ${L}/limits_fill.ini --set species.coarse.diameter=1e-6)
+# A random fill asking for far more than random sequential insertion can place is refused when
+# its success rate says so, not after its whole budget of tries (13 s for these 5000 rods).
+bdl_limit_expect(cli_limits_jammed_fill 2
+  "\\[create bed\\]: random fill placed only [0-9]+ of 5000 particles; random sequential insertion jams"
+  check ${L}/rod_sweep.ini --set create.bed.count=5000)
 bdl_limit_expect(cli_limits_max_memory 2
   "\\[camera cam\\] width = 100, height = 200, samples = 3: about 1.8e\\+06 bytes for the image buffers, above \\[guards\\] max_memory = 1e\\+06 bytes \\(as given"
   check ${L}/limits.ini --set guards.max_memory=1e6)
