@@ -168,6 +168,8 @@ void bdl_world_apply_live(bdl_world *w)
 int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
 {
     if (strcmp(key, "gas.inlet_scale") == 0 && w->gas) {
+        if (value > w->live.inlet_scale)
+            w->gas_inflow_raised = 1; // the next gas step starts short (world_gas.c)
         w->live.inlet_scale = value;
         bdl_world_apply_live(w);
         return 1;

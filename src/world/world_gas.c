@@ -69,28 +69,33 @@ static bdl_coupling_def coupling_def(const bdl_world *w)
     return d;
 }
 
-/// The first gas step: as given, or CFL 1/2 for the fastest gas to expect (the inflow through
-/// the densest packing, plus a margin for bubbles) across the axes the gas can move along (more
-/// than one cell), at most BDL_GAS_DT_MAX; after the first, CFL 1/2 for the gas as it is.
+/// CFL 1/2 for the fastest gas to expect at a superficial inflow u (the larger of the inlet's and
+/// the jet's): u through the densest packing, plus a margin for bubbles, across the axes the gas
+/// can move along (more than one cell); at most BDL_GAS_DT_MAX and the gas's own stable step.
+static double expected_gas_dt(const bdl_world *w, double inflow)
+{
+    const bdl_grid *g = &w->gas->grid;
+    const double u = inflow / (1.0 - w->coupling->def.max_solids) + 0.5;
+    double hmin = INFINITY, hany = INFINITY;
+    for (int a = 0; a < 3; ++a) {
+        hany = fmin(hany, g->h[a]);
+        if (g->n[a] > 1)
+            hmin = fmin(hmin, g->h[a]);
+    }
+    if (isinf(hmin))
+        hmin = hany;
+    return fmin(fmin(BDL_GAS_DT_MAX, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
+}
+
+/// The first gas step: as given, or expected_gas_dt for the scene's inflow; after the first, CFL
+/// 1/2 for the gas as it is.
 static void schedule_gas(bdl_world *w)
 {
     const bdl_gas_scene *gs = &w->scene.gas;
-    const bdl_grid *g = &w->gas->grid;
     double dt_gas = gs->dt;
     w->gas_fixed = dt_gas > 0.0;
-    if (!w->gas_fixed) {
-        double u =
-            fmax(gs->inlet_velocity, gs->jet_velocity) / (1.0 - w->coupling->def.max_solids) + 0.5;
-        double hmin = INFINITY, hany = INFINITY;
-        for (int a = 0; a < 3; ++a) {
-            hany = fmin(hany, g->h[a]);
-            if (g->n[a] > 1)
-                hmin = fmin(hmin, g->h[a]);
-        }
-        if (isinf(hmin))
-            hmin = hany;
-        dt_gas = fmin(fmin(BDL_GAS_DT_MAX, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
-    }
+    if (!w->gas_fixed)
+        dt_gas = expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
     w->gas_every = steps_in(w, dt_gas);
     if (w->gas_every < 1)
         w->gas_every = 1;
@@ -157,12 +162,27 @@ double bdl_world_gas_work_pending(const bdl_world *w, long i)
                              (double)(w->step - (w->gas_next - w->gas_every)) * w->dt);
 }
 
+/// The inflow now (the larger of the inlet's and the jet's) if it rose since the last gas step
+/// started `dt_last` ago — a sweep's next stage, or a live raise of the inlet scale — else 0: the
+/// gas as the last step left it does not yet flow that fast, so its stable step would be too long.
+static double raised_inflow(bdl_world *w, double dt_last)
+{
+    const double jet = w->live.inlet_scale * w->scene.gas.jet_velocity;
+    const double now = fmax(bdl_world_inlet_velocity(w, w->time), jet);
+    const double before = fmax(bdl_world_inlet_velocity(w, w->time - dt_last), jet);
+    const int live = w->gas_inflow_raised;
+    w->gas_inflow_raised = 0;
+    return live || now > before ? now : 0.0;
+}
+
 bdl_result bdl_world_gas_step(bdl_world *w)
 {
     // The last gas step's length, then this one's: CFL 1/2 for the gas as the last step left it.
     const double dt_last = (double)w->gas_every * w->dt;
     if (!w->gas_fixed && w->gas_steps > 0) {
-        const long every = steps_in(w, w->gas_stable);
+        const double raised = raised_inflow(w, dt_last);
+        const long every = steps_in(
+            w, raised > 0.0 ? fmin(w->gas_stable, expected_gas_dt(w, raised)) : w->gas_stable);
         w->gas_every = every < 1 ? 1 : every > w->gas_every_max ? w->gas_every_max : every;
     }
     const double dt = (double)w->gas_every * w->dt;

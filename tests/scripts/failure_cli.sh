@@ -13,6 +13,7 @@
 # 2. A gas inflow raised 10^4 times by a sweep after t = 0.02 s (tests/scenes/kill.ini): the gas
 #    step stops the run with its reason (it used to print an empty "run stopped:"), the state goes
 #    to failed.bdlckpt, outputs are finite, and the folder resumes without the sweep to the end.
+#    The same with the inflow raised 100 times, and with gravity reversed (a clean run to the end).
 # 3. The final checkpoint cannot be written (a folder where checkpoint/state.bdlckpt should be):
 #    exit 1 with the path; a file where the checkpoint folder should be: exit 2 before the run.
 # 4. A full disk: diagnostics.csv a link to /dev/full, and a run in a 600 kB tmpfs when one can
@@ -82,6 +83,21 @@ grep -q "last good checkpoint is $out/checkpoint/state.bdlckpt (t = 0.0158966583
 [ -s "$out/checkpoint/failed.bdlckpt" ] || fail "no failed.bdlckpt after the gas stop"
 finite "$out"
 run 0 "" run "$kill" --quiet --resume "$out" --set output.frame_interval=0
+finite "$out"
+
+# 2b. The inflow raised 100 times, and gravity reversed: the same clean stop with the last good
+#     checkpoint resumable; upside down the beads rest on the lid to the end. No output holds a
+#     non-finite number.
+out=$work/gas100
+run 1 "run stopped: gas step at t = 0.0201831 s \(step 711\)" \
+    run "$kill" --quiet --out "$out" --set output.frame_interval=0 --set gas.sweep=up \
+    --set gas.sweep_to=250 --set gas.sweep_step=247.5 --set gas.sweep_dwell=0.02
+[ -s "$out/checkpoint/failed.bdlckpt" ] || fail "no failed.bdlckpt after the 100x inflow"
+finite "$out"
+run 0 "" run "$kill" --quiet --resume "$out" --set output.frame_interval=0
+finite "$out"
+out=$work/upside_down
+run 0 "" run "$kill" --quiet --out "$out" --set output.frame_interval=0 --set "run.gravity=0 0 9.81"
 finite "$out"
 
 # 3. Checkpoints that cannot be written.
