@@ -112,15 +112,9 @@ static int json_is(const char *text, const char *key, const char *word)
 
 bdl_result dia_flux_read_fit(const char *path, dia_flux_fit *fit)
 {
-    size_t length;
-    char why[256];
-    char *json = bdl_check_regular_file(path, NULL, why, sizeof why) == BDL_OK
-                     ? bdl_read_file(path, &length)
-                     : NULL;
-    if (!json) {
-        fprintf(stderr, "error: --fit %s %s\n", path, why);
+    char *json = bdl_analyze_read_regular(path, "--fit");
+    if (!json)
         return BDL_ERR_ARGS;
-    }
     memset(fit, 0, sizeof *fit);
     fit->fit = (bdl_dia_fit){BDL_DIA_MODEL_RATIONAL, {NAN, NAN}, 0, 0, 0, 0, 1};
     const char *rational = strstr(json, "\"rational\":");

@@ -1,6 +1,7 @@
 // bedlam analyze — reading columns of a run's CSV files, and drawing plots with gnuplot.
 #include "app/analyze_files.h"
 
+#include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -51,6 +52,19 @@ int bdl_analyze_read_text(const char *dir, const char *file, char *text, size_t 
         fclose(f);
     text[n] = 0;
     return f != NULL;
+}
+
+char *bdl_analyze_read_regular(const char *path, const char *label)
+{
+    size_t length;
+    char why[256];
+    char *text = NULL;
+    if (bdl_check_regular_file(path, NULL, why, sizeof why) == BDL_OK &&
+        !(text = bdl_read_file(path, &length)))
+        snprintf(why, sizeof why, "cannot be read: %s", strerror(errno));
+    if (!text)
+        fprintf(stderr, "error: %s%s%s %s\n", label, *label ? " " : "", path, why);
+    return text;
 }
 
 /// Where the value of "key" starts in text (NULL when the key is missing).

@@ -17,6 +17,11 @@ int bdl_analyze_read_series(const char *run, const char *file, const char *colum
 /// Reads DIR/FILE (at most len - 1 bytes) into text, NUL-terminated; 0 when it cannot be read.
 int bdl_analyze_read_text(const char *dir, const char *file, char *text, size_t len);
 
+/// Reads the whole regular file at `path` into a malloc'ed, NUL-terminated text; prints "error:
+/// LABEL PATH REASON" (label "" or e.g. "--fit") and returns NULL when it is no regular file or
+/// cannot be read.
+char *bdl_analyze_read_regular(const char *path, const char *label);
+
 /// The number after "key": in a JSON text written by bedlam (camera.json, fit.json); 0 if none.
 int bdl_analyze_json_number(const char *text, const char *key, double *out);
 

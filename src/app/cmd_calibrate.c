@@ -168,15 +168,9 @@ static bdl_result read_camera(const char *dir, int *nx, int *ny, int *back_lit)
 {
     char path[1200];
     snprintf(path, sizeof path, "%s/camera.json", dir);
-    size_t length;
-    char why[256];
-    char *json = bdl_check_regular_file(path, NULL, why, sizeof why) == BDL_OK
-                     ? bdl_read_file(path, &length)
-                     : NULL;
-    if (!json) {
-        fprintf(stderr, "error: %s %s\n", path, why);
+    char *json = bdl_analyze_read_regular(path, "");
+    if (!json)
         return BDL_ERR_ARGS;
-    }
     char lighting[16];
     json_string(json, "lighting", lighting, sizeof lighting);
     *back_lit = strcmp(lighting, bdl_dia_lighting_names[BDL_DIA_BACK_LIT]) == 0;
