@@ -33,6 +33,8 @@ bdl_cli_expect(cli_dt_too_big_run 2 "contact time" run ${S}/dt_too_big.ini --qui
 bdl_cli_expect(cli_unwritable_out 2 "not writable" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --quiet --out /proc/bedlam-cannot-write-here)
 bdl_cli_expect(cli_bad_threads 2 "threads" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --threads zero)
 bdl_cli_expect(cli_unstable 1 "overlap" run ${S}/explode.ini --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/explode)
+# An elastic sticking Hertz-Mindlin impact runs through the default guards (checked every step).
+bdl_cli_expect(cli_oblique_stick 0 "done: t = 0.0009" run ${S}/oblique_stick.ini --out ${CMAKE_CURRENT_BINARY_DIR}/runs/oblique_stick)
 
 add_test(NAME cli_resume COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/vibrated_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume

@@ -1,6 +1,7 @@
 # Physics verification of the DEM solver (docs/verification-dem.md): restitution and its
 # convergence with dt, Hertz contact duration, sliding to rolling, conservation in collisions,
-# and static overlaps of a column. Each prints its table to stdout.
+# static overlaps of a column, and the oblique impact (tangential rebound, energy through the
+# guards, Maw et al.'s theory). Each prints its table to stdout.
 bdl_add_test(test_material SOURCES test_material.c LABELS dem)
 bdl_add_test(test_rods SOURCES test_rods.c LABELS dem TIMEOUT 300)
 bdl_add_test(test_rod_bed SOURCES test_rod_bed.c LABELS "dem;slow" TIMEOUT 7200)
@@ -16,6 +17,7 @@ bdl_add_test(test_collision SOURCES test_collision.c LABELS dem verification TIM
 target_link_libraries(test_collision PRIVATE OpenMP::OpenMP_C)
 bdl_add_test(test_column SOURCES test_column.c LABELS dem verification TIMEOUT 300)
 target_link_libraries(test_column PRIVATE OpenMP::OpenMP_C)
+bdl_add_test(test_oblique SOURCES test_oblique.c LABELS dem verification TIMEOUT 300)
 bdl_add_test(test_voidage SOURCES test_voidage.c)
 bdl_add_test(test_restitution_limits SOURCES test_restitution_limits.c LABELS "dem;stability" TIMEOUT 600)
 bdl_add_test(test_stiff_contacts SOURCES test_stiff_contacts.c LABELS "dem;stability" TIMEOUT 600)

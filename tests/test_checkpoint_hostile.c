@@ -131,8 +131,8 @@ static bdl_result load(const char *scene, const unsigned char *data, size_t size
 
 /// Where the patched fields lie (the layout of docs/checkpoints.md), and where the payload ends.
 typedef struct layout {
-    size_t dt, time, rng, poured, counts, species, start, partner, touching, history, wall_prim,
-        half_length, gas_every, eps, end;
+    size_t dt, time, rng, poured, counts, species, start, partner, touching, history, spring_work,
+        wall_prim, wall_spring_work, half_length, gas_every, eps, end;
     int64_t n, pairs, wall_pairs;
 } layout;
 
@@ -158,8 +158,14 @@ static layout layout_of(const blob *b, long gas_cells)
     L.touching = off, off += np;
     if (head[7]) // friction: the tangential springs
         L.history = off, off += np * 24;
+    const int mindlin = head[7] && head[4] == BDL_LAW_HERTZ;
+    if (mindlin) // their work, and the work ended contacts left
+        L.spring_work = off, off += np * 8 + 16;
     off += (n + 1) * 4;
-    L.wall_prim = off, off += nw * 4 + nw * 49;
+    L.wall_prim = off, off += nw * 4 + nw * 24;
+    if (mindlin)
+        L.wall_spring_work = off, off += nw * 8;
+    off += nw * 25;
     if (head[9]) // gas: the particles' gas forces
         off += n * 72;
     if (head[8]) // rods: orientation, axis, angular momentum, inertia, half length, axis at build
@@ -279,8 +285,8 @@ static void test_patches(const char *scene, const blob *b)
     refused(scene, b, L.counts + 48, &minus1, 8, "version -1");
     const int32_t species = 3;
     refused(scene, b, 32, &species, 4, "does not match the scene: 3 species in the checkpoint, 1");
-    const uint32_t version = 7;
-    refused(scene, b, 8, &version, 4, "header of version 7");
+    const uint32_t version = 6;
+    refused(scene, b, 8, &version, 4, "header of version 6");
     const uint64_t payload = b->size; // 32 more than the file holds
     refused(scene, b, 16, &payload, 8, "is truncated: its header announces");
     refused(scene, b, 7, "5", 1, "another version of bedlam (checkpoint format '5'");
@@ -360,6 +366,37 @@ static void test_scenes(const blob *b, const bdl_world *written)
     bdl_world_destroy(w);
 }
 
+/// Hertz-Mindlin springs keep their work: a checkpoint of the beads with the Hertz law loads,
+/// and one whose spring work is not finite is refused.
+static void test_mindlin(void)
+{
+    char linear[4096], scene[4096];
+    beads(linear, sizeof linear, 1000.0, 0.002, 0.4, 1, "");
+    char *law = strstr(linear, "law = linear"), *kn = strstr(linear, "stiffness = 1000");
+    CHECK(law && kn && law < kn);
+    if (!law || !kn || kn < law)
+        return;
+    *law = *kn = '\0'; // the scene in three pieces around the two keys, set anew
+    snprintf(scene, sizeof scene, "%slaw = hertz%syoungs_modulus = 1e7%s", linear,
+             law + strlen("law = linear"), kn + strlen("stiffness = 1000"));
+    bdl_world *w = stepped(scene, 30);
+    blob b = saved(w);
+    const layout L = layout_of(&b, 0);
+    printf("Hertz-Mindlin beads: %zu bytes, %ld touching pairs\n", b.size, touching(w));
+    CHECK_MSG(L.end == b.size, "Mindlin layout ends at %zu, the file at %zu", L.end, b.size);
+    char why[1024];
+    CHECK_MSG(load(scene, b.data, b.size, why, sizeof why, NULL) == BDL_OK, "%s", why);
+    const double nan = NAN;
+    long k = 0; // a touching pair's spring
+    while (k < L.pairs && !w->neighbor.touching[k])
+        ++k;
+    refused(scene, &b, L.spring_work + 8 * (size_t)k, &nan, 8,
+            "tangential spring that is not finite (its displacement or its stored work)");
+    refused(scene, &b, L.wall_spring_work, &nan, 8, "wall contact 0 has a contact flag");
+    bdl_world_destroy(w);
+    free(b.data);
+}
+
 int main(void)
 {
     test_crc();
@@ -389,6 +426,7 @@ int main(void)
     test_patches(beads_scene, &b);
     test_gas_and_rod_patches(&g, gw->gas->grid.size, &r);
     test_scenes(&b, bw);
+    test_mindlin();
     char other_grid[4096];
     gas_beads(other_grid, sizeof other_grid, "4 4 6");
     CHECK(load(other_grid, g.data, g.size, why, sizeof why, NULL) == BDL_ERR_CHECKPOINT &&

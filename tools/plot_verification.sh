@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Plots the restitution error against the time step from test_bounce's table (gnuplot).
-# Usage: tools/plot_verification.sh [build dir]   -> docs/img/restitution_vs_dt.png
+# Plots the restitution error against the time step from test_bounce's table, and the oblique
+# impact's rebound against incidence from test_oblique's curve (gnuplot).
+# Usage: tools/plot_verification.sh [build dir]   -> docs/img/restitution_vs_dt.png, oblique_psi.png
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -27,3 +28,23 @@ plot for [i=1:6] "< awk 'NR==" . i . " {split(\"0.04 0.02 0.01 0.005 0.0025\", d
 GP
 rm -f "$data"
 echo "wrote docs/img/restitution_vs_dt.png"
+
+# The oblique impact: reduced rebound psi2 against reduced incidence psi1 (test_oblique's curve),
+# bedlam beside Maw, Barber & Fawcett's theory and the rigid-body line of gross sliding.
+data=$(mktemp)
+"$build/tests/test_oblique" | awk '/^curve / { print $2, $3, $4 }' > "$data"
+gnuplot <<GP
+set terminal pngcairo size 800,560 font "DejaVu Sans,11" noenhanced
+set output "docs/img/oblique_psi.png"
+set xlabel "reduced incidence psi1 = kappa v_t1 / (mu v_n1)"
+set ylabel "reduced rebound psi2 = kappa v_t2 / (mu v_n1)"
+set title "Elastic sphere on a plane, steel (nu = 0.3), Hertz-Mindlin, mu = 0.3"
+set key left top
+set grid
+chi = 0.7 / 1.7 * 3.5
+plot "$data" using 1:3 with lines lw 2 lc rgb "black" title "Maw, Barber & Fawcett (theory, by MDR)", \
+     "$data" using 1:2 with linespoints lw 2 pt 7 ps 0.6 lc rgb "#c03030" title "bedlam, dt = t_c/100", \
+     (x >= 4 * chi - 1 ? x - 4 * chi : 1/0) with lines dashtype 2 lc rgb "gray" title "rigid body, gross sliding"
+GP
+rm -f "$data"
+echo "wrote docs/img/oblique_psi.png"

@@ -65,9 +65,9 @@ typedef struct bdl_pair_batch {
     double ri[BATCH], rj[BATCH], imi[BATCH], imj[BATCH]; // not filled when uniform
     double dvx[BATCH], dvy[BATCH], dvz[BATCH];
     double wix[BATCH], wiy[BATCH], wiz[BATCH], wjx[BATCH], wjy[BATCH], wjz[BATCH];
-    double ux[BATCH], uy[BATCH], uz[BATCH];
+    double ux[BATCH], uy[BATCH], uz[BATCH], work[BATCH]; ///< work: Hertz-Mindlin springs
     // outputs
-    double unx[BATCH], uny[BATCH], unz[BATCH]; ///< the spring after this step
+    double unx[BATCH], uny[BATCH], unz[BATCH], work_new[BATCH]; ///< the spring after this step
     double fx[BATCH], fy[BATCH], fz[BATCH];
     double tix[BATCH], tiy[BATCH], tiz[BATCH], tjx[BATCH], tjy[BATCH], tjz[BATCH];
     double fn[BATCH], reff[BATCH];
@@ -85,15 +85,18 @@ typedef struct gather_view {
     const int32_t *species, *partner;
     uint8_t *touching;
     bdl_vec3 *history;
-    double len[3], half[3]; ///< per axis; a closed axis has len 0 and half infinite
+    double *spring_work;     ///< Hertz-Mindlin springs only
+    bdl_exact_sum *released; ///< this thread's: what springs held when their contacts ended
+    double len[3], half[3];  ///< per axis; a closed axis has len 0 and half infinite
     int ns;
     double cut; ///< r_i + r_j when uniform
 } gather_view;
 
 static gather_view make_view(const bdl_particles *p, bdl_neighbor *nb, const bdl_force_def *def,
-                             const bdl_force_work *fw)
+                             bdl_force_work *fw, int t)
 {
     gather_view v;
+    v.released = &fw->released[t];
     v.pos = p->pos;
     v.vel = p->vel;
     v.omega = p->omega;
@@ -104,6 +107,7 @@ static gather_view make_view(const bdl_particles *p, bdl_neighbor *nb, const bdl
     v.partner = nb->partner;
     v.touching = nb->touching;
     v.history = nb->history;
+    v.spring_work = nb->spring_work;
     for (int a = 0; a < 3; ++a) {
         v.len[a] = nb->periodic[a] ? bdl_v3_comp(nb->length, a) : 0.0;
         v.half[a] = nb->periodic[a] ? 0.5 * v.len[a] : INFINITY;
@@ -168,8 +172,13 @@ static BDL_FORCE_INLINE int gather_pair(pair_batch *restrict b, int m, const gat
     b->j[m] = j;
     uint8_t was = v->touching[k];
     v->touching[k] = (uint8_t)touching;
-    if (v->history && (was & !touching))
-        v->history[k] = bdl_v3_zero(); // the contact has ended
+    if (v->history && (was & !touching)) { // the contact has ended
+        v->history[k] = bdl_v3_zero();
+        if (v->spring_work) { // what the spring still holds leaves the bodies
+            *v->released += bdl_exact_term(v->spring_work[k]);
+            v->spring_work[k] = 0.0;
+        }
+    }
     return touching;
 }
 
@@ -199,6 +208,9 @@ static void gather_motion(pair_batch *restrict b, int m, const gather_view *v)
             b->uz[q] = u.z;
         }
     }
+    if (v->spring_work)
+        for (int q = 0; q < m; ++q)
+            b->work[q] = v->spring_work[b->k[q]];
 }
 
 /// Loop invariants of the contact law over a batch.
@@ -245,16 +257,19 @@ static BDL_FORCE_INLINE int eval_slot(pair_batch *restrict b, int q, const kerne
     g.v_c = bdl_v3(b->dvx[q] - sxn.x, b->dvy[q] - sxn.y, b->dvz[q] - sxn.z);
     g.m_eff = uniform ? kc->m_eff : 1.0 / (b->imi[q] + b->imj[q]);
     g.r_eff = uniform ? kc->r_eff : ri * rj / (ri + rj);
-    bdl_vec3 u = friction ? bdl_v3(b->ux[q], b->uy[q], b->uz[q]) : bdl_v3_zero();
+    bdl_spring u = {friction ? bdl_v3(b->ux[q], b->uy[q], b->uz[q]) : bdl_v3_zero(),
+                    hertz && friction ? b->work[q] : 0.0};
     bdl_contact_result c = bdl_contact_eval_mode(cp, hertz, friction, g, u, kc->dt, trial);
     b->fx[q] = c.force.x;
     b->fy[q] = c.force.y;
     b->fz[q] = c.force.z;
     if (friction) {
-        b->unx[q] = c.spring.x;
-        b->uny[q] = c.spring.y;
-        b->unz[q] = c.spring.z;
+        b->unx[q] = c.spring.u.x;
+        b->uny[q] = c.spring.u.y;
+        b->unz[q] = c.spring.u.z;
     }
+    if (hertz && friction)
+        b->work_new[q] = c.spring.work;
     if (torques) {
         b->tix[q] = c.n_x_ft.x * -arm_i;
         b->tiy[q] = c.n_x_ft.y * -arm_i;
@@ -357,7 +372,8 @@ static inline bdl_vec3 slot_torque_j(const pair_batch *b, int q)
 
 /// Wall contacts of particle i, added to f and t.
 static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                          const bdl_force_def *def, long i, bdl_vec3 *f, bdl_vec3 *t)
+                          const bdl_force_def *def, long i, bdl_vec3 *f, bdl_vec3 *t,
+                          bdl_exact_sum *released)
 {
     int ns = def->species_count;
     double r = p->radius[i];
@@ -369,6 +385,10 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
             nb->wall_touching[k] = 0;
             nb->wall_force[k] = bdl_v3_zero();
             nb->wall_history[k] = bdl_v3_zero();
+            if (nb->wall_spring_work) { // what the spring still holds leaves the bodies
+                *released += bdl_exact_term(nb->wall_spring_work[k]);
+                nb->wall_spring_work[k] = 0.0;
+            }
             continue;
         }
         int wall = walls->prims[prim].wall;
@@ -381,11 +401,13 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
         g.m_eff = 1.0 / p->inv_mass[i];
         g.r_eff = bdl_wall_r_eff(walls, prim, r);
         const bdl_contact_params *cp = def->wall_params + wall * ns + p->species[i];
-        bdl_contact_result res =
-            def->hertz ? bdl_contact_eval(cp, 1, def->friction, g, nb->wall_history[k], def->dt)
-                       : bdl_contact_eval(cp, 0, def->friction, g, nb->wall_history[k], def->dt);
+        bdl_spring u = {nb->wall_history[k], nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};
+        bdl_contact_result res = def->hertz ? bdl_contact_eval(cp, 1, def->friction, g, u, def->dt)
+                                            : bdl_contact_eval(cp, 0, def->friction, g, u, def->dt);
         if (def->friction)
-            nb->wall_history[k] = res.spring;
+            nb->wall_history[k] = res.spring.u;
+        if (nb->wall_spring_work)
+            nb->wall_spring_work[k] = res.spring.work;
         nb->wall_touching[k] = 1;
         nb->wall_force[k] = res.force;
         *f = bdl_v3_add(*f, res.force);
@@ -544,10 +566,10 @@ static inline void add_to_j(bdl_particles *p, uint8_t *coordination, int32_t j, 
 /// pairs are in.
 static inline void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
                                    const bdl_force_def *def, long i, bdl_vec3 f, bdl_vec3 t,
-                                   double kick)
+                                   double kick, bdl_exact_sum *released)
 {
     if (nb->wall_start[i] < nb->wall_start[i + 1])
-        wall_contacts(p, nb, walls, def, i, &f, &t);
+        wall_contacts(p, nb, walls, def, i, &f, &t, released);
     double b = def->background_damping[p->species[i]];
     if (b > 0.0)
         f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
@@ -650,7 +672,7 @@ static void boundary_pairs(bdl_particles *p, bdl_neighbor *nb, const bdl_force_d
                            bdl_force_work *fw, int t)
 {
     pair_batch *b = fw->batch[t];
-    gather_view v = make_view(p, nb, def, fw);
+    gather_view v = make_view(p, nb, def, fw, t);
     long e = fw->out_start[t], end = fw->out_start[t + 1];
     while (e < end) {
         // Gather up to a batch of boundary pairs; slot m holds entry first + b->end[m].
@@ -681,6 +703,8 @@ static void boundary_pairs(bdl_particles *p, bdl_neighbor *nb, const bdl_force_d
             r->torque_j = slot_torque_j(b, q);
             if (nb->history)
                 nb->history[b->k[q]] = bdl_v3(b->unx[q], b->uny[q], b->unz[q]);
+            if (nb->spring_work)
+                nb->spring_work[b->k[q]] = b->work_new[q];
         }
     }
 }
@@ -694,9 +718,9 @@ typedef struct particle_sum {
 /// Adds slots [q, q_end) of one particle i and its boundary pairs listed before k_end to i (sum)
 /// and to their j, in list order; returns q_end.
 static BDL_FORCE_INLINE int accumulate(const pair_batch *b, int q, int q_end, int32_t k_end,
-                                       bdl_particles *p, bdl_vec3 *history, uint8_t *coordination,
-                                       const bdl_force_work *fw, long *out, long out_end,
-                                       int torques, particle_sum *sum)
+                                       bdl_particles *p, const gather_view *v,
+                                       uint8_t *coordination, const bdl_force_work *fw, long *out,
+                                       long out_end, int torques, particle_sum *sum)
 {
     long o = *out;
     for (;;) {
@@ -714,8 +738,10 @@ static BDL_FORCE_INLINE int accumulate(const pair_batch *b, int q, int q_end, in
             break;
         bdl_vec3 force = slot_force(b, q);
         add_to_j(p, coordination, b->j[q], force, slot_torque_j(b, q), torques);
-        if (history)
-            history[b->k[q]] = bdl_v3(b->unx[q], b->uny[q], b->unz[q]);
+        if (v->history)
+            v->history[b->k[q]] = bdl_v3(b->unx[q], b->uny[q], b->unz[q]);
+        if (v->spring_work)
+            v->spring_work[b->k[q]] = b->work_new[q];
         ++sum->contacts;
         sum->f = bdl_v3_add(sum->f, force);
         if (torques)
@@ -732,14 +758,6 @@ static inline particle_sum sum_start(const bdl_particles *p, const uint8_t *coor
     return s;
 }
 
-static inline void sum_finish(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                              const bdl_force_def *def, uint8_t *coordination, long i,
-                              const particle_sum *s, double kick)
-{
-    coordination[i] = (uint8_t)(s->contacts < 255 ? s->contacts : 255);
-    finish_particle(p, nb, walls, def, i, s->f, s->t, kick);
-}
-
 /// What every step of one thread's share of the force pass works with.
 typedef struct range_pass {
     bdl_particles *p;
@@ -748,12 +766,19 @@ typedef struct range_pass {
     const bdl_force_def *def;
     const bdl_force_work *fw;
     uint8_t *coordination;
-    pair_batch *b; ///< this thread's
+    pair_batch *b;           ///< this thread's
+    bdl_exact_sum *released; ///< this thread's (bdl_force_work)
     double kick;
     long hi;      ///< end of the range
     long out_end; ///< end of the range's boundary pairs
     int torques, uniform;
 } range_pass;
+
+static inline void sum_finish(const range_pass *r, long i, const particle_sum *s)
+{
+    r->coordination[i] = (uint8_t)(s->contacts < 255 ? s->contacts : 255);
+    finish_particle(r->p, r->nb, r->walls, r->def, i, s->f, s->t, r->kick, r->released);
+}
 
 /// Starts the sums of range t: cleared, then the boundary pairs from earlier ranges, whose i are
 /// smaller than all of ours.
@@ -787,10 +812,10 @@ static long crowded_particle(const range_pass *r, const gather_view *v, long i, 
         int m = gather_pairs(b, 0, v, &pi, k, k_end, r->fw->pair, &out, r->out_end, r->uniform);
         eval_batch(b, m, r->p, r->def, r->fw, v);
         out = out_first;
-        accumulate(b, 0, m, k_end, r->p, v->history, r->coordination, r->fw, &out, r->out_end,
-                   r->torques, &sum);
+        accumulate(b, 0, m, k_end, r->p, v, r->coordination, r->fw, &out, r->out_end, r->torques,
+                   &sum);
     }
-    sum_finish(r->p, r->nb, r->walls, r->def, r->coordination, i, &sum, r->kick);
+    sum_finish(r, i, &sum);
     return out;
 }
 
@@ -827,9 +852,9 @@ static BDL_FORCE_INLINE void scatter_run(const range_pass *r, const gather_view 
     int q = 0;
     for (long i = first; i < end; ++i) {
         particle_sum sum = sum_start(r->p, r->coordination, i);
-        q = accumulate(r->b, q, r->b->end[i - first], start[i + 1], r->p, v->history,
-                       r->coordination, r->fw, out, r->out_end, r->torques, &sum);
-        sum_finish(r->p, r->nb, r->walls, r->def, r->coordination, i, &sum, r->kick);
+        q = accumulate(r->b, q, r->b->end[i - first], start[i + 1], r->p, v, r->coordination, r->fw,
+                       out, r->out_end, r->torques, &sum);
+        sum_finish(r, i, &sum);
     }
 }
 
@@ -863,12 +888,13 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
                           .fw = fw,
                           .coordination = coordination,
                           .b = fw->batch[t],
+                          .released = &fw->released[t],
                           .kick = kick,
                           .hi = fw->range[t + 1],
                           .out_end = fw->out_start[t + 1],
                           .torques = def->friction || def->rolling,
                           .uniform = fw->uniform};
-    gather_view v = make_view(p, nb, def, fw);
+    gather_view v = make_view(p, nb, def, fw, t);
     open_range(&r, t);
     long out = fw->out_start[t];
     long i = fw->range[t];
@@ -889,19 +915,23 @@ bdl_result bdl_force_run(const bdl_force_pass *pass, bdl_particles *p, bdl_neigh
     if (r != BDL_OK)
         return r;
     threads = fw->threads;
+    for (int t = 0; t < threads; ++t)
+        fw->released[t] = 0;
     if (threads == 1) {
         pass->range(p, nb, walls, def, fw, coordination, kick, 0);
-        return BDL_OK;
-    }
+    } else {
 #pragma omp parallel num_threads(threads)
-    {
-        const int t = omp_get_thread_num();
-        // Phase 1: this range's boundary pairs, stored for the owners of their j.
-        pass->boundary(p, nb, def, fw, t);
+        {
+            const int t = omp_get_thread_num();
+            // Phase 1: this range's boundary pairs, stored for the owners of their j.
+            pass->boundary(p, nb, def, fw, t);
 #pragma omp barrier
-        // Phase 2: everything else, in index order.
-        pass->range(p, nb, walls, def, fw, coordination, kick, t);
+            // Phase 2: everything else, in index order.
+            pass->range(p, nb, walls, def, fw, coordination, kick, t);
+        }
     }
+    for (int t = 0; t < threads; ++t) // exact: the same on any thread count
+        nb->spring_work_left += fw->released[t];
     return BDL_OK;
 }
 

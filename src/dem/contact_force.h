@@ -50,6 +50,10 @@ typedef struct bdl_force_work {
     bdl_pair_result *result; ///< evaluated boundary pairs
     long capacity;
     struct bdl_pair_batch *batch[BDL_MAX_FORCE_THREADS]; ///< per-thread pair batches
+    /// Per thread, during a pass: the work Hertz-Mindlin springs held when their contacts ended
+    /// (added to bdl_neighbor.spring_work_left after the pass; exact sums, so the same on any
+    /// thread count).
+    bdl_exact_sum released[BDL_MAX_FORCE_THREADS];
     int uniform;     ///< every particle has the same species, radius and mass (these:)
     int species;     ///< species of particle 0
     double radius;   ///< radius of particle 0 [m]

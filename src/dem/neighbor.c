@@ -53,13 +53,14 @@ static bdl_result rank_cells(bdl_neighbor *nb)
 
 bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const int periodic[3],
                              double cutoff, double skin, long max_particles, int friction,
-                             int rolling, int rods)
+                             int hertz, int rolling, int rods)
 {
     memset(nb, 0, sizeof *nb);
     nb->origin = lo;
     nb->length = bdl_v3_sub(hi, lo);
     nb->skin = skin;
     nb->friction = friction;
+    nb->mindlin = friction && hertz;
     nb->rolling = rolling;
     nb->rods = rods;
     nb->parallel_min = BDL_PARALLEL_MIN;
@@ -94,13 +95,31 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
 
 void bdl_neighbor_free(bdl_neighbor *nb)
 {
-    void *arrays[] = {nb->cell_rank,      nb->cell_start,    nb->cell_cursor,
-                      nb->start,          nb->partner,       nb->history,
-                      nb->stash_history,  nb->stash_partner, nb->stash_start,
-                      nb->touching,       nb->wall_start,    nb->wall_prim,
-                      nb->wall_history,   nb->wall_force,    nb->wall_touching,
-                      nb->old_wall_start, nb->old_wall_prim, nb->old_wall_history,
-                      nb->perm,           nb->pcell,         nb->scratch};
+    void *arrays[] = {nb->cell_rank,
+                      nb->cell_start,
+                      nb->cell_cursor,
+                      nb->start,
+                      nb->partner,
+                      nb->history,
+                      nb->spring_work,
+                      nb->stash_history,
+                      nb->stash_spring_work,
+                      nb->stash_partner,
+                      nb->stash_start,
+                      nb->touching,
+                      nb->wall_start,
+                      nb->wall_prim,
+                      nb->wall_history,
+                      nb->wall_spring_work,
+                      nb->wall_force,
+                      nb->wall_touching,
+                      nb->old_wall_start,
+                      nb->old_wall_prim,
+                      nb->old_wall_history,
+                      nb->old_wall_spring_work,
+                      nb->perm,
+                      nb->pcell,
+                      nb->scratch};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
     memset(nb, 0, sizeof *nb);
@@ -211,6 +230,8 @@ static bdl_result reserve_pairs(bdl_neighbor *nb, long pairs)
              bdl_grow((void **)&nb->touching, cap, 1);
     if (ok && nb->friction)
         ok = bdl_grow((void **)&nb->history, cap, sizeof(bdl_vec3));
+    if (ok && nb->mindlin)
+        ok = bdl_grow((void **)&nb->spring_work, cap, sizeof(double));
     if (!ok)
         return BDL_ERR_NOMEM;
     nb->pair_capacity = cap;
@@ -227,7 +248,8 @@ static bdl_result stash_history(bdl_neighbor *nb)
     if (touching > nb->stash_capacity) {
         long cap = touching + touching / 8 + 64;
         if (!bdl_grow((void **)&nb->stash_history, cap, sizeof(bdl_vec3)) ||
-            !bdl_grow((void **)&nb->stash_partner, cap, sizeof(int32_t)))
+            !bdl_grow((void **)&nb->stash_partner, cap, sizeof(int32_t)) ||
+            (nb->mindlin && !bdl_grow((void **)&nb->stash_spring_work, cap, sizeof(double))))
             return BDL_ERR_NOMEM;
         nb->stash_capacity = cap;
     }
@@ -238,6 +260,8 @@ static bdl_result stash_history(bdl_neighbor *nb)
             if (!nb->touching[k])
                 continue;
             nb->stash_history[c] = nb->history[k];
+            if (nb->mindlin)
+                nb->stash_spring_work[c] = nb->spring_work[k];
             nb->stash_partner[c] = nb->partner[k];
             ++c;
         }
@@ -246,18 +270,16 @@ static bdl_result stash_history(bdl_neighbor *nb)
     return BDL_OK;
 }
 
-static bdl_vec3 find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj,
-                             int *found)
+/// The stash entry of the pair of old indices oi and oj, or -1.
+static int32_t find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj)
 {
     if (oi >= old_count || oj >= old_count)
-        return bdl_v3_zero();
+        return -1;
     int32_t a = oi < oj ? oi : oj, b = oi < oj ? oj : oi;
     for (int32_t k = nb->stash_start[a]; k < nb->stash_start[a + 1]; ++k)
-        if (nb->stash_partner[k] == b) {
-            *found = 1;
-            return oi < oj ? nb->stash_history[k] : bdl_v3_neg(nb->stash_history[k]);
-        }
-    return bdl_v3_zero();
+        if (nb->stash_partner[k] == b)
+            return k;
+    return -1;
 }
 
 /// Sorts the particles by ranked cell; those with drop[i] set (when drop is not NULL) are left
@@ -311,9 +333,14 @@ static void wrap_periodic(const bdl_neighbor *nb, bdl_particles *p)
 static void restore_history(bdl_neighbor *nb, long old_count, long i)
 {
     for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
-        int found = 0;
-        nb->history[k] = find_stashed(nb, old_count, nb->perm[i], nb->perm[nb->partner[k]], &found);
-        nb->touching[k] = (uint8_t)found;
+        const int32_t oi = nb->perm[i], oj = nb->perm[nb->partner[k]];
+        const int32_t e = find_stashed(nb, old_count, oi, oj);
+        // The spring is kept as seen from the lower particle: it turns round with the order.
+        const bdl_vec3 u = e < 0 ? bdl_v3_zero() : nb->stash_history[e];
+        nb->history[k] = oi < oj ? u : bdl_v3_neg(u);
+        if (nb->mindlin)
+            nb->spring_work[k] = e < 0 ? 0.0 : nb->stash_spring_work[e];
+        nb->touching[k] = (uint8_t)(e >= 0);
     }
 }
 
@@ -381,12 +408,17 @@ static void list_walls(bdl_neighbor *nb, const bdl_particles *p, const bdl_walls
     const int32_t oi = nb->perm[i];
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
         nb->wall_history[k] = bdl_v3_zero();
+        if (nb->mindlin)
+            nb->wall_spring_work[k] = 0.0;
         nb->wall_touching[k] = 0;
         if (oi >= old_count || !nb->old_wall_prim)
             continue;
         for (int32_t m = nb->old_wall_start[oi]; m < nb->old_wall_start[oi + 1]; ++m)
-            if (nb->old_wall_prim[m] == nb->wall_prim[k])
+            if (nb->old_wall_prim[m] == nb->wall_prim[k]) {
                 nb->wall_history[k] = nb->old_wall_history[m];
+                if (nb->mindlin)
+                    nb->wall_spring_work[k] = nb->old_wall_spring_work[m];
+            }
     }
 }
 
@@ -404,6 +436,9 @@ static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bd
     bdl_vec3 *th = nb->old_wall_history;
     nb->old_wall_history = nb->wall_history;
     nb->wall_history = th;
+    double *tw = nb->old_wall_spring_work;
+    nb->old_wall_spring_work = nb->wall_spring_work;
+    nb->wall_spring_work = tw;
     long tc = nb->old_wall_capacity;
     nb->old_wall_capacity = nb->wall_pair_capacity;
     nb->wall_pair_capacity = tc;
@@ -488,11 +523,12 @@ int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, con
 
 long bdl_neighbor_bytes(const bdl_neighbor *nb)
 {
-    long per_pair = (long)sizeof(int32_t) + 1 + (nb->friction ? (long)sizeof(bdl_vec3) : 0);
+    const long work = nb->mindlin ? (long)sizeof(double) : 0;
+    long per_pair = (long)sizeof(int32_t) + 1 + (nb->friction ? (long)sizeof(bdl_vec3) : 0) + work;
     long per_particle = 6 * (long)sizeof(int32_t) + (long)sizeof(bdl_vec3);
-    long per_wall = (long)(sizeof(int32_t) + 2 * sizeof(bdl_vec3) + 1);
+    long per_wall = (long)(sizeof(int32_t) + 2 * sizeof(bdl_vec3) + 1) + work;
     return nb->pair_capacity * per_pair + nb->scratch_count * per_particle +
-           nb->stash_capacity * (long)(sizeof(bdl_vec3) + sizeof(int32_t)) +
+           nb->stash_capacity * ((long)(sizeof(bdl_vec3) + sizeof(int32_t)) + work) +
            (nb->wall_pair_capacity + nb->old_wall_capacity) * per_wall +
            nb->cell_count * 3 * (long)sizeof(int32_t);
 }
@@ -506,6 +542,7 @@ static bdl_result reserve_wall_pairs(bdl_neighbor *nb, long count)
     long shared = cap > nb->old_wall_capacity ? cap : nb->old_wall_capacity;
     int ok = bdl_grow((void **)&nb->wall_prim, cap, sizeof(int32_t)) &&
              bdl_grow((void **)&nb->wall_history, cap, sizeof(bdl_vec3)) &&
+             (!nb->mindlin || bdl_grow((void **)&nb->wall_spring_work, cap, sizeof(double))) &&
              bdl_grow((void **)&nb->wall_force, shared, sizeof(bdl_vec3)) &&
              bdl_grow((void **)&nb->wall_touching, shared, 1);
     if (!ok)
@@ -562,10 +599,11 @@ static int check_pairs(const bdl_neighbor *nb, long n, char *why, size_t len)
                          (int)k, i, (int)j);
                 return 0;
             }
-            if (nb->touching[k] > 1 || (nb->history && !bdl_v3_isfinite(nb->history[k]))) {
+            if (nb->touching[k] > 1 || (nb->history && !bdl_v3_isfinite(nb->history[k])) ||
+                (nb->spring_work && !isfinite(nb->spring_work[k]))) {
                 snprintf(why, len,
                          "pair %d has a contact flag of %d or a tangential spring that "
-                         "is not finite",
+                         "is not finite (its displacement or its stored work)",
                          (int)k, (int)nb->touching[k]);
                 return 0;
             }
@@ -586,7 +624,8 @@ int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, siz
             return 0;
         }
         if (nb->wall_touching[k] > 1 || !bdl_v3_isfinite(nb->wall_history[k]) ||
-            !bdl_v3_isfinite(nb->wall_force[k])) {
+            !bdl_v3_isfinite(nb->wall_force[k]) ||
+            (nb->wall_spring_work && !isfinite(nb->wall_spring_work[k]))) {
             snprintf(why, len,
                      "wall contact %ld has a contact flag of %d or a spring or force "
                      "that is not finite",

@@ -20,6 +20,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/exact_sum.h"
 #include "dem/particles.h"
 #include "dem/walls.h"
 
@@ -39,15 +40,17 @@ typedef struct bdl_neighbor {
     // pairs (half list, i < j, grouped by i)
     long count; ///< particles the list was built for
     long pair_count, pair_capacity;
-    int32_t *start;    ///< pairs of i are [start[i], start[i+1])
-    int32_t *partner;  ///< j of each pair
-    bdl_vec3 *history; ///< tangential displacement [m] (NULL without friction)
-    uint8_t *touching; ///< 1 if the pair overlapped this step
-    long version;      ///< incremented at every rebuild (derived per-step structures follow it)
+    int32_t *start;      ///< pairs of i are [start[i], start[i+1])
+    int32_t *partner;    ///< j of each pair
+    bdl_vec3 *history;   ///< tangential displacement [m] (NULL without friction)
+    double *spring_work; ///< the work the spring holds [J] (Hertz-Mindlin only, else NULL)
+    uint8_t *touching;   ///< 1 if the pair overlapped this step
+    long version;        ///< incremented at every rebuild (derived per-step structures follow it)
 
     // History of the touching pairs, packed by their first particle's previous index while a
     // rebuild renumbers the particles.
     bdl_vec3 *stash_history;
+    double *stash_spring_work;
     int32_t *stash_partner;
     int32_t *stash_start;
     long stash_capacity;
@@ -56,11 +59,13 @@ typedef struct bdl_neighbor {
     int32_t *wall_start; ///< (count + 1)
     int32_t *wall_prim;
     bdl_vec3 *wall_history;
-    bdl_vec3 *wall_force; ///< force on the particle [N]
+    double *wall_spring_work; ///< as spring_work (Hertz-Mindlin only, else NULL)
+    bdl_vec3 *wall_force;     ///< force on the particle [N]
     uint8_t *wall_touching;
     // previous wall list, kept to carry history across rebuilds
     int32_t *old_wall_start, *old_wall_prim;
     bdl_vec3 *old_wall_history;
+    double *old_wall_spring_work;
     long old_wall_capacity;
 
     bdl_vec3 wall_offset_at_build[BDL_MAX_WALLS];
@@ -69,6 +74,10 @@ typedef struct bdl_neighbor {
     void *scratch;  ///< scratch for permutations (count * 24 bytes)
     long scratch_count;
     int friction, rolling;
+    int mindlin; ///< Hertz-Mindlin springs (friction and the Hertz law): their work is kept
+    /// The work the springs held when their contacts ended, since the start [J]: it left the
+    /// bodies. Summed exactly (core/exact_sum.h): the force pass's threads add to it.
+    bdl_exact_sum spring_work_left;
     int rods;          ///< the particles are rods (bdl_particles.rods)
     long parallel_min; ///< fewer particles than this: builds on one thread (core/parallel.h)
     long builds;       ///< rebuilds so far
@@ -77,9 +86,10 @@ typedef struct bdl_neighbor {
 /// Sets up the grid for the domain; `cutoff` = the largest particle extent (a diameter, or a
 /// rod's length) + skin [m]. `max_particles` bounds the cell count (cells grow when the domain is
 /// much larger than the particles need). `rods`: the particles are rods (the lists follow them).
+/// `hertz`: the Hertz law (with friction the springs' stored work is kept beside them).
 bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const int periodic[3],
                              double cutoff, double skin, long max_particles, int friction,
-                             int rolling, int rods);
+                             int hertz, int rolling, int rods);
 void bdl_neighbor_free(bdl_neighbor *nb);
 
 /// Wraps positions into periodic axes, re-sorts the particles, rebuilds pair and wall lists and
@@ -129,8 +139,8 @@ bdl_result bdl_neighbor_reserve(bdl_neighbor *nb, long particles, long pairs, lo
 /// Checks lists restored from a file against what the force pass relies on, for `n` particles and
 /// `prims` wall primitives: the offsets of each particle's pairs and wall contacts rise from 0 to
 /// the counts stored, every pair (i, j) has i < j < n, every wall contact names a primitive in
-/// [0, prims), contact flags are 0 or 1, springs and forces are finite. Returns 1, or 0 with the
-/// first violation in `why` ("pair 1234 refers to particle 99999 of 8070").
+/// [0, prims), contact flags are 0 or 1, springs, their stored work and forces are finite. Returns
+/// 1, or 0 with the first violation in `why` ("pair 1234 refers to particle 99999 of 8070").
 int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, size_t len);
 
 #endif

@@ -119,7 +119,8 @@ static bdl_vec3 rolling(const bdl_particles *p, long a, long b, const bdl_contac
 
 /// Wall contact k of particle i, added to f and t.
 static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                         const bdl_force_def *def, long i, int32_t k, bdl_vec3 *f, bdl_vec3 *t)
+                         const bdl_force_def *def, long i, int32_t k, bdl_vec3 *f, bdl_vec3 *t,
+                         bdl_exact_sum *released)
 {
     const int prim = nb->wall_prim[k];
     bdl_rod_contact c;
@@ -127,6 +128,10 @@ static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wa
         nb->wall_touching[k] = 0;
         nb->wall_force[k] = bdl_v3_zero();
         nb->wall_history[k] = bdl_v3_zero();
+        if (nb->wall_spring_work) { // what the spring still holds leaves the bodies
+            *released += bdl_exact_term(nb->wall_spring_work[k]);
+            nb->wall_spring_work[k] = 0.0;
+        }
         return;
     }
     const int wall = walls->prims[prim].wall;
@@ -137,10 +142,13 @@ static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wa
     g.v_c = bdl_v3_sub(bdl_v3_add(p->vel[i], bdl_v3_cross(p->omega[i], c.arm_i)),
                        walls->velocity[wall]);
     const bdl_contact_params *cp = def->wall_params + wall * def->species_count + p->species[i];
-    const bdl_contact_result res =
-        bdl_contact_eval(cp, def->hertz, def->friction, g, nb->wall_history[k], def->dt);
+    const bdl_spring u = {nb->wall_history[k],
+                          nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};
+    const bdl_contact_result res = bdl_contact_eval(cp, def->hertz, def->friction, g, u, def->dt);
     if (def->friction)
-        nb->wall_history[k] = res.spring;
+        nb->wall_history[k] = res.spring.u;
+    if (nb->wall_spring_work)
+        nb->wall_spring_work[k] = res.spring.work;
     nb->wall_touching[k] = 1;
     nb->wall_force[k] = res.force;
     *f = bdl_v3_add(*f, res.force);
@@ -152,10 +160,11 @@ static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wa
 /// Walls, background damping, storage and the closing half kick of particle i, once all its
 /// pairs are in: v += h (F/m + g + a_gas), L += h T, and the angular velocity of the new momentum.
 static void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
-                            const bdl_force_def *def, long i, bdl_vec3 f, bdl_vec3 t, double kick)
+                            const bdl_force_def *def, long i, bdl_vec3 f, bdl_vec3 t, double kick,
+                            bdl_exact_sum *released)
 {
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k)
-        wall_contact(p, nb, walls, def, i, k, &f, &t);
+        wall_contact(p, nb, walls, def, i, k, &f, &t, released);
     const double b = def->background_damping[p->species[i]];
     if (b > 0.0)
         f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
@@ -197,6 +206,7 @@ typedef struct rod_batch {
     double wjx[ROD_BATCH], wjy[ROD_BATCH], wjz[ROD_BATCH];
     double ux[ROD_BATCH], uy[ROD_BATCH], uz[ROD_BATCH];    ///< spring
     double unx[ROD_BATCH], uny[ROD_BATCH], unz[ROD_BATCH]; ///< spring after the step
+    double work[ROD_BATCH], work_new[ROD_BATCH]; ///< Mindlin springs: work held, after the step
     double imi[ROD_BATCH], iti[ROD_BATCH], iai[ROD_BATCH]; ///< 1/m, 1/I transverse and axial
     double imj[ROD_BATCH], itj[ROD_BATCH], iaj[ROD_BATCH];
     double fx[ROD_BATCH], fy[ROD_BATCH], fz[ROD_BATCH];
@@ -261,15 +271,21 @@ static inline void move_slot(rod_batch *restrict b, int q, int s)
     b->slot[q] = s;
 }
 
-/// Touching flags and ended springs of slots [0, n) brought up to date, the touching slots moved
-/// to the front (in order); returns their count.
-static int compact(rod_batch *restrict b, int n, bdl_neighbor *nb)
+/// Touching flags and ended springs of slots [0, n) brought up to date (what an ended Mindlin
+/// spring held added to *released), the touching slots moved to the front (in order); returns
+/// their count.
+static int compact(rod_batch *restrict b, int n, bdl_neighbor *nb, bdl_exact_sum *released)
 {
     int c = 0;
     for (int s = 0; s < n; ++s) {
         const int32_t k = b->k[s], touching = b->touch[s];
-        if (nb->history && nb->touching[k] && !touching)
-            nb->history[k] = bdl_v3_zero(); // the contact has ended
+        if (nb->history && nb->touching[k] && !touching) { // the contact has ended
+            nb->history[k] = bdl_v3_zero();
+            if (nb->spring_work) { // what the spring still holds leaves the bodies
+                *released += bdl_exact_term(nb->spring_work[k]);
+                nb->spring_work[k] = 0.0;
+            }
+        }
         nb->touching[k] = (uint8_t)touching;
         move_slot(b, c, s);
         c += touching;
@@ -294,6 +310,7 @@ static void gather_motion(rod_batch *restrict b, int c, const bdl_particles *p,
         b->cp[q] = p->species[i] * species_count + p->species[j];
         const bdl_vec3 u = nb->history ? nb->history[b->k[q]] : bdl_v3_zero();
         b->ux[q] = u.x, b->uy[q] = u.y, b->uz[q] = u.z;
+        b->work[q] = nb->spring_work ? nb->spring_work[b->k[q]] : 0.0;
     }
 }
 
@@ -317,7 +334,7 @@ static BDL_FORCE_INLINE int rod_slot(rod_batch *restrict b, int q, const bdl_con
     const bdl_vec3 wi = slot_v3(b->wix, b->wiy, b->wiz, q), wj = slot_v3(b->wjx, b->wjy, b->wjz, q);
     g.v_c = bdl_v3_sub(bdl_v3_add(slot_v3(b->vix, b->viy, b->viz, q), bdl_v3_cross(wi, c.arm_i)),
                        bdl_v3_add(slot_v3(b->vjx, b->vjy, b->vjz, q), bdl_v3_cross(wj, c.arm_j)));
-    const bdl_vec3 u = friction ? slot_v3(b->ux, b->uy, b->uz, q) : bdl_v3_zero();
+    const bdl_spring u = {friction ? slot_v3(b->ux, b->uy, b->uz, q) : bdl_v3_zero(), b->work[q]};
     const bdl_contact_result res = bdl_contact_eval_mode(cp, hertz, friction, g, u, dt, trial);
     const bdl_vec3 ti = bdl_v3_cross(c.arm_i, res.force);
     const bdl_vec3 tj = bdl_v3_cross(c.arm_j, bdl_v3_neg(res.force));
@@ -325,7 +342,8 @@ static BDL_FORCE_INLINE int rod_slot(rod_batch *restrict b, int q, const bdl_con
     b->tix[q] = ti.x, b->tiy[q] = ti.y, b->tiz[q] = ti.z;
     b->tjx[q] = tj.x, b->tjy[q] = tj.y, b->tjz[q] = tj.z;
     if (friction)
-        b->unx[q] = res.spring.x, b->uny[q] = res.spring.y, b->unz[q] = res.spring.z;
+        b->unx[q] = res.spring.u.x, b->uny[q] = res.spring.u.y, b->unz[q] = res.spring.u.z;
+    b->work_new[q] = res.spring.work;
     b->fn[q] = res.normal;
     b->aix[q] = c.arm_i.x, b->aiy[q] = c.arm_i.y, b->aiz[q] = c.arm_i.z;
     b->ajx[q] = c.arm_j.x, b->ajy[q] = c.arm_j.y, b->ajz[q] = c.arm_j.z;
@@ -370,16 +388,18 @@ BDL_SIMD_CLONES static void kernel(rod_batch *b, int c, const bdl_force_def *def
 /// Evaluates the n gathered slots of a batch: returns the count c of touching pairs, whose
 /// results are in slots [0, c) (b->slot[q] the gathered slot of each).
 static int evaluate_batch(rod_batch *b, int n, bdl_particles *p, bdl_neighbor *nb,
-                          const bdl_force_def *def)
+                          const bdl_force_def *def, bdl_exact_sum *released)
 {
     closest_loop(b, n);
-    const int c = compact(b, n, nb);
+    const int c = compact(b, n, nb, released);
     gather_motion(b, c, p, nb, def->species_count);
     kernel(b, c, def);
     for (int q = 0; q < c; ++q) {
         if (nb->history)
             nb->history[b->k[q]] = def->friction ? slot_v3(b->unx, b->uny, b->unz, q)
                                                  : slot_v3(b->ux, b->uy, b->uz, q);
+        if (nb->spring_work)
+            nb->spring_work[b->k[q]] = b->work_new[q];
         if (def->rolling) {
             const int32_t i = b->i[q], j = b->j[q];
             const bdl_contact_params *cp = def->pair_params + b->cp[q];
@@ -414,7 +434,7 @@ static void boundary_pairs(bdl_particles *p, bdl_neighbor *nb, const bdl_force_d
             gather_shafts(&b, (int)(e - first), p, nb, fw->pair_i[e], fw->pair[e]);
             fw->result[e].touching = 0;
         }
-        const int c = evaluate_batch(&b, (int)(last - first), p, nb, def);
+        const int c = evaluate_batch(&b, (int)(last - first), p, nb, def, &fw->released[t]);
         for (int q = 0; q < c; ++q)
             fw->result[first + b.slot[q]] = slot_result(&b, q);
     }
@@ -450,6 +470,7 @@ typedef struct rod_range {
     const bdl_force_def *def;
     const bdl_force_work *fw;
     uint8_t *coordination;
+    bdl_exact_sum *released; ///< this thread's (bdl_force_work)
     double kick;
     long hi, out_end; ///< end of the range and of its boundary pairs
 } rod_range;
@@ -468,7 +489,7 @@ static int run_pairs(const rod_range *r, rod_batch *b, long first, int32_t k0, i
         }
         gather_shafts(b, n++, r->p, r->nb, owner[k], k);
     }
-    const int c = evaluate_batch(b, n, r->p, r->nb, r->def);
+    const int c = evaluate_batch(b, n, r->p, r->nb, r->def, r->released);
     for (int q = 0; q < c; ++q)
         b->end[b->i[q] - first] = q + 1;
     return c;
@@ -506,7 +527,7 @@ static inline rod_sum sum_start(const rod_range *r, long i)
 static inline void sum_finish(const rod_range *r, long i, const rod_sum *s)
 {
     r->coordination[i] = (uint8_t)(s->contacts < 255 ? s->contacts : 255);
-    finish_particle(r->p, r->nb, r->walls, r->def, i, s->f, s->t, r->kick);
+    finish_particle(r->p, r->nb, r->walls, r->def, i, s->f, s->t, r->kick, r->released);
 }
 
 /// Particle i with more listed pairs than a batch holds: a batch at a time. Returns the cursor of
@@ -550,8 +571,16 @@ static void force_range(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wal
                         const bdl_force_def *def, bdl_force_work *fw, uint8_t *coordination,
                         double kick, int t)
 {
-    const rod_range r = {
-        p, nb, walls, def, fw, coordination, kick, fw->range[t + 1], fw->out_start[t + 1]};
+    const rod_range r = {p,
+                         nb,
+                         walls,
+                         def,
+                         fw,
+                         coordination,
+                         &fw->released[t],
+                         kick,
+                         fw->range[t + 1],
+                         fw->out_start[t + 1]};
     const long lo = fw->range[t];
     if (!def->loads_cleared)
         for (long i = lo; i < r.hi; ++i)

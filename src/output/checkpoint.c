@@ -1,6 +1,6 @@
 // bedlam — the checkpoint file: header, payload, save and load.
 //
-//   header (32 bytes)   "BDLCKPT6", format version (u32, 6), header size (u32, 32), payload size
+//   header (32 bytes)   "BDLCKPT7", format version (u32, 7), header size (u32, 32), payload size
 //                       (u64), CRC-32 of the payload (u32), CRC-32 of the 28 bytes before it (u32)
 //   payload             the scene record (checkpoint_scene.c), the time step, the scalars, the
 //                       counts, the arrays (state_fields), in the machine's byte order
@@ -25,9 +25,10 @@
 #include "output/checkpoint_parts.h"
 
 // Versions 2-5 grew the state (the gas, outflow, force and torque records); 6 made the file
-// untrusted input: header with sizes and checksums, the scene record, range checks.
-static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '6'};
-enum { VERSION = 6, HEADER_BYTES = 32 };
+// untrusted input: header with sizes and checksums, the scene record, range checks; 7 holds the
+// work in the Hertz-Mindlin springs (held, and left by ended contacts).
+static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
+enum { VERSION = 7, HEADER_BYTES = 32 };
 
 void bdl_ckpt_put(bdl_ckpt_writer *out, const void *data, size_t size)
 {
@@ -90,9 +91,15 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
     f[k++] = (field){nb->touching, np};
     if (nb->friction)
         f[k++] = (field){nb->history, np * v};
+    if (nb->mindlin) {
+        f[k++] = (field){nb->spring_work, np * sizeof(double)};
+        f[k++] = (field){&nb->spring_work_left, sizeof nb->spring_work_left};
+    }
     f[k++] = (field){nb->wall_start, (n + 1) * i32};
     f[k++] = (field){nb->wall_prim, nw * i32};
     f[k++] = (field){nb->wall_history, nw * v};
+    if (nb->mindlin)
+        f[k++] = (field){nb->wall_spring_work, nw * sizeof(double)};
     f[k++] = (field){nb->wall_force, nw * v};
     f[k++] = (field){nb->wall_touching, nw};
     // The gas's forces on the particles, held between gas steps; the rods' orientations.

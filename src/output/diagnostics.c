@@ -36,6 +36,7 @@ const char *const bdl_diagnostics_columns[] = {
     "mean_height",
     "multi_contact_ratio",
     "wall_force",
+    "spring_work_left",
     "rod_vertical_cos",
     "rod_order",
 };
@@ -86,8 +87,9 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         if (ratio > s->overlap)
             s->overlap = ratio;
         const bdl_contact_params *cp = &w->pair_params[p->species[i] * ns + p->species[j]];
-        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff,
-                                                 nb->history ? nb->history[k] : bdl_v3_zero());
+        const bdl_spring u = {nb->history ? nb->history[k] : bdl_v3_zero(),
+                              nb->spring_work ? nb->spring_work[k] : 0.0};
+        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff, u);
     }
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
         bdl_world_contact c;
@@ -98,8 +100,9 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
             s->overlap = ratio;
         const bdl_contact_params *cp =
             &w->wall_params[w->walls.prims[c.prim].wall * ns + p->species[i]];
-        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff,
-                                                 w->friction ? nb->wall_history[k] : bdl_v3_zero());
+        const bdl_spring u = {w->friction ? nb->wall_history[k] : bdl_v3_zero(),
+                              nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};
+        s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff, u);
         s->wall_force += c.normal;
     }
 }
@@ -218,6 +221,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->rotational_energy = s.rotational;
     d->potential_energy = s.potential;
     d->elastic_energy = s.elastic;
+    d->spring_work_left = bdl_exact_value(w->neighbor.spring_work_left);
     d->mean_coordination = n > 0 ? s.contacts / (double)n : 0.0;
     d->multi_contact_ratio =
         w->coordination ? bdl_coordination(w->coordination, n).multi_contact_ratio : 0.0;
@@ -232,8 +236,8 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->inlet_velocity = w->gas ? bdl_world_inlet_velocity(w, w->time) : 0.0;
     d->particles_out = w->removed;
     d->mass_out = w->removed_mass;
-    d->energy_balance = bdl_diagnostics_total_energy(d) + w->removed_energy - energy0 -
-                        w->wall_work - w->inserted_energy - d->gas_work;
+    d->energy_balance = bdl_diagnostics_total_energy(d) + w->removed_energy + d->spring_work_left -
+                        energy0 - w->wall_work - w->inserted_energy - d->gas_work;
 }
 
 int bdl_diagnostics_may_be_undefined(int column)
@@ -275,6 +279,7 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[23] = d->mean_height;
     v[24] = d->multi_contact_ratio;
     v[25] = d->wall_force;
-    v[26] = d->rod_vertical_cos;
-    v[27] = d->rod_order;
+    v[26] = d->spring_work_left;
+    v[27] = d->rod_vertical_cos;
+    v[28] = d->rod_order;
 }

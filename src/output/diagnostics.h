@@ -22,8 +22,8 @@ typedef struct bdl_diagnostics {
     double mean_coordination; ///< particle-particle contacts per particle
     double max_overlap_ratio; ///< largest overlap / smaller radius [-]
     double wall_work;         ///< work done by walls on the particles since the start [J]
-    double energy_balance;    ///< E + E_out - E0 - W_walls - W_gas - E_inserted [J]; <= 0 for
-                              ///< dissipative contacts
+    double energy_balance;    ///< E + E_out + W_left - E0 - W_walls - W_gas - E_inserted [J];
+                              ///< <= 0 for dissipative contacts
     double max_speed;         ///< [m/s]
     // With a gas (0 without):
     double gas_work;             ///< work done by the gas on the particles since the start [J]
@@ -43,6 +43,9 @@ typedef struct bdl_diagnostics {
     double mean_height;    ///< with a gas: mean particle centre height above the floor [m]
     double multi_contact_ratio; ///< particles with >= 2 contacts / particles with >= 1
     double wall_force;          ///< sum of the normal forces of all particle-wall contacts [N]
+    double spring_work_left;    ///< W_left: work the Hertz-Mindlin springs held when their
+                                ///< contacts ended, since the start [J] (a spring whose stiffness
+                                ///< fell with the overlap gives back less than it took: > 0)
     // Of the rods (NAN without; the columns are written only in scenes with rods):
     double rod_vertical_cos; ///< mean |cos| of the angle of the axes to the vertical
     double rod_order;        ///< nematic order parameter S of the axes (analysis/granular.h)

@@ -193,7 +193,7 @@ bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_di
     if (active > g->active_max)
         g->active_max = active;
     double scale = g->active_max + fabs(w->wall_work) + fabs(w->inserted_energy) +
-                   fabs(w->gas_work) + fabs(w->removed_energy);
+                   fabs(w->gas_work) + fabs(w->removed_energy) + fabs(d->spring_work_left);
     double growth = d->energy_balance;
     if (growth > gd->energy_growth * scale && growth > 1e-12 * fabs(g->energy0)) {
         snprintf(

@@ -124,6 +124,39 @@ typedef struct bdl_verify_column {
 /// Five spheres stacked on a plane under gravity, settled: the overlaps against the spring law.
 bdl_verify_column bdl_verify_static_column(int hertz, double dt_fraction);
 
+// ---- oblique impact of an elastic sphere on a plane (verify_oblique.c) ----
+
+/// kappa = 2 (1 - nu)/(2 - nu), the ratio of tangential to normal stiffness at one overlap.
+double bdl_verify_oblique_kappa(void);
+/// chi = (1 - nu)/(2 - nu) (1 + m r^2/I) of Maw, Barber & Fawcett (1976): 1.4412 here.
+double bdl_verify_oblique_chi(void);
+/// Contact time of the oblique case's normal impact [s].
+double bdl_verify_oblique_contact_time(void);
+/// Tangential contact-point speed of reduced incidence psi1 = kappa v_t/(mu v_n) [m/s].
+double bdl_verify_oblique_speed(double psi1, double mu);
+
+typedef struct bdl_verify_oblique {
+    double vt1, vn1;      ///< contact point before: tangential velocity, approach speed [m/s]
+    double vt2, vn2;      ///< after separation: tangential velocity, normal speed [m/s] (NAN: none)
+    double energy_error;  ///< (E after - E before)/E before, E kinetic + rotational
+    double worst_balance; ///< largest |energy balance|/E before over the steps (diagnostics)
+    long steps;
+} bdl_verify_oblique;
+/// The case's world: a steel sphere (d = 10 mm, E = 200 GPa, nu = 0.3, e = 1, Hertz-Mindlin,
+/// friction mu) moving at (vt, 0, -1) m/s without spin onto a plane, touching it a fraction phi
+/// into the 4th step; gravity off.
+bdl_world *bdl_verify_oblique_world(double vt, double mu, double dt, double phi);
+/// One impact of that world, measured after the sphere has left the plane.
+bdl_verify_oblique bdl_verify_oblique_impact(double vt, double mu, double dt, double phi);
+/// The same impact under bedlam's law in the limit dt -> 0, by RK4 of the same equations of motion
+/// (lever arm r - delta/2): sliding = 0 in full stick (the spring never capped), 1 in gross
+/// sliding throughout (F_t = -mu F_n sign v_t). `steps`: RK4 steps; worst_balance unset.
+bdl_verify_oblique bdl_verify_oblique_reference(double vt, double mu, int sliding);
+/// psi2 of Maw, Barber & Fawcett's theory at psi1 for Poisson's ratio nu and 1 + m r^2/I =
+/// inertia_factor (3.5 for a solid sphere), by the method of dimensionality reduction on
+/// `springs` springs (2000: converged to 1e-5).
+double bdl_verify_mbf_psi2(double nu, double inertia_factor, double psi1, int springs);
+
 // ---- rods (verify_rods.c) ----
 
 #define BDL_VERIFY_TILT_BINS 9

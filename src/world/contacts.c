@@ -14,7 +14,8 @@ int bdl_world_vertical_axis(const bdl_world *w, double *up)
 /// The normal force of the law for a contact of geometry g and parameters cp (no history).
 static double normal_force(const bdl_world *w, const bdl_contact_params *cp, bdl_contact_geom g)
 {
-    return bdl_contact_eval(cp, w->hertz, 0, g, bdl_v3_zero(), w->dt).normal;
+    const bdl_spring none = {bdl_v3_zero(), 0.0};
+    return bdl_contact_eval(cp, w->hertz, 0, g, none, w->dt).normal;
 }
 
 /// Spheres: the centres' separation, and the relative velocity of the centres (the spins add

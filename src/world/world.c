@@ -374,6 +374,9 @@ uint64_t bdl_world_hash(const bdl_world *w)
     if (w->neighbor.history)
         h = bdl_hash_bytes(h, w->neighbor.history,
                            (size_t)w->neighbor.pair_count * sizeof(bdl_vec3));
+    if (w->neighbor.spring_work)
+        h = bdl_hash_bytes(h, w->neighbor.spring_work,
+                           (size_t)w->neighbor.pair_count * sizeof(double));
     h = bdl_hash_bytes(h, &w->time, sizeof w->time);
     h = bdl_hash_bytes(h, &w->step, sizeof w->step);
     if (w->gas) {
@@ -583,7 +586,7 @@ static bdl_result build_neighbor(bdl_world *w, long expected, bdl_scene_error *e
     double skin = scene->skin * d_max;
     bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,
                                      scene->periodic, extent + skin, skin, expected, w->friction,
-                                     w->rolling, w->particles.rods);
+                                     w->hertz, w->rolling, w->particles.rods);
     if (r == BDL_ERR_SCENE)
         snprintf(err->message, sizeof err->message,
                  "%s: [domain] periodic axes must be at least 3 x (largest particle + skin) = %g "

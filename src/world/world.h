@@ -120,7 +120,8 @@ bdl_vec3 bdl_world_gravity(const bdl_world *world, double t);
 /// Recomputes forces for the current state (after creation, loading or a parameter change).
 bdl_result bdl_world_compute_forces(bdl_world *world);
 
-/// Hash of the full dynamic state (positions, velocities, spins, ids, history, time).
+/// Hash of the full dynamic state (positions, velocities, spins, ids, history and the work in the
+/// springs, time).
 uint64_t bdl_world_hash(const bdl_world *world);
 
 /// Builds the gas and the coupling of a scene with [gas] (world_create calls it).
