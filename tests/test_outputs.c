@@ -58,6 +58,44 @@ static void finite_check(bdl_world *w)
     w->gas->p[bdl_grid_index(&w->gas->grid, 1, 0, 2)] = 0.0;
 }
 
+/// A diagnostics row: NaN is accepted only in the columns that may be undefined, found by name
+/// (a column added before the rods' must not shift the set): spring_work_left is refused, the
+/// rods' order accepted.
+static void undefined_columns(const bdl_world *w)
+{
+    static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio", "mean_height",
+                                            "rod_vertical_cos", "rod_order"};
+    int spring = -1, order = -1;
+    for (int c = 0; c < bdl_diagnostics_column_count; ++c) {
+        int expected = 0;
+        for (size_t k = 0; k < sizeof undefined / sizeof undefined[0]; ++k)
+            expected |= strcmp(bdl_diagnostics_columns[c], undefined[k]) == 0;
+        CHECK_MSG(bdl_diagnostics_may_be_undefined(c) == expected, "column %d (%s)", c,
+                  bdl_diagnostics_columns[c]);
+        spring = strcmp(bdl_diagnostics_columns[c], "spring_work_left") == 0 ? c : spring;
+        order = strcmp(bdl_diagnostics_columns[c], "rod_order") == 0 ? c : order;
+    }
+    CHECK(spring >= 0 && order >= 0);
+    if (spring < 0 || order < 0)
+        return;
+    bdl_diagnostics d;
+    bdl_diagnostics_compute(w, 0.0, &d);
+    double row[64];
+    CHECK(bdl_diagnostics_column_count <= 64);
+    bdl_diagnostics_row(&d, row);
+    row[order] = NAN;
+    const int n = bdl_diagnostics_column_count;
+    char message[1024];
+    CHECK(bdl_guards_check_row(w, "diagnostics.csv", bdl_diagnostics_columns, row, n,
+                               bdl_diagnostics_may_be_undefined, message,
+                               sizeof message) == BDL_OK);
+    row[spring] = NAN;
+    CHECK(bdl_guards_check_row(w, "diagnostics.csv", bdl_diagnostics_columns, row, n,
+                               bdl_diagnostics_may_be_undefined, message,
+                               sizeof message) == BDL_ERR_UNSTABLE);
+    CHECK_MSG(strstr(message, "the spring_work_left of") != NULL, "%s", message);
+}
+
 int main(void)
 {
     bdl_log_set_file(tmpfile());
@@ -80,6 +118,7 @@ int main(void)
         CHECK(bdl_run_outputs_step(&o, w) == BDL_OK);
     }
     finite_check(w);
+    undefined_columns(w);
 
     // A position gone NaN: the row due at this step is not written, the step stops the run.
     CHECK(bdl_world_step(w) == BDL_OK);

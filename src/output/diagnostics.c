@@ -242,8 +242,15 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
 
 int bdl_diagnostics_may_be_undefined(int column)
 {
-    // Columns of bdl_diagnostics_row: probe_pressure_drop, weight_ratio, mean_height and the rods'.
-    return column == 18 || column == 19 || column == 23 || column == 26 || column == 27;
+    // By name, so that a column added to bdl_diagnostics_columns cannot shift the set.
+    static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio", "mean_height",
+                                            "rod_vertical_cos", "rod_order"};
+    if (column < 0 || column >= bdl_diagnostics_column_count)
+        return 0;
+    for (size_t k = 0; k < sizeof undefined / sizeof undefined[0]; ++k)
+        if (strcmp(bdl_diagnostics_columns[column], undefined[k]) == 0)
+            return 1;
+    return 0;
 }
 
 double bdl_diagnostics_total_energy(const bdl_diagnostics *d)
