@@ -2,12 +2,13 @@
 //
 // An input is one selector byte and the bytes of a checkpoint file. The selector picks the world
 // the file is loaded into (beads with friction, walls and a pour; the same with a gas; rods and
-// balls in a box) and whether the harness first rewrites the header's payload size and both
-// checksums to fit the bytes: seven inputs in eight, so that mutations reach the scene record,
-// the counts and the range checks instead of stopping at the checksum; the eighth keeps them as
-// they are. A load must end in BDL_OK or in BDL_ERR_CHECKPOINT with a reason (BDL_ERR_NOMEM for a
-// state too large for memory); a state it accepts is stepped three times. Anything else (a
-// crash, a sanitizer report, a hang, another result) is a finding.
+// balls in a box; the beads with the Hertz law, whose Mindlin springs keep their work) and whether
+// the harness first rewrites the header's payload size and both checksums to fit the bytes: seven
+// inputs in eight, so that mutations reach the scene record, the counts and the range checks
+// instead of stopping at the checksum; the eighth keeps them as they are. A load must end in BDL_OK
+// or in BDL_ERR_CHECKPOINT with a reason (BDL_ERR_NOMEM for a state too large for memory); a state
+// it accepts is stepped three times. Anything else (a crash, a sanitizer report, a hang, another
+// result) is a finding.
 //
 // With libFuzzer (clang):
 //   CC=clang cmake -S . -B build-fuzz -DBDL_FUZZ=ON && cmake --build build-fuzz --target
@@ -29,11 +30,11 @@
 #include "world/world.h"
 
 // Small worlds: building one per input is most of a run's cost.
-#define BEADS                                                                                      \
+#define BEADS_OF(law, stiffness)                                                                   \
     "[run]\nend_time = 1\ndt_fraction = 0.05\nseed = 5\ngravity = 0 0 -100\n"                      \
     "[domain]\nmin = -0.006 -0.006 0\nmax = 0.006 0.006 0.02\n"                                    \
-    "[contact]\nlaw = linear\nrolling = constant\ndamping = closed_form\n"                         \
-    "[species bead]\ndiameter = 0.002\ndensity = 2500\nstiffness = 1000\nrestitution = 0.5\n"      \
+    "[contact]\nlaw = " law "\nrolling = constant\ndamping = closed_form\n"                        \
+    "[species bead]\ndiameter = 0.002\ndensity = 2500\n" stiffness "\nrestitution = 0.5\n"         \
     "friction = 0.4\nrolling_friction = 0.02\n"                                                    \
     "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n"                                  \
     "[wall tube]\ntype = cylinder\npoint = 0 0 0\naxis = 0 0 1\nradius = 0.0055\n"                 \
@@ -41,8 +42,11 @@
     "region_max = 0.004 0.004 0.01\n"                                                              \
     "[create rain]\ntype = pour\nspecies = bead\ncount = 4\nrate = 2000\n"                         \
     "region_min = -0.003 -0.003 0.014\nregion_max = 0.003 0.003 0.019\n"
+#define BEADS BEADS_OF("linear", "stiffness = 1000")
 
-static const char *const scenes[3] = {
+enum { WORLDS = 4 };
+
+static const char *const scenes[WORLDS] = {
     BEADS,
     BEADS "[gas]\ncells = 3 3 5\nzmin = inlet\nzmax = outlet\ninlet_velocity = 0.2\n"
           "[coupling]\ndrag = beetstra\n",
@@ -58,6 +62,7 @@ static const char *const scenes[3] = {
     "region_max = 0.012 0.012 0.02\ncount = 12\n"
     "[create balls]\ntype = random\nspecies = ball\nregion_min = 0 0 0.003\n"
     "region_max = 0.012 0.012 0.02\ncount = 4\n",
+    BEADS_OF("hertz", "youngs_modulus = 1e7"),
 };
 
 static bdl_world *make_world(int k)
@@ -91,7 +96,7 @@ static bdl_result load_one(const uint8_t *data, size_t size)
 {
     if (size < 2)
         return BDL_ERR_CHECKPOINT;
-    const int k = data[0] % 3, keep = (data[0] / 3) % 8 == 7;
+    const int k = data[0] % WORLDS, keep = (data[0] / WORLDS) % 8 == 7;
     size_t n = size - 1;
     unsigned char *d = malloc(n);
     if (!d)
@@ -136,7 +141,7 @@ static int write_seeds(const char *dir)
         return 1;
     }
     int failed = 0;
-    for (int k = 0; k < 3; ++k) {
+    for (int k = 0; k < WORLDS; ++k) {
         bdl_world *w = make_world(k);
         for (int s = 0; s < 3000; ++s)
             bdl_world_step(w);
