@@ -171,8 +171,8 @@ static layout layout_of(const blob *b, long gas_cells)
     if (head[8]) // rods: orientation, axis, angular momentum, inertia, half length, axis at build
         L.half_length = off + n * 104, off += n * 136;
     if (head[9])
-        L.gas_every = off, L.eps = off + 132 + 4 * (size_t)gas_cells * 8,
-        off += 132 + 6 * (size_t)gas_cells * 8;
+        L.gas_every = off, L.eps = off + 136 + 4 * (size_t)gas_cells * 8,
+        off += 136 + 6 * (size_t)gas_cells * 8;
     L.end = off;
     return L;
 }
@@ -308,6 +308,8 @@ static void test_gas_and_rod_patches(const blob *gas, long cells, const blob *ro
     const double zero = 0.0, above = 1.5, negative = -1e-3, nan = NAN;
     refused(gas_scene, gas, G.gas_every, &zero_steps, 8, "gas step of 0 particle steps");
     refused(gas_scene, gas, G.gas_every + 8, &later, 8, "gas schedule is out of range");
+    const int32_t raised = 2; // after the step, the next, the steps taken and the stable step
+    refused(gas_scene, gas, G.gas_every + 32, &raised, 4, "inflow-raised flag 2");
     refused(gas_scene, gas, G.eps + 8 * 17, &zero, 8, "voidage in cell 17");
     refused(gas_scene, gas, G.eps + 8 * 3, &above, 8, "must be in (0, 1]");
     refused(gas_scene, gas, G.eps - 8 * 5, &nan, 8, "gas pressure in cell");

@@ -26,7 +26,8 @@
 
 // Versions 2-5 grew the state (the gas, outflow, force and torque records); 6 made the file
 // untrusted input: header with sizes and checksums, the scene record, range checks; 7 holds the
-// work in the Hertz-Mindlin springs (held, and left by ended contacts).
+// work in the Hertz-Mindlin springs (held, and left by ended contacts) and, with a gas, whether
+// the live inflow rose since the last gas step (the next gas step starts short).
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
 enum { VERSION = 7, HEADER_BYTES = 32 };
 
@@ -113,6 +114,7 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
         f[k++] = (field){&w->gas_next, sizeof w->gas_next};
         f[k++] = (field){&w->gas_steps, sizeof w->gas_steps};
         f[k++] = (field){&w->gas_stable, sizeof w->gas_stable};
+        f[k++] = (field){&w->gas_inflow_raised, sizeof w->gas_inflow_raised};
         f[k++] = (field){&w->gas_work, sizeof w->gas_work};
         f[k++] = (field){w->particle_drag, sizeof w->particle_drag};
         f[k++] = (field){w->gas_drag, sizeof w->gas_drag};

@@ -163,11 +163,12 @@ static int check_gas(const bdl_world *w, double saved_dt, char *why, size_t len)
         return 1;
     if (w->gas_every < 1 || (saved_dt == w->dt && w->gas_every > w->gas_every_max) ||
         w->gas_next < 0 || w->gas_next > w->step + w->gas_every || w->gas_steps < 0 ||
-        g->steps < 0 || g->last_solve.iterations < 0) {
+        g->steps < 0 || g->last_solve.iterations < 0 ||
+        (w->gas_inflow_raised != 0 && w->gas_inflow_raised != 1)) {
         snprintf(why, len,
                  "its gas schedule is out of range: a gas step of %ld particle steps, "
-                 "the next at step %ld (now %ld), %ld gas steps taken",
-                 w->gas_every, w->gas_next, w->step, w->gas_steps);
+                 "the next at step %ld (now %ld), %ld gas steps taken, inflow-raised flag %d",
+                 w->gas_every, w->gas_next, w->step, w->gas_steps, w->gas_inflow_raised);
         return 0;
     }
     const double numbers[] = {w->gas_stable,       w->gas_work,         w->particle_drag[0],
