@@ -2,7 +2,7 @@
 //
 // An input is the text of a scene file. It is read and validated as `bedlam check` reads a file;
 // a scene that passes is built into a world (the resource estimate first: the harness lowers
-// [guards] max_memory to 8 MB and max_steps to 10^7 so that a valid but large scene is refused
+// [guards] max_memory to 3 MB and max_steps to 10^7 so that a valid but large scene is refused
 // quickly rather than built) and stepped three times. The reader must end in BDL_OK or in
 // BDL_ERR_SCENE with a message naming the file; building must end in BDL_OK or in a refusal with
 // a reason. Anything else (a crash, a sanitizer report, a hang, another result) is a finding.
@@ -61,7 +61,7 @@ static outcome run_one(const uint8_t *data, size_t size)
         return r == BDL_ERR_SCENE && err.message[0] ? REFUSED_SCENE : FINDING;
     if (dense_random_fill(&scene))
         return REFUSED_WORLD;
-    scene.guards.max_memory = 8e6; // a few thousand particles: the reader, not the fill, is fuzzed
+    scene.guards.max_memory = 3e6; // a thousand particles or so: the reader, not the fill, is fuzzed
     scene.guards.max_steps = 1e7;
     bdl_world *w = NULL;
     const bdl_result made = bdl_world_create(&scene, &w, &err);
