@@ -61,7 +61,7 @@ static outcome run_one(const uint8_t *data, size_t size)
         return r == BDL_ERR_SCENE && err.message[0] ? REFUSED_SCENE : FINDING;
     if (dense_random_fill(&scene))
         return REFUSED_WORLD;
-    scene.guards.max_memory = 3e6; // a thousand particles or so: the reader, not the fill, is fuzzed
+    scene.guards.max_memory = 3e6; // about a thousand particles: the reader is what is fuzzed
     scene.guards.max_steps = 1e7;
     bdl_world *w = NULL;
     const bdl_result made = bdl_world_create(&scene, &w, &err);
