@@ -181,9 +181,13 @@ static bdl_result run_bed_balance(int series, double n, bdl_verify_result *out)
     bdl_verify_balance b;
     bdl_result r = bdl_verify_bed_balance(series == 0 ? 0 : 2, 1.0, n, &b);
     printf("  bed balance, floor %s, %g s: pressure drop - gas column %.2f Pa, weight %.2f Pa, "
-           "walls %.2f Pa, momentum rate %.2f Pa: residual %.2f Pa (%.2f %% of the weight)\n",
+           "walls %.2f Pa, momentum rate %.2f Pa: residual %.2f Pa (%.2f %% of the weight); of "
+           "it the gas's budget (pressure drop - gas column - gas force on the beads net of "
+           "buoyancy %.2f Pa) %.2f Pa, the beads' Newton %.2f Pa; the gas's net inflow of "
+           "momentum %.2f Pa\n",
            series == 0 ? "at the inlet" : "raised 2 cells", n, b.pressure, b.weight, b.wall,
-           b.momentum_rate, b.residual, 100.0 * b.residual / b.weight);
+           b.momentum_rate, b.residual, 100.0 * b.residual / b.weight, b.fluid, b.gas_residual,
+           b.residual - b.gas_residual, b.inflow_momentum);
     out->value = b.residual;
     out->exact = 0.0;
     out->error = r == BDL_OK ? finite_or_inf(fabs(b.residual / b.weight)) : INFINITY;

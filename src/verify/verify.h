@@ -215,9 +215,15 @@ bdl_result bdl_verify_packed_bed(int cells_z, const double *U, int n, double *ra
 /// between them, the beads' weight less buoyancy, the walls' vertical force on the beads (their
 /// contact forces summed: every pair's action and reaction cancel), and the rate of change of
 /// the beads' vertical momentum. residual = pressure - weight + wall - momentum_rate, 0 when the
-/// pressure drop carries exactly what the gas does to the beads.
+/// pressure drop carries exactly what the gas does to the beads. It splits into the gas's part,
+/// gas_residual = pressure - fluid (fluid: the gas's force on the beads less their buoyancy in a
+/// gas at rest, so that the gas's momentum budget — its acceleration, the walls' shear — shows
+/// here), and the beads' part, residual - gas_residual (Newton for the beads as integrated).
+/// inflow_momentum: the gas's momentum flux in through the inlet less out through the outlet,
+/// rho U^2 (mean 1/eps of the lowest layer - 1), which lowers the pressure drop the gas needs.
 typedef struct bdl_verify_balance {
     double pressure, weight, wall, momentum_rate, residual;
+    double fluid, gas_residual, inflow_momentum;
     long steps;
 } bdl_verify_balance;
 /// scenes/fluidized_bed.ini's slugging slot (800 beads of 3 mm, air at 3.2 m/s) with its floor

@@ -34,6 +34,30 @@ static double momentum_z(const bdl_particles *p)
     return sum;
 }
 
+/// Vertical force of the gas on the particles, drag and pressure, less their buoyancy in a gas at
+/// rest (rho g V each) [N].
+static double fluid_force_z(const bdl_particles *p, double rho, double grav)
+{
+    double sum = 0.0;
+    for (long i = 0; i < p->count; ++i)
+        sum += p->fluid_accel[i].z / p->inv_mass[i] - rho * grav * bdl_particle_volume(p, i);
+    return sum;
+}
+
+/// The gas's momentum flux into the domain through the inlet less what leaves through the
+/// outlet, per base area [Pa], as the inflow U enters the lowest layer at its interstitial speed
+/// U/eps and leaves the clear top at U: rho U^2 (mean of 1/eps over the lowest layer - 1).
+static double inflow_momentum(const bdl_gas *gas)
+{
+    const bdl_grid *g = &gas->grid;
+    double sum = 0.0;
+    for (int j = 0; j < g->n[1]; ++j)
+        for (int i = 0; i < g->n[0]; ++i)
+            sum += 1.0 / gas->eps[bdl_grid_index(g, i, j, 0)];
+    const double u = gas->def.side[4].inflow;
+    return gas->def.density * u * u * (sum / (g->n[0] * g->n[1]) - 1.0);
+}
+
 /// Vertical force of the walls on the particles this step [N]: the contact forces summed over
 /// all particles, in which every pair's action and reaction cancel (no background damping here).
 static double wall_force_z(const bdl_particles *p)
@@ -61,13 +85,15 @@ bdl_result bdl_verify_bed_balance(int raised, double settle, double window, bdl_
     while (r == BDL_OK && w->time < settle)
         r = bdl_world_step(w);
     const double m0 = momentum_z(&w->particles), t0 = w->time;
-    double pressure = 0.0, wall = 0.0;
+    double pressure = 0.0, wall = 0.0, fluid = 0.0, inflow = 0.0;
     long steps = 0;
     while (r == BDL_OK && w->time < settle + window) {
         r = bdl_world_step(w);
         pressure += bdl_grid_layer_mean(g, w->gas->p, 2, 0) -
                     bdl_grid_layer_mean(g, w->gas->p, 2, n - 1) - column;
         wall += wall_force_z(&w->particles);
+        fluid += fluid_force_z(&w->particles, rho, grav);
+        inflow += inflow_momentum(w->gas);
         ++steps;
     }
     const bdl_particles *p = &w->particles;
@@ -78,6 +104,9 @@ bdl_result bdl_verify_bed_balance(int raised, double settle, double window, bdl_
         out->wall = wall / (double)steps / area;
         out->momentum_rate = (momentum_z(p) - m0) / (w->time - t0) / area;
         out->residual = out->pressure - out->weight + out->wall - out->momentum_rate;
+        out->fluid = fluid / (double)steps / area;
+        out->gas_residual = out->pressure - out->fluid;
+        out->inflow_momentum = inflow / (double)steps;
     } else if (r == BDL_OK) {
         r = BDL_ERR_UNSTABLE; // a bead left the slot: the balance does not cover it
     }
