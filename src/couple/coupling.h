@@ -25,9 +25,10 @@
 //     cell's two face differences, where a wall or inlet face (no momentum equation) carries
 //     none.
 // The drag the gas feels, summed over the faces, equals minus the sum of the f_i to round-off;
-// the pressure force on the particles, summed, is their share (1 - eps_f) of every momentum
-// face's pressure difference, so that the mixture's pressure force telescopes to the pressures
-// of the end layers (what the measured pressure drop carries).
+// the pressure force on the particles, summed, is their buoyancy less their share (1 - eps_f) of
+// every interior or periodic face's dynamic pressure difference, so that the mixture's pressure
+// force telescopes to the pressures of the end layers (what the measured pressure drop carries)
+// while no particle is in an outlet's layer.
 // (Along an axis with no momentum face at all — one cell between two walls — the gas does not
 // move and the particles' drag in that direction goes to the walls.)
 #ifndef BDL_COUPLING_H

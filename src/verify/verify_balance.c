@@ -46,7 +46,8 @@ static double fluid_force_z(const bdl_particles *p, double rho, double grav)
 
 /// The gas's momentum flux into the domain through the inlet less what leaves through the
 /// outlet, per base area [Pa], as the inflow U enters the lowest layer at its interstitial speed
-/// U/eps and leaves the clear top at U: rho U^2 (mean of 1/eps over the lowest layer - 1).
+/// U/eps and leaves the clear top at U: rho U^2 (mean of 1/eps over the lowest layer - 1). For
+/// this scene's inlet on the low z side only (side 4; the cells' voidage for the inlet faces').
 static double inflow_momentum(const bdl_gas *gas)
 {
     const bdl_grid *g = &gas->grid;

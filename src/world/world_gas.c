@@ -179,10 +179,12 @@ bdl_result bdl_world_gas_step(bdl_world *w)
 {
     // The last gas step's length, then this one's: CFL 1/2 for the gas as the last step left it.
     const double dt_last = (double)w->gas_every * w->dt;
-    if (!w->gas_fixed && w->gas_steps > 0) {
-        const double raised = raised_inflow(w, dt_last);
-        const long every = steps_in(
-            w, raised > 0.0 ? fmin(w->gas_stable, expected_gas_dt(w, raised)) : w->gas_stable);
+    // Before the first, the scheduled step (bounded anew if the inlet scale rose before it).
+    const double raised = w->gas_fixed ? 0.0 : raised_inflow(w, w->gas_steps > 0 ? dt_last : 0.0);
+    if (!w->gas_fixed && (w->gas_steps > 0 || raised > 0.0)) {
+        const double stable = w->gas_steps > 0 ? w->gas_stable : dt_last;
+        const long every =
+            steps_in(w, raised > 0.0 ? fmin(stable, expected_gas_dt(w, raised)) : stable);
         w->gas_every = every < 1 ? 1 : every > w->gas_every_max ? w->gas_every_max : every;
     }
     const double dt = (double)w->gas_every * w->dt;
