@@ -25,6 +25,7 @@ static void test_single_sphere(void)
         CHECK_CLOSE(K(BDL_DRAG_WEN_YU, 1.0, slip), sn, 1e-12);
         CHECK_CLOSE(K(BDL_DRAG_GIDASPOW, 1.0, slip), sn, 1e-12);
         CHECK_CLOSE(K(BDL_DRAG_TENNETI, 1.0, slip), sn, 1e-12);
+        CHECK_CLOSE(K(BDL_DRAG_PATANKAR, 1.0, slip), sn, 1e-12);
         CHECK_CLOSE(K(BDL_DRAG_SYAMLAL_OBRIEN, 1.0, slip), dv, 1e-12);
         CHECK_CLOSE(K(BDL_DRAG_DI_FELICE, 1.0, slip), dv, 1e-12);
         // Beetstra's formula at phi = 0 stays within 15 % of Schiller-Naumann up to Re 100 (its
@@ -100,6 +101,10 @@ static void test_spot_values(void)
         {BDL_DRAG_DI_FELICE, 0.9, 937.5365184761926},
         {BDL_DRAG_BEETSTRA, 0.9, 1105.1027806387885},
         {BDL_DRAG_TENNETI, 0.9, 1056.1078465630449},
+        // Patankar & Joseph's eq. 7 as printed: 3/8 Cd rho |w| / R, Cd = 24/Re (1 + 0.15
+        // Re^0.687) eps^-1.8, Re = 2 rho eps |w| R / mu.
+        {BDL_DRAG_PATANKAR, 0.45, 5087.614227751984},
+        {BDL_DRAG_PATANKAR, 0.9, 910.6539842007411},
     };
     for (size_t k = 0; k < sizeof v / sizeof v[0]; ++k)
         CHECK_CLOSE(K(v[k].law, v[k].eps, 0.3), v[k].expected, 1e-12);

@@ -68,6 +68,9 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
         g->ustar[a] = bdl_grid_alloc(&g->grid);
         g->coef[a] = bdl_grid_alloc(&g->grid);
         g->d[a] = bdl_grid_alloc(&g->grid);
+        if (def->pressure_share)
+            ok = ok && (g->share[a] = bdl_grid_alloc(&g->grid)) &&
+                 (g->grad_p[a] = bdl_grid_alloc(&g->grid));
         ok = ok && g->u[a] && g->bv[a] && g->beta[a] && g->source[a] && g->ustar[a] && g->coef[a] &&
              g->d[a];
     }
@@ -99,6 +102,8 @@ void bdl_gas_destroy(bdl_gas *g)
         free(g->ustar[a]);
         free(g->coef[a]);
         free(g->d[a]);
+        free(g->share[a]);
+        free(g->grad_p[a]);
     }
     free(g->p);
     free(g->eps);
@@ -379,7 +384,7 @@ static void predict(bdl_gas *g, double *const q[3], double dt)
                        mu * e0 * laplacian(gr, idx, u) + e1 * rho * g->def.gravity[a] + bv +
                        g->source[a][idx];
             us[idx] = r / A;
-            d[idx] = e1 / A;
+            d[idx] = (g->share[a] ? g->share[a][idx] : e1) / A;
         });
     }
 }
@@ -412,7 +417,7 @@ static void boundary_faces(bdl_gas *g, double dt)
                     us[idx] = 0.0;
                 if (sd->type == BDL_SIDE_OUTLET) {
                     double e1 = face_eps(g, g->eps, a, idx);
-                    d[idx] = e1 / (rho * e1 / dt + g->beta[a][idx]);
+                    d[idx] = (g->share[a] ? g->share[a][idx] : e1) / (rho * e1 / dt + g->beta[a][idx]);
                 }
             });
         }
@@ -469,6 +474,8 @@ static void correct(bdl_gas *g, const double p_side[6])
             else
                 grad = (p[idx] - p[idx - s]) / h;
             u[idx] = us[idx] - d[idx] * grad;
+            if (g->grad_p[a])
+                g->grad_p[a][idx] = grad;
         });
         if (periodic)
             FOR_PLANE(gr, a, 0, { u[idx + n * s] = u[idx]; });

@@ -7,7 +7,7 @@
 //   (rho eps^{n+1}/dt + beta) u* = rho eps^n u^n/dt - rho div(eps u u)^n + eps mu lap(u^n)
 //                                  + eps^{n+1} rho g + (beta v_p) + s
 //   div(c grad p) = div(eps^{n+1} u*) + (eps^{n+1} - eps^n)/dt,
-//       c = eps^{n+1} d,  d = eps^{n+1} / (rho eps^{n+1}/dt + beta)
+//       c = eps^{n+1} d,  d = s / (rho eps^{n+1}/dt + beta),  s = eps^{n+1} (or `share`)
 //   u^{n+1} = u* - d grad p
 //
 // so that the gas volume is conserved to the pressure solver's tolerance every step, and a drag
@@ -68,6 +68,7 @@ typedef struct bdl_gas_def {
     bdl_convection convection;
     double tolerance; ///< relative residual of the pressure solver
     int max_iterations;
+    int pressure_share; ///< keep `share` (below): parcels' implicit scheme
 } bdl_gas_def;
 
 typedef struct bdl_gas {
@@ -81,6 +82,13 @@ typedef struct bdl_gas {
     double *beta[3];   ///< drag coefficient on the faces of each component [kg/(m^3 s)]
     double *bv[3];     ///< beta times the particles' velocity on those faces [kg/(m^2 s^2)]
     double *source[3]; ///< extra force per unit volume on the faces [N/m^3] (0 unless set)
+    /// With def.pressure_share (NULL otherwise): the share of -grad p the gas's momentum carries
+    /// on each face, in place of the face voidage. Parcels whose velocity is implicit in the drag
+    /// hand the gas 1 - C_pr (Patankar & Joseph 2001, eq. 23): the gas carries -eps grad p and
+    /// the drag's implicit response to the particles' own -grad p / rho_p.
+    double *share[3];
+    double *grad_p[3]; ///< with def.pressure_share: grad p on each face as the last step used it
+
     double *ustar[3], *coef[3], *rhs, *d[3]; ///< work arrays
     double time;
     long steps;

@@ -256,7 +256,7 @@ static double cell_volume(const bdl_grid *g) { return g->h[0] * g->h[1] * g->h[2
 /// Density of particle i from its mass and volume [kg/m^3].
 static double particle_density(const bdl_particles *p, long i)
 {
-    return 1.0 / (p->inv_mass[i] * bdl_particle_volume(p, i));
+    return 1.0 / (p->inv_mass[i] * bdl_particle_solids_volume(p, i));
 }
 
 /// The share of each of particle i's kernel points: 1 / their count.
@@ -272,7 +272,7 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particl
     double *solid = gas->rhs; // scratch: the gas step overwrites it
     memset(solid, 0, (size_t)g->size * sizeof(double));
     for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
-        const double v = bdl_particle_volume(p, i) * point_share(c, i);
+        const double v = bdl_particle_solids_volume(p, i) * point_share(c, i);
         for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
             FOR_KERNEL(c, pt, solid[idx] += w * v);
     }
@@ -297,18 +297,46 @@ double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f)
     return total;
 }
 
-/// Gas velocity at particle i, the mean over its kernel points: each component from its momentum
-/// faces.
-static void gas_velocity_at(const bdl_coupling *c, const bdl_gas *gas, long i, double u[3])
+/// A face field at particle i, the mean over its kernel points: component a from f[a] on the
+/// momentum faces of component a.
+static void face_average(const bdl_coupling *c, long i, double *const f[3], double u[3])
 {
     const double share = point_share(c, i);
     for (int a = 0; a < 3; ++a) {
         u[a] = 0.0;
         for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
             double sum = 0.0;
-            FOR_FACE_KERNEL(c, pt, a, sum += w * gas->u[a][idx]);
+            FOR_FACE_KERNEL(c, pt, a, sum += w * f[a][idx]);
             u[a] += share * sum;
         }
+    }
+}
+
+/// Gas velocity at particle i.
+static void gas_velocity_at(const bdl_coupling *c, const bdl_gas *gas, long i, double u[3])
+{
+    face_average(c, i, gas->u, u);
+}
+
+bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const f[3])
+{
+    double u[3];
+    face_average(c, i, f, u);
+    return bdl_v3(u[0], u[1], u[2]);
+}
+
+void bdl_coupling_deposit_faces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                                const double *value, double *const out[3])
+{
+    const bdl_grid *g = &gas->grid;
+    const double vc = cell_volume(g);
+    for (int a = 0; a < 3; ++a)
+        memset(out[a], 0, (size_t)g->size * sizeof(double));
+    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
+        const double f = value[i] / vc * point_share(c, i);
+        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+            for (int a = 0; a < 3; ++a)
+                FOR_FACE_KERNEL(c, pt, a, out[a][idx] += w * f);
     }
 }
 
@@ -349,7 +377,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             double eps = bdl_coupling_interpolate(c, i, gas->eps);
             double K = drag_per_volume(c, p, i, eps, u, slip, rho, mu);
             const double density = particle_density(p, i);
-            double D = K / density, m = density * bdl_particle_volume(p, i);
+            double D = K / density, m = density * bdl_particle_solids_volume(p, i);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
     for (int a = 0; a < 3; ++a) {
@@ -439,7 +467,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_pa
                     for (int a = 0; a < 3; ++a)
                         grad[a] += share * at[a];
                 }
-                const double v = bdl_particle_volume(p, i);
+                const double v = bdl_particle_solids_volume(p, i);
                 pressure[i] = (bdl_vec3){-v * grad[0], -v * grad[1], -v * grad[2]};
             }
         });

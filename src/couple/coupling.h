@@ -143,4 +143,14 @@ void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3]);
 /// A gas quantity at a particle: the kernel average of cell values f (padded cell array).
 double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f);
 
+/// A face quantity at particle i: component a the kernel average of f[a] over the momentum faces
+/// of component a (the weights the drag is deposited with).
+bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const f[3]);
+
+/// Deposits value[i] of every particle on the momentum faces of each component with those
+/// weights, per unit cell volume: out[a] = sum_i W_ia value_i / V_cell (out cleared first; a
+/// fixed summation order).
+void bdl_coupling_deposit_faces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                                const double *value, double *const out[3]);
+
 #endif

@@ -56,7 +56,7 @@ static void other_acceleration(bdl_coupling *c, const bdl_gas *gas, const bdl_pa
                                const bdl_coupling_step_def *def)
 {
     for (long i = 0; i < p->count; ++i) {
-        const double volume = bdl_particle_volume(p, i);
+        const double volume = bdl_particle_solids_volume(p, i);
         const double density = 1.0 / (p->inv_mass[i] * volume);
         c->accel[i] = def->dt_last > 0.0
                           ? bdl_v3_sub(bdl_v3_scale(bdl_v3_sub(p->vel[i], p->vel_mark[i]),
@@ -78,7 +78,7 @@ static void hand_over(const bdl_coupling *c, bdl_particles *p, bdl_vec3 mean_gra
         total[0] += drag.x;
         total[1] += drag.y;
         total[2] += drag.z;
-        const double volume = bdl_particle_volume(p, i);
+        const double volume = bdl_particle_solids_volume(p, i);
         const double density = 1.0 / (p->inv_mass[i] * volume);
         p->fluid_accel[i] =
             bdl_v3_madd(bdl_v3_scale(f, p->inv_mass[i]), mean_gradient, -1.0 / density);

@@ -35,6 +35,16 @@ static double wen_yu(double eps, double d, double slip, double rho, double mu)
     return 18.0 * mu / (d * d) * schiller_naumann_factor(re) * pow(eps, -2.65);
 }
 
+/// Patankar & Joseph (2001), eq. 7: D_p = 3/8 Cd rho |u - v| / (rho_p R_p) with
+/// Cd = 24/Re (1 + 0.15 Re^0.687) eps^-1.8 (0.44 eps^-1.8 from Re = 1000), Re = eps rho d |u - v| /
+/// mu (the slip to the mixture taken as eps (u - v)): beta / phi = rho_p D_p, written
+/// 18 mu / d^2 (Cd Re / 24) eps^-2.8 so that it stays finite at zero slip.
+static double patankar(double eps, double d, double slip, double rho, double mu)
+{
+    double re = eps * rho * d * slip / mu;
+    return 18.0 * mu / (d * d) * schiller_naumann_factor(re) * pow(eps, -2.8);
+}
+
 /// Syamlal & O'Brien (1988), as written out by Sun (2007), eqs. 3.10-3.16: beta = 3 phi eps rho /
 /// (4 Vr^2 d) Cds(Re / Vr) |u - v| with the Dalla Valle Cds = (0.63 + 4.8 / sqrt(Re / Vr))^2 and
 /// the terminal-velocity ratio Vr of Garside & Al-Dibouni; Re = rho d |u - v| / mu.
@@ -122,6 +132,8 @@ double bdl_drag_per_volume(bdl_drag_law law, const bdl_drag_params *p, double ep
         return syamlal_obrien(p, eps, d, slip, rho, mu);
     case BDL_DRAG_DI_FELICE:
         return di_felice(eps, d, slip, rho, mu);
+    case BDL_DRAG_PATANKAR:
+        return patankar(eps, d, slip, rho, mu);
     case BDL_DRAG_BEETSTRA:
         return beetstra(eps, phi, d, slip, rho, mu);
     case BDL_DRAG_TENNETI:

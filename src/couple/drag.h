@@ -22,6 +22,8 @@
       "Gidaspow / Ding & Gidaspow (1990): Ergun below eps 0.8, Wen-Yu above")                      \
     X(DRAG_SYAMLAL_OBRIEN, "syamlal_obrien", "Syamlal & O'Brien (1988), C and D adjustable")       \
     X(DRAG_DI_FELICE, "di_felice", "Di Felice (1994): eps^-chi(Re)")                               \
+    X(DRAG_PATANKAR, "patankar",                                                                   \
+      "Patankar & Joseph (2001), after Gibilaro et al. (1985): Cd eps^-1.8, Re at eps |u - v|")    \
     X(DRAG_BEETSTRA, "beetstra",                                                                   \
       "Beetstra, van der Hoef & Kuipers (2007), from lattice-Boltzmann")                           \
     X(DRAG_TENNETI, "tenneti", "Tenneti, Garg & Subramaniam (2011), from particle-resolved DNS")   \

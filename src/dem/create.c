@@ -272,9 +272,58 @@ static long add_checked(bdl_particles *p, placement_grid *g, const body *b, bdl_
     long i = b->half_length > 0.0
                  ? bdl_particles_add_rod(p, b->x, v, b->r, b->half_length, b->q, density, species)
                  : bdl_particles_add(p, b->x, v, b->r, density, species);
-    if (i >= 0 && !grid_insert(g, p, i))
+    if (i >= 0 && p->parcels)
+        bdl_particle_set_parcel(p, i, bdl_species_parcel_count(&ctx->species[species], 2.0 * b->r));
+    if (i >= 0 && g && !grid_insert(g, p, i))
         return -1;
     return i;
+}
+
+/// A lattice's spacing: as given, else just over the largest extent of a particle of the
+/// species (of a parcel: the diameter of the sphere of its solids volume).
+static double lattice_spacing(const bdl_create_def *c, const bdl_species_def *s)
+{
+    if (c->spacing > 0.0)
+        return c->spacing;
+    if (bdl_species_is_parcel(s))
+        return 1.0001 * cbrt(6.0 / BDL_PI * bdl_species_parcel_volume(s));
+    return 1.0001 * bdl_species_max_extent(s);
+}
+
+/// Mean solids volume of what a random fill of species s places: a particle's, or a parcel's
+/// (from a sample of the distribution, drawn from a copy of the generator).
+static double mean_placed_volume(const bdl_species_def *s, const bdl_rng *rng)
+{
+    bdl_rng probe = *rng;
+    double v = 0.0;
+    for (int k = 0; k < 256; ++k) {
+        const double d = bdl_species_draw_diameter(s, &probe);
+        v += bdl_species_volume(s, d) * bdl_species_parcel_count(s, d);
+    }
+    return v / 256.0;
+}
+
+/// A random fill of parcels: parcels stand for a solids fraction, not for bodies that exclude
+/// each other, so they are placed uniformly in the region (clear of the walls) and may overlap.
+static bdl_result create_random_parcels(const bdl_create_def *c, const bdl_create_context *ctx,
+                                        long target, bdl_particles *p)
+{
+    const bdl_species_def *s = &ctx->species[c->species];
+    for (long placed = 0; placed < target;) {
+        body b;
+        const double d = bdl_species_draw_diameter(s, ctx->rng);
+        bdl_vec3 x;
+        x.x = bdl_rng_range(ctx->rng, c->region_min.x, c->region_max.x);
+        x.y = bdl_rng_range(ctx->rng, c->region_min.y, c->region_max.y);
+        x.z = bdl_rng_range(ctx->rng, c->region_min.z, c->region_max.z);
+        b = sphere_at(x, 0.5 * d);
+        if (!inside_walls(ctx->walls, &b))
+            continue;
+        if (add_checked(p, NULL, &b, draw_velocity(c, ctx->rng), ctx, c->species) < 0)
+            return BDL_ERR_NOMEM;
+        ++placed;
+    }
+    return BDL_OK;
 }
 
 /// A creator that cannot do what it is asked: the reason into `why`.
@@ -320,14 +369,11 @@ static bdl_result create_random(const bdl_create_def *c, const bdl_create_contex
     bdl_rng *rng = ctx->rng;
     double r_max = largest_radius(ctx);
     long target = c->count;
-    if (target < 0) {
-        // Mean particle volume from a sample of the distribution.
-        bdl_rng probe = *rng;
-        double v = 0.0;
-        for (int k = 0; k < 256; ++k)
-            v += bdl_species_volume(s, bdl_species_draw_diameter(s, &probe));
-        target = (long)floor(c->volume_fraction * region_volume(c) / (v / 256.0) + 0.5);
-    }
+    if (target < 0)
+        target = (long)floor(c->volume_fraction * region_volume(c) / mean_placed_volume(s, rng) +
+                             0.5);
+    if (p->parcels)
+        return create_random_parcels(c, ctx, target, p);
     placement_grid g;
     if (!grid_for_region(&g, p, c->region_min, c->region_max, r_max))
         return BDL_ERR_NOMEM;
@@ -366,7 +412,7 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
 {
     const bdl_species_def *s = &ctx->species[c->species];
     const double r_max = largest_radius(ctx), d_species = bdl_species_max_extent(s);
-    double h = c->spacing > 0.0 ? c->spacing : 1.0001 * d_species;
+    const double h = lattice_spacing(c, s);
     placement_grid g;
     if (!grid_for_region(&g, p, c->region_min, c->region_max, r_max))
         return BDL_ERR_NOMEM;
@@ -387,7 +433,7 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
                                      lo.z + 0.5 * d_species + k * h),
                               0.5 * d);
                 orient(&b, s, ctx->rng);
-                if (!inside_walls(ctx->walls, &b) || grid_overlaps(&g, p, &b, r_max))
+                if (!inside_walls(ctx->walls, &b) || (!p->parcels && grid_overlaps(&g, p, &b, r_max)))
                     continue;
                 if (add_checked(p, &g, &b, draw_velocity(c, ctx->rng), ctx, c->species) < 0) {
                     grid_free(&g);
@@ -639,6 +685,8 @@ static int file_row(const bdl_create_def *c, const bdl_create_context *ctx, cons
     const long i = b.half_length > 0.0 ? bdl_particles_add_rod(p, b.x, vel, b.r, b.half_length, b.q,
                                                                density, c->species)
                                        : bdl_particles_add(p, b.x, vel, b.r, density, c->species);
+    if (i >= 0 && p->parcels)
+        bdl_particle_set_parcel(p, i, bdl_species_parcel_count(species, 2.0 * b.r));
     return i < 0 ? -1 : 1;
 }
 
@@ -777,13 +825,14 @@ double bdl_create_expected(const bdl_create_def *c, const bdl_species_def *s)
     const double count = c->count > 0 ? (double)c->count : INFINITY;
     if (c->kind == BDL_CREATE_LATTICE) {
         const double extent = bdl_species_max_extent(s);
-        const double h = c->spacing > 0.0 ? c->spacing : 1.0001 * extent;
+        const double h = lattice_spacing(c, s);
         const double sites = lattice_sites(c, extent, h, 0) * lattice_sites(c, extent, h, 1) *
                              lattice_sites(c, extent, h, 2);
         return fmin(count, sites);
     }
     if (c->kind == BDL_CREATE_RANDOM && c->count <= 0)
-        return floor(c->volume_fraction * region_volume(c) / bdl_species_volume(s, s->diameter) +
+        return floor(c->volume_fraction * region_volume(c) /
+                         (bdl_species_volume(s, s->diameter) * bdl_species_parcel_count(s, s->diameter)) +
                      0.5);
     return c->count > 0 ? (double)c->count : 0.0;
 }
@@ -800,11 +849,12 @@ long bdl_create_estimate_total(const bdl_create_def *creates, int count,
         }
         const bdl_species_def *s = &species[def->species];
         double d = bdl_species_min_diameter(s);
-        double vp = bdl_species_volume(s, d);
+        double vp = bdl_species_volume(s, d) * bdl_species_parcel_count(s, d);
+        double h = bdl_species_is_parcel(s) ? lattice_spacing(def, s) : d;
         if (def->kind == BDL_CREATE_RANDOM)
             total += (long)(def->volume_fraction * region_volume(def) / vp) + 1;
         else if (def->kind == BDL_CREATE_LATTICE)
-            total += (long)(region_volume(def) / (d * d * d)) + 1;
+            total += (long)(region_volume(def) / (h * h * h)) + 1;
         else
             total += count_rows(def->file);
     }

@@ -203,6 +203,18 @@ static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i
     return n;
 }
 
+static bdl_result reserve_particles(bdl_neighbor *nb, long n);
+
+bdl_result bdl_neighbor_none(bdl_neighbor *nb, long n)
+{
+    if (reserve_particles(nb, n) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    memset(nb->start, 0, (size_t)(n + 1) * sizeof(int32_t));
+    memset(nb->wall_start, 0, (size_t)(n + 1) * sizeof(int32_t));
+    nb->count = n;
+    return BDL_OK;
+}
+
 static bdl_result reserve_particles(bdl_neighbor *nb, long n)
 {
     if (n <= nb->scratch_count && nb->start)

@@ -92,6 +92,10 @@ bdl_result bdl_neighbor_init(bdl_neighbor *nb, bdl_vec3 lo, bdl_vec3 hi, const i
                              int hertz, int rolling, int rods);
 void bdl_neighbor_free(bdl_neighbor *nb);
 
+/// Empty lists for n particles, without a cell grid (parcels, which have no contacts): every
+/// particle's pair and wall list is empty, so that what walks the lists finds nothing.
+bdl_result bdl_neighbor_none(bdl_neighbor *nb, long n);
+
 /// Wraps positions into periodic axes, re-sorts the particles, rebuilds pair and wall lists and
 /// carries contact history over. Particles with drop[i] set are removed (drop may be NULL).
 bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,

@@ -9,6 +9,7 @@
 #define ALWAYS    BDL_ARRAYS_ALWAYS
 #define WITH_GAS  BDL_ARRAYS_WITH_GAS
 #define WITH_RODS BDL_ARRAYS_WITH_RODS
+#define WITH_PARCELS BDL_ARRAYS_WITH_PARCELS
 
 /// One per-particle array of bdl_particles: where its pointer lives and how many bytes each
 /// particle takes in it.
@@ -42,6 +43,7 @@ static const particle_array arrays[] = {
     ARRAY(inv_inertia,   WITH_RODS),
     ARRAY(half_length,   WITH_RODS),
     ARRAY(axis_at_build, WITH_RODS),
+    ARRAY(parcel_count,  WITH_PARCELS),
 };
 // clang-format on
 
@@ -56,7 +58,7 @@ static void **array_pointer(bdl_particles *p, const particle_array *a)
 static int has_array(const bdl_particles *p, const particle_array *a)
 {
     return a->when == ALWAYS || (a->when == WITH_GAS && p->fluid) ||
-           (a->when == WITH_RODS && p->rods);
+           (a->when == WITH_RODS && p->rods) || (a->when == WITH_PARCELS && p->parcels);
 }
 
 int bdl_particles_arrays(const bdl_particles *p, int when, bdl_particle_array *out)
@@ -187,9 +189,9 @@ void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch)
             permute_array(*array_pointer(p, &arrays[a]), arrays[a].elem, p->count, perm, scratch);
 }
 
-size_t bdl_particles_bytes_each(int fluid, int rods)
+size_t bdl_particles_bytes_each(int fluid, int rods, int parcels)
 {
-    const bdl_particles p = {.fluid = fluid, .rods = rods};
+    const bdl_particles p = {.fluid = fluid, .rods = rods, .parcels = parcels};
     size_t bytes = 0;
     for (int a = 0; a < ARRAY_COUNT; ++a)
         bytes += has_array(&p, &arrays[a]) ? arrays[a].elem : 0;
@@ -198,5 +200,5 @@ size_t bdl_particles_bytes_each(int fluid, int rods)
 
 long bdl_particles_bytes(const bdl_particles *p)
 {
-    return p->capacity * (long)bdl_particles_bytes_each(p->fluid, p->rods);
+    return p->capacity * (long)bdl_particles_bytes_each(p->fluid, p->rods, p->parcels);
 }

@@ -56,6 +56,11 @@ typedef struct bdl_particles {
     bdl_vec3 *inv_inertia;   ///< principal moments of inertia (body x, y, z), inverted [1/(kg m^2)]
     double *half_length;     ///< half the shaft length [m]
     bdl_vec3 *axis_at_build; ///< half_length times the axis when the lists were built [m]
+    // With parcels only (NULL otherwise; set `parcels` before the first reserve). A parcel (MP-PIC,
+    // src/parcels/) stands for parcel_count real spheres of `radius`, moving as one: inv_mass is
+    // that of the whole parcel, the particle's volume that of one real sphere.
+    int parcels;           ///< keep the array below
+    double *parcel_count;  ///< real particles in the parcel (not necessarily a whole number)
 } bdl_particles;
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);
@@ -118,6 +123,20 @@ static inline double bdl_particle_volume(const bdl_particles *p, long i)
     return p->rods ? sphere + 2.0 * BDL_PI * r * r * p->half_length[i] : sphere;
 }
 
+/// Solids volume particle i stands for: its own volume, a parcel's times its particle count [m^3].
+static inline double bdl_particle_solids_volume(const bdl_particles *p, long i)
+{
+    const double v = bdl_particle_volume(p, i);
+    return p->parcels ? v * p->parcel_count[i] : v;
+}
+
+/// Sets particle i to stand for `count` real particles (a parcel), its mass with it.
+static inline void bdl_particle_set_parcel(bdl_particles *p, long i, double count)
+{
+    p->inv_mass[i] *= p->parcel_count[i] > 0.0 ? p->parcel_count[i] / count : 1.0 / count;
+    p->parcel_count[i] = count;
+}
+
 /// Moment of inertia of a solid sphere: I = 2/5 m r^2, returned as 1/I.
 static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 {
@@ -130,8 +149,13 @@ static inline double bdl_particle_inv_inertia(const bdl_particles *p, long i)
 void bdl_particles_permute(bdl_particles *p, const int32_t *perm, void *scratch);
 
 /// Which per-particle arrays exist: always, only with a gas (bdl_particles.fluid), only with rods
-/// (bdl_particles.rods).
-enum { BDL_ARRAYS_ALWAYS = 1, BDL_ARRAYS_WITH_GAS = 2, BDL_ARRAYS_WITH_RODS = 4 };
+/// (bdl_particles.rods), only with parcels (bdl_particles.parcels).
+enum {
+    BDL_ARRAYS_ALWAYS = 1,
+    BDL_ARRAYS_WITH_GAS = 2,
+    BDL_ARRAYS_WITH_RODS = 4,
+    BDL_ARRAYS_WITH_PARCELS = 8
+};
 
 /// A per-particle array: its storage and the bytes each particle takes in it.
 typedef struct bdl_particle_array {
@@ -148,7 +172,8 @@ int bdl_particles_arrays(const bdl_particles *p, int when, bdl_particle_array *o
 /// Bytes allocated for particle storage.
 long bdl_particles_bytes(const bdl_particles *p);
 
-/// Bytes each particle takes in the store's arrays, in a scene with (or without) a gas and rods.
-size_t bdl_particles_bytes_each(int fluid, int rods);
+/// Bytes each particle takes in the store's arrays, in a scene with (or without) a gas, rods and
+/// parcels.
+size_t bdl_particles_bytes_each(int fluid, int rods, int parcels);
 
 #endif

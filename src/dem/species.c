@@ -56,3 +56,19 @@ double bdl_species_max_extent(const bdl_species_def *s)
     const double d = bdl_species_max_diameter(s);
     return s->shape == BDL_SHAPE_ROD && s->length > d ? s->length : d;
 }
+
+double bdl_species_parcel_count(const bdl_species_def *s, double d)
+{
+    if (s->parcel_particles > 0.0)
+        return s->parcel_particles;
+    if (s->parcel_volume > 0.0)
+        return s->parcel_volume / bdl_species_volume(s, d);
+    return 1.0;
+}
+
+double bdl_species_parcel_volume(const bdl_species_def *s)
+{
+    if (s->parcel_volume > 0.0)
+        return s->parcel_volume;
+    return bdl_species_parcel_count(s, s->diameter) * bdl_species_volume(s, s->diameter);
+}

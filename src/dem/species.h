@@ -40,7 +40,25 @@ typedef struct bdl_species_def {
     double density;            ///< [kg/m^3]
     double background_damping; ///< b [1/s]: force -b m v on every particle of the species
     bdl_material material;
+    // Parcels (MP-PIC, src/parcels/): a species with one of these set is made of parcels, each
+    // standing for many real particles of the species' diameter and density.
+    double parcel_particles; ///< real particles per parcel; 0: not set
+    double parcel_volume;    ///< solids volume per parcel [m^3] (equal volume); 0: not set
 } bdl_species_def;
+
+/// Whether the species is made of parcels.
+static inline int bdl_species_is_parcel(const bdl_species_def *s)
+{
+    return s->parcel_particles > 0.0 || s->parcel_volume > 0.0;
+}
+
+/// Real particles in a parcel of the species whose particles have diameter d: parcel_particles,
+/// or parcel_volume over the volume of one; 1 for a species that is not made of parcels.
+double bdl_species_parcel_count(const bdl_species_def *s, double d);
+
+/// Solids volume of a parcel of the species at its mean diameter (of one particle if it is not
+/// made of parcels) [m^3].
+double bdl_species_parcel_volume(const bdl_species_def *s);
 
 /// Diameter drawn from a species' distribution [m].
 double bdl_species_draw_diameter(const bdl_species_def *s, bdl_rng *rng);

@@ -167,7 +167,7 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
         double weight = 0.0;
         for (long i = 0; i < n; ++i) {
             const double m = 1.0 / w->particles.inv_mass[i];
-            weight += (m - rho * bdl_particle_volume(&w->particles, i)) * g_len;
+            weight += (m - rho * bdl_particle_solids_volume(&w->particles, i)) * g_len;
         }
         const double area = g->n[b] * g->h[b] * g->n[c] * g->h[c];
         const double column = rho * g_len * (g->n[a] - 1) * g->h[a]; // between the layer centres

@@ -6,9 +6,28 @@
 #include "cfd/gas.h"
 #include "dem/create.h"
 
+/// The step of a world of parcels against its stable step (twice it is refused: CFL 1).
+static bdl_result check_parcel_dt(const bdl_world *w, char *message, size_t len)
+{
+    const double stable = bdl_world_parcels_stable_dt(w);
+    if (w->dt > 2.0 * stable) {
+        snprintf(message, len,
+                 "%s: [run] dt = %g s is %.3g times the parcels' stable step %g s (CFL 1/2 for "
+                 "the inflow through close packing, and the gas's viscous limit); allowed: at most "
+                 "twice it (dt <= %g s). Likely fix: lower dt",
+                 w->scene.path, w->dt, w->dt / stable, stable, 2.0 * stable);
+        return BDL_ERR_SCENE;
+    }
+    return BDL_OK;
+}
+
 bdl_result bdl_guards_check_dt(const bdl_world *w, char *message, size_t len, char *warning,
                                size_t warning_len)
 {
+    if (w->parcels) {
+        warning[0] = '\0';
+        return check_parcel_dt(w, message, len);
+    }
     char which[160];
     double v_ref = bdl_world_reference_speed(w);
     double tc = bdl_world_min_contact_time(w, v_ref, which, (int)sizeof which);

@@ -22,6 +22,7 @@
 #include "dem/material.h"
 #include "dem/species.h"
 #include "dem/walls.h"
+#include "parcels/parcels.h"
 
 #define BDL_MAX_PAIRS   64
 #define BDL_MAX_CREATES 16
@@ -225,6 +226,13 @@ typedef struct bdl_coupling_scene {
     double syamlal_c, syamlal_d;
 } bdl_coupling_scene;
 
+/// [parcels]: how parcels (species with parcel_particles or parcel_volume) move; the scene has
+/// parcels when a species is made of them.
+typedef struct bdl_parcels_scene {
+    int enabled;         ///< a species is made of parcels
+    bdl_parcels_def def; ///< model and its parameters
+} bdl_parcels_scene;
+
 typedef struct bdl_scene {
     char path[BDL_PATH_LEN]; ///< file the scene was read from ("" for a string)
     char dir[BDL_PATH_LEN];  ///< folder of the scene file (for relative paths)
@@ -269,6 +277,7 @@ typedef struct bdl_scene {
     bdl_camera_def camera;
     bdl_gas_scene gas;
     bdl_coupling_scene coupling;
+    bdl_parcels_scene parcels;
 } bdl_scene;
 
 /// A problem found while reading or validating a scene. Messages look like

@@ -30,6 +30,7 @@ _Static_assert(sizeof(bdl_dia_projection) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_dia_lighting) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_sweep) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_gas_field) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_parcel_model) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_RUN] = {"run", "run", 0, 1},
@@ -40,6 +41,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_CAMERA] = {"camera", "camera", 0, 1},
     [BDL_SECTION_GAS] = {"gas", "gas", 0, 1},
     [BDL_SECTION_COUPLING] = {"coupling", "coupling", 0, 1},
+    [BDL_SECTION_PARCELS] = {"parcels", "parcels", 0, 1},
     [BDL_SECTION_SPECIES] = {"species", "species NAME", 1, BDL_MAX_SPECIES},
     [BDL_SECTION_PAIR] = {"pair", "pair A B", 2, BDL_MAX_PAIRS},
     [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
@@ -81,6 +83,8 @@ BDL_CHOICE_WORDS(bdl_sweep, BDL_SWEEPS);
 #define IN_GAS(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, gas.field)
 #define IN_COUPLING(field)                                                                         \
     .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, coupling.field)
+#define IN_PARCELS(field)                                                                          \
+    .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, parcels.def.field)
 #define GAS_SIDE(name, index)                                                                      \
     {                                                                                              \
         S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_SIDE_WALL},      \
@@ -180,7 +184,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .def = {-1}, .default_text = "2/7 * stiffness", GT(0),
      .doc = "tangential spring stiffness k_t (linear law)"},
     {S(SPECIES), "restitution", NUM, "-", IN_SPECIES(material.restitution), REQUIRED, GT(0), LE(1),
-     .doc = "normal coefficient of restitution"},
+     .doc = "normal coefficient of restitution (not for parcels: they have no contacts)"},
     {S(SPECIES), "tangential_damping_ratio", NUM, "-",
      IN_SPECIES(material.tangential_damping_ratio), .def = {0}, GE(0), LE(1),
      .doc = "tangential to normal damping ratio (0: no tangential dashpot)"},
@@ -190,6 +194,14 @@ const bdl_scene_key bdl_scene_keys[] = {
      GE(0), .doc = "rolling friction coefficient mu_r (used when rolling = constant)"},
     {S(SPECIES), "background_damping", NUM, "1/s", IN_SPECIES(background_damping), .def = {0},
      GE(0), .doc = "force -b m v on every particle of the species"},
+    {S(SPECIES), "parcel_particles", NUM, "-", IN_SPECIES(parcel_particles), .def = {0},
+     .default_text = "0 (not parcels)", GE(0), LE(1e15),
+     .doc = "makes the species parcels (MP-PIC, docs/parcels.md), each standing for this many "
+            "real particles of the species' diameter and density; needs [gas]"},
+    {S(SPECIES), "parcel_volume", NUM, "m^3", IN_SPECIES(parcel_volume), .def = {0},
+     .default_text = "0 (not parcels)", GE(0), LE(1e3),
+     .doc = "makes the species parcels of this solids volume each (parcels of equal volume: the "
+            "particle count follows each parcel's drawn diameter); instead of parcel_particles"},
 
     // [pair A B]: each given key replaces the value mixed from the two species.
     {S(PAIR), "restitution", NUM, "-", IN_PAIR(restitution), .default_text = "from the species",
@@ -553,6 +565,24 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "Syamlal-O'Brien C (Sun 2007, table 4.3: 0.8, 0.7, 0.64)"},
     {S(COUPLING), "syamlal_d", NUM, "-", IN_COUPLING(syamlal_d), .def = {2.65}, GT(0),
      .doc = "Syamlal-O'Brien D (2.65, 3.44, 4.03 with the C above)"},
+
+    // [parcels]
+    {S(PARCELS), "model", .type = BDL_KEY_ENUM, "-", IN_PARCELS(model), .def = {BDL_PARCEL_STRESS},
+     .enum_names = bdl_parcel_model_names, .default_text = "stress",
+     .doc = "what keeps parcels from close packing: stress (model A of Patankar & Joseph 2001: "
+            "an interparticle stress on the gas grid)"},
+    {S(PARCELS), "stress_pressure", NUM, "Pa", IN_PARCELS(stress_pressure), .def = {100}, GE(0),
+     LE(1e9), .doc = "P_s of the stress P_s theta^beta / (theta_cs - theta)"},
+    {S(PARCELS), "stress_exponent", NUM, "-", IN_PARCELS(stress_exponent), .def = {3}, GE(0),
+     LE(10), .doc = "beta of the stress"},
+    {S(PARCELS), "close_packing", NUM, "-", IN_PARCELS(close_packing), .def = {0.6}, GT(0),
+     LT(1), .doc = "theta_cs: no cell's solids fraction exceeds it (the packing guard)"},
+    {S(PARCELS), "stress_floor", NUM, "-", IN_PARCELS(stress_floor), .def = {1e-3}, GT(0),
+     LT(1), .doc = "least theta_cs - theta in the stress's denominator: the stress stays finite"},
+    {S(PARCELS), "substeps", .type = BDL_KEY_INT, "-", IN_PARCELS(substeps), .def = {1}, GE(1),
+     LE(100), .doc = "K: each step's drift in this many parts, the sides met in each"},
+    {S(PARCELS), "wall_restitution", NUM, "-", IN_PARCELS(wall_restitution), .def = {0.9}, GE(0),
+     LE(1), .doc = "normal restitution of a parcel reflected at a side of the domain"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

@@ -76,6 +76,9 @@ static void mask_text(const bdl_scene_key *selector, unsigned mask, char *buf, s
 /// Required keys, keys that do not apply to the chosen type, and unit vectors.
 static void check_table_rules(bdl_scene_parser *p, bdl_scene_section *s)
 {
+    // Parcels have no contacts: a species of them needs no restitution.
+    const int parcels = s->kind == BDL_SECTION_SPECIES &&
+                        bdl_species_is_parcel(&p->scene->species[s->index]);
     for (int i = 0; i < bdl_scene_key_count && !p->failed; ++i) {
         const bdl_scene_key *key = &bdl_scene_keys[i];
         if (key->section != s->kind)
@@ -87,6 +90,11 @@ static void check_table_rules(bdl_scene_parser *p, bdl_scene_section *s)
         if (selector)
             snprintf(why, sizeof why, " for %s = %s", selector->name, selector->enum_names[choice]);
         int required = key->required == BDL_REQUIRED_ALWAYS || (selector && (key->required & bit));
+        if (parcels && strcmp(key->name, "restitution") == 0) {
+            if (!given(s, key))
+                p->scene->species[s->index].material.restitution = 1.0;
+            required = 0;
+        }
         if (!given(s, key)) {
             if (required)
                 fail_missing(p, s, key->name, key->required == BDL_REQUIRED_ALWAYS ? "" : why);
@@ -146,9 +154,14 @@ static int find_species(const bdl_scene *scene, const char *name, char *hint, si
 static void check_species(bdl_scene_parser *p, bdl_scene_section *s)
 {
     bdl_species_def *sp = &p->scene->species[s->index];
-    if (p->scene->law == BDL_LAW_HERTZ && !given(s, key_of(s, "youngs_modulus")))
+    const int parcel = bdl_species_is_parcel(sp); // parcels have no contacts: no stiffness
+    if (parcel && sp->parcel_particles > 0.0 && sp->parcel_volume > 0.0)
+        fail_at_key(p, s, "parcel_volume", 0, "parcel_particles and parcel_volume are exclusive");
+    if (parcel && sp->shape != BDL_SHAPE_SPHERE)
+        fail_at_key(p, s, "shape", 0, "parcels are of spheres");
+    if (!parcel && p->scene->law == BDL_LAW_HERTZ && !given(s, key_of(s, "youngs_modulus")))
         fail_missing(p, s, "youngs_modulus", " for [contact] law = hertz");
-    if (p->scene->law == BDL_LAW_LINEAR && !given(s, key_of(s, "stiffness")))
+    if (!parcel && p->scene->law == BDL_LAW_LINEAR && !given(s, key_of(s, "stiffness")))
         fail_missing(p, s, "stiffness", " for [contact] law = linear");
     if (p->failed)
         return;
@@ -395,6 +408,56 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
     }
 }
 
+/// A scene with parcels: every species of parcels, a gas to carry them, no [wall] (the domain's
+/// sides bound them) and the step in [run] dt (it is the gas's step too).
+static void check_parcels(bdl_scene_parser *p)
+{
+    bdl_scene *scene = p->scene;
+    int parcels = 0, first_parcel = -1, first_other = -1;
+    for (int k = 0; k < scene->species_count; ++k) {
+        const int is = bdl_species_is_parcel(&scene->species[k]);
+        parcels += is;
+        if (is && first_parcel < 0)
+            first_parcel = k;
+        if (!is && first_other < 0)
+            first_other = k;
+    }
+    scene->parcels.enabled = parcels > 0;
+    bdl_scene_section *section = NULL, *gas = NULL;
+    for (int i = 0; i < p->section_count; ++i) {
+        if (p->sections[i].kind == BDL_SECTION_PARCELS)
+            section = &p->sections[i];
+        if (p->sections[i].kind == BDL_SECTION_GAS)
+            gas = &p->sections[i];
+    }
+    const bdl_scene_where at_parcels = {.line = section ? section->line : 0, .title = "parcels"};
+    if (!parcels) {
+        if (section && section_used(section))
+            bdl_scene_fail(p, &at_parcels,
+                           "[parcels] needs a species made of parcels (parcel_particles or "
+                           "parcel_volume)");
+        return;
+    }
+    char title[BDL_NAME_LEN + 16];
+    snprintf(title, sizeof title, "species %s", scene->species[first_parcel].name);
+    const bdl_scene_where at_species = {.line = scene->line.species[first_parcel], .title = title};
+    if (first_other >= 0)
+        bdl_scene_fail(p, &at_species,
+                       "species '%s' is made of parcels and '%s' is not: a scene holds parcels or "
+                       "particles, not both (yet)",
+                       scene->species[first_parcel].name, scene->species[first_other].name);
+    else if (!scene->gas.enabled)
+        bdl_scene_fail(p, &at_species,
+                       "parcels move with a gas (or liquid): the scene needs a [gas] section");
+    else if (scene->wall_count > 0)
+        bdl_scene_fail(p, &(bdl_scene_where){.line = scene->line.walls[0], .title = "wall"},
+                       "[wall] sections bound particles; parcels are bounded by the domain's "
+                       "sides (the [gas] side types): remove the wall");
+    else if (scene->gas.dt > 0.0 && gas)
+        fail_at_key(p, gas, "dt", 0,
+                    "with parcels the gas steps with the parcels: give the step as [run] dt");
+}
+
 static void check_singletons(bdl_scene_parser *p)
 {
     bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL, *camera = NULL,
@@ -565,6 +628,8 @@ int bdl_scene_validate(bdl_scene_parser *p)
                 check_create(p, s);
         }
     }
+    if (!p->failed)
+        check_parcels(p);
     if (!p->failed)
         check_output_counts(p);
     return !p->failed;

@@ -325,6 +325,8 @@ static double container_momentum(const bdl_world *w)
 
 bdl_result bdl_world_step(bdl_world *w)
 {
+    if (w->parcels)
+        return bdl_world_parcels_step(w);
     bdl_particles *p = &w->particles;
     // In a container's frame the inertial force does the work the container's walls would:
     // its acceleration at mid-step times the mean momentum along it over the step.
@@ -494,9 +496,11 @@ static int overlaps_wall(const bdl_world *w, long i, char *what, size_t len)
 static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_error *err)
 {
     char what[768];
+    const int parcels = w->parcels != NULL; // parcels may overlap, and meet no walls
     for (long i = 0; i < w->particles.count; ++i)
-        if (outside_domain(w, i, what, sizeof what) || overlaps_particle(w, i, what, sizeof what) ||
-            overlaps_wall(w, i, what, sizeof what)) {
+        if (outside_domain(w, i, what, sizeof what) ||
+            (!parcels &&
+             (overlaps_particle(w, i, what, sizeof what) || overlaps_wall(w, i, what, sizeof what)))) {
             char where[BDL_PATH_LEN + 64];
             creator_of(w, w->particles.id[i], first_id, where, sizeof where);
             snprintf(err->message, sizeof err->message, "%s: %s", where, what);
@@ -553,6 +557,7 @@ static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
 {
     const bdl_scene *scene = &w->scene;
     w->particles.fluid = scene->gas.enabled; // before the arrays exist
+    w->particles.parcels = scene->parcels.enabled;
     for (int k = 0; k < scene->species_count; ++k)
         w->particles.rods |= scene->species[k].shape == BDL_SHAPE_ROD;
     // Reserve what the creators will make, so storage carries no growth slack.
@@ -629,6 +634,17 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     bdl_result r = bdl_budget_check(w, &w->budget, err);
     if (r == BDL_OK)
         r = create_particles(w, first_id, &expected, err);
+    if (r == BDL_OK && scene->parcels.enabled) { // no contacts: the gas's pace
+        r = bdl_world_parcels_init(w, err);
+        if (r == BDL_OK)
+            r = check_initial(w, first_id, err);
+        if (r != BDL_OK) {
+            bdl_world_destroy(w);
+            return r;
+        }
+        *out = w;
+        return BDL_OK;
+    }
     if (r == BDL_OK)
         r = build_neighbor(w, expected, err);
     if (r == BDL_OK)
@@ -656,6 +672,7 @@ void bdl_world_destroy(bdl_world *w)
 {
     if (!w)
         return;
+    bdl_world_parcels_free(w);
     bdl_world_gas_free(w);
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);

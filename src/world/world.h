@@ -26,6 +26,7 @@
 
 struct bdl_gas;
 struct bdl_coupling;
+struct bdl_parcels;
 
 /// Live parameters a user may change between steps (commands); logged with their step.
 typedef struct bdl_live_params {
@@ -98,6 +99,12 @@ typedef struct bdl_world {
     double gas_seconds;      ///< wall-clock time spent in gas steps [s]
     double coupling_seconds; ///< wall-clock time spent coupling (deposit, interpolate, forces) [s]
 
+    // Parcels (a species made of them; NULL otherwise): they step with the gas, one gas step per
+    // step of the world, and have no contacts, neighbour lists or contact time.
+    struct bdl_parcels *parcels;
+    long parcels_held; ///< parcels the packing guard held back since the start
+    double max_solids; ///< largest solids fraction of a cell after the last step
+
     /// Why the last bdl_world_step failed, for the caller to report (the world prints nothing).
     char failure[512];
 } bdl_world;
@@ -128,6 +135,18 @@ uint64_t bdl_world_hash(const bdl_world *world);
 bdl_result bdl_world_gas_init(bdl_world *world, bdl_scene_error *err);
 void bdl_world_gas_free(bdl_world *world);
 
+/// Builds the gas, coupling and parcel solver of a scene with parcels, and its step (world_create
+/// calls it).
+bdl_result bdl_world_parcels_init(bdl_world *world, bdl_scene_error *err);
+void bdl_world_parcels_free(bdl_world *world);
+
+/// The stable step of a world of parcels: CFL 1/2 for the inflow through close packing, and
+/// the gas's viscous limit [s] (the drag is implicit, the stress damped by it).
+double bdl_world_parcels_stable_dt(const bdl_world *world);
+
+/// One step of a world of parcels (bdl_world_step calls it).
+bdl_result bdl_world_parcels_step(bdl_world *world);
+
 /// One line naming the active modules and their models, for run.log.
 void bdl_world_describe(const bdl_world *world, char *buf, size_t size);
 
@@ -137,6 +156,10 @@ void bdl_world_gas_describe(const bdl_world *world, char *buf, size_t size);
 /// One gas step with its coupling, at the start of a particle step that begins one
 /// (bdl_world_step calls it). BDL_ERR_UNSTABLE when the gas cannot be advanced stably.
 bdl_result bdl_world_gas_step(bdl_world *world);
+
+/// CFL 1/2 for the fastest gas to expect at a superficial inflow: the inflow through the densest
+/// packing plus a margin, at most 5e-4 s and the gas's own stable step [s].
+double bdl_world_expected_gas_dt(const bdl_world *world, double inflow);
 
 /// The superficial inlet velocity at time t: [gas] inlet_velocity, or the stage of its sweep,
 /// times the live inlet scale [m/s].

@@ -53,6 +53,7 @@ static bdl_gas_def gas_def(bdl_world *w)
     d.viscosity = gs->viscosity;
     d.convection = gs->convection;
     d.tolerance = gs->tolerance;
+    d.pressure_share = s->parcels.enabled;
     return d;
 }
 
@@ -65,6 +66,8 @@ static bdl_coupling_def coupling_def(const bdl_world *w)
     d.drag_params = (bdl_drag_params){cs->syamlal_c, cs->syamlal_d};
     if (cs->kernel_width > 0.0)
         d.kernel_width = cs->kernel_width;
+    else if (w->scene.parcels.enabled) // the seed's trilinear kernel: a tent one cell wide
+        d.kernel_width = 0.0;
     d.max_solids = cs->max_solids;
     return d;
 }
@@ -72,7 +75,7 @@ static bdl_coupling_def coupling_def(const bdl_world *w)
 /// CFL 1/2 for the fastest gas to expect at a superficial inflow u (the larger of the inlet's and
 /// the jet's): u through the densest packing, plus a margin for bubbles, across the axes the gas
 /// can move along (more than one cell); at most BDL_GAS_DT_MAX and the gas's own stable step.
-static double expected_gas_dt(const bdl_world *w, double inflow)
+double bdl_world_expected_gas_dt(const bdl_world *w, double inflow)
 {
     const bdl_grid *g = &w->gas->grid;
     const double u = inflow / (1.0 - w->coupling->def.max_solids) + 0.5;
@@ -95,7 +98,7 @@ static void schedule_gas(bdl_world *w)
     double dt_gas = gs->dt;
     w->gas_fixed = dt_gas > 0.0;
     if (!w->gas_fixed)
-        dt_gas = expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+        dt_gas = bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
     w->gas_every = steps_in(w, dt_gas);
     if (w->gas_every < 1)
         w->gas_every = 1;
@@ -184,7 +187,7 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     if (!w->gas_fixed && (w->gas_steps > 0 || raised > 0.0)) {
         const double stable = w->gas_steps > 0 ? w->gas_stable : dt_last;
         const long every =
-            steps_in(w, raised > 0.0 ? fmin(stable, expected_gas_dt(w, raised)) : stable);
+            steps_in(w, raised > 0.0 ? fmin(stable, bdl_world_expected_gas_dt(w, raised)) : stable);
         w->gas_every = every < 1 ? 1 : every > w->gas_every_max ? w->gas_every_max : every;
     }
     const double dt = (double)w->gas_every * w->dt;

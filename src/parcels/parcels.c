@@ -1,0 +1,327 @@
+// bedlam — parcels: drift, packing guard, interparticle stress, and the implicit exchange with
+// the gas (parcels.h has the scheme).
+#include "core/parallel.h"
+#include "parcels/parcels.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/memory.h"
+#include "core/timer.h"
+
+BDL_CHOICE_WORDS(bdl_parcel_model, BDL_PARCEL_MODELS);
+
+bdl_parcels_def bdl_default_parcels_def(void)
+{
+    return (bdl_parcels_def){.model = BDL_PARCEL_STRESS,
+                             .stress_pressure = 100.0,
+                             .stress_exponent = 3.0,
+                             .close_packing = 0.6,
+                             .stress_floor = 1e-3,
+                             .substeps = 1,
+                             .wall_restitution = 0.9};
+}
+
+double bdl_parcels_stress(const bdl_parcels_def *def, double theta)
+{
+    if (!(theta > 0.0))
+        return 0.0;
+    const double gap = fmax(def->close_packing - theta, def->stress_floor);
+    return def->stress_pressure * pow(theta, def->stress_exponent) / gap;
+}
+
+bdl_result bdl_parcels_init(bdl_parcels *pc, const bdl_parcels_def *def, const bdl_gas *gas)
+{
+    *pc = (bdl_parcels){0};
+    pc->def = *def;
+    pc->tau = bdl_grid_alloc(&gas->grid);
+    int ok = pc->tau != NULL;
+    for (int a = 0; a < 3; ++a)
+        ok = ok && (pc->grad[a] = bdl_grid_alloc(&gas->grid));
+    if (!ok) {
+        bdl_parcels_free(pc);
+        return BDL_ERR_NOMEM;
+    }
+    return BDL_OK;
+}
+
+void bdl_parcels_free(bdl_parcels *pc)
+{
+    free(pc->start);
+    free(pc->start_v);
+    free(pc->accel);
+    free(pc->value);
+    free(pc->perm);
+    free(pc->scratch);
+    free(pc->held);
+    free(pc->tau);
+    for (int a = 0; a < 3; ++a)
+        free(pc->grad[a]);
+    *pc = (bdl_parcels){0};
+}
+
+static bdl_result reserve(bdl_parcels *pc, long n)
+{
+    if (n <= pc->capacity)
+        return BDL_OK;
+    const long cap = n + n / 4 + 64;
+    if (!bdl_grow((void **)&pc->start, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&pc->start_v, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&pc->accel, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&pc->value, cap, sizeof(double)) ||
+        !bdl_grow((void **)&pc->perm, cap, sizeof(int32_t)) ||
+        !bdl_grow((void **)&pc->scratch, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&pc->held, cap, 1))
+        return BDL_ERR_NOMEM;
+    pc->capacity = cap;
+    return BDL_OK;
+}
+
+double bdl_parcels_solids_volume(const bdl_particles *p)
+{
+    double sum = 0.0;
+    for (long i = 0; i < p->count; ++i)
+        sum += bdl_particle_solids_volume(p, i);
+    return sum;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Drift.
+
+/// Keeps coordinate a of parcel i inside the domain: wraps a periodic axis, reflects off a wall
+/// or an inlet (the normal velocity reversed and scaled by the restitution); returns 1 when the
+/// parcel is beyond an outlet.
+static int keep_inside(const bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, long i, int a)
+{
+    const bdl_grid *g = &gas->grid;
+    const double lo = g->origin[a], hi = lo + g->n[a] * g->h[a];
+    double x = bdl_v3_comp(p->pos[i], a), v = bdl_v3_comp(p->vel[i], a);
+    if (x >= lo && x <= hi)
+        return 0;
+    if (g->periodic[a]) {
+        const double L = hi - lo;
+        x = lo + fmod(fmod(x - lo, L) + L, L);
+    } else {
+        const int side = x < lo ? 2 * a : 2 * a + 1;
+        if (gas->def.side[side].type == BDL_SIDE_OUTLET)
+            return 1;
+        const int below = x < lo;
+        x = 2.0 * (below ? lo : hi) - x;
+        x = fmin(fmax(x, lo), hi); // a parcel faster than a domain per part stops at the side
+        if (below ? v < 0.0 : v > 0.0)
+            v = -pc->def.wall_restitution * v;
+    }
+    bdl_v3_set_comp(&p->pos[i], a, x);
+    bdl_v3_set_comp(&p->vel[i], a, v);
+    return 0;
+}
+
+/// Moves every parcel by v dt in `substeps` parts, meeting the sides within each; the parcels
+/// beyond an outlet are marked in pc->held. Returns how many.
+static long drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, double dt)
+{
+    const int parts = pc->def.substeps > 0 ? pc->def.substeps : 1;
+    const double h = dt / parts;
+    long leaving = 0;
+    for (long i = 0; i < p->count; ++i) {
+        int out = 0;
+        for (int k = 0; k < parts && !out; ++k) {
+            p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], h);
+            for (int a = 0; a < 3; ++a)
+                out |= keep_inside(pc, gas, p, i, a);
+        }
+        pc->held[i] = (uint8_t)out;
+        leaving += out;
+    }
+    return leaving;
+}
+
+/// Removes the parcels marked in pc->held (beyond an outlet), keeping the others' order.
+static void remove_marked(bdl_parcels *pc, bdl_particles *p, bdl_parcels_report *out)
+{
+    long kept = 0;
+    for (long i = 0; i < p->count; ++i) {
+        if (pc->held[i]) {
+            out->removed++;
+            out->removed_mass += 1.0 / p->inv_mass[i];
+        } else {
+            pc->perm[kept] = (int32_t)i;
+            pc->start[kept] = pc->start[i];
+            pc->start_v[kept] = pc->start_v[i];
+            ++kept;
+        }
+    }
+    for (long i = kept; i < p->count; ++i) // the leavers last: permute moves whole slots
+        if (pc->held[i])
+            pc->perm[kept++] = (int32_t)i;
+    bdl_particles_permute(p, pc->perm, pc->scratch);
+    p->count -= out->removed;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The packing guard.
+
+/// Whether any cell of the gas grid holds a solids fraction above close packing.
+static int overfull(const bdl_parcels *pc, const bdl_gas *gas, double *max_solids)
+{
+    const bdl_grid *g = &gas->grid;
+    int any = 0;
+    double top = 0.0;
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i) {
+                const double theta = 1.0 - gas->eps[bdl_grid_index(g, i, j, k)];
+                top = fmax(top, theta);
+                any |= theta > pc->def.close_packing;
+            }
+    *max_solids = top;
+    return any;
+}
+
+/// The solids fraction of the parcels where they are now; while a cell is above close packing,
+/// every parcel whose kernel reaches such a cell returns to where the step began, at rest.
+static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
+                        bdl_parcels_report *out)
+{
+    for (;;) {
+        if (bdl_coupling_locate(c, gas, p) != BDL_OK)
+            return BDL_ERR_NOMEM;
+        bdl_coupling_voidage(c, gas, p);
+        if (!overfull(pc, gas, &out->max_solids))
+            return BDL_OK;
+        // A cell field marking the overfull cells, read back through the kernels.
+        double *mark = pc->tau;
+        const bdl_grid *g = &gas->grid;
+        memset(mark, 0, (size_t)g->size * sizeof(double));
+        for (long idx = 0; idx < g->size; ++idx)
+            mark[idx] = 1.0 - gas->eps[idx] > pc->def.close_packing ? 1.0 : 0.0;
+        long moved = 0;
+        for (long i = 0; i < p->count; ++i) {
+            const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
+            const int back = bdl_coupling_interpolate(c, i, mark) > 0.0 &&
+                             (x.x != x0.x || x.y != x0.y || x.z != x0.z);
+            if (back) {
+                p->pos[i] = pc->start[i];
+                p->vel[i] = bdl_v3_zero();
+                ++moved;
+            }
+        }
+        out->held += moved;
+        if (moved == 0) // the start was already overfull (a scene's initial state): go on
+            return BDL_OK;
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Stress.
+
+/// tau in the cells, grad tau / theta on the momentum faces, and A_b = g + A_cp at each parcel.
+static void stress(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas,
+                   const bdl_particles *p, bdl_vec3 gravity)
+{
+    const bdl_grid *g = &gas->grid;
+    for (long idx = 0; idx < g->size; ++idx)
+        pc->tau[idx] = bdl_parcels_stress(&pc->def, 1.0 - gas->eps[idx]);
+    for (int a = 0; a < 3; ++a) {
+        const long s = g->stride[a];
+        const double inv_h = 1.0 / g->h[a];
+        double *grad = pc->grad[a];
+        memset(grad, 0, (size_t)g->size * sizeof(double));
+        // Interior faces only: the kernels reach no face on a wall, and across a periodic side
+        // the ghost cells are the images.
+        for (int k = 0; k < g->n[2] + (a == 2); ++k)
+            for (int j = 0; j < g->n[1] + (a == 1); ++j)
+                for (int i = 0; i < g->n[0] + (a == 0); ++i) {
+                    const int m = a == 0 ? i : a == 1 ? j : k;
+                    if (!g->periodic[a] && (m == 0 || m == g->n[a]))
+                        continue;
+                    const long idx = bdl_grid_index(g, i, j, k);
+                    const double theta = 1.0 - 0.5 * (gas->eps[idx] + gas->eps[idx - s]);
+                    grad[idx] = (pc->tau[idx] - pc->tau[idx - s]) * inv_h / fmax(theta, 1e-3);
+                }
+    }
+    BDL_PARALLEL_FOR(
+        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
+            const double density = 1.0 / (p->inv_mass[i] * bdl_particle_solids_volume(p, i));
+            const bdl_vec3 gt = bdl_coupling_face_average(c, i, pc->grad);
+            pc->accel[i] = bdl_v3_madd(gravity, gt, -1.0 / density);
+        });
+}
+
+// ---------------------------------------------------------------------------------------------
+// The step.
+
+/// The gas's pressure share 1 - C_pr on the faces, C_pr = sum W V / (1 + D dt) / V_cell, from the
+/// drag set-up's a = m D / (1 + D dt): V / (1 + D dt) = V (1 - a dt / m).
+static void pressure_share(bdl_parcels *pc, const bdl_coupling *c, bdl_gas *gas,
+                           const bdl_particles *p, double dt)
+{
+    for (long i = 0; i < p->count; ++i)
+        pc->value[i] = bdl_particle_solids_volume(p, i) * (1.0 - c->factor[i] * dt * p->inv_mass[i]);
+    bdl_coupling_deposit_faces(c, gas, p, pc->value, gas->share);
+    const bdl_grid *g = &gas->grid;
+    for (int a = 0; a < 3; ++a)
+        for (long idx = 0; idx < g->size; ++idx)
+            gas->share[a][idx] = 1.0 - gas->share[a][idx];
+}
+
+/// v^{n+1} = v + a dt / m (u - v - dt A_b + dt grad p / rho_p) + dt (A_b - grad p / rho_p): the
+/// implicit update written as the drag the gas gave plus the other forces; the total drag on
+/// the parcels into `drag`.
+static void velocities(const bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas,
+                       bdl_particles *p, double dt, double drag[3])
+{
+    BDL_PARALLEL_FOR(
+        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
+            const double m_inv = p->inv_mass[i];
+            const double density = 1.0 / (m_inv * bdl_particle_solids_volume(p, i));
+            const bdl_vec3 u = bdl_coupling_gas_velocity(c, gas, i);
+            const bdl_vec3 gp = bdl_coupling_face_average(c, i, gas->grad_p);
+            const bdl_vec3 other = bdl_v3_madd(pc->accel[i], gp, -1.0 / density);
+            const bdl_vec3 slip = bdl_v3_sub(bdl_v3_sub(u, p->vel[i]), bdl_v3_scale(other, dt));
+            const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
+            p->vel[i] = bdl_v3_add(p->vel[i], bdl_v3_scale(bdl_v3_madd(other, f, m_inv), dt));
+            p->load[i].force = f; // the drag of this step, for the balances
+        });
+    drag[0] = drag[1] = drag[2] = 0.0;
+    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
+        drag[0] += p->load[i].force.x;
+        drag[1] += p->load[i].force.y;
+        drag[2] += p->load[i].force.z;
+    }
+}
+
+bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
+                            const bdl_parcels_step_def *def, bdl_parcels_report *out)
+{
+    const double t0 = bdl_wall_seconds(), dt = def->dt;
+    *out = (bdl_parcels_report){0};
+    if (reserve(pc, p->count) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
+    memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));
+    if (drift(pc, gas, p, dt) > 0)
+        remove_marked(pc, p, out);
+    bdl_result r = place(pc, c, gas, p, out);
+    if (r != BDL_OK)
+        return r;
+    if (def->first)
+        memcpy(gas->eps_old, gas->eps, (size_t)gas->grid.size * sizeof(double));
+    stress(pc, c, gas, p, def->gravity);
+    bdl_coupling_drag_setup(c, gas, p, pc->accel, dt);
+    pressure_share(pc, c, gas, p, dt);
+    const double t1 = bdl_wall_seconds();
+    r = bdl_gas_step(gas, dt);
+    const double t2 = bdl_wall_seconds();
+    out->gas_seconds = t2 - t1;
+    out->stable_dt = r == BDL_OK ? bdl_gas_stable_dt(gas) : 0.0;
+    if (r == BDL_OK && dt > 2.0 * out->stable_dt)
+        r = BDL_ERR_UNSTABLE;
+    if (r != BDL_OK)
+        return r;
+    velocities(pc, c, gas, p, dt, out->particle_drag);
+    bdl_coupling_gas_drag(gas, out->gas_drag);
+    out->parcel_seconds = (t1 - t0) + (bdl_wall_seconds() - t2);
+    return BDL_OK;
+}
