@@ -246,4 +246,18 @@ typedef struct bdl_verify_settling {
 /// the zero-volume-flux frame against the drag law's.
 bdl_result bdl_verify_suspension(double phi, int substeps, bdl_verify_settling *out);
 
+// ---- parcels (verify_parcels.c) ----
+
+/// Hindered settling of parcels (MP-PIC, model A, the patankar drag) in a closed column one cell
+/// across at solids fraction phi: `per_cell` parcels per cell, `cells` along the column, step
+/// dt. The speed of the top interface (from the solids above a level in the suspension) by least
+/// squares over 5-35 s, against the model's own v = eps w, K(eps, w) w = eps (rho_p - rho) g.
+bdl_result bdl_verify_parcel_settling(int per_cell, int cells, double dt, double phi, int seed,
+                                      bdl_verify_settling *out);
+/// Solids volume of the particles (parcels) above height z [m^3].
+double bdl_verify_solids_above(const bdl_world *w, double z);
+/// Height of the highest crossing of the horizontally averaged solids fraction through `level`,
+/// from the top down, interpolated between cell centres [m].
+double bdl_verify_parcel_interface(const bdl_world *w, double level);
+
 #endif
