@@ -20,3 +20,5 @@ bdl_add_test(test_stiff_drag SOURCES test_stiff_drag.c LABELS "cfd;verification;
 bdl_add_test(test_density_ratio SOURCES test_density_ratio.c LABELS "cfd;stability" TIMEOUT 600)
 bdl_add_test(test_close_packing SOURCES test_close_packing.c LABELS "cfd;stability" TIMEOUT 600)
 bdl_add_test(test_jet_outflow SOURCES test_jet_outflow.c LABELS "cfd;stability" TIMEOUT 600)
+bdl_add_test(test_parcels SOURCES test_parcels.c LABELS "cfd;verification")
+target_link_libraries(test_parcels PRIVATE OpenMP::OpenMP_C)

@@ -258,7 +258,8 @@ static void pressure_share(bdl_parcels *pc, const bdl_coupling *c, bdl_gas *gas,
                            const bdl_particles *p, double dt)
 {
     for (long i = 0; i < p->count; ++i)
-        pc->value[i] = bdl_particle_solids_volume(p, i) * (1.0 - c->factor[i] * dt * p->inv_mass[i]);
+        pc->value[i] =
+            bdl_particle_solids_volume(p, i) * (1.0 - c->factor[i] * dt * p->inv_mass[i]);
     bdl_coupling_deposit_faces(c, gas, p, pc->value, gas->share);
     const bdl_grid *g = &gas->grid;
     for (int a = 0; a < 3; ++a)
@@ -282,7 +283,9 @@ static void velocities(const bdl_parcels *pc, const bdl_coupling *c, const bdl_g
             const bdl_vec3 slip = bdl_v3_sub(bdl_v3_sub(u, p->vel[i]), bdl_v3_scale(other, dt));
             const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
             p->vel[i] = bdl_v3_add(p->vel[i], bdl_v3_scale(bdl_v3_madd(other, f, m_inv), dt));
-            p->load[i].force = f; // the drag of this step, for the balances
+            // The drag as the gas booked it, a (u - v - dt A_b); the rest of f, a dt grad p /
+            // rho_p, is the share of the pressure force the gas's 1 - C_pr handed over.
+            p->load[i].force = bdl_v3_madd(f, gp, -c->factor[i] * dt / density);
         });
     drag[0] = drag[1] = drag[2] = 0.0;
     for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order

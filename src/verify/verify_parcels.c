@@ -31,8 +31,8 @@ static bdl_world *column(int per_cell, int cells, double dt, double phi, int see
         "[create suspension]\n%sspecies = heavy\nregion_min = 0 0 0\nregion_max = %g %g %g\n"
         "[gas]\ndensity = 992\nviscosity = 0.0667\ncells = 1 1 %d\n"
         "[coupling]\ndrag = patankar\n",
-        dt, seed > 0 ? seed : 1, width, width, height, d, parcel, fill, width, width,
-        0.8 * height, cells);
+        dt, seed > 0 ? seed : 1, width, width, height, d, parcel, fill, width, width, 0.8 * height,
+        cells);
 }
 
 double bdl_verify_parcel_interface(const bdl_world *w, double level)

@@ -26,8 +26,9 @@ bdl_result bdl_world_parcels_init(bdl_world *w, bdl_scene_error *err)
     if (!w->coordination || bdl_neighbor_none(&w->neighbor, n) != BDL_OK)
         return BDL_ERR_NOMEM;
     const bdl_gas_scene *gs = &w->scene.gas;
-    w->dt = w->scene.dt > 0.0 ? w->scene.dt
-                              : bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+    w->dt = w->scene.dt > 0.0
+                ? w->scene.dt
+                : bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
     w->gas_fixed = 1;
     w->gas_every = w->gas_every_max = 1;
     w->gas_next = 0;
@@ -40,8 +41,8 @@ double bdl_world_parcels_stable_dt(const bdl_world *w)
 {
     const bdl_grid *g = &w->gas->grid;
     const bdl_gas_scene *gs = &w->scene.gas;
-    const double u = fmax(gs->inlet_velocity, gs->jet_velocity) /
-                     (1.0 - w->scene.parcels.def.close_packing);
+    const double u =
+        fmax(gs->inlet_velocity, gs->jet_velocity) / (1.0 - w->scene.parcels.def.close_packing);
     double hmin = INFINITY;
     for (int a = 0; a < 3; ++a)
         if (g->n[a] > 1)

@@ -1,0 +1,201 @@
+#define _POSIX_C_SOURCE 200809L
+// Parcels (MP-PIC, src/parcels/): the solids volume the kernels deposit equals the parcels' to
+// round-off every step; the drag the gas gives, the parcels receive; the packing guard keeps
+// every cell at or below close packing when parcels are driven hard against the floor, with
+// every number finite; the state is the same bit for bit on one and two threads and after a
+// checkpoint; scenes that cannot hold parcels are refused with the reason.
+#include <math.h>
+#include <omp.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "cfd/gas.h"
+#include "check.h"
+#include "output/checkpoint.h"
+#include "parcels/parcels.h"
+#include "scene_util.h"
+
+/// A closed box of liquid with a blob of parcels in its upper half, `g` times gravity.
+static const char *box =
+    "[run]\nend_time = 10\ndt = %g\ngravity = 0 0 %g\nseed = 3\n"
+    "[domain]\nmin = 0 0 0\nmax = 0.02 0.02 0.04\n"
+    "[species sand]\ndiameter = 300e-6\ndensity = 2500\nparcel_particles = %g\n"
+    "[create blob]\ntype = random\nspecies = sand\nvolume_fraction = 0.3\n"
+    "region_min = 0.004 0.004 0.02\nregion_max = 0.016 0.016 0.036\n"
+    "[gas]\ndensity = 1000\nviscosity = 1e-3\ncells = 4 4 8\n"
+    "[coupling]\ndrag = patankar\n%s";
+
+/// Solids volume the grid holds: sum over cells of (1 - eps) V_cell [m^3].
+static double grid_solids(const bdl_gas *g)
+{
+    const bdl_grid *gr = &g->grid;
+    double sum = 0.0;
+    for (int k = 0; k < gr->n[2]; ++k)
+        for (int j = 0; j < gr->n[1]; ++j)
+            for (int i = 0; i < gr->n[0]; ++i)
+                sum += (1.0 - g->eps[bdl_grid_index(gr, i, j, k)]) * gr->h[0] * gr->h[1] * gr->h[2];
+    return sum;
+}
+
+static void test_conservation(void)
+{
+    bdl_world *w = bdl_test_world(box, 2e-3, -9.81, 2000.0, "");
+    CHECK(w != NULL && w->parcels != NULL);
+    if (!w)
+        return;
+    const double v0 = bdl_parcels_solids_volume(&w->particles);
+    double worst = 0.0, drag = 0.0, unbalanced = 0.0;
+    for (int s = 0; s < 300; ++s) {
+        CHECK(bdl_world_step(w) == BDL_OK);
+        worst = fmax(worst, fabs(grid_solids(w->gas) / v0 - 1.0));
+        for (int a = 0; a < 3; ++a) {
+            drag = fmax(drag, fabs(w->particle_drag[a]));
+            unbalanced = fmax(unbalanced, fabs(w->particle_drag[a] + w->gas_drag[a]));
+        }
+    }
+    printf("closed box, 300 steps: deposited solids volume within %.2e of the parcels' %.6e m^3; "
+           "drag on parcels + on gas %.2e of %.2e N\n",
+           worst, v0, unbalanced, drag);
+    CHECK_MSG(worst < 1e-12, "deposited solids volume off by %g", worst);
+    CHECK(bdl_parcels_solids_volume(&w->particles) == v0 && w->removed == 0);
+    CHECK_MSG(unbalanced < 1e-10 * drag, "drag not returned: %g of %g", unbalanced, drag);
+    bdl_world_destroy(w);
+}
+
+/// Every number of the state finite.
+static int finite_state(const bdl_world *w)
+{
+    for (long i = 0; i < w->particles.count; ++i)
+        if (!bdl_v3_isfinite(w->particles.pos[i]) || !bdl_v3_isfinite(w->particles.vel[i]))
+            return 0;
+    for (long idx = 0; idx < w->gas->grid.size; ++idx)
+        if (!isfinite(w->gas->p[idx]) || !isfinite(w->gas->eps[idx]))
+            return 0;
+    return 1;
+}
+
+/// Fifty times gravity packs the blob against the floor: with the paper's stress the bed stops
+/// just below close packing; with a stress a hundred times weaker the parcels drive on into
+/// the floor's cells, and the guard holds them at close packing. Every number stays finite.
+static void test_packing_guard(void)
+{
+    for (int weak = 0; weak <= 1; ++weak) {
+        bdl_world *w = bdl_test_world(box, 4e-4, -490.0, 2000.0,
+                                      weak ? "[parcels]\nstress_pressure = 1\n" : "");
+        CHECK(w != NULL);
+        if (!w)
+            return;
+        const double cs = w->scene.parcels.def.close_packing;
+        double top = 0.0;
+        int finite = 1;
+        for (int s = 0; s < 2000 && finite; ++s) {
+            if (bdl_world_step(w) != BDL_OK) {
+                CHECK_MSG(0, "step %d: %s", s, w->failure);
+                break;
+            }
+            top = fmax(top, w->max_solids);
+            finite = finite_state(w);
+        }
+        printf("packed at 50 g, P_s %g Pa: largest solids fraction %.6f (close packing %.2f), "
+               "%ld parcels held back by the guard, finite %d\n",
+               w->scene.parcels.def.stress_pressure, top, cs, w->parcels_held, finite);
+        CHECK(finite);
+        CHECK_MSG(top <= cs, "solids fraction %g above close packing", top);
+        CHECK_MSG(top > cs - 0.05, "the bed did not pack (%g)", top);
+        CHECK_MSG(!weak || w->parcels_held > 0, "the guard never acted");
+        bdl_world_destroy(w);
+    }
+}
+
+static uint64_t run_hash(bdl_world *w, int steps)
+{
+    for (int s = 0; s < steps; ++s)
+        if (bdl_world_step(w) != BDL_OK)
+            return 0;
+    return bdl_world_hash(w);
+}
+
+/// One and two threads, and a checkpoint half way, give the same state.
+static void test_threads_and_resume(void)
+{
+    uint64_t hashes[2] = {0, 0};
+    for (int t = 1; t <= 2; ++t) {
+        omp_set_num_threads(t);
+        bdl_world *w = bdl_test_world(box, 2e-3, -9.81, 500.0, "");
+        if (!w)
+            return;
+        w->parallel_min = 1; // every loop on both threads
+        w->coupling->parallel_min = 1;
+        hashes[t - 1] = run_hash(w, 200);
+        printf("threads %d: %ld parcels, hash %016llx\n", t, w->particles.count,
+               (unsigned long long)hashes[t - 1]);
+        bdl_world_destroy(w);
+    }
+    CHECK(hashes[0] != 0 && hashes[0] == hashes[1]);
+
+    char path[] = "/tmp/bedlam-parcels-XXXXXX";
+    int fd = mkstemp(path);
+    CHECK(fd >= 0);
+    if (fd < 0)
+        return;
+    close(fd);
+    bdl_world *a = bdl_test_world(box, 2e-3, -9.81, 500.0, "");
+    bdl_world *b = bdl_test_world(box, 2e-3, -9.81, 500.0, "");
+    if (!a || !b)
+        return;
+    run_hash(a, 100);
+    char why[512] = "";
+    CHECK(bdl_checkpoint_save(a, path) == BDL_OK);
+    bdl_checkpoint_info info;
+    CHECK_MSG(bdl_checkpoint_load(b, path, &info, why, sizeof why) == BDL_OK, "%s", why);
+    const uint64_t ha = run_hash(a, 100), hb = run_hash(b, 100);
+    printf("resumed at step 100: hashes %016llx %016llx\n", (unsigned long long)ha,
+           (unsigned long long)hb);
+    CHECK(ha != 0 && ha == hb && ha == hashes[0]);
+    bdl_world_destroy(a);
+    bdl_world_destroy(b);
+    unlink(path);
+}
+
+/// Scenes that cannot hold parcels.
+static void test_refused(void)
+{
+    static const char *base = "[run]\nend_time = 1\ndt = 1e-3\n[domain]\nmin = 0 0 0\nmax = 0.02 "
+                              "0.02 0.04\n[species sand]\ndiameter = 3e-4\ndensity = 2500\n"
+                              "parcel_particles = 100\n[create a]\ntype = random\nspecies = "
+                              "sand\ncount = 10\nregion_min = 0 0 0\nregion_max = 0.02 0.02 0.02\n";
+    struct {
+        const char *extra, *expect;
+    } cases[] = {
+        {"", "needs a [gas] section"},
+        {"[gas]\ncells = 2 2 4\n[species glass]\ndiameter = 3e-4\ndensity = 2500\nyoungs_modulus "
+         "= 1e7\nrestitution = 0.9\n",
+         "not both"},
+        {"[gas]\ncells = 2 2 4\n[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\n",
+         "parcels are bounded by the domain's sides"},
+        {"[gas]\ncells = 2 2 4\ndt = 1e-3\n", "give the step as [run] dt"},
+        {"[gas]\ncells = 2 2 4\n[species sand2]\ndiameter = 3e-4\ndensity = 2500\n"
+         "parcel_particles = 10\nparcel_volume = 1e-9\n",
+         "exclusive"},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+        char text[2048];
+        snprintf(text, sizeof text, "%s%s", base, cases[k].extra);
+        bdl_scene scene;
+        bdl_scene_error err;
+        const bdl_result r = bdl_scene_load_string(text, "parcels.ini", NULL, 0, &scene, &err);
+        CHECK_MSG(r == BDL_ERR_SCENE && strstr(err.message, cases[k].expect),
+                  "case %zu: expected '%s', got '%s'", k, cases[k].expect, err.message);
+    }
+}
+
+int main(void)
+{
+    test_conservation();
+    test_packing_guard();
+    test_threads_and_resume();
+    test_refused();
+    return bdl_test_summary("test_parcels");
+}
