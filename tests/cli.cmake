@@ -140,3 +140,16 @@ add_test(NAME cli_resume_hostile COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE
   -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/vibrated_pair.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume_hostile
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_hostile_cli.cmake)
 set_tests_properties(cli_resume_hostile PROPERTIES LABELS cli TIMEOUT 300)
+
+# Parcels: check prints what parcels have (and nothing of contacts); the viewer's colours exclude
+# the coordination number; the bench times one thread count against another from the same state.
+add_test(NAME cli_check_parcels COMMAND ${CMAKE_COMMAND} -DEXPECT=0
+  "-DCONTAINS=parcels per filled cell: mean [0-9.]+, min [0-9]+, max [0-9]+.*stress at close packing.*of the parcels' stable step"
+  "-DLACKS=contact time|t_c |dt_refuse"
+  "-DCMD=$<TARGET_FILE:bedlam>;check;${PROJECT_SOURCE_DIR}/scenes/parcels_settling.ini" -P ${BDL_EXPECT})
+set_tests_properties(cli_check_parcels PROPERTIES LABELS cli TIMEOUT 300)
+bdl_cli_expect(cli_parcels_no_coordination 2 "parcels have no contacts" check ${PROJECT_SOURCE_DIR}/scenes/parcels_settling.ini --set camera.color=coordination)
+bdl_cli_expect(cli_parcels_display 2 "display = point" check ${PROJECT_SOURCE_DIR}/scenes/parcels_settling.ini --set parcels.display=point)
+bdl_cli_expect(cli_bench_parcels_help 0 "parcel updates per second" bench parcels --help)
+bdl_cli_expect(cli_bench_parcels 0 "speed-up 2 vs 1 threads: [0-9.]+x; the state after the window is the same bit for bit" bench parcels ${PROJECT_SOURCE_DIR}/scenes/parcels_settling.ini --warmup 0.02 --time 0.02)
+bdl_cli_expect(cli_bench_parcels_no_parcels 2 "has no parcels" bench parcels ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --time 0.01)

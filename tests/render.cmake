@@ -15,11 +15,14 @@ if(BDL_WITH_SDL)
   add_test(NAME view_xvfb COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/view_xvfb.sh
     $<TARGET_FILE:bedlam> ${PROJECT_SOURCE_DIR}/scenes/vibrated_bed.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/view)
   set_tests_properties(view_xvfb PROPERTIES LABELS "render;cli" TIMEOUT 300 SKIP_RETURN_CODE 77)
+  add_test(NAME view_parcels COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/view_parcels.sh
+    $<TARGET_FILE:bedlam> ${PROJECT_SOURCE_DIR}/scenes/parcels_settling.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/view_parcels)
+  set_tests_properties(view_parcels PROPERTIES LABELS "render;cli" TIMEOUT 300 SKIP_RETURN_CODE 77)
   # Under GLX, SDL unloads libGL at exit and Mesa's driver goes with it, so LeakSanitizer
   # sees the driver's lifetime allocations without a module to suppress them by. The renderer
   # itself is leak-checked by test_render and cli_frames_*; here only memory errors count.
   if(BDL_SANITIZE)
-    set_property(TEST view_xvfb APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
+    set_property(TEST view_xvfb view_parcels APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0:abort_on_error=1")
   else()
     # Every scene opens in the window (a few frames and a screenshot each); the sanitizer build
     # leaves it to view_xvfb, which drives the same window through every key.
@@ -33,3 +36,11 @@ bdl_cli_expect(cli_view_help 0 "Press H" view --help)
 bdl_cli_expect(cli_bench_render_help 0 "frames per second|Frames per second" bench render --help)
 bdl_cli_expect(cli_run_gl_sdl 2 "headless" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --gl sdl)
 bdl_cli_expect(cli_bad_gl 2 "egl or osmesa" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --gl vulkan)
+
+# Parcels: their display radius, real-particle count and solids fraction in the snapshot, drawn
+# headless; frames of a run of parcels.
+bdl_add_test(test_render_parcels SOURCES test_render_parcels.c LABELS render TIMEOUT 300)
+add_test(NAME cli_frames_parcels COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/parcels_frames.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/frames_parcels
+  -DGL=egl -DCOUNT=3 -DWIDTH=240 -DHEIGHT=320 -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/frames_cli.cmake)
+set_tests_properties(cli_frames_parcels PROPERTIES LABELS "render;cli" TIMEOUT 300)

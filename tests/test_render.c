@@ -213,6 +213,7 @@ static void test_colors(void)
             div = 1;
             break;
         case BDL_COLOR_VOIDAGE:
+        case BDL_COLOR_SOLIDS:
             v.range[0] = 0, v.range[1] = 1, t = -1.0f; // measured below
             break;
         case BDL_COLOR_TILT:
@@ -228,7 +229,7 @@ static void test_colors(void)
             bdl_category_color(1, c);
         else if (mode == BDL_COLOR_TILT || mode == BDL_COLOR_AZIMUTH)
             bdl_colormap_missing(c);
-        else if (mode == BDL_COLOR_VOIDAGE)
+        else if (mode == BDL_COLOR_VOIDAGE || mode == BDL_COLOR_SOLIDS)
             c[0] = c[1] = c[2] = -1.0f;
         else
             bdl_colormap_eval(div ? BDL_CMAP_DIVERGING : BDL_CMAP_SEQUENTIAL, t, c);
@@ -242,6 +243,16 @@ static void test_colors(void)
             bdl_colormap_eval(BDL_CMAP_SEQUENTIAL, 0.5f, lo);
             bdl_oklab_from_srgb(lo, lo_lab);
             CHECK_MSG(lab[0] > lo_lab[0], "voidage colour lightness %.3f", lab[0]);
+            continue;
+        }
+        if (mode == BDL_COLOR_SOLIDS) {
+            // No gas: 1 - the same voidage, low, so the pixel is in the map's lower half.
+            float lab[3], pf[3] = {p[0] / 255.0f, p[1] / 255.0f, p[2] / 255.0f};
+            bdl_oklab_from_srgb(pf, lab);
+            float mid[3], mid_lab[3];
+            bdl_colormap_eval(BDL_CMAP_SEQUENTIAL, 0.5f, mid);
+            bdl_oklab_from_srgb(mid, mid_lab);
+            CHECK_MSG(lab[0] < mid_lab[0], "solids colour lightness %.3f", lab[0]);
             continue;
         }
         uint8_t e[3] = {(uint8_t)lrintf(255 * c[0]), (uint8_t)lrintf(255 * c[1]),

@@ -22,6 +22,7 @@ bdl_result bdl_cmd_analyze(int argc, char **argv);
 /// `bedlam bench render` (argv[0] is "render").
 bdl_result bdl_bench_render(int argc, char **argv);
 bdl_result bdl_bench_coupled(int argc, char **argv);
+bdl_result bdl_bench_parcels(int argc, char **argv);
 
 /// Shared option parsing for subcommands that take a scene: --set, --threads, --out, --until,
 /// --resume, --quiet. Fills `opts` (opts->help after printing the usage), or prints an error and

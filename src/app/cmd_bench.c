@@ -30,6 +30,7 @@ static const char bench_usage[] =
     "usage: bedlam bench dem [options]\n"
     "       bedlam bench render --help\n"
     "       bedlam bench coupled --help\n"
+    "       bedlam bench parcels --help\n"
     "\n"
     "Times a settled, dense bed of frictional Hertz-Mindlin spheres (periodic in x and y, on a\n"
     "floor) and reports particle-steps per second, nanoseconds per particle-step, contacts and\n"
@@ -525,6 +526,8 @@ bdl_result bdl_cmd_bench(int argc, char **argv)
         return bdl_bench_render(argc - 1, argv + 1);
     if (k < argc && strcmp(argv[k], "coupled") == 0)
         return bdl_bench_coupled(argc - 1, argv + 1);
+    if (k < argc && strcmp(argv[k], "parcels") == 0)
+        return bdl_bench_parcels(argc - 1, argv + 1);
     if (k < argc && strcmp(argv[k], "dem") == 0)
         ++k;
     bdl_result r = parse_bench(argc, argv, k, &o, &help);

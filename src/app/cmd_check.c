@@ -17,8 +17,10 @@ static const char check_usage[] =
     "Parses and validates SCENE, estimates its memory and steps against [guards] max_memory and\n"
     "max_steps before anything is built, builds its particles, and prints the active modules, the\n"
     "contact time of every species pair and wall, the estimate, the stable time-step limit, and\n"
-    "the estimated cost of the run (measured on a few steps). Exit codes: 0 valid, 2 invalid (the\n"
-    "message names file, line, key, value and the allowed range or limit).\n";
+    "the estimated cost of the run (measured on a few steps). A scene of parcels (MP-PIC) has no\n"
+    "contacts: it prints the parcels, the real particles they stand for, the parcels per filled\n"
+    "gas cell, the model A stress and the parcels' stable step instead. Exit codes: 0 valid, 2\n"
+    "invalid (the message names file, line, key, value and the allowed range or limit).\n";
 
 /// One line of the contacts table: the pair, its contact time and parameters.
 static void print_contact(const bdl_world *w, const char *a, const char *b, double tc,
@@ -51,11 +53,16 @@ static void print_contacts(const bdl_world *w, double v_ref)
     }
 }
 
-static void print_modules(const bdl_world *w)
+/// The particles' module: DEM contacts and walls, or parcels.
+static void print_solids_module(const bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
-    printf("scene: %s — valid\n", s->path);
-    printf("modules:\n");
+    if (w->parcels) {
+        char parcels[256];
+        bdl_world_parcels_describe(w, parcels, sizeof parcels);
+        printf("  %s; no contacts, no walls: the domain's sides bound them\n", parcels);
+        return;
+    }
     printf("  dem: %s normal law%s; %s%s\n", w->hertz ? "Hertz-Mindlin" : "linear spring-dashpot",
            w->hertz ? (s->damping == BDL_DAMPING_EXACT ? " with exact restitution damping"
                                                        : " with closed-form damping")
@@ -65,6 +72,14 @@ static void print_modules(const bdl_world *w)
            w->rolling ? "; rolling resistance" : "");
     printf("  walls: %d (%d surfaces)%s\n", s->wall_count, w->walls.prim_count,
            bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
+}
+
+static void print_modules(const bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
+    printf("scene: %s — valid\n", s->path);
+    printf("modules:\n");
+    print_solids_module(w);
     if (w->container >= 0)
         printf("  frame: the vibrating container [wall %s]; its walls stand still and particles "
                "and gas feel gravity plus the inertial acceleration\n",
@@ -75,21 +90,60 @@ static void print_modules(const bdl_world *w)
     printf("  periodic axes: %s%s%s%s\n", s->periodic[0] ? "x " : "", s->periodic[1] ? "y " : "",
            s->periodic[2] ? "z " : "",
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
-    printf("particles at start: %ld (species: %d)\n", w->particles.count, s->species_count);
+    printf("%s at start: %ld (species: %d)\n", w->parcels ? "parcels" : "particles",
+           w->particles.count, s->species_count);
 }
 
-/// The time step against its limits; an error when the guards refuse it.
-static bdl_result print_time_step(const bdl_world *w)
+/// A world of parcels: what they stand for, how they fill the gas's cells, the stress that keeps
+/// them from close packing.
+static bdl_result print_parcels(const bdl_world *w)
+{
+    bdl_parcels_census c;
+    if (bdl_world_parcels_census(w, &c) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    const bdl_parcels_def *d = &w->scene.parcels.def;
+    printf("parcels: %ld standing for %.4g real particles (%.4g per parcel on average)\n",
+           c.parcels, c.real_particles, c.parcels > 0 ? c.real_particles / c.parcels : 0.0);
+    printf("  parcels per filled cell: mean %.3g, min %.0f, max %.0f (initial deposit: centres "
+           "in %ld of the %ld gas cells)\n",
+           c.per_cell_mean, c.per_cell_min, c.per_cell_max, c.filled_cells, c.cells);
+    printf("  largest solids fraction of a cell: %.3g (the kernels' deposit; close packing "
+           "theta_cs = %g)\n",
+           c.max_solids, d->close_packing);
+    const double theta = d->close_packing - d->stress_floor;
+    printf("  model A stress at close packing minus the floor: tau(%.4g) = %.4g Pa (P_s = %g Pa, "
+           "beta = %g, floor = %g); the most it gives\n",
+           theta, bdl_parcels_stress(d, theta), d->stress_pressure, d->stress_exponent,
+           d->stress_floor);
+    return BDL_OK;
+}
+
+/// The step against the smallest contact time and the guards' fractions of it.
+static void print_contact_step(const bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
-    char message[1024], warning[1024];
-    bdl_result r = bdl_guards_check_dt(w, message, sizeof message, warning, sizeof warning);
     printf("time step: dt = %.4g s = t_c / %.1f (smallest contact time %.4g s)\n", w->dt,
            1.0 / w->contact_time_dt_ratio, w->contact_time);
     printf("  stable limit: dt <= %.4g s ([guards] dt_refuse = %g t_c); accurate below %.4g s "
            "(dt_warn = %g t_c)\n",
            s->guards.dt_refuse * w->contact_time, s->guards.dt_refuse,
            s->guards.dt_warn * w->contact_time, s->guards.dt_warn);
+}
+
+/// The time step against its limits; an error when the guards refuse it.
+static bdl_result print_time_step(const bdl_world *w)
+{
+    char message[1024], warning[1024];
+    bdl_result r = bdl_guards_check_dt(w, message, sizeof message, warning, sizeof warning);
+    if (w->parcels) {
+        const double stable = bdl_world_parcels_stable_dt(w);
+        printf("time step: dt = %.4g s = %.3g of the parcels' stable step %.4g s (CFL 1/2 for the "
+               "inflow through close packing, and the gas's viscous limit); refused above twice "
+               "it\n",
+               w->dt, w->dt / stable, stable);
+    } else {
+        print_contact_step(w);
+    }
     if (r != BDL_OK)
         fprintf(stderr, "error: %s\n", message);
     else if (warning[0])
@@ -102,9 +156,14 @@ static void print_resources(const bdl_world *w)
 {
     const bdl_budget *b = &w->budget;
     const bdl_guard_def *g = &w->scene.guards;
-    printf("resources (estimated before anything was built): %.3g particles, %.3g neighbour "
-           "pairs, %.3g gas cells (ghost layers included)\n",
-           b->particles, b->pairs, b->gas_cells);
+    if (w->parcels)
+        printf("resources (estimated before anything was built): %.3g parcels, %.3g gas cells "
+               "(ghost layers included)\n",
+               b->particles, b->gas_cells);
+    else
+        printf("resources (estimated before anything was built): %.3g particles, %.3g neighbour "
+               "pairs, %.3g gas cells (ghost layers included)\n",
+               b->particles, b->pairs, b->gas_cells);
     printf("  memory: about %.3g MB (particles and pairs %.3g MB, gas %.3g MB, images %.3g MB); "
            "limit [guards] max_memory = %.3g MB%s\n",
            b->bytes / 1e6, b->particle_bytes / 1e6, b->gas_bytes / 1e6, b->image_bytes / 1e6,
@@ -134,9 +193,10 @@ static void print_cost(bdl_world *w)
     if (total < n)
         total = n;
     double wall = (double)total / rate * steps_total;
-    printf("cost: %.0f steps to t = %g s; measured %.3g particle-steps/s on %d threads (%ld "
-           "particles) -> about %.3g s wall time for %ld particles (%.3gx real time)\n",
-           steps_total, s->end_time, rate, omp_get_max_threads(), n, wall, total,
+    const char *what = w->parcels ? "parcel" : "particle";
+    printf("cost: %.0f steps to t = %g s; measured %.3g %s-steps/s on %d threads (%ld %ss) -> "
+           "about %.3g s wall time for %ld %ss (%.3gx real time)\n",
+           steps_total, s->end_time, rate, what, omp_get_max_threads(), n, what, wall, total, what,
            s->end_time / wall);
 }
 
@@ -152,7 +212,12 @@ bdl_result bdl_cmd_check(int argc, char **argv)
     if ((r = bdl_load_world(o.scene, o.overrides, o.override_count, &w)) != BDL_OK)
         return r;
     print_modules(w);
-    print_contacts(w, bdl_world_reference_speed(w));
+    if (!w->parcels)
+        print_contacts(w, bdl_world_reference_speed(w));
+    else if ((r = print_parcels(w)) != BDL_OK) {
+        bdl_world_destroy(w);
+        return r;
+    }
     print_resources(w);
     if ((r = print_time_step(w)) == BDL_OK)
         print_cost(w);

@@ -281,15 +281,26 @@ static int color_modes(const bdl_scene *scene)
     return BDL_COLOR_TILT;
 }
 
+/// The colour after `mode` one step forward (step 1) or back (step -1); parcels have no
+/// contacts, so their cycle leaves the coordination number out.
+static bdl_color_mode next_color(const bdl_scene *scene, bdl_color_mode mode, int step)
+{
+    const int modes = color_modes(scene);
+    int m = (int)mode;
+    do
+        m = (m + (step > 0 ? 1 : modes - 1)) % modes;
+    while (scene->parcels.enabled && m == BDL_COLOR_COORDINATION);
+    return (bdl_color_mode)m;
+}
+
 /// Keys that change the picture: colours, views, projection, clip plane, lighting, text.
 static int picture_key(viewer *v, SDL_Keycode k)
 {
     bdl_view *view = &v->view;
-    int modes = color_modes(v->scene);
     switch (k) {
     case SDLK_c:
     case SDLK_v:
-        view->color = (bdl_color_mode)((view->color + (k == SDLK_c ? 1 : modes - 1)) % modes);
+        view->color = next_color(v->scene, view->color, k == SDLK_c ? 1 : -1);
         view->range_fixed = 0;
         printf("view: colour %s\n", bdl_color_mode_names[view->color]);
         return 1;

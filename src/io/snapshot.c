@@ -50,8 +50,19 @@ int bdl_snapshot_reserve_slice(bdl_snapshot *s, long cells)
     return 1;
 }
 
+int bdl_snapshot_reserve_voidage(bdl_snapshot *s, long cells)
+{
+    if (cells <= s->voidage_capacity)
+        return 1;
+    if (!grow((void **)&s->voidage, cells, sizeof(float)))
+        return 0;
+    s->voidage_capacity = cells;
+    return 1;
+}
+
 void bdl_snapshot_free(bdl_snapshot *s)
 {
+    free(s->voidage);
     free(s->slice);
     free(s->axis);
     free(s->pos);

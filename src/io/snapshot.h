@@ -45,6 +45,19 @@ typedef struct bdl_snapshot {
     float *slice;                   ///< slice_n[0] x slice_n[1] values, the first axis fastest
     long slice_capacity;
     long axis_capacity;
+    // Parcels (MP-PIC): each particle is a parcel of many real ones, drawn at the radius the
+    // scene's [parcels] display chose (in `radius`); they have no contacts (coordination 0).
+    int parcels;           ///< the particles are parcels
+    double real_particles; ///< real particles the parcels stand for (parcels only)
+    // The gas's voidage in its cells, when the world has a gas (voidage_n[0] == 0: none): what
+    // the solids colour mode reads at each particle, with the coupling's tent kernel.
+    int voidage_n[3];         ///< cells per axis
+    int voidage_periodic[3];  ///< periodic axes
+    double voidage_lo[3];     ///< the grid's lower corner [m]
+    double voidage_h[3];      ///< cell size per axis [m]
+    double voidage_kernel[3]; ///< the coupling kernel's half-width per axis [m]
+    float *voidage;           ///< per cell, x fastest
+    long voidage_capacity;
 } bdl_snapshot;
 
 /// Grows the particle arrays to hold n particles (contents kept). Returns 0 when out of memory.
@@ -53,6 +66,8 @@ int bdl_snapshot_reserve(bdl_snapshot *s, long n);
 int bdl_snapshot_reserve_axis(bdl_snapshot *s, long n);
 /// Grows the slice to hold `cells` values. Returns 0 when out of memory.
 int bdl_snapshot_reserve_slice(bdl_snapshot *s, long cells);
+/// Grows the gas voidage to hold `cells` values. Returns 0 when out of memory.
+int bdl_snapshot_reserve_voidage(bdl_snapshot *s, long cells);
 void bdl_snapshot_free(bdl_snapshot *s);
 
 /// The particles of one step as the solver holds them: valid only inside the callback that was

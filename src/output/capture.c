@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "cfd/gas.h"
+#include "couple/coupling.h"
 
 _Static_assert(BDL_SNAPSHOT_WALLS >= BDL_MAX_WALLS, "a snapshot holds every wall");
 
@@ -53,6 +54,55 @@ static int capture_slice(bdl_snapshot *s, const bdl_world *w)
     return 1;
 }
 
+/// The gas's voidage in its cells and the coupling kernel's half-width, for the solids colour.
+static int capture_voidage(bdl_snapshot *s, const bdl_world *w)
+{
+    s->voidage_n[0] = s->voidage_n[1] = s->voidage_n[2] = 0;
+    if (!w->gas || !w->coupling)
+        return 1;
+    const bdl_grid *g = &w->gas->grid;
+    if (!bdl_snapshot_reserve_voidage(s, (long)g->n[0] * g->n[1] * g->n[2]))
+        return 0;
+    long c = 0;
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i)
+                s->voidage[c++] = (float)w->gas->eps[bdl_grid_index(g, i, j, k)];
+    for (int a = 0; a < 3; ++a) {
+        s->voidage_n[a] = g->n[a];
+        s->voidage_periodic[a] = g->periodic[a];
+        s->voidage_lo[a] = g->origin[a];
+        s->voidage_h[a] = g->h[a];
+        s->voidage_kernel[a] = w->coupling->width[a];
+    }
+    return 1;
+}
+
+/// The radius particle i is drawn with: its own, or with [parcels] display = parcel the radius
+/// of the sphere of the parcel's solids volume, cbrt(3 V / (4 pi)).
+static float display_radius(const bdl_world *w, long i)
+{
+    const bdl_particles *p = &w->particles;
+    if (!p->parcels || w->scene.parcels.display != BDL_PARCEL_DISPLAY_PARCEL)
+        return (float)p->radius[i];
+    return (float)cbrt(0.75 / BDL_PI * bdl_particle_solids_volume(p, i));
+}
+
+/// Parcels: how many real particles they stand for; no contacts (coordination 0).
+static void capture_parcels(bdl_snapshot *s, const bdl_world *w)
+{
+    const bdl_particles *p = &w->particles;
+    s->parcels = p->parcels;
+    s->real_particles = 0.0;
+    if (!p->parcels) {
+        memcpy(s->coordination, w->coordination, (size_t)p->count);
+        return;
+    }
+    for (long i = 0; i < p->count; ++i)
+        s->real_particles += p->parcel_count[i];
+    memset(s->coordination, 0, (size_t)p->count);
+}
+
 int bdl_capture(bdl_snapshot *s, const bdl_world *w)
 {
     const bdl_particles *p = &w->particles;
@@ -65,7 +115,7 @@ int bdl_capture(bdl_snapshot *s, const bdl_world *w)
         s->vel[3 * i] = (float)p->vel[i].x;
         s->vel[3 * i + 1] = (float)p->vel[i].y;
         s->vel[3 * i + 2] = (float)p->vel[i].z;
-        s->radius[i] = (float)p->radius[i];
+        s->radius[i] = display_radius(w, i);
     }
     if (p->rods) {
         if (!bdl_snapshot_reserve_axis(s, p->count))
@@ -77,7 +127,7 @@ int bdl_capture(bdl_snapshot *s, const bdl_world *w)
             s->axis[3 * i + 2] = (float)a.z;
         }
     }
-    memcpy(s->coordination, w->coordination, (size_t)p->count);
+    capture_parcels(s, w);
     memcpy(s->species, p->species, (size_t)p->count * sizeof(int32_t));
     memcpy(s->id, p->id, (size_t)p->count * sizeof(uint32_t));
     s->count = p->count;
@@ -89,7 +139,7 @@ int bdl_capture(bdl_snapshot *s, const bdl_world *w)
         s->wall_offset[k][1] = (float)w->walls.offset[k].y;
         s->wall_offset[k][2] = (float)w->walls.offset[k].z;
     }
-    return capture_slice(s, w);
+    return capture_slice(s, w) && capture_voidage(s, w);
 }
 
 bdl_particle_view bdl_capture_view(const bdl_world *w)

@@ -1,6 +1,13 @@
 // bedlam — the colour of each particle: the field a colour mode shows, mapped through the
 // categorical, sequential, diverging or cyclic map over the frame's range (fixed by the view, else
-// the data's), and the voidage around each particle when that is the field.
+// the data's), and the voidage or solids fraction around each particle when that is the field.
+//
+// Voidage is the particles' own: their spheres deposited on cells of three diameters
+// (analysis/voidage.h). Parcels are not spheres of their drawn size, and the gas already holds
+// what they make of the voidage: for them it is the gas's, as for the solids fraction. The
+// solids fraction is what the gas sees at the particle, 1 - eps read from the snapshot's copy of
+// the gas's cells with the coupling's kernel (analysis/tent.h); without a gas, 1 - the
+// particles' own voidage.
 //
 // A rod's orientation is its axis u up to sign (u and -u are the same rod), with z taken as the
 // vertical, as the camera's "up" is: a colour is a function of the snapshot alone, which carries
@@ -12,6 +19,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "analysis/tent.h"
 #include "render/colormap.h"
 #include "render/renderer_internal.h"
 
@@ -56,8 +64,9 @@ static float orientation(bdl_color_mode mode, const bdl_snapshot *s, long i)
     return phi >= 180.0f ? phi - 180.0f : phi; // a tiny negative angle + 180 rounds to 180
 }
 
-/// The scalar a mode maps through the colour map.
-static float field_value(bdl_color_mode mode, const bdl_snapshot *s, long i, float voidage)
+/// The scalar a mode maps through the colour map; `local` is the particle's voidage or solids
+/// fraction in those modes.
+static float field_value(bdl_color_mode mode, const bdl_snapshot *s, long i, float local)
 {
     const float *v = &s->vel[3 * i];
     switch (mode) {
@@ -70,7 +79,8 @@ static float field_value(bdl_color_mode mode, const bdl_snapshot *s, long i, flo
     case BDL_COLOR_VZ:
         return v[mode - BDL_COLOR_VX];
     case BDL_COLOR_VOIDAGE:
-        return voidage;
+    case BDL_COLOR_SOLIDS:
+        return local;
     case BDL_COLOR_TILT:
     case BDL_COLOR_AZIMUTH:
         return orientation(mode, s, i);
@@ -85,14 +95,14 @@ uint8_t bdl_color_byte(float c)
     return (uint8_t)lrintf(255.0f * c);
 }
 
-void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, float voidage,
+void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, float local,
                         const float range[2], uint8_t rgb[3])
 {
     float c[3];
     if (mode == BDL_COLOR_SPECIES) {
         bdl_category_color(snap->species[i], c);
     } else {
-        float x = field_value(mode, snap, i, voidage);
+        float x = field_value(mode, snap, i, local);
         float span = range[1] - range[0];
         float t = span > 0.0f ? (x - range[0]) / span : 0.5f;
         bdl_colormap_kind map = bdl_color_mode_map(mode);
@@ -107,8 +117,9 @@ void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, f
         rgb[k] = bdl_color_byte(c[k]);
 }
 
-/// The data's range for automatic colouring: speeds from 0, velocity components symmetric about
-/// 0, coordination numbers from 0 in whole steps; the angles over their whole span.
+/// The data's range for automatic colouring: speeds and solids fractions from 0, velocity
+/// components symmetric about 0, coordination numbers from 0 in whole steps; the angles over
+/// their whole span.
 static void auto_range(const bdl_render_colors *c, bdl_color_mode mode, const bdl_snapshot *s,
                        float range[2])
 {
@@ -119,7 +130,7 @@ static void auto_range(const bdl_render_colors *c, bdl_color_mode mode, const bd
     }
     float lo = INFINITY, hi = -INFINITY;
     for (long i = 0; i < s->count; ++i) {
-        float x = field_value(mode, s, i, c->voidage_at ? c->voidage_at[i] : 1.0f);
+        float x = field_value(mode, s, i, c->local_at ? c->local_at[i] : 1.0f);
         lo = fminf(lo, x);
         hi = fmaxf(hi, x);
     }
@@ -131,6 +142,7 @@ static void auto_range(const bdl_render_colors *c, bdl_color_mode mode, const bd
         range[1] = fmaxf(hi, 1.0f);
         break;
     case BDL_COLOR_SPEED:
+    case BDL_COLOR_SOLIDS:
         range[0] = 0.0f;
         range[1] = hi > 0.0f ? hi : 1.0f;
         break;
@@ -167,27 +179,72 @@ static int voidage_grid_ready(bdl_render_colors *c, const bdl_scene *scene)
     return 1;
 }
 
-static void compute_voidage(bdl_render_colors *c, const bdl_scene *scene, const bdl_snapshot *s)
+/// Room for one value per particle of the snapshot.
+static int local_ready(bdl_render_colors *c, const bdl_snapshot *s)
 {
-    if (!voidage_grid_ready(c, scene))
-        return;
-    if (s->count > c->voidage_capacity) {
-        float *a = realloc(c->voidage_at, (size_t)s->count * sizeof(float));
-        if (!a)
-            return;
-        c->voidage_at = a;
-        c->voidage_capacity = s->count;
-    }
+    if (s->count <= c->local_capacity)
+        return 1;
+    float *a = realloc(c->local_at, (size_t)s->count * sizeof(float));
+    if (!a)
+        return 0;
+    c->local_at = a;
+    c->local_capacity = s->count;
+    return 1;
+}
+
+/// The particles' own voidage at each particle (the snapshot's spheres on cells of three
+/// diameters).
+static void own_voidage(bdl_render_colors *c, const bdl_snapshot *s)
+{
     bdl_voidage_deposit(&c->voidage, s->count, s->pos, s->radius);
     for (long i = 0; i < s->count; ++i)
-        c->voidage_at[i] = bdl_voidage_at(&c->voidage, &s->pos[3 * i]);
+        c->local_at[i] = bdl_voidage_at(&c->voidage, &s->pos[3 * i]);
+}
+
+/// The gas's voidage at each particle, read with the coupling's kernel.
+static void gas_voidage(bdl_render_colors *c, const bdl_snapshot *s)
+{
+    bdl_tent_field f = {.cell = s->voidage};
+    for (int a = 0; a < 3; ++a) {
+        f.n[a] = s->voidage_n[a];
+        f.periodic[a] = s->voidage_periodic[a];
+        f.lo[a] = s->voidage_lo[a];
+        f.h[a] = s->voidage_h[a];
+        f.width[a] = s->voidage_kernel[a];
+    }
+    for (long i = 0; i < s->count; ++i) {
+        const double x[3] = {s->pos[3 * i], s->pos[3 * i + 1], s->pos[3 * i + 2]};
+        c->local_at[i] = (float)bdl_tent_sample(&f, x);
+    }
+}
+
+/// Per particle the value of the voidage or solids mode (see the top of the file); local_at
+/// stays NULL when out of memory (every particle then shows the value 1).
+static void compute_local(bdl_render_colors *c, const bdl_scene *scene, const bdl_snapshot *s,
+                          bdl_color_mode mode)
+{
+    const int gas = s->voidage_n[0] > 0 && s->voidage;
+    const int from_gas = gas && (mode == BDL_COLOR_SOLIDS || s->parcels);
+    if (!local_ready(c, s) || (!from_gas && !voidage_grid_ready(c, scene))) {
+        free(c->local_at); // no stale values of another frame
+        c->local_at = NULL;
+        c->local_capacity = 0;
+        return;
+    }
+    if (from_gas)
+        gas_voidage(c, s);
+    else
+        own_voidage(c, s);
+    if (mode == BDL_COLOR_SOLIDS)
+        for (long i = 0; i < s->count; ++i)
+            c->local_at[i] = 1.0f - c->local_at[i];
 }
 
 void bdl_render_colors_prepare(bdl_renderer *r, const bdl_snapshot *s, const bdl_view *v)
 {
     bdl_render_colors *c = &r->colors;
-    if (v->color == BDL_COLOR_VOIDAGE)
-        compute_voidage(c, &r->scene, s);
+    if (v->color == BDL_COLOR_VOIDAGE || v->color == BDL_COLOR_SOLIDS)
+        compute_local(c, &r->scene, s, v->color);
     if (v->range_fixed) {
         c->range[0] = v->range[0];
         c->range[1] = v->range[1];
@@ -200,13 +257,13 @@ void bdl_render_colors_particle(const bdl_renderer *r, const bdl_snapshot *s, co
                                 long i, uint8_t rgb[3])
 {
     const bdl_render_colors *c = &r->colors;
-    float voidage = c->voidage_at && v->color == BDL_COLOR_VOIDAGE ? c->voidage_at[i] : 1.0f;
-    bdl_particle_color(v->color, s, i, voidage, c->range, rgb);
+    const int local = v->color == BDL_COLOR_VOIDAGE || v->color == BDL_COLOR_SOLIDS;
+    bdl_particle_color(v->color, s, i, c->local_at && local ? c->local_at[i] : 1.0f, c->range, rgb);
 }
 
 void bdl_render_colors_destroy(bdl_renderer *r)
 {
     if (r->colors.voidage_ready)
         bdl_voidage_grid_free(&r->colors.voidage);
-    free(r->colors.voidage_at);
+    free(r->colors.local_at);
 }

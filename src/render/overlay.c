@@ -246,8 +246,12 @@ static void status_lines(bdl_renderer *r, const bdl_snapshot *s, const bdl_view 
 {
     bdl_render_overlay *o = &r->overlay;
     char line[256];
-    snprintf(line, sizeof line, "t = %.5f s   step %ld   %ld particles", s->time, s->step,
-             s->count);
+    if (s->parcels)
+        snprintf(line, sizeof line, "t = %.5f s   step %ld   %ld parcels (%.3g particles)", s->time,
+                 s->step, s->count, s->real_particles);
+    else
+        snprintf(line, sizeof line, "t = %.5f s   step %ld   %ld particles", s->time, s->step,
+                 s->count);
     float lh = o->font ? bdl_font_line_height(o->font) : 0.0f;
     text(o, 10, 8, line, text_color);
     float y = 8 + lh;

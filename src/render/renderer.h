@@ -64,8 +64,9 @@ bdl_result bdl_renderer_read_window(bdl_renderer *r, uint8_t *rgb, int width, in
 long bdl_renderer_drawn(const bdl_renderer *r);
 
 /// Colour of one particle as the renderer draws it (sRGB bytes) for a given range: the
-/// reference the golden-image tests predict pixels with.
-void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, float voidage,
+/// reference the golden-image tests predict pixels with. `local`: the particle's voidage or
+/// solids fraction in those modes.
+void bdl_particle_color(bdl_color_mode mode, const bdl_snapshot *snap, long i, float local,
                         const float range[2], uint8_t rgb[3]);
 
 /// The sphere shader's shading on the CPU (the tests' reference): the colour of a surface point

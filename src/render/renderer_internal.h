@@ -63,8 +63,8 @@ typedef struct bdl_render_capsules {
 typedef struct bdl_render_colors {
     bdl_voidage_grid voidage;
     int voidage_ready;
-    float *voidage_at; ///< per particle, when colouring by voidage
-    long voidage_capacity;
+    float *local_at; ///< per particle, when colouring by voidage or solids fraction: its value
+    long local_capacity;
     float range[2]; ///< colour range of the last frame (unit of the field)
 } bdl_render_colors;
 

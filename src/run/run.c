@@ -113,6 +113,36 @@ static bdl_result open_folder(run *r)
     return BDL_OK;
 }
 
+/// The head of run.log for a world of parcels: what they stand for, how they fill the gas's
+/// cells, the step against their stable step (they have no contacts).
+static void log_parcels(const bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
+    bdl_parcels_census c;
+    if (bdl_world_parcels_census(w, &c) == BDL_OK)
+        bdl_info("parcels: %ld standing for %.4g real particles, species: %d; parcels per filled "
+                 "cell: mean %.3g, min %.0f, max %.0f (%ld of %ld gas cells); largest solids "
+                 "fraction of a cell %.3g",
+                 c.parcels, c.real_particles, s->species_count, c.per_cell_mean, c.per_cell_min,
+                 c.per_cell_max, c.filled_cells, c.cells, c.max_solids);
+    for (int k = 0; k < s->species_count; ++k) {
+        const bdl_species_def *sp = &s->species[k];
+        bdl_info("species %s: d = %g m, rho = %g kg/m^3, %.4g real particles and %.4g m^3 of "
+                 "solids per parcel (at d)",
+                 sp->name, sp->diameter, sp->density, bdl_species_parcel_count(sp, sp->diameter),
+                 bdl_species_parcel_volume(sp));
+    }
+    const bdl_parcels_def *d = &s->parcels.def;
+    const double stable = bdl_world_parcels_stable_dt(w);
+    bdl_info("dt = %g s, the parcels' stable step %g s (dt = %.3g of it; refused above twice it), "
+             "end time = %g s",
+             w->dt, stable, w->dt / stable, s->end_time);
+    bdl_info("limits: close packing theta_cs = %g (the packing guard holds parcels back above "
+             "it), stress at theta_cs - floor = %.4g Pa; energy_growth not checked (the gas's and "
+             "the stress's work on the parcels are not booked)",
+             d->close_packing, bdl_parcels_stress(d, d->close_packing - d->stress_floor));
+}
+
 /// The head of run.log: what runs, with which models and limits.
 static void log_setup(const run *r)
 {
@@ -127,6 +157,10 @@ static void log_setup(const run *r)
     char modules[512];
     bdl_world_describe(w, modules, sizeof modules);
     bdl_info("modules: %s", modules);
+    if (w->parcels) {
+        log_parcels(w);
+        return;
+    }
     bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);
     for (int k = 0; k < s->species_count; ++k) {
         const bdl_species_def *sp = &s->species[k];
@@ -164,7 +198,13 @@ static bdl_result resume(run *r)
     snprintf(r->outputs.good_path, sizeof r->outputs.good_path, "%s", ckpt);
     if (info.changes[0])
         bdl_warn("the scene's contact parameters differ from the checkpoint's: %s", info.changes);
-    if (info.dt != w->dt) {
+    if (info.dt != w->dt && w->parcels) {
+        bdl_warn("the checkpoint was written with dt = %g s; the run continues with the scene's "
+                 "dt = %g s (%.3g of the parcels' stable step %g s). The resumed run does not "
+                 "repeat an uninterrupted one bit for bit",
+                 info.dt, w->dt, w->dt / bdl_world_parcels_stable_dt(w),
+                 bdl_world_parcels_stable_dt(w));
+    } else if (info.dt != w->dt) {
         const double limit = w->scene.guards.dt_refuse * w->contact_time;
         char above[160] = "";
         if (info.dt > limit)

@@ -77,6 +77,7 @@ BDL_CHOICES(bdl_projection, BDL_PROJECTIONS);
     X(COLOR_VY, "vy", "velocity y", "m/s")                                                         \
     X(COLOR_VZ, "vz", "velocity z", "m/s")                                                         \
     X(COLOR_VOIDAGE, "voidage", "voidage", "")                                                     \
+    X(COLOR_SOLIDS, "solids", "solids fraction", "")                                               \
     X(COLOR_TILT, "tilt", "tilt from vertical", "deg")                                             \
     X(COLOR_AZIMUTH, "azimuth", "azimuth mod 180", "deg")
 #define BDL_X_COLOR_ITEM(name, word, label, unit) BDL_##name,
@@ -226,11 +227,18 @@ typedef struct bdl_coupling_scene {
     double syamlal_c, syamlal_d;
 } bdl_coupling_scene;
 
+/// How frames and the viewer draw a parcel ([parcels] display).
+#define BDL_PARCEL_DISPLAYS(X)                                                                     \
+    X(PARCEL_DISPLAY_PARCEL, "parcel", "the sphere of the parcel's solids volume")                 \
+    X(PARCEL_DISPLAY_REAL, "real", "a sphere of one real particle's radius")
+BDL_CHOICES(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
+
 /// [parcels]: how parcels (species with parcel_particles or parcel_volume) move; the scene has
 /// parcels when a species is made of them.
 typedef struct bdl_parcels_scene {
-    int enabled;         ///< a species is made of parcels
-    bdl_parcels_def def; ///< model and its parameters
+    int enabled;                ///< a species is made of parcels
+    bdl_parcels_def def;        ///< model and its parameters
+    bdl_parcel_display display; ///< how the pictures draw them
 } bdl_parcels_scene;
 
 typedef struct bdl_scene {

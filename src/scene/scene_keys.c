@@ -31,6 +31,7 @@ _Static_assert(sizeof(bdl_dia_lighting) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_sweep) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_gas_field) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_parcel_model) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_parcel_display) == sizeof(int), "enum size");
 
 const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_RUN] = {"run", "run", 0, 1},
@@ -68,6 +69,7 @@ BDL_CHOICE_WORDS(bdl_dia_projection, BDL_DIA_PROJECTIONS);
 BDL_CHOICE_WORDS(bdl_dia_lighting, BDL_DIA_LIGHTINGS);
 const char *const bdl_dia_lighting_labels[] = {BDL_DIA_LIGHTINGS(BDL_ENUM_LABEL) NULL};
 BDL_CHOICE_WORDS(bdl_sweep, BDL_SWEEPS);
+BDL_CHOICE_WORDS(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
 #define IN_SPECIES(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_species_def, field)
@@ -372,10 +374,11 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "perspective or orthographic (no foreshortening: pseudo-2D beds, DIA)"},
     {S(CAMERA), "color", .type = BDL_KEY_ENUM, "-", IN_CAMERA(color), .def = {BDL_COLOR_SPEED},
      .enum_names = bdl_color_mode_names,
-     .doc = "particle colour: species, coordination (contacts), speed, vx, vy, vz (velocity "
-            "component), voidage (void fraction around the particle); with rods tilt (angle of "
-            "the axis to z, 0 vertical to 90 horizontal) and azimuth (angle of the axis in the x-y "
-            "plane, modulo 180)"},
+     .doc = "particle colour: species, coordination (contacts; not for parcels), speed, vx, vy, "
+            "vz (velocity component), voidage (void fraction around the particle), solids (the "
+            "gas's solids fraction 1 - eps at the particle, kernel-interpolated); with rods tilt "
+            "(angle of the axis to z, 0 vertical to 90 horizontal) and azimuth (angle of the axis "
+            "in the x-y plane, modulo 180)"},
     {S(CAMERA), "color_min", NUM, "unit of the field", IN_CAMERA_FLAGGED(color_min),
      .default_text = "automatic", .doc = "value at the low end of the colour map"},
     {S(CAMERA), "color_max", NUM, "unit of the field", IN_CAMERA_FLAGGED(color_max),
@@ -575,14 +578,18 @@ const bdl_scene_key bdl_scene_keys[] = {
      LE(1e9), .doc = "P_s of the stress P_s theta^beta / (theta_cs - theta)"},
     {S(PARCELS), "stress_exponent", NUM, "-", IN_PARCELS(stress_exponent), .def = {3}, GE(0),
      LE(10), .doc = "beta of the stress"},
-    {S(PARCELS), "close_packing", NUM, "-", IN_PARCELS(close_packing), .def = {0.6}, GT(0),
-     LT(1), .doc = "theta_cs: no cell's solids fraction exceeds it (the packing guard)"},
-    {S(PARCELS), "stress_floor", NUM, "-", IN_PARCELS(stress_floor), .def = {1e-3}, GT(0),
-     LT(1), .doc = "least theta_cs - theta in the stress's denominator: the stress stays finite"},
+    {S(PARCELS), "close_packing", NUM, "-", IN_PARCELS(close_packing), .def = {0.6}, GT(0), LT(1),
+     .doc = "theta_cs: no cell's solids fraction exceeds it (the packing guard)"},
+    {S(PARCELS), "stress_floor", NUM, "-", IN_PARCELS(stress_floor), .def = {1e-3}, GT(0), LT(1),
+     .doc = "least theta_cs - theta in the stress's denominator: the stress stays finite"},
     {S(PARCELS), "substeps", .type = BDL_KEY_INT, "-", IN_PARCELS(substeps), .def = {1}, GE(1),
      LE(100), .doc = "K: each step's drift in this many parts, the sides met in each"},
     {S(PARCELS), "wall_restitution", NUM, "-", IN_PARCELS(wall_restitution), .def = {0.9}, GE(0),
      LE(1), .doc = "normal restitution of a parcel reflected at a side of the domain"},
+    {S(PARCELS), "display", .type = BDL_KEY_ENUM, "-", IN_SCENE(parcels.display),
+     .def = {BDL_PARCEL_DISPLAY_PARCEL}, .enum_names = bdl_parcel_display_names,
+     .doc = "how frames and the viewer draw a parcel: parcel (the sphere of its solids volume, "
+            "radius cbrt(3 V / (4 pi))) or real (a sphere of one real particle's radius)"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

@@ -77,8 +77,8 @@ static void mask_text(const bdl_scene_key *selector, unsigned mask, char *buf, s
 static void check_table_rules(bdl_scene_parser *p, bdl_scene_section *s)
 {
     // Parcels have no contacts: a species of them needs no restitution.
-    const int parcels = s->kind == BDL_SECTION_SPECIES &&
-                        bdl_species_is_parcel(&p->scene->species[s->index]);
+    const int parcels =
+        s->kind == BDL_SECTION_SPECIES && bdl_species_is_parcel(&p->scene->species[s->index]);
     for (int i = 0; i < bdl_scene_key_count && !p->failed; ++i) {
         const bdl_scene_key *key = &bdl_scene_keys[i];
         if (key->section != s->kind)
@@ -423,12 +423,14 @@ static void check_parcels(bdl_scene_parser *p)
             first_other = k;
     }
     scene->parcels.enabled = parcels > 0;
-    bdl_scene_section *section = NULL, *gas = NULL;
+    bdl_scene_section *section = NULL, *gas = NULL, *camera = NULL;
     for (int i = 0; i < p->section_count; ++i) {
         if (p->sections[i].kind == BDL_SECTION_PARCELS)
             section = &p->sections[i];
         if (p->sections[i].kind == BDL_SECTION_GAS)
             gas = &p->sections[i];
+        if (p->sections[i].kind == BDL_SECTION_CAMERA)
+            camera = &p->sections[i];
     }
     const bdl_scene_where at_parcels = {.line = section ? section->line : 0, .title = "parcels"};
     if (!parcels) {
@@ -456,6 +458,10 @@ static void check_parcels(bdl_scene_parser *p)
     else if (scene->gas.dt > 0.0 && gas)
         fail_at_key(p, gas, "dt", 0,
                     "with parcels the gas steps with the parcels: give the step as [run] dt");
+    else if (scene->camera.color == BDL_COLOR_COORDINATION && camera)
+        fail_at_key(p, camera, "color", 0,
+                    "parcels have no contacts, so no coordination number; colour them by solids "
+                    "(the solids fraction), speed, vx, vy, vz, voidage or species");
 }
 
 static void check_singletons(bdl_scene_parser *p)

@@ -147,6 +147,23 @@ double bdl_world_parcels_stable_dt(const bdl_world *world);
 /// One step of a world of parcels (bdl_world_step calls it).
 bdl_result bdl_world_parcels_step(bdl_world *world);
 
+/// How the parcels of a world fill the gas's cells, for check and run.log.
+typedef struct bdl_parcels_census {
+    long parcels;
+    double real_particles; ///< the real particles they stand for
+    long cells;            ///< cells of the gas grid
+    long filled_cells;     ///< cells holding a parcel's centre
+    double per_cell_mean;  ///< parcels per filled cell (their centres)
+    double per_cell_min, per_cell_max;
+    double max_solids; ///< largest solids fraction of a cell, as the gas holds it (the kernels)
+} bdl_parcels_census;
+
+/// The census of the parcels where they are now; BDL_ERR_NOMEM.
+bdl_result bdl_world_parcels_census(const bdl_world *world, bdl_parcels_census *out);
+
+/// "parcels (MP-PIC, model A stress ...)": the model and its parameters, for run.log and check.
+void bdl_world_parcels_describe(const bdl_world *world, char *buf, size_t size);
+
 /// One line naming the active modules and their models, for run.log.
 void bdl_world_describe(const bdl_world *world, char *buf, size_t size);
 

@@ -234,6 +234,15 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
         return;
     }
     const bdl_grid *g = &w->gas->grid;
+    if (w->parcels) {
+        snprintf(buf, size,
+                 "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
+                 "half-width %.3g mm; one gas step per step of the parcels, %.3g s",
+                 g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
+                 bdl_convection_labels[w->gas->def.convection],
+                 bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt);
+        return;
+    }
     snprintf(buf, size,
              "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
              "half-width %.3g mm; gas step %.3g s = %ld particle steps%s",

@@ -34,7 +34,74 @@ bdl_result bdl_world_parcels_init(bdl_world *w, bdl_scene_error *err)
     w->gas_next = 0;
     w->budget.dt = w->dt;
     w->budget.steps = w->scene.end_time / w->dt;
+    // The solids fraction of the initial parcels in the gas's cells, for what reads it before the
+    // first step (the pictures' solids colour, check): the step deposits it anew.
+    if (bdl_coupling_locate(w->coupling, w->gas, &w->particles) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    bdl_coupling_voidage(w->coupling, w->gas, &w->particles);
     return bdl_budget_check_steps(w, w->dt, err);
+}
+
+/// Largest solids fraction 1 - eps over the gas's cells.
+static double largest_solids(const bdl_gas *gas)
+{
+    const bdl_grid *g = &gas->grid;
+    double top = 0.0;
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i)
+                top = fmax(top, 1.0 - gas->eps[bdl_grid_index(g, i, j, k)]);
+    return top;
+}
+
+/// The gas cell holding x along each axis (clamped to the grid), as one index, x fastest.
+static long cell_of(const bdl_grid *g, bdl_vec3 x)
+{
+    long idx = 0;
+    for (int a = 2; a >= 0; --a) {
+        int m = (int)floor((bdl_v3_comp(x, a) - g->origin[a]) / g->h[a]);
+        m = m < 0 ? 0 : m >= g->n[a] ? g->n[a] - 1 : m;
+        idx = idx * g->n[a] + m;
+    }
+    return idx;
+}
+
+bdl_result bdl_world_parcels_census(const bdl_world *w, bdl_parcels_census *out)
+{
+    *out = (bdl_parcels_census){0};
+    const bdl_particles *p = &w->particles;
+    const bdl_grid *g = &w->gas->grid;
+    const long cells = (long)g->n[0] * g->n[1] * g->n[2];
+    long *count = calloc((size_t)cells, sizeof *count);
+    if (!count)
+        return BDL_ERR_NOMEM;
+    out->parcels = p->count;
+    for (long i = 0; i < p->count; ++i) {
+        out->real_particles += p->parcels ? p->parcel_count[i] : 1.0;
+        count[cell_of(g, p->pos[i])]++;
+    }
+    for (long c = 0; c < cells; ++c) {
+        if (count[c] == 0)
+            continue;
+        out->per_cell_min = out->filled_cells == 0 ? count[c] : fmin(out->per_cell_min, count[c]);
+        out->per_cell_max = fmax(out->per_cell_max, count[c]);
+        out->filled_cells++;
+    }
+    free(count);
+    out->cells = cells;
+    out->per_cell_mean = out->filled_cells > 0 ? (double)p->count / out->filled_cells : 0.0;
+    out->max_solids = largest_solids(w->gas);
+    return BDL_OK;
+}
+
+void bdl_world_parcels_describe(const bdl_world *w, char *buf, size_t size)
+{
+    const bdl_parcels_def *d = &w->scene.parcels.def;
+    snprintf(buf, size,
+             "parcels (MP-PIC, model A stress P_s theta^beta / max(theta_cs - theta, floor): P_s = "
+             "%g Pa, beta = %g, theta_cs = %g, floor = %g; %d drift part%s, wall restitution %g)",
+             d->stress_pressure, d->stress_exponent, d->close_packing, d->stress_floor, d->substeps,
+             d->substeps == 1 ? "" : "s", d->wall_restitution);
 }
 
 double bdl_world_parcels_stable_dt(const bdl_world *w)
