@@ -218,6 +218,19 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_pa
     return BDL_OK;
 }
 
+void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                           const uint8_t *which)
+{
+    int flo[3], fhi[3];
+    for (int a = 0; a < 3; ++a)
+        momentum_faces(gas, a, &flo[a], &fhi[a]);
+    const bdl_grid *g = &gas->grid;
+    for (long i = 0; i < p->count; ++i)
+        if (which[i])
+            for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+                locate_point(c, g, flo, fhi, pt, bdl_coupling_point(p, i, (int)(pt - c->first[i])));
+}
+
 /// Calls body with `idx` (padded index) and `w` (weight) for every point of the separable
 /// kernel made of slots sx, sy, sz of kernel point i.
 #define FOR_SLOTS(c, i, sx, sy, sz, ...)                                                           \

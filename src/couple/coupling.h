@@ -119,6 +119,11 @@ double bdl_coupling_work(const bdl_particles *p, long i, double span);
 /// Kernel weights of every particle at its current position (and orientation).
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p);
 
+/// Kernel weights anew for the particles with which[i] set, after they moved (the others, and
+/// the particle count, as the last bdl_coupling_locate left them).
+void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                           const uint8_t *which);
+
 /// Where kernel point k of particle i lies (k < BDL_ROD_SATELLITES for a rod, 0 otherwise).
 bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k);
 /// The gas velocity at particle i, as the drag sees it (after bdl_coupling_locate) [m/s].

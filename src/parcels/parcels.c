@@ -180,29 +180,29 @@ static int overfull(const bdl_parcels *pc, const bdl_gas *gas, double *max_solid
 }
 
 /// The solids fraction of the parcels where they are now; while a cell is above close packing,
-/// every parcel whose kernel reaches such a cell returns to where the step began, at rest.
+/// every parcel whose kernel reaches such a cell returns to where the step began, at rest (its
+/// kernel weights recomputed, the others' kept).
 static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
                         bdl_parcels_report *out)
 {
+    if (bdl_coupling_locate(c, gas, p) != BDL_OK)
+        return BDL_ERR_NOMEM;
     for (;;) {
-        if (bdl_coupling_locate(c, gas, p) != BDL_OK)
-            return BDL_ERR_NOMEM;
         bdl_coupling_voidage(c, gas, p);
         if (!overfull(pc, gas, &out->max_solids))
             return BDL_OK;
         // A cell field marking the overfull cells, read back through the kernels.
         double *mark = pc->tau;
         const bdl_grid *g = &gas->grid;
-        memset(mark, 0, (size_t)g->size * sizeof(double));
         for (long idx = 0; idx < g->size; ++idx)
             mark[idx] = 1.0 - gas->eps[idx] > pc->def.close_packing ? 1.0 : 0.0;
         long moved = 0;
         for (long i = 0; i < p->count; ++i) {
             const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
-            const int back = bdl_coupling_interpolate(c, i, mark) > 0.0 &&
-                             (x.x != x0.x || x.y != x0.y || x.z != x0.z);
-            if (back) {
-                p->pos[i] = pc->start[i];
+            pc->held[i] = bdl_coupling_interpolate(c, i, mark) > 0.0 &&
+                          (x.x != x0.x || x.y != x0.y || x.z != x0.z);
+            if (pc->held[i]) {
+                p->pos[i] = x0;
                 p->vel[i] = bdl_v3_zero();
                 ++moved;
             }
@@ -210,6 +210,7 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
         out->held += moved;
         if (moved == 0) // the start was already overfull (a scene's initial state): go on
             return BDL_OK;
+        bdl_coupling_relocate(c, gas, p, pc->held);
     }
 }
 
