@@ -215,6 +215,28 @@ static bdl_result run_parcel_settling(int series, double n, bdl_verify_result *o
     return r;
 }
 
+// Bimodal sedimentation: N = 1 the paper's case A, 2 case B; series 0 the heavy front, 1 the top
+// interface, against the Kynch-type speeds of the model (digest of seed 001, sec. 3.1). One run
+// serves both series.
+static bdl_result run_parcel_bimodal(int series, double n, bdl_verify_result *out)
+{
+    static double done = 0.0;
+    static bdl_verify_bimodal b;
+    static bdl_result r = BDL_OK;
+    if (done != n) {
+        r = bdl_verify_parcel_bimodal(n > 1.5, 100.0, &b);
+        done = n;
+        printf("  bimodal case %s: heavy front %.5f cm/s (Kynch 0.0542), light zone %.5f cm/s "
+               "(0.0192)\n",
+               n > 1.5 ? "B" : "A", 100.0 * b.heavy_front, 100.0 * b.light_zone);
+    }
+    out->exact = series == 0 ? 0.0542e-2 : 0.0192e-2;
+    out->value = series == 0 ? b.heavy_front : b.light_zone;
+    out->error = r == BDL_OK ? finite_or_inf(fabs(out->value / out->exact - 1.0)) : INFINITY;
+    out->steps = series == 0 ? b.steps : 0;
+    return r;
+}
+
 // The acceptance, quick-set, series and level fields of a case stand on one line each.
 // clang-format off
 static const bdl_verify_case cases[] = {
@@ -524,6 +546,27 @@ static const bdl_verify_case cases[] = {
         .series_count = 3, .series = {"layers per cell", "cells", "time step"},
         .level_count = 3, .level = {1, 2, 4},
         .run = run_parcel_settling,
+    },
+    {
+        .name = "parcel_bimodal",
+        .tolerance = 0.10, .tolerance_level = 0, .order_min = 0.0, .no_order = 1,
+        .breaks = "in the paper's 10 x 10 cross-section with its 4.5 parcels per cell the parcels' "
+                  "noise drives convection that speeds both fronts (docs/parcels.md).",
+        .title = "Bimodal sedimentation of parcels (Davis et al. 1982 set-up)",
+        .model = "two species of parcels (heavy 177-219 um, 2990 kg/m^3 at 0.01; light 125-150 "
+                 "um, 2440 kg/m^3 at 0.03) in the paper's column, one cell across, model A",
+        .reference = "the Kynch-type speeds of the model at the mean diameters (Stokes limit): "
+                     "heavy front 0.0542 cm/s, top interface 0.0192 cm/s (digest of seed 001, "
+                     "sec. 3.1)",
+        .measure = "|v / v_Kynch - 1| over the first 100 s",
+        .param = "N = 1: the paper's case A (50 cells along, 9000 parcels each, dt 0.005 s); "
+                 "N = 2: case B (60 cells, 18 000, dt 0.004 s); K = 5",
+        .order_note = "none: two resolutions of one model, as in the paper; the size spread "
+                      "(+-10 % in d) widens the fronts, the mean speeds stay",
+        .quick = 0, .quick_levels = 0,
+        .series_count = 2, .series = {"heavy front", "top interface"},
+        .level_count = 2, .level = {1, 2},
+        .run = run_parcel_bimodal,
     },
 };
 // clang-format on

@@ -254,6 +254,15 @@ bdl_result bdl_verify_suspension(double phi, int substeps, bdl_verify_settling *
 /// squares over 5-35 s, against the model's own v = eps w, K(eps, w) w = eps (rho_p - rho) g.
 bdl_result bdl_verify_parcel_settling(int per_cell, int cells, double dt, double phi, int seed,
                                       bdl_verify_settling *out);
+/// Bimodal sedimentation of parcels (the paper's sec. 4.1 in a column one cell across): the heavy
+/// front's speed (least squares from 20 s to t_end) and the light parcels' mean speed in the
+/// light-only zone above it (from 0.3 t_end), which the top interface moves with [m/s].
+typedef struct bdl_verify_bimodal {
+    double heavy_front, light_zone;
+    long steps;
+} bdl_verify_bimodal;
+bdl_result bdl_verify_parcel_bimodal(int case_b, double t_end, bdl_verify_bimodal *out);
+
 /// Solids volume of the particles (parcels) above height z [m^3].
 double bdl_verify_solids_above(const bdl_world *w, double z);
 /// Height of the highest crossing of the horizontally averaged solids fraction through `level`,

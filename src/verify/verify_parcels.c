@@ -105,3 +105,84 @@ bdl_result bdl_verify_parcel_settling(int per_cell, int cells, double dt, double
         out->measured = -(n * stz - st * sz) / (n * stt - st * st);
     return r;
 }
+
+// ---- bimodal sedimentation (Davis, Herbolzheimer & Acrivos 1982; the paper's sec. 4.1) ----
+
+/// The paper's column in one cell across: case A (50 cells along it, 9000 parcels per species,
+/// dt 0.005 s) or B (60 cells, 18 000, dt 0.004 s), K = 5.
+static bdl_world *bimodal_column(int case_b)
+{
+    const int cells = case_b ? 60 : 50;
+    const long count = case_b ? 18000 : 9000;
+    const double fill = 0.05 * 0.05 * 1.0;
+    return bdl_verify_world(
+        "[run]\nend_time = 1000\ndt = %g\ngravity = 0 0 -9.81\nseed = 2\n"
+        "[domain]\nmin = 0 0 0\nmax = 0.05 0.05 1.25\n"
+        "[species heavy]\ndistribution = uniform\ndiameter = 198e-6\ndiameter_min = 177e-6\n"
+        "diameter_max = 219e-6\ndensity = 2990\nparcel_volume = %.17g\n"
+        "[species light]\ndistribution = uniform\ndiameter = 137.5e-6\ndiameter_min = 125e-6\n"
+        "diameter_max = 150e-6\ndensity = 2440\nparcel_volume = %.17g\n"
+        "[create heavy]\ntype = random\nspecies = heavy\ncount = %ld\nregion_min = 0 0 0\n"
+        "region_max = 0.05 0.05 1.0\n"
+        "[create light]\ntype = random\nspecies = light\ncount = %ld\nregion_min = 0 0 0\n"
+        "region_max = 0.05 0.05 1.0\n"
+        "[gas]\ndensity = 992\nviscosity = 0.0667\ncells = 1 1 %d\n"
+        "[coupling]\ndrag = patankar\n[parcels]\nsubsteps = 5\n",
+        case_b ? 0.004 : 0.005, 0.01 * fill / count, 0.03 * fill / count, count, count, cells);
+}
+
+/// Solids volume of species s above z [m^3], and the mean vertical velocity of its parcels above
+/// z (into *v; NAN when none).
+static double species_above(const bdl_world *w, int s, double z, double *v)
+{
+    double volume = 0.0, sum = 0.0;
+    long n = 0;
+    for (long i = 0; i < w->particles.count; ++i)
+        if (w->particles.species[i] == s && w->particles.pos[i].z > z) {
+            volume += bdl_particle_solids_volume(&w->particles, i);
+            sum += w->particles.vel[i].z;
+            ++n;
+        }
+    *v = n > 0 ? sum / (double)n : NAN;
+    return volume;
+}
+
+bdl_result bdl_verify_parcel_bimodal(int case_b, double t_end, bdl_verify_bimodal *out)
+{
+    *out = (bdl_verify_bimodal){.heavy_front = NAN, .light_zone = NAN};
+    bdl_world *w = bimodal_column(case_b);
+    if (!w)
+        return BDL_ERR_SCENE;
+    const double area = 0.05 * 0.05, z_b = 0.5, every = 2.0;
+    double st = 0.0, sz = 0.0, stt = 0.0, stz = 0.0, light = 0.0, next = 20.0;
+    long samples = 0, light_samples = 0;
+    bdl_result r = BDL_OK;
+    while (r == BDL_OK && w->time < t_end + 0.5 * w->dt) {
+        r = bdl_world_step(w);
+        ++out->steps;
+        if (r != BDL_OK || w->time < next - 0.5 * w->dt)
+            continue;
+        next += every;
+        // The heavy front: the height the heavy solids above z_b fill at their initial fraction
+        // (the mixture below the front keeps it); the top interface moves with the light
+        // parcels of the light-only zone above the front (nothing is above the interface).
+        double v;
+        const double z = z_b + species_above(w, 0, z_b, &v) / (0.01 * area), t = w->time;
+        st += t, sz += z, stt += t * t, stz += t * z;
+        ++samples;
+        species_above(w, 1, z + 0.01, &v);
+        if (t >= 0.3 * t_end && isfinite(v)) {
+            light += v;
+            ++light_samples;
+        }
+    }
+    if (r != BDL_OK)
+        bdl_error("%s", w->failure);
+    bdl_world_destroy(w);
+    const double n = (double)samples;
+    if (r == BDL_OK && samples > 2)
+        out->heavy_front = -(n * stz - st * sz) / (n * stt - st * st);
+    if (r == BDL_OK && light_samples > 0)
+        out->light_zone = -light / (double)light_samples;
+    return r;
+}
