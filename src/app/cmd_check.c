@@ -56,15 +56,22 @@ static void print_modules(const bdl_world *w)
     const bdl_scene *s = &w->scene;
     printf("scene: %s — valid\n", s->path);
     printf("modules:\n");
-    printf("  dem: %s normal law%s; %s%s\n", w->hertz ? "Hertz-Mindlin" : "linear spring-dashpot",
-           w->hertz ? (s->damping == BDL_DAMPING_EXACT ? " with exact restitution damping"
-                                                       : " with closed-form damping")
-                    : "",
-           w->friction ? "tangential spring with history, Coulomb friction"
-                       : "frictionless (no tangential history)",
-           w->rolling ? "; rolling resistance" : "");
-    printf("  walls: %d (%d surfaces)%s\n", s->wall_count, w->walls.prim_count,
-           bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
+    if (w->parcels) {
+        char parcels[512];
+        bdl_world_parcels_describe(w, parcels, sizeof parcels);
+        printf("  %s\n", parcels);
+    } else
+        printf("  dem: %s normal law%s; %s%s\n",
+               w->hertz ? "Hertz-Mindlin" : "linear spring-dashpot",
+               w->hertz ? (s->damping == BDL_DAMPING_EXACT ? " with exact restitution damping"
+                                                           : " with closed-form damping")
+                        : "",
+               w->friction ? "tangential spring with history, Coulomb friction"
+                           : "frictionless (no tangential history)",
+               w->rolling ? "; rolling resistance" : "");
+    if (!w->parcels)
+        printf("  walls: %d (%d surfaces)%s\n", s->wall_count, w->walls.prim_count,
+               bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
     if (w->container >= 0)
         printf("  frame: the vibrating container [wall %s]; its walls stand still and particles "
                "and gas feel gravity plus the inertial acceleration\n",
@@ -84,12 +91,22 @@ static bdl_result print_time_step(const bdl_world *w)
     const bdl_scene *s = &w->scene;
     char message[1024], warning[1024];
     bdl_result r = bdl_guards_check_dt(w, message, sizeof message, warning, sizeof warning);
-    printf("time step: dt = %.4g s = t_c / %.1f (smallest contact time %.4g s)\n", w->dt,
-           1.0 / w->contact_time_dt_ratio, w->contact_time);
-    printf("  stable limit: dt <= %.4g s ([guards] dt_refuse = %g t_c); accurate below %.4g s "
-           "(dt_warn = %g t_c)\n",
-           s->guards.dt_refuse * w->contact_time, s->guards.dt_refuse,
-           s->guards.dt_warn * w->contact_time, s->guards.dt_warn);
+    if (w->parcels) {
+        printf("time step: dt = %.4g s; parcels: at most twice the stable step %.4g s (CFL 1/2 "
+               "for the inflow through close packing, the gas's viscous limit)",
+               w->dt, bdl_world_parcels_stable_dt(w));
+        const double collision = bdl_world_parcels_collision_dt(w);
+        if (isfinite(collision))
+            printf(", and below %.4g s for the collisions", collision);
+        printf("\n");
+    } else {
+        printf("time step: dt = %.4g s = t_c / %.1f (smallest contact time %.4g s)\n", w->dt,
+               1.0 / w->contact_time_dt_ratio, w->contact_time);
+        printf("  stable limit: dt <= %.4g s ([guards] dt_refuse = %g t_c); accurate below %.4g "
+               "s (dt_warn = %g t_c)\n",
+               s->guards.dt_refuse * w->contact_time, s->guards.dt_refuse,
+               s->guards.dt_warn * w->contact_time, s->guards.dt_warn);
+    }
     if (r != BDL_OK)
         fprintf(stderr, "error: %s\n", message);
     else if (warning[0])
@@ -152,7 +169,8 @@ bdl_result bdl_cmd_check(int argc, char **argv)
     if ((r = bdl_load_world(o.scene, o.overrides, o.override_count, &w)) != BDL_OK)
         return r;
     print_modules(w);
-    print_contacts(w, bdl_world_reference_speed(w));
+    if (!w->parcels) // parcels: their model's parameters are in the modules
+        print_contacts(w, bdl_world_reference_speed(w));
     print_resources(w);
     if ((r = print_time_step(w)) == BDL_OK)
         print_cost(w);

@@ -140,6 +140,12 @@ void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
     const bdl_scene *s = &w->scene;
     char gas[256];
     bdl_world_gas_describe(w, gas, sizeof gas);
+    if (w->parcels) {
+        char parcels[384];
+        bdl_world_parcels_describe(w, parcels, sizeof parcels);
+        snprintf(buf, size, "%s, gas: %s", parcels, gas);
+        return;
+    }
     snprintf(buf, size, "dem (%s normal law%s, %s%s), walls: %d, gas: %s",
              w->hertz ? "Hertz" : "linear",
              w->hertz ? (s->damping == BDL_DAMPING_EXACT ? ", exact restitution damping"
@@ -499,8 +505,8 @@ static bdl_result check_initial(bdl_world *w, const long *first_id, bdl_scene_er
     const int parcels = w->parcels != NULL; // parcels may overlap, and meet no walls
     for (long i = 0; i < w->particles.count; ++i)
         if (outside_domain(w, i, what, sizeof what) ||
-            (!parcels &&
-             (overlaps_particle(w, i, what, sizeof what) || overlaps_wall(w, i, what, sizeof what)))) {
+            (!parcels && (overlaps_particle(w, i, what, sizeof what) ||
+                          overlaps_wall(w, i, what, sizeof what)))) {
             char where[BDL_PATH_LEN + 64];
             creator_of(w, w->particles.id[i], first_id, where, sizeof where);
             snprintf(err->message, sizeof err->message, "%s: %s", where, what);
