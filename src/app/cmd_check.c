@@ -58,7 +58,7 @@ static void print_solids_module(const bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
     if (w->parcels) {
-        char parcels[256];
+        char parcels[512];
         bdl_world_parcels_describe(w, parcels, sizeof parcels);
         printf("  %s; no contacts, no walls: the domain's sides bound them\n", parcels);
         return;
@@ -139,8 +139,12 @@ static bdl_result print_time_step(const bdl_world *w)
         const double stable = bdl_world_parcels_stable_dt(w);
         printf("time step: dt = %.4g s = %.3g of the parcels' stable step %.4g s (CFL 1/2 for the "
                "inflow through close packing, and the gas's viscous limit); refused above twice "
-               "it\n",
+               "it",
                w->dt, w->dt / stable, stable);
+        const double collision = bdl_world_parcels_collision_dt(w);
+        if (isfinite(collision))
+            printf(", and dt / substeps below %.4g s for the collisions", collision);
+        printf("\n");
     } else {
         print_contact_step(w);
     }

@@ -1,5 +1,5 @@
-// bedlam — parcels: drift, packing guard, interparticle stress, and the implicit exchange with
-// the gas (parcels.h has the scheme).
+// bedlam — parcels: drift, packing guard, interparticle stress or collisions, and the implicit
+// exchange with the gas (parcels.h has the scheme).
 #include "core/parallel.h"
 #include "parcels/parcels.h"
 
@@ -20,7 +20,45 @@ bdl_parcels_def bdl_default_parcels_def(void)
                              .close_packing = 0.6,
                              .stress_floor = 1e-3,
                              .substeps = 1,
-                             .wall_restitution = 0.9};
+                             .wall_restitution = 0.9,
+                             .collision_stiffness = 800.0,
+                             .collision_exponent = 1.5,
+                             .collision_damping = -1.0,
+                             .collision_restitution = 0.9,
+                             .collision_range = 0.075};
+}
+
+double bdl_parcels_collision_damping(const bdl_parcels_def *def, double mass)
+{
+    if (def->collision_damping >= 0.0)
+        return def->collision_damping;
+    return bdl_parcel_collision_damping(def->collision_restitution, mass, def->collision_stiffness);
+}
+
+double bdl_parcels_collision_dt(const bdl_parcels_def *def, double mass)
+{
+    if (def->model != BDL_PARCEL_COLLISIONS || !(mass > 0.0))
+        return INFINITY;
+    const double eta = bdl_parcels_collision_damping(def, mass);
+    const double spring =
+        def->collision_stiffness > 0.0 ? 2.0 * sqrt(mass / def->collision_stiffness) : INFINITY;
+    const double dashpot = eta > 0.0 ? mass / eta : INFINITY;
+    return (def->substeps > 0 ? def->substeps : 1) * fmin(spring, dashpot);
+}
+
+/// The domain of the gas as the parcels meet it.
+static bdl_parcel_box parcel_box(const bdl_gas *gas)
+{
+    const bdl_grid *g = &gas->grid;
+    bdl_parcel_box box = {0};
+    for (int a = 0; a < 3; ++a) {
+        box.lo[a] = g->origin[a];
+        box.hi[a] = g->origin[a] + g->n[a] * g->h[a];
+        box.periodic[a] = g->periodic[a];
+        for (int side = 2 * a; side < 2 * a + 2; ++side)
+            box.solid[side] = !g->periodic[a] && gas->def.side[side].type != BDL_SIDE_OUTLET;
+    }
+    return box;
 }
 
 double bdl_parcels_stress(const bdl_parcels_def *def, double theta)
@@ -39,6 +77,12 @@ bdl_result bdl_parcels_init(bdl_parcels *pc, const bdl_parcels_def *def, const b
     int ok = pc->tau != NULL;
     for (int a = 0; a < 3; ++a)
         ok = ok && (pc->grad[a] = bdl_grid_alloc(&gas->grid));
+    const bdl_parcel_collision_law law = {.stiffness = def->collision_stiffness,
+                                          .exponent = def->collision_exponent,
+                                          .damping = fmax(def->collision_damping, 0.0),
+                                          .range = def->collision_range};
+    const bdl_parcel_box box = parcel_box(gas);
+    ok = ok && bdl_parcel_collisions_init(&pc->collisions, &law, &box) == BDL_OK;
     if (!ok) {
         bdl_parcels_free(pc);
         return BDL_ERR_NOMEM;
@@ -58,6 +102,9 @@ void bdl_parcels_free(bdl_parcels *pc)
     free(pc->tau);
     for (int a = 0; a < 3; ++a)
         free(pc->grad[a]);
+    bdl_parcel_collisions_free(&pc->collisions);
+    free(pc->sub_v);
+    free(pc->push);
     *pc = (bdl_parcels){0};
 }
 
@@ -72,7 +119,9 @@ static bdl_result reserve(bdl_parcels *pc, long n)
         !bdl_grow((void **)&pc->value, cap, sizeof(double)) ||
         !bdl_grow((void **)&pc->perm, cap, sizeof(int32_t)) ||
         !bdl_grow((void **)&pc->scratch, cap, sizeof(bdl_vec3)) ||
-        !bdl_grow((void **)&pc->held, cap, 1))
+        !bdl_grow((void **)&pc->held, cap, 1) ||
+        !bdl_grow((void **)&pc->sub_v, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&pc->push, cap, sizeof(bdl_vec3)))
         return BDL_ERR_NOMEM;
     pc->capacity = cap;
     return BDL_OK;
@@ -117,24 +166,51 @@ static int keep_inside(const bdl_parcels *pc, const bdl_gas *gas, bdl_particles 
     return 0;
 }
 
-/// Moves every parcel by v dt in `substeps` parts, meeting the sides within each; the parcels
-/// beyond an outlet are marked in pc->held. Returns how many.
-static long drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, double dt)
+/// Model B: the collision acceleration a = F_cp / M at the parcels' positions now, with the
+/// velocities w = v + h S of the step's parts so far, added to the sum S (pc->accel). The parcels
+/// in `skip` (NULL: none) take no part.
+static bdl_result collide(bdl_parcels *pc, bdl_particles *p, double h, const uint8_t *skip,
+                          bdl_parcel_contacts *found)
+{
+    for (long i = 0; i < p->count; ++i)
+        pc->sub_v[i] = bdl_v3_madd(p->vel[i], pc->accel[i], h);
+    if (bdl_parcel_collisions_force(&pc->collisions, p, pc->sub_v, skip, pc->push, found) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    for (long i = 0; i < p->count; ++i)
+        pc->accel[i] = bdl_v3_madd(pc->accel[i], pc->push[i], p->inv_mass[i]);
+    return BDL_OK;
+}
+
+/// Moves every parcel by w dt in `substeps` parts h, meeting the sides within each (see
+/// parcels.h: w = v, or for model B v + h S with the collisions evaluated between the parts);
+/// the parcels beyond an outlet are marked in pc->held and move no more. Their count into
+/// *leaving.
+static bdl_result drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, double dt,
+                        long *leaving)
 {
     const int parts = pc->def.substeps > 0 ? pc->def.substeps : 1;
+    const int collisions = pc->def.model == BDL_PARCEL_COLLISIONS;
     const double h = dt / parts;
-    long leaving = 0;
-    for (long i = 0; i < p->count; ++i) {
-        int out = 0;
-        for (int k = 0; k < parts && !out; ++k) {
-            p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], h);
+    memset(pc->held, 0, (size_t)p->count);
+    if (collisions)
+        memset(pc->accel, 0, (size_t)p->count * sizeof(bdl_vec3));
+    *leaving = 0;
+    for (int k = 0; k < parts; ++k) {
+        for (long i = 0; i < p->count; ++i) {
+            if (pc->held[i])
+                continue;
+            const bdl_vec3 w = collisions ? bdl_v3_madd(p->vel[i], pc->accel[i], h) : p->vel[i];
+            p->pos[i] = bdl_v3_madd(p->pos[i], w, h);
+            int out = 0;
             for (int a = 0; a < 3; ++a)
                 out |= keep_inside(pc, gas, p, i, a);
+            pc->held[i] = (uint8_t)out;
+            *leaving += out;
         }
-        pc->held[i] = (uint8_t)out;
-        leaving += out;
+        if (collisions && k + 1 < parts && collide(pc, p, h, pc->held, NULL) != BDL_OK)
+            return BDL_ERR_NOMEM;
     }
-    return leaving;
+    return BDL_OK;
 }
 
 /// Removes the parcels marked in pc->held (beyond an outlet), keeping the others' order.
@@ -149,6 +225,7 @@ static void remove_marked(bdl_parcels *pc, bdl_particles *p, bdl_parcels_report 
             pc->perm[kept] = (int32_t)i;
             pc->start[kept] = pc->start[i];
             pc->start_v[kept] = pc->start_v[i];
+            pc->accel[kept] = pc->accel[i];
             ++kept;
         }
     }
@@ -180,8 +257,9 @@ static int overfull(const bdl_parcels *pc, const bdl_gas *gas, double *max_solid
 }
 
 /// The solids fraction of the parcels where they are now; while a cell is above close packing,
-/// every parcel whose kernel reaches such a cell returns to where the step began, at rest (its
-/// kernel weights recomputed, the others' kept).
+/// every parcel whose kernel reaches such a cell returns to where the step began, at rest (and
+/// with no collision acceleration of the step so far; its kernel weights recomputed, the others'
+/// kept).
 static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
                         bdl_parcels_report *out)
 {
@@ -204,6 +282,7 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
             if (pc->held[i]) {
                 p->pos[i] = x0;
                 p->vel[i] = bdl_v3_zero();
+                pc->accel[i] = bdl_v3_zero();
                 ++moved;
             }
         }
@@ -250,6 +329,19 @@ static void stress(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas,
         });
 }
 
+/// Model B: the last collision acceleration at the step's final positions, and A_b = g + A_cp
+/// with A_cp the mean of the step's K evaluations.
+static bdl_result collision_accel(bdl_parcels *pc, bdl_particles *p, bdl_vec3 gravity, double dt,
+                                  bdl_parcels_report *out)
+{
+    const int parts = pc->def.substeps > 0 ? pc->def.substeps : 1;
+    if (collide(pc, p, dt / parts, NULL, &out->contacts) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    for (long i = 0; i < p->count; ++i)
+        pc->accel[i] = bdl_v3_madd(gravity, pc->accel[i], 1.0 / parts);
+    return BDL_OK;
+}
+
 // ---------------------------------------------------------------------------------------------
 // The step.
 
@@ -270,29 +362,35 @@ static void pressure_share(bdl_parcels *pc, const bdl_coupling *c, bdl_gas *gas,
 
 /// v^{n+1} = v + a dt / m (u - v - dt A_b + dt grad p / rho_p) + dt (A_b - grad p / rho_p): the
 /// implicit update written as the drag the gas gave plus the other forces; the total drag on
-/// the parcels into `drag`.
-static void velocities(const bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas,
-                       bdl_particles *p, double dt, double drag[3])
+/// the parcels into `drag`, and the work of the gas's forces (drag and pressure) over the step,
+/// dt F . (v^n + v^{n+1}) / 2, into *work.
+static void velocities(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas, bdl_particles *p,
+                       double dt, double drag[3], double *work)
 {
     BDL_PARALLEL_FOR(
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
-            const double m_inv = p->inv_mass[i];
-            const double density = 1.0 / (m_inv * bdl_particle_solids_volume(p, i));
+            const double m_inv = p->inv_mass[i], volume = bdl_particle_solids_volume(p, i);
+            const double density = 1.0 / (m_inv * volume);
             const bdl_vec3 u = bdl_coupling_gas_velocity(c, gas, i);
             const bdl_vec3 gp = bdl_coupling_face_average(c, i, gas->grad_p);
             const bdl_vec3 other = bdl_v3_madd(pc->accel[i], gp, -1.0 / density);
             const bdl_vec3 slip = bdl_v3_sub(bdl_v3_sub(u, p->vel[i]), bdl_v3_scale(other, dt));
             const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
-            p->vel[i] = bdl_v3_add(p->vel[i], bdl_v3_scale(bdl_v3_madd(other, f, m_inv), dt));
+            const bdl_vec3 v0 = p->vel[i];
+            p->vel[i] = bdl_v3_add(v0, bdl_v3_scale(bdl_v3_madd(other, f, m_inv), dt));
             // The drag as the gas booked it, a (u - v - dt A_b); the rest of f, a dt grad p /
             // rho_p, is the share of the pressure force the gas's 1 - C_pr handed over.
             p->load[i].force = bdl_v3_madd(f, gp, -c->factor[i] * dt / density);
+            const bdl_vec3 gas_force = bdl_v3_madd(f, gp, -volume);
+            pc->value[i] = 0.5 * dt * bdl_v3_dot(gas_force, bdl_v3_add(v0, p->vel[i]));
         });
     drag[0] = drag[1] = drag[2] = 0.0;
+    *work = 0.0;
     for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
         drag[0] += p->load[i].force.x;
         drag[1] += p->load[i].force.y;
         drag[2] += p->load[i].force.z;
+        *work += pc->value[i];
     }
 }
 
@@ -305,14 +403,24 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         return BDL_ERR_NOMEM;
     memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
     memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));
-    if (drift(pc, gas, p, dt) > 0)
+    pc->collisions.parallel_min = c->parallel_min;
+    long leaving = 0;
+    bdl_result r = drift(pc, gas, p, dt, &leaving);
+    if (r != BDL_OK)
+        return r;
+    if (leaving > 0)
         remove_marked(pc, p, out);
-    bdl_result r = place(pc, c, gas, p, out);
+    r = place(pc, c, gas, p, out);
     if (r != BDL_OK)
         return r;
     if (def->first)
         memcpy(gas->eps_old, gas->eps, (size_t)gas->grid.size * sizeof(double));
-    stress(pc, c, gas, p, def->gravity);
+    if (pc->def.model == BDL_PARCEL_COLLISIONS)
+        r = collision_accel(pc, p, def->gravity, dt, out);
+    else
+        stress(pc, c, gas, p, def->gravity);
+    if (r != BDL_OK)
+        return r;
     bdl_coupling_drag_setup(c, gas, p, pc->accel, dt);
     pressure_share(pc, c, gas, p, dt);
     const double t1 = bdl_wall_seconds();
@@ -324,7 +432,7 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         r = BDL_ERR_UNSTABLE;
     if (r != BDL_OK)
         return r;
-    velocities(pc, c, gas, p, dt, out->particle_drag);
+    velocities(pc, c, gas, p, dt, out->particle_drag, &out->gas_work);
     bdl_coupling_gas_drag(gas, out->gas_drag);
     out->parcel_seconds = (t1 - t0) + (bdl_wall_seconds() - t2);
     return BDL_OK;

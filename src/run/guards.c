@@ -6,9 +6,26 @@
 #include "cfd/gas.h"
 #include "dem/create.h"
 
-/// The step of a world of parcels against its stable step (twice it is refused: CFL 1).
+/// The step of a world of parcels against its stable step (twice it is refused: CFL 1), and with
+/// collisions (model B) against Cundall & Strack's bound and the dashpot's (parcels.h).
 static bdl_result check_parcel_dt(const bdl_world *w, char *message, size_t len)
 {
+    const double collision = bdl_world_parcels_collision_dt(w);
+    if (!(w->dt < collision)) {
+        const bdl_parcels_def *def = &w->scene.parcels.def;
+        const double m = bdl_world_parcel_mass_min(w);
+        const int k = def->substeps > 0 ? def->substeps : 1;
+        snprintf(message, len,
+                 "%s: [run] dt = %g s is too long for parcel collisions (model B): dt / substeps "
+                 "must be below 2 sqrt(M / k_c) = %g s (Cundall & Strack, for the smallest parcel "
+                 "mass M = %g kg and collision_stiffness k_c = %g) and below M / eta_c = %g s "
+                 "(the dashpot, eta_c = %g kg/s); allowed: dt < %g s with substeps = %d. Likely "
+                 "fix: lower dt, raise [parcels] substeps, or soften collision_stiffness",
+                 w->scene.path, w->dt, 2.0 * sqrt(m / def->collision_stiffness), m,
+                 def->collision_stiffness, m / bdl_parcels_collision_damping(def, m),
+                 bdl_parcels_collision_damping(def, m), collision, k);
+        return BDL_ERR_SCENE;
+    }
     const double stable = bdl_world_parcels_stable_dt(w);
     if (w->dt > 2.0 * stable) {
         snprintf(message, len,

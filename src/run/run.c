@@ -351,6 +351,10 @@ static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *rep
         bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s",
                  w->time, w->step, w->particles.count, wall,
                  r->outputs.final_checkpoint[0] ? r->outputs.final_checkpoint : "NOT written");
+    if (solved && w->parcels)
+        bdl_info("parcels: %ld held back by the packing guard over the run; after the last step "
+                 "%ld touching pairs, %ld side contacts, largest overlap %.3g of R_ep (model B)",
+                 w->parcels_held, w->parcel_pairs, w->parcel_walls, w->parcel_overlap);
     if (report && w)
         *report = (bdl_run_report){w->time, w->step, w->particles.count, wall};
     bdl_world_destroy(w);

@@ -186,7 +186,8 @@ const bdl_scene_key bdl_scene_keys[] = {
      .def = {-1}, .default_text = "2/7 * stiffness", GT(0),
      .doc = "tangential spring stiffness k_t (linear law)"},
     {S(SPECIES), "restitution", NUM, "-", IN_SPECIES(material.restitution), REQUIRED, GT(0), LE(1),
-     .doc = "normal coefficient of restitution (not for parcels: they have no contacts)"},
+     .doc = "normal coefficient of restitution (not for parcels: theirs is [parcels] "
+            "collision_restitution)"},
     {S(SPECIES), "tangential_damping_ratio", NUM, "-",
      IN_SPECIES(material.tangential_damping_ratio), .def = {0}, GE(0), LE(1),
      .doc = "tangential to normal damping ratio (0: no tangential dashpot)"},
@@ -572,8 +573,9 @@ const bdl_scene_key bdl_scene_keys[] = {
     // [parcels]
     {S(PARCELS), "model", .type = BDL_KEY_ENUM, "-", IN_PARCELS(model), .def = {BDL_PARCEL_STRESS},
      .enum_names = bdl_parcel_model_names, .default_text = "stress",
-     .doc = "what keeps parcels from close packing: stress (model A of Patankar & Joseph 2001: "
-            "an interparticle stress on the gas grid)"},
+     .doc = "what keeps parcels from close packing (Patankar & Joseph 2001): stress (model A: an "
+            "interparticle stress on the gas grid) or collisions (model B: soft-sphere forces "
+            "between parcel spheres and with the domain's sides)"},
     {S(PARCELS), "stress_pressure", NUM, "Pa", IN_PARCELS(stress_pressure), .def = {100}, GE(0),
      LE(1e9), .doc = "P_s of the stress P_s theta^beta / (theta_cs - theta)"},
     {S(PARCELS), "stress_exponent", NUM, "-", IN_PARCELS(stress_exponent), .def = {3}, GE(0),
@@ -590,6 +592,25 @@ const bdl_scene_key bdl_scene_keys[] = {
      .def = {BDL_PARCEL_DISPLAY_PARCEL}, .enum_names = bdl_parcel_display_names,
      .doc = "how frames and the viewer draw a parcel: parcel (the sphere of its solids volume, "
             "radius cbrt(3 V / (4 pi))) or real (a sphere of one real particle's radius)"},
+    {S(PARCELS), "collision_stiffness", NUM, "N/m^1.5", IN_PARCELS(collision_stiffness),
+     .def = {800}, GT(0), LE(1e12),
+     .doc = "model B: k_c of the force k_c delta^m - eta_c u_n between parcel spheres and with the "
+            "sides (the unit is N/m^m)"},
+    {S(PARCELS), "collision_exponent", NUM, "-", IN_PARCELS(collision_exponent), .def = {1.5},
+     GE(1), LE(2),
+     .doc = "model B: m of k_c delta^m (the paper's 3/2; 1 is a linear spring, for which the "
+            "damping from collision_restitution is exact)"},
+    {S(PARCELS), "collision_damping", NUM, "kg/s", IN_PARCELS(collision_damping), .def = {-1},
+     .default_text = "from collision_restitution", GE(0), LE(1e12),
+     .doc = "model B: eta_c; by default 2 alpha sqrt(M k_c / (1 + alpha^2)), alpha = -ln(e)/pi, "
+            "M the smallest parcel mass (the paper's eq. 18)"},
+    {S(PARCELS), "collision_restitution", NUM, "-", IN_PARCELS(collision_restitution), .def = {0.9},
+     GT(0), LE(1),
+     .doc = "model B: e from which eta_c is built when collision_damping is not given"},
+    {S(PARCELS), "collision_range", NUM, "-", IN_PARCELS(collision_range), .def = {0.075}, GE(0),
+     LE(1),
+     .doc = "model B: force range rho as a fraction of a parcel sphere's diameter: spheres push "
+            "from R_ep + R_ej + rho apart, and a side from R_ep + rho"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

@@ -141,7 +141,7 @@ void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
     char gas[256];
     bdl_world_gas_describe(w, gas, sizeof gas);
     if (w->parcels) {
-        char parcels[256];
+        char parcels[384];
         bdl_world_parcels_describe(w, parcels, sizeof parcels);
         snprintf(buf, size, "%s, gas: %s", parcels, gas);
         return;

@@ -102,8 +102,11 @@ typedef struct bdl_world {
     // Parcels (a species made of them; NULL otherwise): they step with the gas, one gas step per
     // step of the world, and have no contacts, neighbour lists or contact time.
     struct bdl_parcels *parcels;
-    long parcels_held; ///< parcels the packing guard held back since the start
-    double max_solids; ///< largest solids fraction of a cell after the last step
+    long parcels_held;     ///< parcels the packing guard held back since the start
+    double max_solids;     ///< largest solids fraction of a cell after the last step
+    long parcel_pairs;     ///< model B: touching parcel pairs after the last step
+    long parcel_walls;     ///< model B: parcel-side contacts after the last step
+    double parcel_overlap; ///< model B: largest overlap / R_ep after the last step
 
     /// Why the last bdl_world_step failed, for the caller to report (the world prints nothing).
     char failure[512];
@@ -144,6 +147,16 @@ void bdl_world_parcels_free(bdl_world *world);
 /// the gas's viscous limit [s] (the drag is implicit, the stress damped by it).
 double bdl_world_parcels_stable_dt(const bdl_world *world);
 
+/// One line on the parcels' model and its parameters (as resolved: eta_c), for logs.
+void bdl_world_parcels_describe(const bdl_world *world, char *buf, size_t size);
+
+/// The smallest mass of a parcel the scene's species make [kg]; INFINITY without parcels.
+double bdl_world_parcel_mass_min(const bdl_world *world);
+
+/// The longest step parcel collisions (model B) allow: bdl_parcels_collision_dt for the smallest
+/// parcel mass [s]; INFINITY for model A.
+double bdl_world_parcels_collision_dt(const bdl_world *world);
+
 /// One step of a world of parcels (bdl_world_step calls it).
 bdl_result bdl_world_parcels_step(bdl_world *world);
 
@@ -160,9 +173,6 @@ typedef struct bdl_parcels_census {
 
 /// The census of the parcels where they are now; BDL_ERR_NOMEM.
 bdl_result bdl_world_parcels_census(const bdl_world *world, bdl_parcels_census *out);
-
-/// "parcels (MP-PIC, model A stress ...)": the model and its parameters, for run.log and check.
-void bdl_world_parcels_describe(const bdl_world *world, char *buf, size_t size);
 
 /// One line naming the active modules and their models, for run.log.
 void bdl_world_describe(const bdl_world *world, char *buf, size_t size);

@@ -6,16 +6,94 @@
 
 #include "cfd/gas.h"
 #include "couple/coupling.h"
+#include "dem/species.h"
 #include "parcels/parcels.h"
 #include "world/world.h"
+
+/// The solids volume of species s's parcels at diameter d [m^3].
+static double parcel_volume_at(const bdl_species_def *s, double d)
+{
+    return bdl_species_volume(s, d) * bdl_species_parcel_count(s, d);
+}
+
+double bdl_world_parcel_mass_min(const bdl_world *w)
+{
+    double m = INFINITY;
+    for (int k = 0; k < w->scene.species_count; ++k) {
+        const bdl_species_def *s = &w->scene.species[k];
+        if (bdl_species_is_parcel(s))
+            m = fmin(m, s->density * parcel_volume_at(s, bdl_species_min_diameter(s)));
+    }
+    return m;
+}
+
+double bdl_world_parcels_collision_dt(const bdl_world *w)
+{
+    return bdl_parcels_collision_dt(&w->scene.parcels.def, bdl_world_parcel_mass_min(w));
+}
+
+void bdl_world_parcels_describe(const bdl_world *w, char *buf, size_t size)
+{
+    const bdl_parcels_def *d = &w->parcels->def;
+    if (d->model == BDL_PARCEL_STRESS) {
+        snprintf(buf, size,
+                 "parcels (MP-PIC, model A stress P_s theta^beta / max(theta_cs - theta, floor): "
+                 "P_s = %g Pa, beta = %g, theta_cs = %g, floor = %g; %d drift part(s) per step, "
+                 "wall restitution %g)",
+                 d->stress_pressure, d->stress_exponent, d->close_packing, d->stress_floor,
+                 d->substeps, d->wall_restitution);
+        return;
+    }
+    const bdl_parcel_collision_law *law = &w->parcels->collisions.law;
+    snprintf(buf, size,
+             "parcels (MP-PIC, model B collisions: k_c = %g N/m^%g, eta_c = %.4g kg/s%s, range %g of a "
+             "parcel's diameter; %d part(s) per step, dt below %.4g s; packing guard at %g)",
+             law->stiffness, law->exponent, law->damping,
+             d->collision_damping < 0.0 ? " from the restitution" : "", law->range, d->substeps,
+             bdl_world_parcels_collision_dt(w), d->close_packing);
+}
+
+/// Model B meets pairs through the nearest image only: a periodic axis must be at least twice
+/// the longest reach (1 + range) 2 R_ep long.
+static bdl_result check_periodic_reach(const bdl_world *w, bdl_scene_error *err)
+{
+    const bdl_scene *scene = &w->scene;
+    if (scene->parcels.def.model != BDL_PARCEL_COLLISIONS)
+        return BDL_OK;
+    double r_max = 0.0;
+    for (int k = 0; k < scene->species_count; ++k) {
+        const bdl_species_def *s = &scene->species[k];
+        r_max = fmax(r_max, cbrt(0.75 / BDL_PI * parcel_volume_at(s, bdl_species_max_diameter(s))));
+    }
+    const double reach = (1.0 + scene->parcels.def.collision_range) * 2.0 * r_max;
+    static const char *const axes[3] = {"x", "y", "z"};
+    for (int a = 0; a < 3; ++a) {
+        const double L = bdl_v3_comp(scene->domain_max, a) - bdl_v3_comp(scene->domain_min, a);
+        if (scene->periodic[a] && L < 2.0 * reach) {
+            snprintf(err->message, sizeof err->message,
+                     "%s: [domain] the periodic %s axis is %g m long; parcel collisions (model B) "
+                     "need at least twice the longest reach (1 + collision_range) x 2 R_ep, "
+                     "%g m",
+                     scene->path, axes[a], L, 2.0 * reach);
+            return BDL_ERR_SCENE;
+        }
+    }
+    return BDL_OK;
+}
 
 bdl_result bdl_world_parcels_init(bdl_world *w, bdl_scene_error *err)
 {
     bdl_result r = bdl_world_gas_init(w, err);
     if (r != BDL_OK)
         return r;
+    r = check_periodic_reach(w, err);
+    if (r != BDL_OK)
+        return r;
+    // eta_c resolved once, from the smallest parcel mass (eq. 18) unless given.
+    bdl_parcels_def def = w->scene.parcels.def;
+    def.collision_damping = bdl_parcels_collision_damping(&def, bdl_world_parcel_mass_min(w));
     w->parcels = calloc(1, sizeof *w->parcels);
-    if (!w->parcels || bdl_parcels_init(w->parcels, &w->scene.parcels.def, w->gas) != BDL_OK) {
+    if (!w->parcels || bdl_parcels_init(w->parcels, &def, w->gas) != BDL_OK) {
         snprintf(err->message, sizeof err->message, "%s: [parcels]: out of memory", w->scene.path);
         return BDL_ERR_NOMEM;
     }
@@ -26,9 +104,10 @@ bdl_result bdl_world_parcels_init(bdl_world *w, bdl_scene_error *err)
     if (!w->coordination || bdl_neighbor_none(&w->neighbor, n) != BDL_OK)
         return BDL_ERR_NOMEM;
     const bdl_gas_scene *gs = &w->scene.gas;
-    w->dt = w->scene.dt > 0.0
-                ? w->scene.dt
-                : bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+    const double automatic =
+        fmin(bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity)),
+             0.5 * bdl_world_parcels_collision_dt(w));
+    w->dt = w->scene.dt > 0.0 ? w->scene.dt : automatic;
     w->gas_fixed = 1;
     w->gas_every = w->gas_every_max = 1;
     w->gas_next = 0;
@@ -94,16 +173,6 @@ bdl_result bdl_world_parcels_census(const bdl_world *w, bdl_parcels_census *out)
     return BDL_OK;
 }
 
-void bdl_world_parcels_describe(const bdl_world *w, char *buf, size_t size)
-{
-    const bdl_parcels_def *d = &w->scene.parcels.def;
-    snprintf(buf, size,
-             "parcels (MP-PIC, model A stress P_s theta^beta / max(theta_cs - theta, floor): P_s = "
-             "%g Pa, beta = %g, theta_cs = %g, floor = %g; %d drift part%s, wall restitution %g)",
-             d->stress_pressure, d->stress_exponent, d->close_packing, d->stress_floor, d->substeps,
-             d->substeps == 1 ? "" : "s", d->wall_restitution);
-}
-
 double bdl_world_parcels_stable_dt(const bdl_world *w)
 {
     const bdl_grid *g = &w->gas->grid;
@@ -146,6 +215,9 @@ bdl_result bdl_world_parcels_step(bdl_world *w)
     w->removed_mass += report.removed_mass;
     w->parcels_held += report.held;
     w->max_solids = report.max_solids;
+    w->parcel_pairs = report.contacts.pairs;
+    w->parcel_walls = report.contacts.walls;
+    w->parcel_overlap = report.contacts.max_overlap;
     if (report.stable_dt > 0.0)
         w->gas_stable = report.stable_dt;
     if (r == BDL_ERR_UNSTABLE && report.stable_dt > 0.0)
@@ -161,6 +233,7 @@ bdl_result bdl_world_parcels_step(bdl_world *w)
                  w->time, w->step, w->gas->last_solve.residual, w->gas->last_solve.iterations);
     if (r != BDL_OK)
         return r;
+    w->gas_work += report.gas_work;
     for (int a = 0; a < 3; ++a) {
         w->particle_drag[a] = report.particle_drag[a];
         w->gas_drag[a] = report.gas_drag[a];
