@@ -47,11 +47,26 @@
 /// BDL_PARALLEL_MIN in core/parallel.h).
 #define BDL_COUPLING_PARALLEL_MIN 4096
 
+/// Most fields one deposit fills (the drag set-up's beta and beta v).
+#define BDL_COUPLING_FIELDS 6
+
+/// The deposit chunk of parcels (bdl_coupling_def.chunk): with the parcels in cell order (see
+/// bdl_coupling_sort) a chunk is a slab of the bed.
+#define BDL_COUPLING_CHUNK 4096
+
+/// bdl_coupling_sort reorders the particles when more than 1 in this many follow one in a later
+/// cell.
+#define BDL_COUPLING_DISORDER 8
+
 typedef struct bdl_coupling_def {
     bdl_drag_law drag;
     bdl_drag_params drag_params;
     double kernel_width; ///< tent half-width [m]; raised to one cell, lowered to four
     double max_solids;   ///< cap on the deposited solids fraction
+    /// Particles per deposit chunk: 0, one pass in particle order; else the particles in chunks
+    /// of this many, each summed on its own (in parallel), the chunks' sums added cell by cell
+    /// in chunk order (the same on any number of threads, not the bits of one pass)
+    long chunk;
 } bdl_coupling_def;
 
 /// The defaults on a grid: Gidaspow's drag with the Syamlal-O'Brien defaults, a kernel half-width
@@ -66,19 +81,35 @@ typedef struct bdl_coupling {
     // Per kernel point (a sphere's centre, a rod's satellites), six separable kernels: slots 0-2
     // over the cell centres along x, y, z; slots 3-5 over the momentum faces of component x, y, z
     // along its own axis.
-    int *offset;       ///< BDL_KERNEL_MAX padded-index offsets per slot (periodic axes wrapped)
-    int *span;         ///< points touched in each slot
-    double *weight;    ///< BDL_KERNEL_MAX normalised weights per slot
-    double *factor;    ///< per particle: a_i = m D / (1 + D dt) [kg/s]
-    double width[3];   ///< kernel half-width per axis [m]
-    double inv_h[3];   ///< 1 / cell size per axis [1/m]
-    double reach[3];   ///< half-width in cells per axis
-    long parallel_min; ///< per-particle loops go parallel from this many particles
-    double *grad[3];   ///< scratch: cell-centred pressure gradient (padded grid fields)
+    // Each slot holds points[a] entries along its axis a (those of positive weight, then weight
+    // 0 on the last of them), kmax apart.
+    int points[3];       ///< entries per slot along each axis
+    int kmax;            ///< the largest of points[]
+    int *offset;         ///< padded-index offsets per slot (periodic axes wrapped)
+    double *weight;      ///< normalised weights per slot
+    int *lo, *hi;        ///< per point: the lowest and highest padded index of its slots
+    double *factor;      ///< per particle: a_i = m D / (1 + D dt) [kg/s]
+    double width[3];     ///< kernel half-width per axis [m]
+    double inv_h[3];     ///< 1 / cell size per axis [1/m]
+    double reach[3];     ///< half-width in cells per axis
+    double inv_reach[3]; ///< 1 / reach
+    long parallel_min;   ///< per-particle loops go parallel from this many particles
+    double *grad[3];     ///< scratch: cell-centred pressure gradient (padded grid fields)
     // Per particle, for one coupling step:
     bdl_vec3 *accel;    ///< acceleration other than the drag over the last step [m/s^2]
     bdl_vec3 *drag;     ///< drag force for the coming step [N]
     bdl_vec3 *pressure; ///< pressure force for the coming step [N]
+    // Scratch of bdl_coupling_sort:
+    long order_capacity;  ///< particles
+    int32_t *order_key;   ///< per particle: its cell
+    int32_t *order_perm;  ///< per particle: the new order
+    void *order_scratch;  ///< for bdl_particles_permute
+    int32_t *order_start; ///< per cell (and one more): the first of its particles
+    // Scratch of the deposits in chunks (def.chunk):
+    long chunk_capacity; ///< chunks
+    double *chunk_sums;  ///< per chunk BDL_COUPLING_FIELDS padded grid fields, zero when unused
+    long *chunk_lo;      ///< per chunk: the lowest padded index its particles reach
+    long *chunk_hi;      ///< per chunk: the highest
 } bdl_coupling;
 
 /// One coupling step: its length, the last one's, and the acceleration both phases feel.
@@ -116,6 +147,15 @@ double bdl_coupling_work(const bdl_particles *p, long i, double span);
 
 /// The steps one by one (bdl_coupling_step runs them in order).
 
+/// Reorders the particles (bdl_particles_permute, c->order_perm: new slot k holds old particle
+/// order_perm[k]) by the gas cell holding their centre, z slowest and x fastest, when more than 1
+/// in BDL_COUPLING_DISORDER of them follow a particle in a later cell: neighbours in space are
+/// then neighbours in memory for the kernels. The order is a function of the positions and the
+/// order before alone (a stable counting sort), never of the threads. Arrays the caller keeps per
+/// particle must be filled after this (or permuted with order_perm when *sorted says it moved
+/// them; sorted may be NULL).
+bdl_result bdl_coupling_sort(bdl_coupling *c, const bdl_gas *gas, bdl_particles *p, int *sorted);
+
 /// Kernel weights of every particle at its current position (and orientation).
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p);
 
@@ -147,6 +187,10 @@ void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3]);
 
 /// A gas quantity at a particle: the kernel average of cell values f (padded cell array).
 double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f);
+
+/// Whether any cell to which particle i's kernel gives weight holds a positive value of f (padded
+/// cell array): for f >= 0 the same as bdl_coupling_interpolate(c, i, f) > 0, without the sums.
+int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f);
 
 /// A face quantity at particle i: component a the kernel average of f[a] over the momentum faces
 /// of component a (the weights the drag is deposited with).

@@ -119,21 +119,24 @@ static int keep_inside(const bdl_parcels *pc, const bdl_gas *gas, bdl_particles 
 
 /// Moves every parcel by v dt in `substeps` parts, meeting the sides within each; the parcels
 /// beyond an outlet are marked in pc->held. Returns how many.
-static long drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, double dt)
+static long drift(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas, bdl_particles *p,
+                  double dt)
 {
     const int parts = pc->def.substeps > 0 ? pc->def.substeps : 1;
     const double h = dt / parts;
+    BDL_PARALLEL_FOR(
+        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
+            int out = 0;
+            for (int k = 0; k < parts && !out; ++k) {
+                p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], h);
+                for (int a = 0; a < 3; ++a)
+                    out |= keep_inside(pc, gas, p, i, a);
+            }
+            pc->held[i] = (uint8_t)out;
+        });
     long leaving = 0;
-    for (long i = 0; i < p->count; ++i) {
-        int out = 0;
-        for (int k = 0; k < parts && !out; ++k) {
-            p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], h);
-            for (int a = 0; a < 3; ++a)
-                out |= keep_inside(pc, gas, p, i, a);
-        }
-        pc->held[i] = (uint8_t)out;
-        leaving += out;
-    }
+    for (long i = 0; i < p->count; ++i)
+        leaving += pc->held[i];
     return leaving;
 }
 
@@ -196,17 +199,19 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
         const bdl_grid *g = &gas->grid;
         for (long idx = 0; idx < g->size; ++idx)
             mark[idx] = 1.0 - gas->eps[idx] > pc->def.close_packing ? 1.0 : 0.0;
+        BDL_PARALLEL_FOR(
+            p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
+                const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
+                pc->held[i] =
+                    (x.x != x0.x || x.y != x0.y || x.z != x0.z) && bdl_coupling_touches(c, i, mark);
+                if (pc->held[i]) {
+                    p->pos[i] = x0;
+                    p->vel[i] = bdl_v3_zero();
+                }
+            });
         long moved = 0;
-        for (long i = 0; i < p->count; ++i) {
-            const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
-            pc->held[i] = bdl_coupling_interpolate(c, i, mark) > 0.0 &&
-                          (x.x != x0.x || x.y != x0.y || x.z != x0.z);
-            if (pc->held[i]) {
-                p->pos[i] = x0;
-                p->vel[i] = bdl_v3_zero();
-                ++moved;
-            }
-        }
+        for (long i = 0; i < p->count; ++i)
+            moved += pc->held[i];
         out->held += moved;
         if (moved == 0) // the start was already overfull (a scene's initial state): go on
             return BDL_OK;
@@ -301,11 +306,12 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
 {
     const double t0 = bdl_wall_seconds(), dt = def->dt;
     *out = (bdl_parcels_report){0};
-    if (reserve(pc, p->count) != BDL_OK)
+    // The parcels in cell order first (now and then), for the kernels' locality.
+    if (reserve(pc, p->count) != BDL_OK || bdl_coupling_sort(c, gas, p, NULL) != BDL_OK)
         return BDL_ERR_NOMEM;
     memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
     memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));
-    if (drift(pc, gas, p, dt) > 0)
+    if (drift(pc, c, gas, p, dt) > 0)
         remove_marked(pc, p, out);
     bdl_result r = place(pc, c, gas, p, out);
     if (r != BDL_OK)
