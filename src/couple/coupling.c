@@ -100,6 +100,63 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
     return BDL_OK;
 }
 
+/// Normalised to sum 1: the count weights w[] that sum to `sum`. Inside the grid the tent's
+/// weights often sum to 1 exactly: no division then.
+static void normalise(double *w, int count, double sum)
+{
+    const double norm = sum == 1.0 ? 1.0 : 1.0 / sum;
+    for (int k = 0; k < count; ++k)
+        w[k] *= norm;
+}
+
+/// The points m = lo..hi (all of them on a periodic axis, unwrapped) within the half-width of u,
+/// of positive weight 1 - |m - u| / reach, in order into pts[], their weights normalised into
+/// w[]; returns how many (at most c->points[a]).
+static int tent_points(const bdl_coupling *c, const bdl_grid *g, int a, double u, int lo, int hi,
+                       int *pts, double *w)
+{
+    const double reach = c->reach[a], inv_reach = c->inv_reach[a];
+    // ceil and floor by truncation: libm's are calls here, and this runs 6 times per point.
+    double lo_x = u - reach, hi_x = u + reach;
+    int from = (int)lo_x, to = (int)hi_x;
+    from += (double)from < lo_x;
+    to -= (double)to > hi_x;
+    if (!g->periodic[a]) {
+        from = from < lo ? lo : from;
+        to = to > hi ? hi : to;
+    }
+    if (to - from + 1 > BDL_KERNEL_MAX)
+        to = from + BDL_KERNEL_MAX - 1;
+    int count = 0;
+    double sum = 0.0;
+    for (int m = from; m <= to; ++m) {
+        const double wm = 1.0 - fabs(m - u) * inv_reach;
+        BDL_ASSERT(!(wm > 0.0) || count < c->points[a]); // most_points: no more carry weight
+        if (wm > 0.0 && count < c->points[a])
+            pts[count] = m, w[count++] = wm, sum += wm;
+    }
+    normalise(w, count, sum);
+    return count;
+}
+
+/// tent_points at a half-width of one point (the parcels' trilinear kernel): only the two points
+/// around u can carry weight, and in tent_points they are the ones that do; the same weights,
+/// normalised before they are stored (reading back what was just stored stalls).
+static int tent_one(const bdl_grid *g, int a, double u, int lo, int hi, int *pts, double *w)
+{
+    const int periodic = g->periodic[a];
+    int m0 = (int)u;
+    m0 -= (double)m0 > u; // floor
+    const double w0 = 1.0 - fabs(m0 - u), w1 = 1.0 - fabs(m0 + 1 - u);
+    const int in0 = w0 > 0.0 && (periodic || (m0 >= lo && m0 <= hi));
+    const int in1 = w1 > 0.0 && (periodic || (m0 + 1 >= lo && m0 + 1 <= hi));
+    const double first = in0 ? w0 : w1, sum = in0 && in1 ? w0 + w1 : first;
+    const double norm = sum == 1.0 ? 1.0 : 1.0 / sum;
+    pts[0] = in0 ? m0 : m0 + 1, w[0] = first * norm;
+    pts[1] = m0 + 1, w[1] = w1 * norm; // the padding replaces it when only one point counts
+    return in0 + in1;
+}
+
 /// Weights of one particle along axis a over the points m = lo..hi at (m + offset) h (cell
 /// centres: offset 1/2; faces: 0) within the half-width, normalised to sum 1. On a periodic axis
 /// lo..hi is the whole period and the points wrap. Only the points of positive weight are kept,
@@ -115,38 +172,16 @@ static int axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double 
     if (hi >= lo && n == 1 && g->periodic[a]) {
         pts[0] = 0, w[0] = 1.0, count = 1;
     } else if (hi >= lo) {
-        const double reach = c->reach[a], inv_reach = c->inv_reach[a];
         double u = (x - g->origin[a]) * c->inv_h[a] - offset; // position in point units
         // A runaway particle (or a NaN) is held far outside the grid, where it stays outside, so
-        // that the conversions to int below are defined.
+        // that the conversions to int are defined.
         const double far = 4.0 * (n + BDL_KERNEL_MAX);
         u = !(u > -far) ? -far : u < far ? u : far;
-        // ceil and floor by truncation: libm's are calls here, and this runs 6 times per point.
-        double lo_x = u - reach, hi_x = u + reach;
-        int from = (int)lo_x, to = (int)hi_x;
-        from += (double)from < lo_x;
-        to -= (double)to > hi_x;
-        if (!g->periodic[a]) {
-            from = from < lo ? lo : from;
-            to = to > hi ? hi : to;
-        }
-        if (to - from + 1 > BDL_KERNEL_MAX)
-            to = from + BDL_KERNEL_MAX - 1;
-        double sum = 0.0;
-        for (int m = from; m <= to; ++m) {
-            const double wm = 1.0 - fabs(m - u) * inv_reach;
-            BDL_ASSERT(!(wm > 0.0) || count < most); // most_points: no more carry weight
-            if (wm > 0.0 && count < most)
-                pts[count] = m, w[count++] = wm, sum += wm;
-        }
+        count = c->reach[a] == 1.0 ? tent_one(g, a, u, lo, hi, pts, w)
+                                   : tent_points(c, g, a, u, lo, hi, pts, w);
         if (count == 0) { // outside the domain: the nearest point takes it all
             const int m = (int)floor(u + 0.5);
             pts[0] = m < lo ? lo : m > hi ? hi : m, w[0] = 1.0, count = 1;
-        } else {
-            // Inside the grid the tent's weights often sum to 1 exactly: no division then.
-            const double norm = sum == 1.0 ? 1.0 : 1.0 / sum;
-            for (int k = 0; k < count; ++k)
-                w[k] *= norm;
         }
     }
     for (int k = count; k < most; ++k)
@@ -196,29 +231,15 @@ bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k)
     return bdl_v3_madd(bdl_v3_madd(p->pos[i], p->axis[i], z), across, side < 2 ? rho : -rho);
 }
 
-/// The lowest and highest padded index that kernel point pt reaches in any slot, into c->lo and
-/// c->hi (where the deposits in chunks look).
-static void point_span(const bdl_coupling *c, long pt)
-{
-    int low = 0, high = 0;
-    for (int a = 0; a < 3; ++a) {
-        int mn = INT_MAX, mx = INT_MIN;
-        for (int slot = a; slot < 6; slot += 3)
-            for (int k = 0; k < c->points[a]; ++k) {
-                const int o = c->offset[(6 * pt + slot) * c->kmax + k];
-                mn = o < mn ? o : mn;
-                mx = o > mx ? o : mx;
-            }
-        low += mn, high += mx;
-    }
-    c->lo[pt] = low, c->hi[pt] = high;
-}
-
-/// Kernel weights of point pt at x: the cell centres and the momentum faces along each axis.
+/// Kernel weights of point pt at x: the cell centres and the momentum faces along each axis; the
+/// lowest and highest padded index it reaches in any slot into c->lo and c->hi (where the
+/// deposits in chunks look).
 static void locate_point(bdl_coupling *c, const bdl_grid *g, const int flo[3], const int fhi[3],
                          long pt, bdl_vec3 x)
 {
-    for (int a = 0; a < 3; ++a)
+    int low = 0, high = 0;
+    for (int a = 0; a < 3; ++a) {
+        int lowest = INT_MAX, highest = INT_MIN;
         for (int slot = a; slot < 6; slot += 3) { // 0-2: cell centres; 3-5: faces of component a
             const long at = (6 * pt + slot) * c->kmax;
             int pts[BDL_KERNEL_MAX];
@@ -228,10 +249,15 @@ static void locate_point(bdl_coupling *c, const bdl_grid *g, const int flo[3], c
                 axis_weights(c, g, a, 0.0, flo[a], fhi[a], bdl_v3_comp(x, a), pts, &c->weight[at]);
             for (int m = 0; m < c->points[a]; ++m) {
                 const int pt_m = g->periodic[a] ? wrap(pts[m], g->n[a]) : pts[m];
-                c->offset[at + m] = (pt_m + BDL_GRID_GHOST) * (int)g->stride[a];
+                const int off = (pt_m + BDL_GRID_GHOST) * (int)g->stride[a];
+                c->offset[at + m] = off;
+                lowest = off < lowest ? off : lowest;
+                highest = off > highest ? off : highest;
             }
         }
-    point_span(c, pt);
+        low += lowest, high += highest;
+    }
+    c->lo[pt] = low, c->hi[pt] = high;
 }
 
 /// Room for the deposits' buffers of `count` particles in chunks (see deposit()).
@@ -479,19 +505,33 @@ int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f)
     return any;
 }
 
-/// A face field at particle i, the mean over its kernel points: component a from f[a] on the
-/// momentum faces of component a.
-static void face_average(const bdl_coupling *c, long i, double *const f[3], double u[3])
+/// n face fields at particle i (n <= 2), the mean over its kernel points: component a of f[k]
+/// from f[k][a] on the momentum faces of component a, into u[k][a]. One pass over the weights;
+/// each sum in the order of one field alone.
+static inline void face_averages(const bdl_coupling *c, long i, int n, double *const *const f[],
+                                 double u[][3])
 {
     const double share = point_share(c, i);
-    for (int a = 0; a < 3; ++a) {
-        u[a] = 0.0;
-        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
-            double sum = 0.0;
-            FOR_FACE_KERNEL(c, pt, a, sum += w * f[a][idx]);
-            u[a] += share * sum;
-        }
+    for (int k = 0; k < n; ++k)
+        u[k][0] = u[k][1] = u[k][2] = 0.0;
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
+        double sum[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+        FOR_FACE_KERNEL(c, pt, 0, for (int k = 0; k < n; ++k) sum[k][0] += w * f[k][0][idx]);
+        FOR_FACE_KERNEL(c, pt, 1, for (int k = 0; k < n; ++k) sum[k][1] += w * f[k][1][idx]);
+        FOR_FACE_KERNEL(c, pt, 2, for (int k = 0; k < n; ++k) sum[k][2] += w * f[k][2][idx]);
+        for (int k = 0; k < n; ++k)
+            for (int a = 0; a < 3; ++a)
+                u[k][a] += share * sum[k][a];
     }
+}
+
+/// A face field at particle i: face_averages of one field.
+static void face_average(const bdl_coupling *c, long i, double *const f[3], double u[3])
+{
+    double *const *const fields[1] = {f};
+    double out[1][3];
+    face_averages(c, i, 1, fields, out);
+    u[0] = out[0][0], u[1] = out[0][1], u[2] = out[0][2];
 }
 
 /// Gas velocity at particle i.
@@ -505,6 +545,16 @@ bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const 
     double u[3];
     face_average(c, i, f, u);
     return bdl_v3(u[0], u[1], u[2]);
+}
+
+void bdl_coupling_face_average2(const bdl_coupling *c, long i, double *const f[3],
+                                double *const g[3], bdl_vec3 *at_f, bdl_vec3 *at_g)
+{
+    double *const *const fields[2] = {f, g};
+    double out[2][3];
+    face_averages(c, i, 2, fields, out);
+    *at_f = bdl_v3(out[0][0], out[0][1], out[0][2]);
+    *at_g = bdl_v3(out[1][0], out[1][1], out[1][2]);
 }
 
 /// What bdl_coupling_deposit_faces deposits.

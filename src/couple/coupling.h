@@ -196,6 +196,11 @@ int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f);
 /// of component a (the weights the drag is deposited with).
 bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const f[3]);
 
+/// Two face quantities at particle i in one pass over its weights: each the same as
+/// bdl_coupling_face_average gives.
+void bdl_coupling_face_average2(const bdl_coupling *c, long i, double *const f[3],
+                                double *const g[3], bdl_vec3 *at_f, bdl_vec3 *at_g);
+
 /// Deposits value[i] of every particle on the momentum faces of each component with those
 /// weights, per unit cell volume: out[a] = sum_i W_ia value_i / V_cell (out cleared first; a
 /// fixed summation order).

@@ -283,8 +283,8 @@ static void velocities(const bdl_parcels *pc, const bdl_coupling *c, const bdl_g
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             const double m_inv = p->inv_mass[i];
             const double density = 1.0 / (m_inv * bdl_particle_solids_volume(p, i));
-            const bdl_vec3 u = bdl_coupling_gas_velocity(c, gas, i);
-            const bdl_vec3 gp = bdl_coupling_face_average(c, i, gas->grad_p);
+            bdl_vec3 u, gp; // the gas velocity and pressure gradient at the parcel
+            bdl_coupling_face_average2(c, i, gas->u, gas->grad_p, &u, &gp);
             const bdl_vec3 other = bdl_v3_madd(pc->accel[i], gp, -1.0 / density);
             const bdl_vec3 slip = bdl_v3_sub(bdl_v3_sub(u, p->vel[i]), bdl_v3_scale(other, dt));
             const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
