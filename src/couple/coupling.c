@@ -1,6 +1,6 @@
 // bedlam — kernel deposition and interpolation, semi-implicit drag exchange.
 #include "core/parallel.h"
-#include "couple/coupling.h"
+#include "couple/coupling_internal.h"
 
 #include <limits.h>
 #include <math.h>
@@ -69,9 +69,10 @@ void bdl_coupling_free(bdl_coupling *c)
     free(c->order_perm);
     free(c->order_scratch);
     free(c->order_start);
-    free(c->chunk_sums);
+    free(c->pool);
     free(c->chunk_lo);
     free(c->chunk_hi);
+    free(c->chunk_base);
     *c = (bdl_coupling){0};
 }
 
@@ -260,36 +261,13 @@ static void locate_point(bdl_coupling *c, const bdl_grid *g, const int flo[3], c
     c->lo[pt] = low, c->hi[pt] = high;
 }
 
-/// Room for the deposits' buffers of `count` particles in chunks (see deposit()).
-static bdl_result reserve_chunks(bdl_coupling *c, const bdl_grid *g, long count)
-{
-    const long chunks =
-        c->def.chunk > 0 && count > c->def.chunk ? (count + c->def.chunk - 1) / c->def.chunk : 0;
-    if (chunks <= c->chunk_capacity)
-        return BDL_OK;
-    const long cap = chunks + chunks / 4 + 1;
-    size_t bytes;
-    if (!bdl_size_mul3((size_t)cap * BDL_COUPLING_FIELDS, (size_t)g->size, sizeof(double), &bytes))
-        return BDL_ERR_NOMEM;
-    double *sums = calloc(1, bytes); // kept zero between deposits
-    if (!sums || !bdl_grow((void **)&c->chunk_lo, cap, sizeof(long)) ||
-        !bdl_grow((void **)&c->chunk_hi, cap, sizeof(long))) {
-        free(sums);
-        return BDL_ERR_NOMEM;
-    }
-    free(c->chunk_sums);
-    c->chunk_sums = sums;
-    c->chunk_capacity = cap;
-    return BDL_OK;
-}
-
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p)
 {
     const long count = p->count;
     long points = 0;
     for (long i = 0; i < count; ++i)
         points += point_count(p, i);
-    if (reserve(c, count, points) != BDL_OK || reserve_chunks(c, &gas->grid, count) != BDL_OK)
+    if (reserve(c, count, points) != BDL_OK)
         return BDL_ERR_NOMEM;
     c->first[0] = 0;
     for (long i = 0; i < count; ++i)
@@ -303,11 +281,11 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_pa
             for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
                 locate_point(c, g, flo, fhi, pt, bdl_coupling_point(p, i, (int)(pt - c->first[i])));
         });
-    return BDL_OK;
+    return bdl_coupling_plan_chunks(c, count);
 }
 
-void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
-                           const uint8_t *which)
+bdl_result bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                                 const uint8_t *which)
 {
     int flo[3], fhi[3];
     for (int a = 0; a < 3; ++a)
@@ -320,6 +298,7 @@ void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_partic
                     locate_point(c, g, flo, fhi, pt,
                                  bdl_coupling_point(p, i, (int)(pt - c->first[i])));
         });
+    return bdl_coupling_plan_chunks(c, p->count);
 }
 
 /// Calls body with `idx` (padded index) and `w` (weight) for every point of the separable
@@ -378,87 +357,14 @@ static double point_share(const bdl_coupling *c, long i)
     return 1.0 / (double)(c->first[i + 1] - c->first[i]);
 }
 
-/// What a deposit adds for particle i into the padded grid fields out[].
-typedef void deposit_fn(const bdl_coupling *c, const void *ctx, long i, double *const *out);
-
-/// The padded indices the kernel points of particles from..to-1 reach, in any slot.
-static void chunk_range(const bdl_coupling *c, long from, long to, long *lo, long *hi)
-{
-    *lo = LONG_MAX, *hi = LONG_MIN;
-    for (long pt = c->first[from]; pt < c->first[to]; ++pt) {
-        *lo = c->lo[pt] < *lo ? c->lo[pt] : *lo;
-        *hi = c->hi[pt] > *hi ? c->hi[pt] : *hi;
-    }
-}
-
-/// Chunk k's buffer of field f.
-static double *chunk_buffer(const bdl_coupling *c, long size, long k, int f)
-{
-    return c->chunk_sums + (k * BDL_COUPLING_FIELDS + f) * size;
-}
-
-/// Sums each of the nf fields cell by cell over the chunks that reach the cell, in chunk order,
-/// into out[] (zero where none does), and clears the chunks' buffers for the next deposit. The
-/// cells go in blocks, in parallel: each cell's sum is made by one thread, in chunk order.
-static void combine_chunks(const bdl_coupling *c, long size, long chunks, int nf,
-                           double *const *out)
-{
-    const long *lo = c->chunk_lo, *hi = c->chunk_hi, block = 4096;
-    const long blocks = (size + block - 1) / block;
-    BDL_PARALLEL_FOR(
-        chunks * block >= c->parallel_min, for (long b = 0; b < blocks; ++b) {
-            const long from = b * block, to = from + block < size ? from + block : size;
-            for (int f = 0; f < nf; ++f) {
-                memset(out[f] + from, 0, (size_t)(to - from) * sizeof(double));
-                for (long k = 0; k < chunks; ++k) {
-                    double *sum = chunk_buffer(c, size, k, f);
-                    const long first = lo[k] > from ? lo[k] : from;
-                    const long last = hi[k] < to - 1 ? hi[k] : to - 1;
-                    for (long idx = first; idx <= last; ++idx)
-                        out[f][idx] += sum[idx];
-                    if (first <= last)
-                        memset(sum + first, 0, (size_t)(last - first + 1) * sizeof(double));
-                }
-            }
-        });
-}
-
-/// Clears the nf fields out[] and adds every particle's deposit(i) to them in a fixed order: in
-/// particle order when c->def.chunk is 0 (the order the DEM's results were made with); else each
-/// chunk of c->def.chunk particles into a buffer of its own (the chunks in parallel), the buffers
-/// then summed cell by cell in chunk order. The sums never depend on the number of threads.
-static void deposit(const bdl_coupling *c, const bdl_grid *g, long count, int nf,
-                    double *const *out, deposit_fn *fn, const void *ctx)
-{
-    const long chunk = c->def.chunk, size = g->size;
-    if (chunk <= 0 || count <= chunk) {
-        for (int f = 0; f < nf; ++f)
-            memset(out[f], 0, (size_t)size * sizeof(double));
-        for (long i = 0; i < count; ++i)
-            fn(c, ctx, i, out);
-        return;
-    }
-    const long chunks = (count + chunk - 1) / chunk;
-    BDL_PARALLEL_FOR(
-        count >= c->parallel_min, for (long k = 0; k < chunks; ++k) {
-            const long from = k * chunk, to = from + chunk < count ? from + chunk : count;
-            chunk_range(c, from, to, &c->chunk_lo[k], &c->chunk_hi[k]);
-            double *bufs[BDL_COUPLING_FIELDS];
-            for (int f = 0; f < nf; ++f)
-                bufs[f] = chunk_buffer(c, size, k, f);
-            for (long i = from; i < to; ++i)
-                fn(c, ctx, i, bufs);
-        });
-    combine_chunks(c, size, chunks, nf, out);
-}
-
 /// The solids volume of particle i on the cell centres.
-static void deposit_volume(const bdl_coupling *c, const void *ctx, long i, double *const *out)
+static void deposit_volume(const bdl_coupling *c, const void *ctx, long i, long shift,
+                           double *const *out)
 {
     const bdl_particles *p = ctx;
     const double v = bdl_particle_solids_volume(p, i) * point_share(c, i);
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-        FOR_KERNEL(c, pt, out[0][idx] += w * v);
+        FOR_KERNEL(c, pt, out[0][idx - shift] += w * v);
 }
 
 void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p)
@@ -466,7 +372,7 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particl
     const bdl_grid *g = &gas->grid;
     const double vc = cell_volume(g);
     double *solid = gas->rhs; // scratch: the gas step overwrites it
-    deposit(c, g, p->count, 1, &solid, deposit_volume, p);
+    bdl_coupling_deposit(c, g, p->count, 1, &solid, deposit_volume, p);
     const double lowest = 1.0 - c->def.max_solids;
     for (int k = 0; k < g->n[2]; ++k)
         for (int j = 0; j < g->n[1]; ++j)
@@ -563,20 +469,21 @@ typedef struct face_values {
     double cell_volume;
 } face_values;
 
-static void deposit_face_values(const bdl_coupling *c, const void *ctx, long i, double *const *out)
+static void deposit_face_values(const bdl_coupling *c, const void *ctx, long i, long shift,
+                                double *const *out)
 {
     const face_values *v = ctx;
     const double f = v->value[i] / v->cell_volume * point_share(c, i);
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
         for (int a = 0; a < 3; ++a)
-            FOR_FACE_KERNEL(c, pt, a, out[a][idx] += w * f);
+            FOR_FACE_KERNEL(c, pt, a, out[a][idx - shift] += w * f);
 }
 
 void bdl_coupling_deposit_faces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
                                 const double *value, double *const out[3])
 {
     const face_values ctx = {value, cell_volume(&gas->grid)};
-    deposit(c, &gas->grid, p->count, 3, out, deposit_face_values, &ctx);
+    bdl_coupling_deposit(c, &gas->grid, p->count, 3, out, deposit_face_values, &ctx);
 }
 
 /// The drag law's K = beta / phi for particle i at voidage eps, gas velocity u and slip: a sphere
@@ -609,7 +516,8 @@ typedef struct drag_deposit {
     double dt, cell_volume;
 } drag_deposit;
 
-static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, double *const *out)
+static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, long shift,
+                         double *const *out)
 {
     const drag_deposit *d = ctx;
     const double f = c->factor[i] / d->cell_volume * point_share(c, i);
@@ -620,8 +528,8 @@ static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, double 
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
         for (int a = 0; a < 3; ++a)
             FOR_FACE_KERNEL(c, pt, a, {
-                out[a][idx] += w * f;
-                out[3 + a][idx] += w * f * target[a];
+                out[a][idx - shift] += w * f;
+                out[3 + a][idx - shift] += w * f * target[a];
             });
 }
 
@@ -646,7 +554,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
     const drag_deposit ctx = {p, accel, dt, vc};
     double *const out[6] = {gas->beta[0], gas->beta[1], gas->beta[2],
                             gas->bv[0],   gas->bv[1],   gas->bv[2]};
-    deposit(c, g, p->count, 6, out, deposit_drag, &ctx);
+    bdl_coupling_deposit(c, g, p->count, 6, out, deposit_drag, &ctx);
 }
 
 /// dp/dx_a at the centre of the cell at idx (axis coordinate m), as the particles there feel it:

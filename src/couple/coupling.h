@@ -51,8 +51,10 @@
 #define BDL_COUPLING_FIELDS 6
 
 /// The deposit chunk of parcels (bdl_coupling_def.chunk): with the parcels in cell order (see
-/// bdl_coupling_sort) a chunk is a slab of the bed.
+/// bdl_coupling_sort) a chunk is a slab of the bed, and its sums cover little more than it.
 #define BDL_COUPLING_CHUNK 4096
+/// Most deposit chunks (more particles make longer chunks): the slabs' overlaps stay few.
+#define BDL_COUPLING_CHUNKS 64
 
 /// bdl_coupling_sort reorders the particles when more than 1 in this many follow one in a later
 /// cell.
@@ -64,8 +66,9 @@ typedef struct bdl_coupling_def {
     double kernel_width; ///< tent half-width [m]; raised to one cell, lowered to four
     double max_solids;   ///< cap on the deposited solids fraction
     /// Particles per deposit chunk: 0, one pass in particle order; else the particles in chunks
-    /// of this many, each summed on its own (in parallel), the chunks' sums added cell by cell
-    /// in chunk order (the same on any number of threads, not the bits of one pass)
+    /// of this many (of more when that makes over BDL_COUPLING_CHUNKS), each summed on its own
+    /// (in parallel), the chunks' sums added cell by cell in chunk order (the same on any number
+    /// of threads, not the bits of one pass)
     long chunk;
 } bdl_coupling_def;
 
@@ -105,11 +108,16 @@ typedef struct bdl_coupling {
     int32_t *order_perm;  ///< per particle: the new order
     void *order_scratch;  ///< for bdl_particles_permute
     int32_t *order_start; ///< per cell (and one more): the first of its particles
-    // Scratch of the deposits in chunks (def.chunk):
-    long chunk_capacity; ///< chunks
-    double *chunk_sums;  ///< per chunk BDL_COUPLING_FIELDS padded grid fields, zero when unused
-    long *chunk_lo;      ///< per chunk: the lowest padded index its particles reach
-    long *chunk_hi;      ///< per chunk: the highest
+    // The deposits' chunks (def.chunk; couple/coupling_deposit.c), planned for the kernels now:
+    long chunks;          ///< 0: one pass in particle order
+    long chunk_particles; ///< particles per chunk (the last may have fewer)
+    long chunk_planned;   ///< the particle count planned for
+    long chunk_capacity;  ///< chunk records allocated
+    long *chunk_lo;       ///< per chunk: the lowest padded index its particles reach
+    long *chunk_hi;       ///< per chunk: the highest
+    long *chunk_base;     ///< per chunk: where its sums start in the pool
+    long pool_capacity;   ///< doubles
+    double *pool;         ///< per chunk BDL_COUPLING_FIELDS fields over its range; zero between
 } bdl_coupling;
 
 /// One coupling step: its length, the last one's, and the acceleration both phases feel.
@@ -160,9 +168,9 @@ bdl_result bdl_coupling_sort(bdl_coupling *c, const bdl_gas *gas, bdl_particles 
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p);
 
 /// Kernel weights anew for the particles with which[i] set, after they moved (the others, and
-/// the particle count, as the last bdl_coupling_locate left them).
-void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
-                           const uint8_t *which);
+/// the particle count, as the last bdl_coupling_locate left them). BDL_ERR_NOMEM.
+bdl_result bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                                 const uint8_t *which);
 
 /// Where kernel point k of particle i lies (k < BDL_ROD_SATELLITES for a rod, 0 otherwise).
 bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k);

@@ -215,7 +215,8 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
         out->held += moved;
         if (moved == 0) // the start was already overfull (a scene's initial state): go on
             return BDL_OK;
-        bdl_coupling_relocate(c, gas, p, pc->held);
+        if (bdl_coupling_relocate(c, gas, p, pc->held) != BDL_OK)
+            return BDL_ERR_NOMEM;
     }
 }
 
