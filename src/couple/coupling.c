@@ -65,6 +65,7 @@ void bdl_coupling_free(bdl_coupling *c)
     free(c->accel);
     free(c->drag);
     free(c->pressure);
+    free(c->listed);
     free(c->order_key);
     free(c->order_perm);
     free(c->order_scratch);
@@ -95,7 +96,8 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
         !bdl_grow((void **)&c->factor, cap, sizeof(double)) ||
         !bdl_grow((void **)&c->accel, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&c->drag, cap, sizeof(bdl_vec3)) ||
-        !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)))
+        !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&c->listed, cap, sizeof(int32_t)))
         return BDL_ERR_NOMEM;
     c->capacity = cap;
     return BDL_OK;
@@ -291,12 +293,15 @@ bdl_result bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_
     for (int a = 0; a < 3; ++a)
         momentum_faces(gas, a, &flo[a], &fhi[a]);
     const bdl_grid *g = &gas->grid;
+    long n = 0; // the particles to locate, listed: those that moved may be bunched in space
+    for (long i = 0; i < p->count; ++i)
+        if (which[i])
+            c->listed[n++] = (int32_t)i;
     BDL_PARALLEL_FOR(
-        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
-            if (which[i])
-                for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-                    locate_point(c, g, flo, fhi, pt,
-                                 bdl_coupling_point(p, i, (int)(pt - c->first[i])));
+        n >= c->parallel_min, for (long k = 0; k < n; ++k) {
+            const long i = c->listed[k];
+            for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+                locate_point(c, g, flo, fhi, pt, bdl_coupling_point(p, i, (int)(pt - c->first[i])));
         });
     return bdl_coupling_plan_chunks(c, p->count);
 }

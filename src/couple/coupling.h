@@ -102,6 +102,7 @@ typedef struct bdl_coupling {
     bdl_vec3 *accel;    ///< acceleration other than the drag over the last step [m/s^2]
     bdl_vec3 *drag;     ///< drag force for the coming step [N]
     bdl_vec3 *pressure; ///< pressure force for the coming step [N]
+    int32_t *listed;    ///< scratch: the particles bdl_coupling_relocate locates
     // Scratch of bdl_coupling_sort:
     long order_capacity;  ///< particles
     int32_t *order_key;   ///< per particle: its cell

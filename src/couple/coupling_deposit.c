@@ -76,14 +76,14 @@ static double *chunk_sums(const bdl_coupling *c, long k, int f)
 }
 
 /// Sums each of the nf fields cell by cell over the chunks that reach the cell, in chunk order,
-/// into out[] (zero where none does), and clears the chunks' sums for the next deposit. The
-/// cells go in blocks, in parallel: each cell's sum is made by one thread, in chunk order.
+/// into out[] (zero where none does), and clears the chunks' sums for the next deposit. On a large
+/// grid the cells go in blocks, in parallel: each cell's sum is made by one thread, in chunk order.
 static void combine(const bdl_coupling *c, long size, int nf, double *const *out)
 {
     const long *lo = c->chunk_lo, *hi = c->chunk_hi, block = 4096;
     const long blocks = (size + block - 1) / block;
     BDL_PARALLEL_FOR(
-        c->chunks * block >= c->parallel_min, for (long b = 0; b < blocks; ++b) {
+        size >= BDL_GRID_PARALLEL_MIN, for (long b = 0; b < blocks; ++b) {
             const long from = b * block, to = from + block < size ? from + block : size;
             for (int f = 0; f < nf; ++f) {
                 memset(out[f] + from, 0, (size_t)(to - from) * sizeof(double));

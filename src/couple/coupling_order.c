@@ -1,6 +1,5 @@
 // bedlam — particles in the order of the gas cells that hold them, so that the kernels' deposits
 // and reads of neighbouring particles touch neighbouring memory.
-#include "core/parallel.h"
 #include "couple/coupling.h"
 
 #include <stdlib.h>
@@ -44,12 +43,11 @@ bdl_result bdl_coupling_sort(bdl_coupling *c, const bdl_gas *gas, bdl_particles 
         *sorted = 0;
     if (reserve_order(c, n, cells) != BDL_OK)
         return BDL_ERR_NOMEM;
-    BDL_PARALLEL_FOR(
-        n >= c->parallel_min,
-        for (long i = 0; i < n; ++i) { c->order_key[i] = cell_key(g, c->inv_h, p->pos[i]); });
-    long descents = 0;
-    for (long i = 1; i < n; ++i)
-        descents += c->order_key[i] < c->order_key[i - 1];
+    long descents = 0; // a loop too light to be worth a parallel region
+    for (long i = 0; i < n; ++i) {
+        c->order_key[i] = cell_key(g, c->inv_h, p->pos[i]);
+        descents += i > 0 && c->order_key[i] < c->order_key[i - 1];
+    }
     if (descents <= n / BDL_COUPLING_DISORDER)
         return BDL_OK;
     // A stable counting sort: perm[new] = old.

@@ -119,24 +119,21 @@ static int keep_inside(const bdl_parcels *pc, const bdl_gas *gas, bdl_particles 
 
 /// Moves every parcel by v dt in `substeps` parts, meeting the sides within each; the parcels
 /// beyond an outlet are marked in pc->held. Returns how many.
-static long drift(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas, bdl_particles *p,
-                  double dt)
+static long drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, double dt)
 {
     const int parts = pc->def.substeps > 0 ? pc->def.substeps : 1;
     const double h = dt / parts;
-    BDL_PARALLEL_FOR(
-        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
-            int out = 0;
-            for (int k = 0; k < parts && !out; ++k) {
-                p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], h);
-                for (int a = 0; a < 3; ++a)
-                    out |= keep_inside(pc, gas, p, i, a);
-            }
-            pc->held[i] = (uint8_t)out;
-        });
     long leaving = 0;
-    for (long i = 0; i < p->count; ++i)
-        leaving += pc->held[i];
+    for (long i = 0; i < p->count; ++i) {
+        int out = 0;
+        for (int k = 0; k < parts && !out; ++k) {
+            p->pos[i] = bdl_v3_madd(p->pos[i], p->vel[i], h);
+            for (int a = 0; a < 3; ++a)
+                out |= keep_inside(pc, gas, p, i, a);
+        }
+        pc->held[i] = (uint8_t)out;
+        leaving += out;
+    }
     return leaving;
 }
 
@@ -312,7 +309,7 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         return BDL_ERR_NOMEM;
     memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
     memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));
-    if (drift(pc, c, gas, p, dt) > 0)
+    if (drift(pc, gas, p, dt) > 0)
         remove_marked(pc, p, out);
     bdl_result r = place(pc, c, gas, p, out);
     if (r != BDL_OK)
