@@ -159,6 +159,38 @@ static void test_threads_and_resume(void)
     unlink(path);
 }
 
+/// Deposits in chunks far smaller than the parcels (as the bubbling bed's 31 500 parcels are in
+/// chunks of BDL_COUPLING_CHUNK): the chunks' sums, combined in their order, give the same state
+/// on one and two threads, and still conserve the solids volume.
+static void test_chunks(void)
+{
+    uint64_t hashes[2] = {0, 0};
+    double worst = 0.0;
+    for (int t = 1; t <= 2; ++t) {
+        omp_set_num_threads(t);
+        bdl_world *w = bdl_test_world(box, 2e-3, -9.81, 500.0, "");
+        if (!w)
+            return;
+        w->parallel_min = 1;
+        w->coupling->parallel_min = 1;
+        w->coupling->def.chunk = 16;
+        const double v0 = bdl_parcels_solids_volume(&w->particles);
+        for (int s = 0; s < 200 && hashes[t - 1] == 0; ++s) {
+            if (bdl_world_step(w) != BDL_OK)
+                break;
+            worst = fmax(worst, fabs(grid_solids(w->gas) / v0 - 1.0));
+            if (s == 199)
+                hashes[t - 1] = bdl_world_hash(w);
+        }
+        printf("chunks of 16, threads %d: %ld parcels, hash %016llx, solids volume within %.2e\n",
+               t, w->particles.count, (unsigned long long)hashes[t - 1], worst);
+        bdl_world_destroy(w);
+    }
+    omp_set_num_threads(1);
+    CHECK(hashes[0] != 0 && hashes[0] == hashes[1]);
+    CHECK_MSG(worst < 1e-12, "deposited solids volume off by %g", worst);
+}
+
 /// Scenes that cannot hold parcels.
 static void test_refused(void)
 {
@@ -196,6 +228,7 @@ int main(void)
     test_conservation();
     test_packing_guard();
     test_threads_and_resume();
+    test_chunks();
     test_refused();
     return bdl_test_summary("test_parcels");
 }

@@ -1,7 +1,8 @@
 // bedlam — kernel deposition and interpolation, semi-implicit drag exchange.
 #include "core/parallel.h"
-#include "couple/coupling.h"
+#include "couple/coupling_internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,6 +19,18 @@ bdl_coupling_def bdl_default_coupling_def(const bdl_grid *grid)
                               .max_solids = 0.7};
 }
 
+/// The most points along an axis that carry weight at a half-width of `reach` points: those
+/// closer than the half-width, floor(2 reach) + 1 of them, or 2 reach when that is a whole number
+/// and the weight 1 - |m - u| / reach rounds to zero at |m - u| = reach (as at one point: the
+/// parcels' trilinear kernel, 2); at most BDL_KERNEL_MAX.
+static int most_points(double reach)
+{
+    const double two = 2.0 * reach;
+    const int whole = two == floor(two) && reach * (1.0 / reach) >= 1.0;
+    const int most = (int)floor(two) + (whole ? 0 : 1);
+    return most < BDL_KERNEL_MAX ? most : BDL_KERNEL_MAX;
+}
+
 bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const bdl_gas *gas)
 {
     *c = (bdl_coupling){0};
@@ -28,6 +41,9 @@ bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const
         c->width[a] = fmin(fmax(def->kernel_width, h), 4.0 * h);
         c->inv_h[a] = 1.0 / h;
         c->reach[a] = c->width[a] / h;
+        c->inv_reach[a] = 1.0 / c->reach[a];
+        c->points[a] = most_points(c->reach[a]);
+        c->kmax = c->points[a] > c->kmax ? c->points[a] : c->kmax;
         if (!(c->grad[a] = bdl_grid_alloc(&gas->grid))) {
             bdl_coupling_free(c);
             return BDL_ERR_NOMEM;
@@ -40,7 +56,8 @@ void bdl_coupling_free(bdl_coupling *c)
 {
     free(c->first);
     free(c->offset);
-    free(c->span);
+    free(c->lo);
+    free(c->hi);
     for (int a = 0; a < 3; ++a)
         free(c->grad[a]);
     free(c->weight);
@@ -48,6 +65,15 @@ void bdl_coupling_free(bdl_coupling *c)
     free(c->accel);
     free(c->drag);
     free(c->pressure);
+    free(c->listed);
+    free(c->order_key);
+    free(c->order_perm);
+    free(c->order_scratch);
+    free(c->order_start);
+    free(c->pool);
+    free(c->chunk_lo);
+    free(c->chunk_hi);
+    free(c->chunk_base);
     *c = (bdl_coupling){0};
 }
 
@@ -56,9 +82,10 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
 {
     if (points > c->point_capacity) {
         const long cap = points + points / 2 + 16;
-        if (!bdl_grow((void **)&c->offset, cap, 6 * BDL_KERNEL_MAX * sizeof(int)) ||
-            !bdl_grow((void **)&c->span, cap, 6 * sizeof(int)) ||
-            !bdl_grow((void **)&c->weight, cap, 6 * BDL_KERNEL_MAX * sizeof(double)))
+        if (!bdl_grow((void **)&c->offset, cap, 6 * (size_t)c->kmax * sizeof(int)) ||
+            !bdl_grow((void **)&c->lo, cap, sizeof(int)) ||
+            !bdl_grow((void **)&c->hi, cap, sizeof(int)) ||
+            !bdl_grow((void **)&c->weight, cap, 6 * (size_t)c->kmax * sizeof(double)))
             return BDL_ERR_NOMEM;
         c->point_capacity = cap;
     }
@@ -69,34 +96,30 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
         !bdl_grow((void **)&c->factor, cap, sizeof(double)) ||
         !bdl_grow((void **)&c->accel, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&c->drag, cap, sizeof(bdl_vec3)) ||
-        !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)))
+        !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&c->listed, cap, sizeof(int32_t)))
         return BDL_ERR_NOMEM;
     c->capacity = cap;
     return BDL_OK;
 }
 
-/// Weights of one particle along axis a over the points m = lo..hi at (m + offset) h (cell
-/// centres: offset 1/2; faces: 0) within the half-width, normalised to sum 1. On a periodic axis
-/// lo..hi is the whole period and the points wrap. `span` 0: no point at all (no weights).
-static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double offset, int lo,
-                         int hi, double x, int *first, int *span, double *w)
+/// Normalised to sum 1: the count weights w[] that sum to `sum`. Inside the grid the tent's
+/// weights often sum to 1 exactly: no division then.
+static void normalise(double *w, int count, double sum)
 {
-    const int n = g->n[a];
-    *span = 0;
-    *first = 0;
-    if (hi < lo)
-        return;
-    if (n == 1 && g->periodic[a]) {
-        *span = 1, w[0] = 1.0;
-        return;
-    }
-    const double reach = c->reach[a], inv_reach = 1.0 / reach;
-    double u = (x - g->origin[a]) * c->inv_h[a] - offset; // position in point units
-    // A runaway particle (or a NaN) is held far outside the grid, where it stays outside, so that
-    // the conversions to int below are defined.
-    const double far = 4.0 * (n + BDL_KERNEL_MAX);
-    u = !(u > -far) ? -far : u < far ? u : far;
-    // ceil and floor by truncation: libm's are calls here, and this runs 6 times per particle.
+    const double norm = sum == 1.0 ? 1.0 : 1.0 / sum;
+    for (int k = 0; k < count; ++k)
+        w[k] *= norm;
+}
+
+/// The points m = lo..hi (all of them on a periodic axis, unwrapped) within the half-width of u,
+/// of positive weight 1 - |m - u| / reach, in order into pts[], their weights normalised into
+/// w[]; returns how many (at most c->points[a]).
+static int tent_points(const bdl_coupling *c, const bdl_grid *g, int a, double u, int lo, int hi,
+                       int *pts, double *w)
+{
+    const double reach = c->reach[a], inv_reach = c->inv_reach[a];
+    // ceil and floor by truncation: libm's are calls here, and this runs 6 times per point.
     double lo_x = u - reach, hi_x = u + reach;
     int from = (int)lo_x, to = (int)hi_x;
     from += (double)from < lo_x;
@@ -107,26 +130,66 @@ static void axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double
     }
     if (to - from + 1 > BDL_KERNEL_MAX)
         to = from + BDL_KERNEL_MAX - 1;
-    double sum = 0.0;
     int count = 0;
+    double sum = 0.0;
     for (int m = from; m <= to; ++m) {
-        double wm = 1.0 - fabs(m - u) * inv_reach;
-        wm = wm > 0.0 ? wm : 0.0;
-        w[count++] = wm;
-        sum += wm;
+        const double wm = 1.0 - fabs(m - u) * inv_reach;
+        BDL_ASSERT(!(wm > 0.0) || count < c->points[a]); // most_points: no more carry weight
+        if (wm > 0.0 && count < c->points[a])
+            pts[count] = m, w[count++] = wm, sum += wm;
     }
-    if (count == 0 || !(sum > 0.0)) { // outside the domain: the nearest point takes it all
-        int m = (int)floor(u + 0.5);
-        *first = m < lo ? lo : m > hi ? hi : m;
-        *span = 1;
-        w[0] = 1.0;
-        return;
+    normalise(w, count, sum);
+    return count;
+}
+
+/// tent_points at a half-width of one point (the parcels' trilinear kernel): only the two points
+/// around u can carry weight, and in tent_points they are the ones that do; the same weights,
+/// normalised before they are stored (reading back what was just stored stalls).
+static int tent_one(const bdl_grid *g, int a, double u, int lo, int hi, int *pts, double *w)
+{
+    const int periodic = g->periodic[a];
+    int m0 = (int)u;
+    m0 -= (double)m0 > u; // floor
+    const double w0 = 1.0 - fabs(m0 - u), w1 = 1.0 - fabs(m0 + 1 - u);
+    const int in0 = w0 > 0.0 && (periodic || (m0 >= lo && m0 <= hi));
+    const int in1 = w1 > 0.0 && (periodic || (m0 + 1 >= lo && m0 + 1 <= hi));
+    const double first = in0 ? w0 : w1, sum = in0 && in1 ? w0 + w1 : first;
+    const double norm = sum == 1.0 ? 1.0 : 1.0 / sum;
+    pts[0] = in0 ? m0 : m0 + 1, w[0] = first * norm;
+    pts[1] = m0 + 1, w[1] = w1 * norm; // the padding replaces it when only one point counts
+    return in0 + in1;
+}
+
+/// Weights of one particle along axis a over the points m = lo..hi at (m + offset) h (cell
+/// centres: offset 1/2; faces: 0) within the half-width, normalised to sum 1. On a periodic axis
+/// lo..hi is the whole period and the points wrap. Only the points of positive weight are kept,
+/// into pts[] and w[], and the rest of the axis's c->points[a] entries are padded with weight 0 on
+/// the last point kept (so every kernel loops over the same number of points, and the padding
+/// adds nothing: a sum that starts at +0 is never -0, so adding +-0 leaves its bits). Returns
+/// how many points carry weight; 0: none at all (the padding then sits on point lo).
+static int axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double offset, int lo,
+                        int hi, double x, int *pts, double *w)
+{
+    const int n = g->n[a], most = c->points[a];
+    int count = 0;
+    if (hi >= lo && n == 1 && g->periodic[a]) {
+        pts[0] = 0, w[0] = 1.0, count = 1;
+    } else if (hi >= lo) {
+        double u = (x - g->origin[a]) * c->inv_h[a] - offset; // position in point units
+        // A runaway particle (or a NaN) is held far outside the grid, where it stays outside, so
+        // that the conversions to int are defined.
+        const double far = 4.0 * (n + BDL_KERNEL_MAX);
+        u = !(u > -far) ? -far : u < far ? u : far;
+        count = c->reach[a] == 1.0 ? tent_one(g, a, u, lo, hi, pts, w)
+                                   : tent_points(c, g, a, u, lo, hi, pts, w);
+        if (count == 0) { // outside the domain: the nearest point takes it all
+            const int m = (int)floor(u + 0.5);
+            pts[0] = m < lo ? lo : m > hi ? hi : m, w[0] = 1.0, count = 1;
+        }
     }
-    const double norm = 1.0 / sum;
-    for (int k = 0; k < count; ++k)
-        w[k] *= norm;
-    *first = from;
-    *span = count;
+    for (int k = count; k < most; ++k)
+        pts[k] = count > 0 ? pts[count - 1] : lo, w[k] = 0.0;
+    return count;
 }
 
 /// The faces normal to axis a that carry a momentum equation: all of a period, or the interior
@@ -171,28 +234,33 @@ bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k)
     return bdl_v3_madd(bdl_v3_madd(p->pos[i], p->axis[i], z), across, side < 2 ? rho : -rho);
 }
 
-/// Kernel weights of point pt at x: the cell centres and the momentum faces along each axis.
+/// Kernel weights of point pt at x: the cell centres and the momentum faces along each axis; the
+/// lowest and highest padded index it reaches in any slot into c->lo and c->hi (where the
+/// deposits in chunks look).
 static void locate_point(bdl_coupling *c, const bdl_grid *g, const int flo[3], const int fhi[3],
                          long pt, bdl_vec3 x)
 {
-    for (int a = 0; a < 3; ++a)
+    int low = 0, high = 0;
+    for (int a = 0; a < 3; ++a) {
+        int lowest = INT_MAX, highest = INT_MIN;
         for (int slot = a; slot < 6; slot += 3) { // 0-2: cell centres; 3-5: faces of component a
-            const long at = 6 * pt + slot;
-            int first;
+            const long at = (6 * pt + slot) * c->kmax;
+            int pts[BDL_KERNEL_MAX];
             if (slot < 3)
-                axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, bdl_v3_comp(x, a), &first, &c->span[at],
-                             &c->weight[at * BDL_KERNEL_MAX]);
+                axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, bdl_v3_comp(x, a), pts, &c->weight[at]);
             else
-                axis_weights(c, g, a, 0.0, flo[a], fhi[a], bdl_v3_comp(x, a), &first, &c->span[at],
-                             &c->weight[at * BDL_KERNEL_MAX]);
-            int *off = &c->offset[at * BDL_KERNEL_MAX];
-            for (int m = 0; m < c->span[at]; ++m) {
-                int pt_m = first + m;
-                if (g->periodic[a])
-                    pt_m = wrap(pt_m, g->n[a]);
-                off[m] = (pt_m + BDL_GRID_GHOST) * (int)g->stride[a];
+                axis_weights(c, g, a, 0.0, flo[a], fhi[a], bdl_v3_comp(x, a), pts, &c->weight[at]);
+            for (int m = 0; m < c->points[a]; ++m) {
+                const int pt_m = g->periodic[a] ? wrap(pts[m], g->n[a]) : pts[m];
+                const int off = (pt_m + BDL_GRID_GHOST) * (int)g->stride[a];
+                c->offset[at + m] = off;
+                lowest = off < lowest ? off : lowest;
+                highest = off > highest ? off : highest;
             }
         }
+        low += lowest, high += highest;
+    }
+    c->lo[pt] = low, c->hi[pt] = high;
 }
 
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p)
@@ -215,45 +283,61 @@ bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_pa
             for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
                 locate_point(c, g, flo, fhi, pt, bdl_coupling_point(p, i, (int)(pt - c->first[i])));
         });
-    return BDL_OK;
+    return bdl_coupling_plan_chunks(c, count);
 }
 
-void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
-                           const uint8_t *which)
+bdl_result bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                                 const uint8_t *which)
 {
     int flo[3], fhi[3];
     for (int a = 0; a < 3; ++a)
         momentum_faces(gas, a, &flo[a], &fhi[a]);
     const bdl_grid *g = &gas->grid;
+    long n = 0; // the particles to locate, listed: those that moved may be bunched in space
     for (long i = 0; i < p->count; ++i)
         if (which[i])
+            c->listed[n++] = (int32_t)i;
+    BDL_PARALLEL_FOR(
+        n >= c->parallel_min, for (long k = 0; k < n; ++k) {
+            const long i = c->listed[k];
             for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
                 locate_point(c, g, flo, fhi, pt, bdl_coupling_point(p, i, (int)(pt - c->first[i])));
+        });
+    return bdl_coupling_plan_chunks(c, p->count);
 }
 
 /// Calls body with `idx` (padded index) and `w` (weight) for every point of the separable
-/// kernel made of slots sx, sy, sz of kernel point i.
-#define FOR_SLOTS(c, i, sx, sy, sz, ...)                                                           \
+/// kernel made of slots sx, sy, sz of kernel point i: kz, ky, kx over nz, ny, nx points.
+#define FOR_SLOTS_N(c, i, sx, sy, sz, nx, ny, nz, ...)                                             \
     do {                                                                                           \
-        const long at_ = 6 * (i);                                                                  \
-        const int nx_ = (c)->span[at_ + (sx)], ny_ = (c)->span[at_ + (sy)],                        \
-                  nz_ = (c)->span[at_ + (sz)];                                                     \
-        const int *ox_ = &(c)->offset[(at_ + (sx)) * BDL_KERNEL_MAX],                              \
-                  *oy_ = &(c)->offset[(at_ + (sy)) * BDL_KERNEL_MAX],                              \
-                  *oz_ = &(c)->offset[(at_ + (sz)) * BDL_KERNEL_MAX];                              \
-        const double *wx_ = &(c)->weight[(at_ + (sx)) * BDL_KERNEL_MAX],                           \
-                     *wy_ = &(c)->weight[(at_ + (sy)) * BDL_KERNEL_MAX],                           \
-                     *wz_ = &(c)->weight[(at_ + (sz)) * BDL_KERNEL_MAX];                           \
-        for (int kz_ = 0; kz_ < nz_; ++kz_)                                                        \
-            for (int ky_ = 0; ky_ < ny_; ++ky_) {                                                  \
+        const long at_ = 6 * (i) * (c)->kmax;                                                      \
+        const int *ox_ = &(c)->offset[at_ + (sx) * (c)->kmax],                                     \
+                  *oy_ = &(c)->offset[at_ + (sy) * (c)->kmax],                                     \
+                  *oz_ = &(c)->offset[at_ + (sz) * (c)->kmax];                                     \
+        const double *wx_ = &(c)->weight[at_ + (sx) * (c)->kmax],                                  \
+                     *wy_ = &(c)->weight[at_ + (sy) * (c)->kmax],                                  \
+                     *wz_ = &(c)->weight[at_ + (sz) * (c)->kmax];                                  \
+        for (int kz_ = 0; kz_ < (nz); ++kz_)                                                       \
+            for (int ky_ = 0; ky_ < (ny); ++ky_) {                                                 \
                 const long oyz_ = (long)oz_[kz_] + oy_[ky_];                                       \
                 const double wyz_ = wz_[kz_] * wy_[ky_];                                           \
-                for (int kx_ = 0; kx_ < nx_; ++kx_) {                                              \
+                for (int kx_ = 0; kx_ < (nx); ++kx_) {                                             \
                     const long idx = oyz_ + ox_[kx_];                                              \
                     const double w = wyz_ * wx_[kx_];                                              \
                     __VA_ARGS__;                                                                   \
                 }                                                                                  \
             }                                                                                      \
+    } while (0)
+
+/// FOR_SLOTS_N over every point of each axis, with the trilinear kernel (two points per axis,
+/// the parcels' default) spelt out for the compiler to unroll.
+#define FOR_SLOTS(c, i, sx, sy, sz, ...)                                                           \
+    do {                                                                                           \
+        if ((c)->kmax == 2)                                                                        \
+            FOR_SLOTS_N(c, i, sx, sy, sz, 2, 2, 2, __VA_ARGS__);                                   \
+        else                                                                                       \
+            FOR_SLOTS_N(c, i, sx, sy, sz, (c)->points[0], (c)->points[1], (c)->points[2],          \
+                        __VA_ARGS__);                                                              \
     } while (0)
 
 /// Over the cell centres of kernel point i.
@@ -278,17 +362,22 @@ static double point_share(const bdl_coupling *c, long i)
     return 1.0 / (double)(c->first[i + 1] - c->first[i]);
 }
 
+/// The solids volume of particle i on the cell centres.
+static void deposit_volume(const bdl_coupling *c, const void *ctx, long i, long shift,
+                           double *const *out)
+{
+    const bdl_particles *p = ctx;
+    const double v = bdl_particle_solids_volume(p, i) * point_share(c, i);
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+        FOR_KERNEL(c, pt, out[0][idx - shift] += w * v);
+}
+
 void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p)
 {
     const bdl_grid *g = &gas->grid;
     const double vc = cell_volume(g);
     double *solid = gas->rhs; // scratch: the gas step overwrites it
-    memset(solid, 0, (size_t)g->size * sizeof(double));
-    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
-        const double v = bdl_particle_solids_volume(p, i) * point_share(c, i);
-        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-            FOR_KERNEL(c, pt, solid[idx] += w * v);
-    }
+    bdl_coupling_deposit(c, g, p->count, 1, &solid, deposit_volume, p);
     const double lowest = 1.0 - c->def.max_solids;
     for (int k = 0; k < g->n[2]; ++k)
         for (int j = 0; j < g->n[1]; ++j)
@@ -310,19 +399,50 @@ double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f)
     return total;
 }
 
-/// A face field at particle i, the mean over its kernel points: component a from f[a] on the
-/// momentum faces of component a.
-static void face_average(const bdl_coupling *c, long i, double *const f[3], double u[3])
+int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f)
+{
+    // A padded entry repeats a point of positive weight along its axis, so every combination of
+    // entries is a cell of positive weight: the offsets alone answer.
+    const int *n = c->points;
+    int any = 0;
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
+        const int *o = &c->offset[6 * pt * c->kmax];
+        const int *ox = o, *oy = o + c->kmax, *oz = o + 2 * c->kmax;
+        for (int kz = 0; kz < n[2]; ++kz)
+            for (int ky = 0; ky < n[1]; ++ky)
+                for (int kx = 0; kx < n[0]; ++kx)
+                    any |= f[(long)oz[kz] + oy[ky] + ox[kx]] > 0.0;
+    }
+    return any;
+}
+
+/// n face fields at particle i (n <= 2), the mean over its kernel points: component a of f[k]
+/// from f[k][a] on the momentum faces of component a, into u[k][a]. One pass over the weights;
+/// each sum in the order of one field alone.
+static inline void face_averages(const bdl_coupling *c, long i, int n, double *const *const f[],
+                                 double u[][3])
 {
     const double share = point_share(c, i);
-    for (int a = 0; a < 3; ++a) {
-        u[a] = 0.0;
-        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
-            double sum = 0.0;
-            FOR_FACE_KERNEL(c, pt, a, sum += w * f[a][idx]);
-            u[a] += share * sum;
-        }
+    for (int k = 0; k < n; ++k)
+        u[k][0] = u[k][1] = u[k][2] = 0.0;
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt) {
+        double sum[2][3] = {{0.0, 0.0, 0.0}, {0.0, 0.0, 0.0}};
+        FOR_FACE_KERNEL(c, pt, 0, for (int k = 0; k < n; ++k) sum[k][0] += w * f[k][0][idx]);
+        FOR_FACE_KERNEL(c, pt, 1, for (int k = 0; k < n; ++k) sum[k][1] += w * f[k][1][idx]);
+        FOR_FACE_KERNEL(c, pt, 2, for (int k = 0; k < n; ++k) sum[k][2] += w * f[k][2][idx]);
+        for (int k = 0; k < n; ++k)
+            for (int a = 0; a < 3; ++a)
+                u[k][a] += share * sum[k][a];
     }
+}
+
+/// A face field at particle i: face_averages of one field.
+static void face_average(const bdl_coupling *c, long i, double *const f[3], double u[3])
+{
+    double *const *const fields[1] = {f};
+    double out[1][3];
+    face_averages(c, i, 1, fields, out);
+    u[0] = out[0][0], u[1] = out[0][1], u[2] = out[0][2];
 }
 
 /// Gas velocity at particle i.
@@ -338,19 +458,37 @@ bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const 
     return bdl_v3(u[0], u[1], u[2]);
 }
 
+void bdl_coupling_face_average2(const bdl_coupling *c, long i, double *const f[3],
+                                double *const g[3], bdl_vec3 *at_f, bdl_vec3 *at_g)
+{
+    double *const *const fields[2] = {f, g};
+    double out[2][3];
+    face_averages(c, i, 2, fields, out);
+    *at_f = bdl_v3(out[0][0], out[0][1], out[0][2]);
+    *at_g = bdl_v3(out[1][0], out[1][1], out[1][2]);
+}
+
+/// What bdl_coupling_deposit_faces deposits.
+typedef struct face_values {
+    const double *value;
+    double cell_volume;
+} face_values;
+
+static void deposit_face_values(const bdl_coupling *c, const void *ctx, long i, long shift,
+                                double *const *out)
+{
+    const face_values *v = ctx;
+    const double f = v->value[i] / v->cell_volume * point_share(c, i);
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+        for (int a = 0; a < 3; ++a)
+            FOR_FACE_KERNEL(c, pt, a, out[a][idx - shift] += w * f);
+}
+
 void bdl_coupling_deposit_faces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
                                 const double *value, double *const out[3])
 {
-    const bdl_grid *g = &gas->grid;
-    const double vc = cell_volume(g);
-    for (int a = 0; a < 3; ++a)
-        memset(out[a], 0, (size_t)g->size * sizeof(double));
-    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
-        const double f = value[i] / vc * point_share(c, i);
-        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-            for (int a = 0; a < 3; ++a)
-                FOR_FACE_KERNEL(c, pt, a, out[a][idx] += w * f);
-    }
+    const face_values ctx = {value, cell_volume(&gas->grid)};
+    bdl_coupling_deposit(c, &gas->grid, p->count, 3, out, deposit_face_values, &ctx);
 }
 
 /// The drag law's K = beta / phi for particle i at voidage eps, gas velocity u and slip: a sphere
@@ -375,6 +513,31 @@ bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, lo
     return bdl_v3(u[0], u[1], u[2]);
 }
 
+/// What the drag set-up deposits: beta = sum W a / V_cell into out[0..2], (beta v) = sum W a
+/// (v + dt A) / V_cell into out[3..5].
+typedef struct drag_deposit {
+    const bdl_particles *p;
+    const bdl_vec3 *accel;
+    double dt, cell_volume;
+} drag_deposit;
+
+static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, long shift,
+                         double *const *out)
+{
+    const drag_deposit *d = ctx;
+    const double f = c->factor[i] / d->cell_volume * point_share(c, i);
+    double target[3];
+    for (int a = 0; a < 3; ++a)
+        target[a] =
+            bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+        for (int a = 0; a < 3; ++a)
+            FOR_FACE_KERNEL(c, pt, a, {
+                out[a][idx - shift] += w * f;
+                out[3 + a][idx - shift] += w * f * target[a];
+            });
+}
+
 void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
                              const bdl_vec3 *accel, double dt)
 {
@@ -393,22 +556,10 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             double D = K / density, m = density * bdl_particle_solids_volume(p, i);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
-    for (int a = 0; a < 3; ++a) {
-        memset(gas->beta[a], 0, (size_t)g->size * sizeof(double));
-        memset(gas->bv[a], 0, (size_t)g->size * sizeof(double));
-    }
-    for (long i = 0; i < p->count; ++i) { // serial: a fixed summation order
-        const double f = c->factor[i] / vc * point_share(c, i);
-        double target[3];
-        for (int a = 0; a < 3; ++a)
-            target[a] = bdl_v3_comp(p->vel[i], a) + dt * (accel ? bdl_v3_comp(accel[i], a) : 0.0);
-        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-            for (int a = 0; a < 3; ++a)
-                FOR_FACE_KERNEL(c, pt, a, {
-                    gas->beta[a][idx] += w * f;
-                    gas->bv[a][idx] += w * f * target[a];
-                });
-    }
+    const drag_deposit ctx = {p, accel, dt, vc};
+    double *const out[6] = {gas->beta[0], gas->beta[1], gas->beta[2],
+                            gas->bv[0],   gas->bv[1],   gas->bv[2]};
+    bdl_coupling_deposit(c, g, p->count, 6, out, deposit_drag, &ctx);
 }
 
 /// dp/dx_a at the centre of the cell at idx (axis coordinate m), as the particles there feel it:

@@ -47,11 +47,29 @@
 /// BDL_PARALLEL_MIN in core/parallel.h).
 #define BDL_COUPLING_PARALLEL_MIN 4096
 
+/// Most fields one deposit fills (the drag set-up's beta and beta v).
+#define BDL_COUPLING_FIELDS 6
+
+/// The deposit chunk of parcels (bdl_coupling_def.chunk): with the parcels in cell order (see
+/// bdl_coupling_sort) a chunk is a slab of the bed, and its sums cover little more than it.
+#define BDL_COUPLING_CHUNK 4096
+/// Most deposit chunks (more particles make longer chunks): the slabs' overlaps stay few.
+#define BDL_COUPLING_CHUNKS 64
+
+/// bdl_coupling_sort reorders the particles when more than 1 in this many follow one in a later
+/// cell.
+#define BDL_COUPLING_DISORDER 8
+
 typedef struct bdl_coupling_def {
     bdl_drag_law drag;
     bdl_drag_params drag_params;
     double kernel_width; ///< tent half-width [m]; raised to one cell, lowered to four
     double max_solids;   ///< cap on the deposited solids fraction
+    /// Particles per deposit chunk: 0, one pass in particle order; else the particles in chunks
+    /// of this many (of more when that makes over BDL_COUPLING_CHUNKS), each summed on its own
+    /// (in parallel), the chunks' sums added cell by cell in chunk order (the same on any number
+    /// of threads, not the bits of one pass)
+    long chunk;
 } bdl_coupling_def;
 
 /// The defaults on a grid: Gidaspow's drag with the Syamlal-O'Brien defaults, a kernel half-width
@@ -66,19 +84,41 @@ typedef struct bdl_coupling {
     // Per kernel point (a sphere's centre, a rod's satellites), six separable kernels: slots 0-2
     // over the cell centres along x, y, z; slots 3-5 over the momentum faces of component x, y, z
     // along its own axis.
-    int *offset;       ///< BDL_KERNEL_MAX padded-index offsets per slot (periodic axes wrapped)
-    int *span;         ///< points touched in each slot
-    double *weight;    ///< BDL_KERNEL_MAX normalised weights per slot
-    double *factor;    ///< per particle: a_i = m D / (1 + D dt) [kg/s]
-    double width[3];   ///< kernel half-width per axis [m]
-    double inv_h[3];   ///< 1 / cell size per axis [1/m]
-    double reach[3];   ///< half-width in cells per axis
-    long parallel_min; ///< per-particle loops go parallel from this many particles
-    double *grad[3];   ///< scratch: cell-centred pressure gradient (padded grid fields)
+    // Each slot holds points[a] entries along its axis a (those of positive weight, then weight
+    // 0 on the last of them), kmax apart.
+    int points[3];       ///< entries per slot along each axis
+    int kmax;            ///< the largest of points[]
+    int *offset;         ///< padded-index offsets per slot (periodic axes wrapped)
+    double *weight;      ///< normalised weights per slot
+    int *lo, *hi;        ///< per point: the lowest and highest padded index of its slots
+    double *factor;      ///< per particle: a_i = m D / (1 + D dt) [kg/s]
+    double width[3];     ///< kernel half-width per axis [m]
+    double inv_h[3];     ///< 1 / cell size per axis [1/m]
+    double reach[3];     ///< half-width in cells per axis
+    double inv_reach[3]; ///< 1 / reach
+    long parallel_min;   ///< per-particle loops go parallel from this many particles
+    double *grad[3];     ///< scratch: cell-centred pressure gradient (padded grid fields)
     // Per particle, for one coupling step:
     bdl_vec3 *accel;    ///< acceleration other than the drag over the last step [m/s^2]
     bdl_vec3 *drag;     ///< drag force for the coming step [N]
     bdl_vec3 *pressure; ///< pressure force for the coming step [N]
+    int32_t *listed;    ///< scratch: the particles bdl_coupling_relocate locates
+    // Scratch of bdl_coupling_sort:
+    long order_capacity;  ///< particles
+    int32_t *order_key;   ///< per particle: its cell
+    int32_t *order_perm;  ///< per particle: the new order
+    void *order_scratch;  ///< for bdl_particles_permute
+    int32_t *order_start; ///< per cell (and one more): the first of its particles
+    // The deposits' chunks (def.chunk; couple/coupling_deposit.c), planned for the kernels now:
+    long chunks;          ///< 0: one pass in particle order
+    long chunk_particles; ///< particles per chunk (the last may have fewer)
+    long chunk_planned;   ///< the particle count planned for
+    long chunk_capacity;  ///< chunk records allocated
+    long *chunk_lo;       ///< per chunk: the lowest padded index its particles reach
+    long *chunk_hi;       ///< per chunk: the highest
+    long *chunk_base;     ///< per chunk: where its sums start in the pool
+    long pool_capacity;   ///< doubles
+    double *pool;         ///< per chunk BDL_COUPLING_FIELDS fields over its range; zero between
 } bdl_coupling;
 
 /// One coupling step: its length, the last one's, and the acceleration both phases feel.
@@ -116,13 +156,22 @@ double bdl_coupling_work(const bdl_particles *p, long i, double span);
 
 /// The steps one by one (bdl_coupling_step runs them in order).
 
+/// Reorders the particles (bdl_particles_permute, c->order_perm: new slot k holds old particle
+/// order_perm[k]) by the gas cell holding their centre, z slowest and x fastest, when more than 1
+/// in BDL_COUPLING_DISORDER of them follow a particle in a later cell: neighbours in space are
+/// then neighbours in memory for the kernels. The order is a function of the positions and the
+/// order before alone (a stable counting sort), never of the threads. Arrays the caller keeps per
+/// particle must be filled after this (or permuted with order_perm when *sorted says it moved
+/// them; sorted may be NULL).
+bdl_result bdl_coupling_sort(bdl_coupling *c, const bdl_gas *gas, bdl_particles *p, int *sorted);
+
 /// Kernel weights of every particle at its current position (and orientation).
 bdl_result bdl_coupling_locate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p);
 
 /// Kernel weights anew for the particles with which[i] set, after they moved (the others, and
-/// the particle count, as the last bdl_coupling_locate left them).
-void bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
-                           const uint8_t *which);
+/// the particle count, as the last bdl_coupling_locate left them). BDL_ERR_NOMEM.
+bdl_result bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
+                                 const uint8_t *which);
 
 /// Where kernel point k of particle i lies (k < BDL_ROD_SATELLITES for a rod, 0 otherwise).
 bdl_vec3 bdl_coupling_point(const bdl_particles *p, long i, int k);
@@ -148,9 +197,18 @@ void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3]);
 /// A gas quantity at a particle: the kernel average of cell values f (padded cell array).
 double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f);
 
+/// Whether any cell to which particle i's kernel gives weight holds a positive value of f (padded
+/// cell array): for f >= 0 the same as bdl_coupling_interpolate(c, i, f) > 0, without the sums.
+int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f);
+
 /// A face quantity at particle i: component a the kernel average of f[a] over the momentum faces
 /// of component a (the weights the drag is deposited with).
 bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const f[3]);
+
+/// Two face quantities at particle i in one pass over its weights: each the same as
+/// bdl_coupling_face_average gives.
+void bdl_coupling_face_average2(const bdl_coupling *c, long i, double *const f[3],
+                                double *const g[3], bdl_vec3 *at_f, bdl_vec3 *at_g);
 
 /// Deposits value[i] of every particle on the momentum faces of each component with those
 /// weights, per unit cell volume: out[a] = sum_i W_ia value_i / V_cell (out cleared first; a

@@ -274,22 +274,25 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
         const bdl_grid *g = &gas->grid;
         for (long idx = 0; idx < g->size; ++idx)
             mark[idx] = 1.0 - gas->eps[idx] > pc->def.close_packing ? 1.0 : 0.0;
+        BDL_PARALLEL_FOR(
+            p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
+                const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
+                pc->held[i] =
+                    (x.x != x0.x || x.y != x0.y || x.z != x0.z) && bdl_coupling_touches(c, i, mark);
+                if (pc->held[i]) {
+                    p->pos[i] = x0;
+                    p->vel[i] = bdl_v3_zero();
+                    pc->accel[i] = bdl_v3_zero();
+                }
+            });
         long moved = 0;
-        for (long i = 0; i < p->count; ++i) {
-            const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
-            pc->held[i] = bdl_coupling_interpolate(c, i, mark) > 0.0 &&
-                          (x.x != x0.x || x.y != x0.y || x.z != x0.z);
-            if (pc->held[i]) {
-                p->pos[i] = x0;
-                p->vel[i] = bdl_v3_zero();
-                pc->accel[i] = bdl_v3_zero();
-                ++moved;
-            }
-        }
+        for (long i = 0; i < p->count; ++i)
+            moved += pc->held[i];
         out->held += moved;
         if (moved == 0) // the start was already overfull (a scene's initial state): go on
             return BDL_OK;
-        bdl_coupling_relocate(c, gas, p, pc->held);
+        if (bdl_coupling_relocate(c, gas, p, pc->held) != BDL_OK)
+            return BDL_ERR_NOMEM;
     }
 }
 
@@ -371,8 +374,8 @@ static void velocities(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *ga
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             const double m_inv = p->inv_mass[i], volume = bdl_particle_solids_volume(p, i);
             const double density = 1.0 / (m_inv * volume);
-            const bdl_vec3 u = bdl_coupling_gas_velocity(c, gas, i);
-            const bdl_vec3 gp = bdl_coupling_face_average(c, i, gas->grad_p);
+            bdl_vec3 u, gp; // the gas velocity and pressure gradient at the parcel
+            bdl_coupling_face_average2(c, i, gas->u, gas->grad_p, &u, &gp);
             const bdl_vec3 other = bdl_v3_madd(pc->accel[i], gp, -1.0 / density);
             const bdl_vec3 slip = bdl_v3_sub(bdl_v3_sub(u, p->vel[i]), bdl_v3_scale(other, dt));
             const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
@@ -399,7 +402,8 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
 {
     const double t0 = bdl_wall_seconds(), dt = def->dt;
     *out = (bdl_parcels_report){0};
-    if (reserve(pc, p->count) != BDL_OK)
+    // The parcels in cell order first (now and then), for the kernels' locality.
+    if (reserve(pc, p->count) != BDL_OK || bdl_coupling_sort(c, gas, p, NULL) != BDL_OK)
         return BDL_ERR_NOMEM;
     memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
     memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));

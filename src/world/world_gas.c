@@ -68,6 +68,8 @@ static bdl_coupling_def coupling_def(const bdl_world *w)
         d.kernel_width = cs->kernel_width;
     else if (w->scene.parcels.enabled) // the seed's trilinear kernel: a tent one cell wide
         d.kernel_width = 0.0;
+    if (w->scene.parcels.enabled) // parcels deposit in chunks, in parallel
+        d.chunk = BDL_COUPLING_CHUNK;
     d.max_solids = cs->max_solids;
     return d;
 }
