@@ -417,7 +417,8 @@ static void boundary_faces(bdl_gas *g, double dt)
                     us[idx] = 0.0;
                 if (sd->type == BDL_SIDE_OUTLET) {
                     double e1 = face_eps(g, g->eps, a, idx);
-                    d[idx] = (g->share[a] ? g->share[a][idx] : e1) / (rho * e1 / dt + g->beta[a][idx]);
+                    d[idx] =
+                        (g->share[a] ? g->share[a][idx] : e1) / (rho * e1 / dt + g->beta[a][idx]);
                 }
             });
         }

@@ -370,8 +370,8 @@ static bdl_result create_random(const bdl_create_def *c, const bdl_create_contex
     double r_max = largest_radius(ctx);
     long target = c->count;
     if (target < 0)
-        target = (long)floor(c->volume_fraction * region_volume(c) / mean_placed_volume(s, rng) +
-                             0.5);
+        target =
+            (long)floor(c->volume_fraction * region_volume(c) / mean_placed_volume(s, rng) + 0.5);
     if (p->parcels)
         return create_random_parcels(c, ctx, target, p);
     placement_grid g;
@@ -433,7 +433,8 @@ static bdl_result create_lattice(const bdl_create_def *c, const bdl_create_conte
                                      lo.z + 0.5 * d_species + k * h),
                               0.5 * d);
                 orient(&b, s, ctx->rng);
-                if (!inside_walls(ctx->walls, &b) || (!p->parcels && grid_overlaps(&g, p, &b, r_max)))
+                if (!inside_walls(ctx->walls, &b) ||
+                    (!p->parcels && grid_overlaps(&g, p, &b, r_max)))
                     continue;
                 if (add_checked(p, &g, &b, draw_velocity(c, ctx->rng), ctx, c->species) < 0) {
                     grid_free(&g);
@@ -831,9 +832,10 @@ double bdl_create_expected(const bdl_create_def *c, const bdl_species_def *s)
         return fmin(count, sites);
     }
     if (c->kind == BDL_CREATE_RANDOM && c->count <= 0)
-        return floor(c->volume_fraction * region_volume(c) /
-                         (bdl_species_volume(s, s->diameter) * bdl_species_parcel_count(s, s->diameter)) +
-                     0.5);
+        return floor(
+            c->volume_fraction * region_volume(c) /
+                (bdl_species_volume(s, s->diameter) * bdl_species_parcel_count(s, s->diameter)) +
+            0.5);
     return c->count > 0 ? (double)c->count : 0.0;
 }
 

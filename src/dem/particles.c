@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define ALWAYS    BDL_ARRAYS_ALWAYS
-#define WITH_GAS  BDL_ARRAYS_WITH_GAS
-#define WITH_RODS BDL_ARRAYS_WITH_RODS
+#define ALWAYS       BDL_ARRAYS_ALWAYS
+#define WITH_GAS     BDL_ARRAYS_WITH_GAS
+#define WITH_RODS    BDL_ARRAYS_WITH_RODS
 #define WITH_PARCELS BDL_ARRAYS_WITH_PARCELS
 
 /// One per-particle array of bdl_particles: where its pointer lives and how many bytes each

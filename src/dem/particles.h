@@ -59,8 +59,8 @@ typedef struct bdl_particles {
     // With parcels only (NULL otherwise; set `parcels` before the first reserve). A parcel (MP-PIC,
     // src/parcels/) stands for parcel_count real spheres of `radius`, moving as one: inv_mass is
     // that of the whole parcel, the particle's volume that of one real sphere.
-    int parcels;           ///< keep the array below
-    double *parcel_count;  ///< real particles in the parcel (not necessarily a whole number)
+    int parcels;          ///< keep the array below
+    double *parcel_count; ///< real particles in the parcel (not necessarily a whole number)
 } bdl_particles;
 
 bdl_result bdl_particles_reserve(bdl_particles *p, long capacity);

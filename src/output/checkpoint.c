@@ -105,8 +105,8 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
     f[k++] = (field){nb->wall_touching, nw};
     // The gas's forces on the particles, held between gas steps; the rods' orientations; the
     // parcels' particle counts.
-    count = bdl_particles_arrays(p, BDL_ARRAYS_WITH_GAS | BDL_ARRAYS_WITH_RODS | BDL_ARRAYS_WITH_PARCELS,
-                                 arrays);
+    count = bdl_particles_arrays(
+        p, BDL_ARRAYS_WITH_GAS | BDL_ARRAYS_WITH_RODS | BDL_ARRAYS_WITH_PARCELS, arrays);
     for (int a = 0; a < count; ++a)
         f[k++] = (field){arrays[a].data, n * arrays[a].element};
     bdl_gas *g = w->gas;

@@ -43,8 +43,8 @@ static double particle_bytes(const bdl_scene *s, const bdl_species_def *sp)
 {
     const int images = s->output.frame_interval > 0.0 || s->dia_count > 0;
     const double points = sp->shape == BDL_SHAPE_ROD ? BDL_ROD_SATELLITES : 1;
-    return (double)bdl_particles_bytes_each(s->gas.enabled, has_rods(s), s->parcels.enabled) + BUDGET_LISTS +
-           (s->gas.enabled ? BUDGET_COUPLING + points * BUDGET_POINT : 0) +
+    return (double)bdl_particles_bytes_each(s->gas.enabled, has_rods(s), s->parcels.enabled) +
+           BUDGET_LISTS + (s->gas.enabled ? BUDGET_COUPLING + points * BUDGET_POINT : 0) +
            (images ? BUDGET_SNAPSHOT : 0) + pairs_each(sp) * BUDGET_PAIR;
 }
 

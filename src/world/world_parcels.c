@@ -45,12 +45,13 @@ void bdl_world_parcels_describe(const bdl_world *w, char *buf, size_t size)
         return;
     }
     const bdl_parcel_collision_law *law = &w->parcels->collisions.law;
-    snprintf(buf, size,
-             "parcels (MP-PIC, model B collisions: k_c = %g N/m^%g, eta_c = %.4g kg/s%s, range %g of a "
-             "parcel's diameter; %d part(s) per step, dt below %.4g s; packing guard at %g)",
-             law->stiffness, law->exponent, law->damping,
-             d->collision_damping < 0.0 ? " from the restitution" : "", law->range, d->substeps,
-             bdl_world_parcels_collision_dt(w), d->close_packing);
+    snprintf(
+        buf, size,
+        "parcels (MP-PIC, model B collisions: k_c = %g N/m^%g, eta_c = %.4g kg/s%s, range %g of a "
+        "parcel's diameter; %d part(s) per step, dt below %.4g s; packing guard at %g)",
+        law->stiffness, law->exponent, law->damping,
+        d->collision_damping < 0.0 ? " from the restitution" : "", law->range, d->substeps,
+        bdl_world_parcels_collision_dt(w), d->close_packing);
 }
 
 /// Model B meets pairs through the nearest image only: a periodic axis must be at least twice
