@@ -623,6 +623,25 @@ static bdl_result choose_time_step(bdl_world *w, bdl_scene_error *err)
     return BDL_OK;
 }
 
+/// The particles' contact solver (lists, the time step from the contact time), the gas, and the
+/// forces of the initial state.
+static bdl_result build_contact_solver(bdl_world *w, long expected, bdl_scene_error *err)
+{
+    bdl_result r = build_neighbor(w, expected, err);
+    if (r == BDL_OK)
+        r = choose_time_step(w, err);
+    if (r == BDL_OK) // the particles' own speeds may have shortened the step
+        r = bdl_budget_check_steps(w, w->dt, err);
+    w->budget.dt = w->dt;
+    w->budget.steps = w->scene.end_time / w->dt;
+    if (r == BDL_OK && w->scene.gas.enabled)
+        r = bdl_world_gas_init(w, err);
+    // The first neighbour build sorts the particles for locality; forces are consistent with it.
+    if (r == BDL_OK)
+        r = bdl_world_compute_forces(w);
+    return r;
+}
+
 bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
 {
     *out = NULL;
@@ -640,30 +659,10 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     bdl_result r = bdl_budget_check(w, &w->budget, err);
     if (r == BDL_OK)
         r = create_particles(w, first_id, &expected, err);
-    if (r == BDL_OK && scene->parcels.enabled) { // no contacts: the gas's pace
+    if (r == BDL_OK && scene->parcels.enabled) // no contacts: the gas's pace
         r = bdl_world_parcels_init(w, err);
-        if (r == BDL_OK)
-            r = check_initial(w, first_id, err);
-        if (r != BDL_OK) {
-            bdl_world_destroy(w);
-            return r;
-        }
-        *out = w;
-        return BDL_OK;
-    }
-    if (r == BDL_OK)
-        r = build_neighbor(w, expected, err);
-    if (r == BDL_OK)
-        r = choose_time_step(w, err);
-    if (r == BDL_OK) // the particles' own speeds may have shortened the step
-        r = bdl_budget_check_steps(w, w->dt, err);
-    w->budget.dt = w->dt;
-    w->budget.steps = w->scene.end_time / w->dt;
-    if (r == BDL_OK && scene->gas.enabled)
-        r = bdl_world_gas_init(w, err);
-    // The first neighbour build sorts the particles for locality; forces are consistent with it.
-    if (r == BDL_OK)
-        r = bdl_world_compute_forces(w);
+    else if (r == BDL_OK)
+        r = build_contact_solver(w, expected, err);
     if (r == BDL_OK)
         r = check_initial(w, first_id, err);
     if (r != BDL_OK) {
