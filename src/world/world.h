@@ -188,6 +188,12 @@ bdl_result bdl_world_gas_step(bdl_world *world);
 /// packing plus a margin, at most 5e-4 s and the gas's own stable step [s].
 double bdl_world_expected_gas_dt(const bdl_world *world, double inflow);
 
+/// Says in world->failure why a gas step (`what`: "gas step", "parcel step") of length dt failed:
+/// beyond twice the stable step stable_dt, or (stable_dt 0) the pressure solver or a velocity;
+/// `key` names the scene key that sets the step.
+void bdl_world_gas_failure(bdl_world *world, const char *what, const char *key, double dt,
+                           double stable_dt);
+
 /// The superficial inlet velocity at time t: [gas] inlet_velocity, or the stage of its sweep,
 /// times the live inlet scale [m/s].
 double bdl_world_inlet_velocity(const bdl_world *world, double t);

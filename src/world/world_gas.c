@@ -180,6 +180,23 @@ static double raised_inflow(bdl_world *w, double dt_last)
     return live || now > before ? now : 0.0;
 }
 
+void bdl_world_gas_failure(bdl_world *w, const char *what, const char *key, double dt,
+                           double stable_dt)
+{
+    if (stable_dt > 0.0)
+        snprintf(w->failure, sizeof w->failure,
+                 "%s at t = %.6g s (step %ld): the %s %.3g s is above twice the stable limit %.3g "
+                 "s (CFL 1 or the viscous limit); set %s to %.3g s or less",
+                 what, w->time, w->step, what, dt, stable_dt, key, stable_dt);
+    else
+        snprintf(
+            w->failure, sizeof w->failure,
+            "%s at t = %.6g s (step %ld) failed: the pressure solver did not converge "
+            "(residual %.3g after %d iterations) or a velocity is not finite; try a smaller %s",
+            what, w->time, w->step, w->gas->last_solve.residual, w->gas->last_solve.iterations,
+            key);
+}
+
 bdl_result bdl_world_gas_step(bdl_world *w)
 {
     // The last gas step's length, then this one's: CFL 1/2 for the gas as the last step left it.
@@ -208,17 +225,8 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     w->gas_seconds += report.gas_seconds;
     if (report.stable_dt > 0.0)
         w->gas_stable = report.stable_dt;
-    if (r == BDL_ERR_UNSTABLE && report.stable_dt > 0.0)
-        snprintf(w->failure, sizeof w->failure,
-                 "gas step at t = %.6g s (step %ld): the gas step %.3g s is above twice the "
-                 "stable limit %.3g s (CFL 1 or the viscous limit); set [gas] dt to %.3g s or less",
-                 w->time, w->step, dt, report.stable_dt, report.stable_dt);
-    else if (r == BDL_ERR_UNSTABLE)
-        snprintf(w->failure, sizeof w->failure,
-                 "gas step at t = %.6g s (step %ld) failed: the pressure solver did not converge "
-                 "(residual %.3g after %d iterations) or a velocity is not finite; try a smaller "
-                 "[gas] dt",
-                 w->time, w->step, w->gas->last_solve.residual, w->gas->last_solve.iterations);
+    if (r == BDL_ERR_UNSTABLE)
+        bdl_world_gas_failure(w, "gas step", "[gas] dt", dt, report.stable_dt);
     if (r != BDL_OK)
         return r;
     w->gas_work += report.work;

@@ -221,17 +221,8 @@ bdl_result bdl_world_parcels_step(bdl_world *w)
     w->parcel_overlap = report.contacts.max_overlap;
     if (report.stable_dt > 0.0)
         w->gas_stable = report.stable_dt;
-    if (r == BDL_ERR_UNSTABLE && report.stable_dt > 0.0)
-        snprintf(w->failure, sizeof w->failure,
-                 "parcel step at t = %.6g s (step %ld): the step %.3g s is above twice the gas's "
-                 "stable limit %.3g s (CFL 1 or the viscous limit); set [run] dt to %.3g s or less",
-                 w->time, w->step, w->dt, report.stable_dt, report.stable_dt);
-    else if (r == BDL_ERR_UNSTABLE)
-        snprintf(w->failure, sizeof w->failure,
-                 "parcel step at t = %.6g s (step %ld) failed: the pressure solver did not "
-                 "converge (residual %.3g after %d iterations) or a velocity is not finite; try a "
-                 "smaller [run] dt",
-                 w->time, w->step, w->gas->last_solve.residual, w->gas->last_solve.iterations);
+    if (r == BDL_ERR_UNSTABLE)
+        bdl_world_gas_failure(w, "parcel step", "[run] dt", w->dt, report.stable_dt);
     if (r != BDL_OK)
         return r;
     w->gas_work += report.gas_work;
