@@ -42,13 +42,23 @@ bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const
         c->inv_h[a] = 1.0 / h;
         c->reach[a] = c->width[a] / h;
         c->inv_reach[a] = 1.0 / c->reach[a];
-        c->points[a] = most_points(c->reach[a]);
+        // An axis one cell across, with no outlet on it (through which a face can still carry
+        // weight), has one cell, and either no momentum face or (periodic) one: one point.
+        const int flat =
+            gas->grid.n[a] == 1 &&
+            (gas->grid.periodic[a] || (gas->def.side[2 * a].type != BDL_SIDE_OUTLET &&
+                                       gas->def.side[2 * a + 1].type != BDL_SIDE_OUTLET));
+        c->points[a] = flat ? 1 : most_points(c->reach[a]);
         c->kmax = c->points[a] > c->kmax ? c->points[a] : c->kmax;
         if (!(c->grad[a] = bdl_grid_alloc(&gas->grid))) {
             bdl_coupling_free(c);
             return BDL_ERR_NOMEM;
         }
     }
+    const int *n = c->points;
+    c->shape = n[0] == 2 && n[1] == 2 && n[2] == 2   ? BDL_KERNEL_TRILINEAR
+               : n[0] == 2 && n[1] == 1 && n[2] == 2 ? BDL_KERNEL_FLAT_Y
+                                                     : BDL_KERNEL_GENERAL;
     return BDL_OK;
 }
 
@@ -172,8 +182,8 @@ static int axis_weights(const bdl_coupling *c, const bdl_grid *g, int a, double 
 {
     const int n = g->n[a], most = c->points[a];
     int count = 0;
-    if (hi >= lo && n == 1 && g->periodic[a]) {
-        pts[0] = 0, w[0] = 1.0, count = 1;
+    if (hi == lo) { // a single point takes it all (the tent's weight, normalised, or the nearest)
+        pts[0] = lo, w[0] = 1.0, count = 1;
     } else if (hi >= lo) {
         double u = (x - g->origin[a]) * c->inv_h[a] - offset; // position in point units
         // A runaway particle (or a NaN) is held far outside the grid, where it stays outside, so
@@ -330,10 +340,12 @@ bdl_result bdl_coupling_relocate(bdl_coupling *c, const bdl_gas *gas, const bdl_
     } while (0)
 
 /// FOR_SLOTS_N over every point of each axis, with the trilinear kernel (two points per axis,
-/// the parcels' default) spelt out for the compiler to unroll.
+/// the parcels' default, or one across a grid one cell deep) spelt out for the compiler to unroll.
 #define FOR_SLOTS(c, i, sx, sy, sz, ...)                                                           \
     do {                                                                                           \
-        if ((c)->kmax == 2)                                                                        \
+        if ((c)->shape == BDL_KERNEL_FLAT_Y)                                                       \
+            FOR_SLOTS_N(c, i, sx, sy, sz, 2, 1, 2, __VA_ARGS__);                                   \
+        else if ((c)->shape == BDL_KERNEL_TRILINEAR)                                               \
             FOR_SLOTS_N(c, i, sx, sy, sz, 2, 2, 2, __VA_ARGS__);                                   \
         else                                                                                       \
             FOR_SLOTS_N(c, i, sx, sy, sz, (c)->points[0], (c)->points[1], (c)->points[2],          \
@@ -468,29 +480,6 @@ void bdl_coupling_face_average2(const bdl_coupling *c, long i, double *const f[3
     *at_g = bdl_v3(out[1][0], out[1][1], out[1][2]);
 }
 
-/// What bdl_coupling_deposit_faces deposits.
-typedef struct face_values {
-    const double *value;
-    double cell_volume;
-} face_values;
-
-static void deposit_face_values(const bdl_coupling *c, const void *ctx, long i, long shift,
-                                double *const *out)
-{
-    const face_values *v = ctx;
-    const double f = v->value[i] / v->cell_volume * point_share(c, i);
-    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-        for (int a = 0; a < 3; ++a)
-            FOR_FACE_KERNEL(c, pt, a, out[a][idx - shift] += w * f);
-}
-
-void bdl_coupling_deposit_faces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
-                                const double *value, double *const out[3])
-{
-    const face_values ctx = {value, cell_volume(&gas->grid)};
-    bdl_coupling_deposit(c, &gas->grid, p->count, 3, out, deposit_face_values, &ctx);
-}
-
 /// The drag law's K = beta / phi for particle i at voidage eps, gas velocity u and slip: a sphere
 /// by its diameter, a rod by its shape and the angle between its axis and the slip.
 static double drag_per_volume(const bdl_coupling *c, const bdl_particles *p, long i, double eps,
@@ -538,6 +527,29 @@ static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, long sh
             });
 }
 
+/// deposit_drag, and C_pr's sum W V / (1 + D dt) / V_cell into out[6..8]: V / (1 + D dt) =
+/// V (1 - a dt / m).
+static void deposit_drag_share(const bdl_coupling *c, const void *ctx, long i, long shift,
+                               double *const *out)
+{
+    const drag_deposit *d = ctx;
+    const double share = point_share(c, i);
+    const double f = c->factor[i] / d->cell_volume * share;
+    const double s = bdl_particle_solids_volume(d->p, i) *
+                     (1.0 - c->factor[i] * d->dt * d->p->inv_mass[i]) / d->cell_volume * share;
+    double target[3];
+    for (int a = 0; a < 3; ++a)
+        target[a] =
+            bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+        for (int a = 0; a < 3; ++a)
+            FOR_FACE_KERNEL(c, pt, a, {
+                out[a][idx - shift] += w * f;
+                out[3 + a][idx - shift] += w * f * target[a];
+                out[6 + a][idx - shift] += w * s;
+            });
+}
+
 void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
                              const bdl_vec3 *accel, double dt)
 {
@@ -557,9 +569,16 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             c->factor[i] = m * D / (1.0 + D * dt);
         });
     const drag_deposit ctx = {p, accel, dt, vc};
-    double *const out[6] = {gas->beta[0], gas->beta[1], gas->beta[2],
-                            gas->bv[0],   gas->bv[1],   gas->bv[2]};
-    bdl_coupling_deposit(c, g, p->count, 6, out, deposit_drag, &ctx);
+    double *const out[9] = {gas->beta[0], gas->beta[1],  gas->beta[2],  gas->bv[0],   gas->bv[1],
+                            gas->bv[2],   gas->share[0], gas->share[1], gas->share[2]};
+    if (!gas->def.pressure_share) {
+        bdl_coupling_deposit(c, g, p->count, 6, out, deposit_drag, &ctx);
+        return;
+    }
+    bdl_coupling_deposit(c, g, p->count, 9, out, deposit_drag_share, &ctx);
+    for (int a = 0; a < 3; ++a)
+        for (long idx = 0; idx < g->size; ++idx)
+            gas->share[a][idx] = 1.0 - gas->share[a][idx];
 }
 
 /// dp/dx_a at the centre of the cell at idx (axis coordinate m), as the particles there feel it:

@@ -47,8 +47,8 @@
 /// BDL_PARALLEL_MIN in core/parallel.h).
 #define BDL_COUPLING_PARALLEL_MIN 4096
 
-/// Most fields one deposit fills (the drag set-up's beta and beta v).
-#define BDL_COUPLING_FIELDS 6
+/// Most fields one deposit fills (the drag set-up's beta, beta v and the pressure share).
+#define BDL_COUPLING_FIELDS 9
 
 /// The deposit chunk of parcels (bdl_coupling_def.chunk): with the parcels in cell order (see
 /// bdl_coupling_sort) a chunk is a slab of the bed, and its sums cover little more than it.
@@ -76,6 +76,14 @@ typedef struct bdl_coupling_def {
 /// of 1.5 of the grid's largest cell size, solids fraction capped at 0.7.
 bdl_coupling_def bdl_default_coupling_def(const bdl_grid *grid);
 
+/// The kernel's points per axis, when the loops over them are spelt out: two along each (the
+/// trilinear kernel of one cell), two along x and z on a grid one cell deep, or any other.
+typedef enum bdl_kernel_shape {
+    BDL_KERNEL_GENERAL,
+    BDL_KERNEL_TRILINEAR,
+    BDL_KERNEL_FLAT_Y
+} bdl_kernel_shape;
+
 typedef struct bdl_coupling {
     bdl_coupling_def def;
     long capacity;       ///< particles
@@ -85,9 +93,10 @@ typedef struct bdl_coupling {
     // over the cell centres along x, y, z; slots 3-5 over the momentum faces of component x, y, z
     // along its own axis.
     // Each slot holds points[a] entries along its axis a (those of positive weight, then weight
-    // 0 on the last of them), kmax apart.
+    // 0 on the last of them), kmax apart; an axis one cell across with no outlet on it has one.
     int points[3];       ///< entries per slot along each axis
     int kmax;            ///< the largest of points[]
+    int shape;           ///< bdl_kernel_shape of points[]: the loops spelt out for the common ones
     int *offset;         ///< padded-index offsets per slot (periodic axes wrapped)
     double *weight;      ///< normalised weights per slot
     int *lo, *hi;        ///< per point: the lowest and highest padded index of its slots
@@ -181,7 +190,9 @@ bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, lo
 void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p);
 
 /// Drag coefficients for a macro step of length dt: fills gas->beta and gas->bv. `accel`: each
-/// particle's acceleration other than drag (NULL: none).
+/// particle's acceleration other than drag (NULL: none). A gas with a pressure share (the
+/// parcels' implicit scheme) gets it too: gas->share = 1 - C_pr on the faces, C_pr = sum W V /
+/// (1 + D dt) / V_cell, the part of the particles' volume the drag does not tie to the gas.
 void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
                              const bdl_vec3 *accel, double dt);
 
@@ -209,11 +220,5 @@ bdl_vec3 bdl_coupling_face_average(const bdl_coupling *c, long i, double *const 
 /// bdl_coupling_face_average gives.
 void bdl_coupling_face_average2(const bdl_coupling *c, long i, double *const f[3],
                                 double *const g[3], bdl_vec3 *at_f, bdl_vec3 *at_g);
-
-/// Deposits value[i] of every particle on the momentum faces of each component with those
-/// weights, per unit cell volume: out[a] = sum_i W_ia value_i / V_cell (out cleared first; a
-/// fixed summation order).
-void bdl_coupling_deposit_faces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
-                                const double *value, double *const out[3]);
 
 #endif

@@ -348,21 +348,6 @@ static bdl_result collision_accel(bdl_parcels *pc, bdl_particles *p, bdl_vec3 gr
 // ---------------------------------------------------------------------------------------------
 // The step.
 
-/// The gas's pressure share 1 - C_pr on the faces, C_pr = sum W V / (1 + D dt) / V_cell, from the
-/// drag set-up's a = m D / (1 + D dt): V / (1 + D dt) = V (1 - a dt / m).
-static void pressure_share(bdl_parcels *pc, const bdl_coupling *c, bdl_gas *gas,
-                           const bdl_particles *p, double dt)
-{
-    for (long i = 0; i < p->count; ++i)
-        pc->value[i] =
-            bdl_particle_solids_volume(p, i) * (1.0 - c->factor[i] * dt * p->inv_mass[i]);
-    bdl_coupling_deposit_faces(c, gas, p, pc->value, gas->share);
-    const bdl_grid *g = &gas->grid;
-    for (int a = 0; a < 3; ++a)
-        for (long idx = 0; idx < g->size; ++idx)
-            gas->share[a][idx] = 1.0 - gas->share[a][idx];
-}
-
 /// v^{n+1} = v + a dt / m (u - v - dt A_b + dt grad p / rho_p) + dt (A_b - grad p / rho_p): the
 /// implicit update written as the drag the gas gave plus the other forces; the total drag on
 /// the parcels into `drag`, and the work of the gas's forces (drag and pressure) over the step,
@@ -425,8 +410,7 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         stress(pc, c, gas, p, def->gravity);
     if (r != BDL_OK)
         return r;
-    bdl_coupling_drag_setup(c, gas, p, pc->accel, dt);
-    pressure_share(pc, c, gas, p, dt);
+    bdl_coupling_drag_setup(c, gas, p, pc->accel, dt); // and the pressure share 1 - C_pr
     const double t1 = bdl_wall_seconds();
     r = bdl_gas_step(gas, dt);
     const double t2 = bdl_wall_seconds();
