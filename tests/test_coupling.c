@@ -103,7 +103,7 @@ static void test_conservation_and_balance(int periodic_x, double width_cells)
                 sum[a] += bdl_v3_comp(drag[i], a);
                 scale += fabs(bdl_v3_comp(drag[i], a));
             }
-        bdl_coupling_gas_drag(g, gas);
+        bdl_coupling_gas_drag(g, g->u, gas);
         for (int a = 0; a < 3; ++a)
             worst = fmax(worst, fabs(sum[a] + gas[a]) / scale);
         free(drag);

@@ -223,12 +223,73 @@ static void test_refused(void)
     }
 }
 
+/// A small gas-fluidized bed whose step is several of the gas's stable steps: with gas sub-steps
+/// the gas takes several parts per step, the drag the gas gives (over its parts) the parcels
+/// still receive, the solids volume is kept, and one and two threads agree; where the step is
+/// within the gas's stable step, gas_substeps changes nothing.
+static const char *bed =
+    "[run]\nend_time = 10\ndt = %g\ngravity = 0 0 -9.81\nseed = 5\n"
+    "[domain]\nmin = 0 0 0\nmax = 0.04 0.01 0.2\n"
+    "[species sand]\ndiameter = 500e-6\ndensity = 2500\nparcel_particles = %g\n"
+    "[create bed]\ntype = random\nspecies = sand\nvolume_fraction = 0.45\n"
+    "region_min = 0 0 0\nregion_max = 0.04 0.01 0.04\n"
+    "[gas]\ncells = 4 1 20\nzmin = inlet\nzmax = outlet\ninlet_velocity = 1.2\n"
+    "[coupling]\ndrag = patankar\n[parcels]\n%s";
+
+static void test_gas_substeps(void)
+{
+    uint64_t hashes[2] = {0, 0};
+    for (int t = 1; t <= 2; ++t) {
+        omp_set_num_threads(t);
+        bdl_world *w = bdl_test_world(bed, 4e-3, 100.0, "gas_substeps = 8\n");
+        CHECK(w != NULL);
+        if (!w)
+            return;
+        w->parallel_min = 1;
+        w->coupling->parallel_min = 1;
+        const double v0 = bdl_parcels_solids_volume(&w->particles);
+        double worst = 0.0, drag = 0.0, unbalanced = 0.0;
+        int ok = 1;
+        for (int s = 0; s < 150 && ok; ++s) {
+            ok = bdl_world_step(w) == BDL_OK;
+            const double v = bdl_parcels_solids_volume(&w->particles);
+            worst = fmax(worst, fabs(grid_solids(w->gas) / v - 1.0));
+            for (int a = 0; a < 3; ++a) {
+                drag = fmax(drag, fabs(w->particle_drag[a]));
+                unbalanced = fmax(unbalanced, fabs(w->particle_drag[a] + w->gas_drag[a]));
+            }
+        }
+        CHECK_MSG(ok, "%s", w->failure);
+        CHECK(v0 > 0.0);
+        const double parts = (double)w->gas->steps / (double)w->step;
+        printf("gas sub-steps, %d thread(s): %.2f gas steps per step (stable gas step %.2g s, "
+               "dt 4e-3 s); solids volume within %.1e, drag on parcels + on gas %.1e of %.1e N\n",
+               t, parts, w->gas_stable / 8.0, worst, unbalanced, drag);
+        CHECK_MSG(parts > 1.5, "the gas did not sub-cycle: %.2f steps per step", parts);
+        CHECK_MSG(worst < 1e-12, "solids volume off by %g", worst);
+        CHECK_MSG(unbalanced < 1e-10 * drag, "drag not returned: %g of %g", unbalanced, drag);
+        hashes[t - 1] = bdl_world_hash(w);
+        bdl_world_destroy(w);
+    }
+    CHECK(hashes[0] != 0 && hashes[0] == hashes[1]);
+    omp_set_num_threads(1);
+    // The closed liquid box: its gas is stable far beyond dt, so one part, as without the key.
+    bdl_world *a = bdl_test_world(box, 2e-3, -9.81, 500.0, "");
+    bdl_world *b = bdl_test_world(box, 2e-3, -9.81, 500.0, "[parcels]\ngas_substeps = 8\n");
+    CHECK(a && b);
+    if (a && b)
+        CHECK(run_hash(a, 100) == run_hash(b, 100));
+    bdl_world_destroy(a);
+    bdl_world_destroy(b);
+}
+
 int main(void)
 {
     test_conservation();
     test_packing_guard();
     test_threads_and_resume();
     test_chunks();
+    test_gas_substeps();
     test_refused();
     return bdl_test_summary("test_parcels");
 }

@@ -149,7 +149,7 @@ static void test_balance(void)
                     sum[a] += bdl_v3_comp(drag[i], a);
                     scale += fabs(bdl_v3_comp(drag[i], a));
                 }
-            bdl_coupling_gas_drag(g, gas);
+            bdl_coupling_gas_drag(g, g->u, gas);
             for (int a = 0; a < 3; ++a)
                 worst = fmax(worst, fabs(sum[a] + gas[a]) / scale);
         }

@@ -137,10 +137,9 @@ static bdl_result print_time_step(const bdl_world *w)
     bdl_result r = bdl_guards_check_dt(w, message, sizeof message, warning, sizeof warning);
     if (w->parcels) {
         const double stable = bdl_world_parcels_stable_dt(w);
-        printf("time step: dt = %.4g s = %.3g of the parcels' stable step %.4g s (CFL 1/2 for the "
-               "inflow through close packing, and the gas's viscous limit); refused above twice "
-               "it",
-               w->dt, w->dt / stable, stable);
+        printf("time step: dt = %.4g s = %.3g of the parcels' stable step %.4g s (%s); refused "
+               "above twice it",
+               w->dt, w->dt / stable, stable, bdl_world_parcels_stable_basis(w));
         const double collision = bdl_world_parcels_collision_dt(w);
         if (isfinite(collision))
             printf(", and dt / substeps below %.4g s for the collisions", collision);

@@ -656,7 +656,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_pa
         });
 }
 
-void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3])
+void bdl_coupling_gas_drag(const bdl_gas *gas, double *const u[3], double total[3])
 {
     const bdl_grid *g = &gas->grid;
     const double vc = cell_volume(g);
@@ -671,7 +671,7 @@ void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3])
                     if (m < lo || m > hi)
                         continue;
                     long idx = bdl_grid_index(g, i, j, k);
-                    sum += (gas->bv[a][idx] - gas->beta[a][idx] * gas->u[a][idx]) * vc;
+                    sum += (gas->bv[a][idx] - gas->beta[a][idx] * u[a][idx]) * vc;
                 }
         total[a] = sum;
     }

@@ -201,9 +201,9 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
 void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_particles *p,
                          const bdl_vec3 *accel, double dt, bdl_vec3 *drag, bdl_vec3 *pressure);
 
-/// Total drag force on the gas [N] after its step: sum over the gas's momentum faces of
-/// ((beta v) - beta u) V_cell.
-void bdl_coupling_gas_drag(const bdl_gas *gas, double total[3]);
+/// Total drag force on the gas [N] after its step, with the face velocities u (the gas's, or
+/// their mean over its steps): sum over the gas's momentum faces of ((beta v) - beta u) V_cell.
+void bdl_coupling_gas_drag(const bdl_gas *gas, double *const u[3], double total[3]);
 
 /// A gas quantity at a particle: the kernel average of cell values f (padded cell array).
 double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f);

@@ -115,7 +115,7 @@ bdl_result bdl_coupling_step(bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
         return r;
     bdl_coupling_forces(c, gas, p, c->accel, dt, c->drag, c->pressure);
     hand_over(c, p, mean_gradient, out->particle_drag);
-    bdl_coupling_gas_drag(gas, out->gas_drag);
+    bdl_coupling_gas_drag(gas, gas->u, out->gas_drag);
     out->coupling_seconds = (t1 - t0) + (bdl_wall_seconds() - t2);
     return BDL_OK;
 }

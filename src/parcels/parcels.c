@@ -20,6 +20,7 @@ bdl_parcels_def bdl_default_parcels_def(void)
                              .close_packing = 0.6,
                              .stress_floor = 1e-3,
                              .substeps = 1,
+                             .gas_substeps = 1,
                              .wall_restitution = 0.9,
                              .collision_stiffness = 800.0,
                              .collision_exponent = 1.5,
@@ -83,6 +84,13 @@ bdl_result bdl_parcels_init(bdl_parcels *pc, const bdl_parcels_def *def, const b
                                           .range = def->collision_range};
     const bdl_parcel_box box = parcel_box(gas);
     ok = ok && bdl_parcel_collisions_init(&pc->collisions, &law, &box) == BDL_OK;
+    if (def->gas_substeps > 1) {
+        ok = ok && (pc->eps_start = bdl_grid_alloc(&gas->grid)) &&
+             (pc->eps_end = bdl_grid_alloc(&gas->grid));
+        for (int a = 0; a < 3; ++a)
+            ok = ok && (pc->u_mean[a] = bdl_grid_alloc(&gas->grid)) &&
+                 (pc->grad_p_mean[a] = bdl_grid_alloc(&gas->grid));
+    }
     if (!ok) {
         bdl_parcels_free(pc);
         return BDL_ERR_NOMEM;
@@ -100,8 +108,13 @@ void bdl_parcels_free(bdl_parcels *pc)
     free(pc->scratch);
     free(pc->held);
     free(pc->tau);
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) {
         free(pc->grad[a]);
+        free(pc->u_mean[a]);
+        free(pc->grad_p_mean[a]);
+    }
+    free(pc->eps_start);
+    free(pc->eps_end);
     bdl_parcel_collisions_free(&pc->collisions);
     free(pc->sub_v);
     free(pc->push);
@@ -352,15 +365,16 @@ static bdl_result collision_accel(bdl_parcels *pc, bdl_particles *p, bdl_vec3 gr
 /// implicit update written as the drag the gas gave plus the other forces; the total drag on
 /// the parcels into `drag`, and the work of the gas's forces (drag and pressure) over the step,
 /// dt F . (v^n + v^{n+1}) / 2, into *work.
-static void velocities(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *gas, bdl_particles *p,
-                       double dt, double drag[3], double *work)
+static void velocities(bdl_parcels *pc, const bdl_coupling *c, double *const gas_u[3],
+                       double *const grad_p[3], bdl_particles *p, double dt, double drag[3],
+                       double *work)
 {
     BDL_PARALLEL_FOR(
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             const double m_inv = p->inv_mass[i], volume = bdl_particle_solids_volume(p, i);
             const double density = 1.0 / (m_inv * volume);
             bdl_vec3 u, gp; // the gas velocity and pressure gradient at the parcel
-            bdl_coupling_face_average2(c, i, gas->u, gas->grad_p, &u, &gp);
+            bdl_coupling_face_average2(c, i, gas_u, grad_p, &u, &gp);
             const bdl_vec3 other = bdl_v3_madd(pc->accel[i], gp, -1.0 / density);
             const bdl_vec3 slip = bdl_v3_sub(bdl_v3_sub(u, p->vel[i]), bdl_v3_scale(other, dt));
             const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
@@ -380,6 +394,75 @@ static void velocities(bdl_parcels *pc, const bdl_coupling *c, const bdl_gas *ga
         drag[2] += p->load[i].force.z;
         *work += pc->value[i];
     }
+}
+
+/// sum = (sum + w f) * scale over a padded grid field.
+static void add_field(const bdl_grid *g, double *sum, const double *f, double w, double scale)
+{
+    for (long idx = 0; idx < g->size; ++idx)
+        sum[idx] = (sum[idx] + w * f[idx]) * scale;
+}
+
+/// The gas over h, the solids fraction at the fraction `reach` of the way from the step's start
+/// to its end (1: its end exactly); fails at the gas's CFL 1 (twice its stable step).
+static bdl_result gas_part(bdl_parcels *pc, bdl_gas *gas, double h, double reach)
+{
+    const bdl_grid *g = &gas->grid;
+    if (reach < 1.0)
+        for (long idx = 0; idx < g->size; ++idx)
+            gas->eps[idx] = pc->eps_start[idx] + reach * (pc->eps_end[idx] - pc->eps_start[idx]);
+    else
+        memcpy(gas->eps, pc->eps_end, (size_t)g->size * sizeof(double));
+    const bdl_result r = bdl_gas_step(gas, h);
+    return r == BDL_OK && h > 2.0 * bdl_gas_stable_dt(gas) ? BDL_ERR_UNSTABLE : r;
+}
+
+/// Step 5: the gas over dt. With gas_substeps G > 1 and dt above the gas's stable step, in
+/// parts: each time the rest of the step in equal parts no longer than the stable step at the
+/// gas's velocities then (at most G parts in all, the last taking what is left), so that the
+/// parts follow the gas as it speeds up. The fields the parcels' velocities read into u and
+/// grad_p: the gas's own after one part, their means over the step after several. The stable
+/// step (times G) and the parts taken into *out.
+static bdl_result gas_steps(bdl_parcels *pc, bdl_gas *gas, double dt, double *u[3],
+                            double *grad_p[3], bdl_parcels_report *out)
+{
+    const int most = pc->def.gas_substeps > 1 ? pc->def.gas_substeps : 1;
+    const bdl_grid *g = &gas->grid;
+    const size_t bytes = (size_t)g->size * sizeof(double);
+    bdl_result r;
+    if (most == 1 || !(dt > bdl_gas_stable_dt(gas))) {
+        r = bdl_gas_step(gas, dt);
+        out->gas_steps = 1;
+        for (int a = 0; a < 3; ++a)
+            u[a] = gas->u[a], grad_p[a] = gas->grad_p[a];
+    } else {
+        memcpy(pc->eps_start, gas->eps_old, bytes);
+        memcpy(pc->eps_end, gas->eps, bytes);
+        for (int a = 0; a < 3; ++a) {
+            u[a] = pc->u_mean[a], grad_p[a] = pc->grad_p_mean[a];
+            memset(u[a], 0, bytes);
+            memset(grad_p[a], 0, bytes);
+        }
+        double done = 0.0;
+        r = BDL_OK;
+        while (r == BDL_OK && done < dt) {
+            const double left = dt - done, stable = bdl_gas_stable_dt(gas);
+            const int parts = (int)fmin(most - out->gas_steps, fmax(1.0, ceil(left / stable)));
+            const double h = parts == 1 ? left : left / parts;
+            done = parts == 1 ? dt : done + h;
+            r = gas_part(pc, gas, h, done < dt ? done / dt : 1.0);
+            out->gas_steps++;
+            const double scale = done < dt ? 1.0 : 1.0 / dt;
+            for (int a = 0; a < 3; ++a) {
+                add_field(g, u[a], gas->u[a], h, scale);
+                add_field(g, grad_p[a], gas->grad_p[a], h, scale);
+            }
+        }
+    }
+    out->stable_dt = r == BDL_OK ? most * bdl_gas_stable_dt(gas) : 0.0;
+    if (r == BDL_OK && most == 1 && dt > 2.0 * out->stable_dt)
+        r = BDL_ERR_UNSTABLE;
+    return r;
 }
 
 bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
@@ -412,16 +495,14 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         return r;
     bdl_coupling_drag_setup(c, gas, p, pc->accel, dt); // and the pressure share 1 - C_pr
     const double t1 = bdl_wall_seconds();
-    r = bdl_gas_step(gas, dt);
+    double *u[3], *grad_p[3];
+    r = gas_steps(pc, gas, dt, u, grad_p, out);
     const double t2 = bdl_wall_seconds();
     out->gas_seconds = t2 - t1;
-    out->stable_dt = r == BDL_OK ? bdl_gas_stable_dt(gas) : 0.0;
-    if (r == BDL_OK && dt > 2.0 * out->stable_dt)
-        r = BDL_ERR_UNSTABLE;
     if (r != BDL_OK)
         return r;
-    velocities(pc, c, gas, p, dt, out->particle_drag, &out->gas_work);
-    bdl_coupling_gas_drag(gas, out->gas_drag);
+    velocities(pc, c, u, grad_p, p, dt, out->particle_drag, &out->gas_work);
+    bdl_coupling_gas_drag(gas, u, out->gas_drag);
     out->parcel_seconds = (t1 - t0) + (bdl_wall_seconds() - t2);
     return BDL_OK;
 }

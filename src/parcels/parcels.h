@@ -36,11 +36,17 @@
 //     parcel a_i = m D / (1 + D dt), deposited as beta and beta (v + dt A_b), and the pressure
 //     share of the gas 1 - C_pr, C_pr = sum W V / (1 + D dt) / V_cell; so A_cp, like gravity, is
 //     implicit with the drag and reaches the gas through the drag's deposit;
-//  5. the gas step (cfd/gas.h, with `share`);
+//  5. the gas step (cfd/gas.h, with `share`); or, with `gas_substeps` G > 1, as many gas steps
+//     m <= G of dt / m as the gas's CFL asks (m = ceil(dt / its stable step)), the solids
+//     fraction moving linearly from theta^n to theta^{n+1} across them and the drag's beta,
+//     beta (v + dt A_b) and share held: the gas, much cheaper than the parcels on the grids
+//     parcels need, keeps its explicit convection's step while the parcels take theirs;
 //  6. the parcels' velocities, implicit in the drag with the new gas velocity u and pressure
 //     gradient at the parcel (interpolated with the weights the drag was deposited with):
 //       v^{n+1} = (v^n + dt (D u - grad p / rho_p + A_b)) / (1 + D dt),
-//     so that what the gas gives in drag and pressure, the parcels receive, to round-off.
+//     so that what the gas gives in drag and pressure, the parcels receive, to round-off (with
+//     m gas steps, u and grad p are their means over the m steps: the drag and pressure the gas
+//     gave, summed over its steps, is linear in them).
 // Model B's step is bounded by the paper's (Cundall & Strack's) dt / K < 2 sqrt(M / k_c) and by
 // the explicit dashpot's dt / K < M / eta_c (bdl_parcels_collision_dt).
 #ifndef BDL_PARCELS_H
@@ -68,6 +74,7 @@ typedef struct bdl_parcels_def {
     double close_packing;    ///< theta_cs
     double stress_floor;     ///< least theta_cs - theta in the stress's denominator
     int substeps;            ///< K: the drift in this many parts (walls met within a step)
+    int gas_substeps;        ///< most gas steps per parcel step (as its CFL asks); 1: one
     double wall_restitution; ///< normal restitution of a parcel reflected at a side
     // Model B (parcels/collisions.h):
     double collision_stiffness;   ///< k_c [N/m^m]
@@ -111,6 +118,10 @@ typedef struct bdl_parcels {
     bdl_parcel_collisions collisions; ///< the cell list and the force law (eta_c resolved)
     bdl_vec3 *sub_v;                  ///< scratch: w, the velocity along the step's parts [m/s]
     bdl_vec3 *push;                   ///< scratch: the collision force of one evaluation [N]
+    // Gas sub-steps (gas_substeps > 1; NULL otherwise), padded grid fields:
+    double *eps_start, *eps_end; ///< the gas's eps at the step's start and end
+    double *u_mean[3];           ///< the gas velocity's mean over the gas steps [m/s]
+    double *grad_p_mean[3];      ///< grad p's mean over the gas steps [Pa/m]
 } bdl_parcels;
 
 /// One step's settings.
@@ -130,7 +141,9 @@ typedef struct bdl_parcels_report {
     double gas_drag[3];           ///< drag of the parcels on the gas [N]
     double gas_work;              ///< work of the gas's drag and pressure on the parcels [J]
     bdl_parcel_contacts contacts; ///< model B: contacts at the step's final positions
-    double stable_dt;             ///< the gas's stable step after this one [s]; 0 if it failed
+    double stable_dt;             ///< the gas's stable step after this one, times gas_substeps
+                                  ///< [s]; 0 if it failed
+    int gas_steps;                ///< gas steps taken
     double gas_seconds;           ///< wall time of the gas step [s]
     double parcel_seconds;        ///< wall time of the rest [s]
 } bdl_parcels_report;

@@ -29,10 +29,11 @@ static bdl_result check_parcel_dt(const bdl_world *w, char *message, size_t len)
     const double stable = bdl_world_parcels_stable_dt(w);
     if (w->dt > 2.0 * stable) {
         snprintf(message, len,
-                 "%s: [run] dt = %g s is %.3g times the parcels' stable step %g s (CFL 1/2 for "
-                 "the inflow through close packing, and the gas's viscous limit); allowed: at most "
-                 "twice it (dt <= %g s). Likely fix: lower dt",
-                 w->scene.path, w->dt, w->dt / stable, stable, 2.0 * stable);
+                 "%s: [run] dt = %g s is %.3g times the parcels' stable step %g s (%s); "
+                 "allowed: at most twice it (dt <= %g s). Likely fix: lower dt%s",
+                 w->scene.path, w->dt, w->dt / stable, stable, bdl_world_parcels_stable_basis(w),
+                 2.0 * stable,
+                 w->scene.parcels.def.gas_substeps > 1 ? "" : ", or raise [parcels] gas_substeps");
         return BDL_ERR_SCENE;
     }
     return BDL_OK;

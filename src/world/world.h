@@ -144,8 +144,11 @@ bdl_result bdl_world_parcels_init(bdl_world *world, bdl_scene_error *err);
 void bdl_world_parcels_free(bdl_world *world);
 
 /// The stable step of a world of parcels: CFL 1/2 for the inflow through close packing, and
-/// the gas's viscous limit [s] (the drag is implicit, the stress damped by it).
+/// the gas's viscous limit [s] (the drag is implicit, the stress damped by it); with gas
+/// sub-steps G times that, up to CFL 1 for the parcels.
 double bdl_world_parcels_stable_dt(const bdl_world *world);
+/// What bdl_world_parcels_stable_dt stands on, in words for messages.
+const char *bdl_world_parcels_stable_basis(const bdl_world *world);
 
 /// One line on the parcels' model and its parameters (as resolved: eta_c), for logs.
 void bdl_world_parcels_describe(const bdl_world *world, char *buf, size_t size);

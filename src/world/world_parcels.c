@@ -38,20 +38,21 @@ void bdl_world_parcels_describe(const bdl_world *w, char *buf, size_t size)
     if (d->model == BDL_PARCEL_STRESS) {
         snprintf(buf, size,
                  "parcels (MP-PIC, model A stress P_s theta^beta / max(theta_cs - theta, floor): "
-                 "P_s = %g Pa, beta = %g, theta_cs = %g, floor = %g; %d drift part(s) per step, "
-                 "wall restitution %g)",
+                 "P_s = %g Pa, beta = %g, theta_cs = %g, floor = %g; %d drift part(s) and at "
+                 "most %d gas step(s) per step, wall restitution %g)",
                  d->stress_pressure, d->stress_exponent, d->close_packing, d->stress_floor,
-                 d->substeps, d->wall_restitution);
+                 d->substeps, d->gas_substeps, d->wall_restitution);
         return;
     }
     const bdl_parcel_collision_law *law = &w->parcels->collisions.law;
     snprintf(
         buf, size,
         "parcels (MP-PIC, model B collisions: k_c = %g N/m^%g, eta_c = %.4g kg/s%s, range %g of a "
-        "parcel's diameter; %d part(s) per step, dt below %.4g s; packing guard at %g)",
+        "parcel's diameter; %d part(s) and at most %d gas step(s) per step, dt below %.4g s; "
+        "packing guard at %g)",
         law->stiffness, law->exponent, law->damping,
         d->collision_damping < 0.0 ? " from the restitution" : "", law->range, d->substeps,
-        bdl_world_parcels_collision_dt(w), d->close_packing);
+        d->gas_substeps, bdl_world_parcels_collision_dt(w), d->close_packing);
 }
 
 /// Model B meets pairs through the nearest image only: a periodic axis must be at least twice
@@ -184,8 +185,20 @@ double bdl_world_parcels_stable_dt(const bdl_world *w)
     for (int a = 0; a < 3; ++a)
         if (g->n[a] > 1)
             hmin = fmin(hmin, g->h[a]);
+    // CFL 1/2 for the gas in each of its steps; and with gas sub-steps, CFL 1 for the parcels,
+    // which move no faster than the gas that carries them.
+    const int most = w->scene.parcels.def.gas_substeps > 1 ? w->scene.parcels.def.gas_substeps : 1;
     const double cfl = u > 0.0 && isfinite(hmin) ? 0.5 * hmin / u : INFINITY;
-    return fmin(cfl, bdl_gas_stable_dt(w->gas));
+    return fmin(fmin(most * cfl, most > 1 ? 2.0 * cfl : INFINITY),
+                most * bdl_gas_stable_dt(w->gas));
+}
+
+const char *bdl_world_parcels_stable_basis(const bdl_world *w)
+{
+    return w->scene.parcels.def.gas_substeps > 1
+               ? "[parcels] gas_substeps times the gas's step, CFL 1/2 for the inflow through "
+                 "close packing and its viscous limit, up to the parcels' CFL 1"
+               : "CFL 1/2 for the inflow through close packing, and the gas's viscous limit";
 }
 
 void bdl_world_parcels_free(bdl_world *w)
