@@ -263,6 +263,26 @@ typedef struct bdl_verify_bimodal {
 } bdl_verify_bimodal;
 bdl_result bdl_verify_parcel_bimodal(int case_b, double t_end, bdl_verify_bimodal *out);
 
+/// The Boycott effect (the paper's sec. 4.2): the 35-degree column of scenes/parcels_inclined.ini
+/// (gravity tilted, 18 111 parcels at random, 32 x 72 cells), or with `vertical` the same column
+/// upright. The interface's axial position y(t) on the column's centre line (the crossing of
+/// half the initial solids fraction), every 20 s up to t_end, against the Ponder-Nakamura-
+/// Kuroda estimate y(t) = (y0 + b / (sin a cos a)) exp(-v0 t sin a / b) - b / (sin a cos a)
+/// (digest of seed 001, sec. 4.2) with v0 the model's hindered speed at phi 0.1.
+#define BDL_VERIFY_BOYCOTT_SAMPLES 64
+typedef struct bdl_verify_boycott {
+    double v0;                                ///< the model's hindered speed [m/s]
+    int samples;                              ///< taken, every 20 s from 20 s
+    double t[BDL_VERIFY_BOYCOTT_SAMPLES];     ///< [s]
+    double y[BDL_VERIFY_BOYCOTT_SAMPLES];     ///< measured [m]
+    double y_pnk[BDL_VERIFY_BOYCOTT_SAMPLES]; ///< PNK (vertical: y0 - v0 t) [m]
+    double worst;                             ///< largest |y / y_pnk - 1| from 100 s on
+    double speed_200;                         ///< mean axial speed over the first 200 s [m/s]
+    double speed_200_pnk;                     ///< PNK's [m/s]
+    long steps;
+} bdl_verify_boycott;
+bdl_result bdl_verify_parcel_boycott(int vertical, double t_end, bdl_verify_boycott *out);
+
 /// Solids volume of the particles (parcels) above height z [m^3].
 double bdl_verify_solids_above(const bdl_world *w, double z);
 /// Height of the highest crossing of the horizontally averaged solids fraction through `level`,

@@ -186,3 +186,75 @@ bdl_result bdl_verify_parcel_bimodal(int case_b, double t_end, bdl_verify_bimoda
         out->light_zone = -light / (double)light_samples;
     return r;
 }
+
+// ---- the Boycott effect (Acrivos & Herbolzheimer 1979; the paper's sec. 4.2) ----
+
+/// Height of the crossing of `level` by the solids fraction averaged over cell columns i0..i1 (at
+/// j = 0), from the top down, interpolated between cell centres [m].
+static double column_interface(const bdl_world *w, int i0, int i1, double level)
+{
+    const bdl_grid *g = &w->gas->grid;
+    double above = 0.0;
+    for (int k = g->n[2] - 1; k >= 0; --k) {
+        double theta = 0.0;
+        for (int i = i0; i <= i1; ++i)
+            theta += 1.0 - w->gas->eps[bdl_grid_index(g, i, 0, k)];
+        theta /= i1 - i0 + 1;
+        if (theta >= level) {
+            const double z = g->origin[2] + (k + 0.5) * g->h[2];
+            return k == g->n[2] - 1 ? z : z + g->h[2] * (theta - level) / (theta - above);
+        }
+        above = theta;
+    }
+    return g->origin[2];
+}
+
+bdl_result bdl_verify_parcel_boycott(int vertical, double t_end, bdl_verify_boycott *out)
+{
+    const double d = 136e-6, rho_p = 2420.0, rho = 992.0, mu = 0.0667, phi = 0.1, eps = 0.9;
+    const double angle = vertical ? 0.0 : 35.0 * BDL_PI / 180.0, b = 0.05, y0 = 0.5233;
+    *out = (bdl_verify_boycott){.worst = NAN, .speed_200 = NAN};
+    out->v0 = eps * bdl_verify_implied_slip(BDL_DRAG_PATANKAR, eps, d, rho, mu,
+                                            eps * (rho_p - rho) * 9.81, 1.0);
+    bdl_world *w = bdl_verify_world(
+        "[run]\nend_time = 2000\ndt = 0.005\ngravity = %.17g 0 %.17g\nseed = 4\n"
+        "[domain]\nmin = 0 0 0\nmax = 0.05 0.0015625 0.6\n"
+        "[species glass]\ndistribution = uniform\ndiameter = 136e-6\ndiameter_min = 130e-6\n"
+        "diameter_max = 142e-6\ndensity = 2420\nparcel_volume = 2.2573e-10\n"
+        "[create suspension]\ntype = random\nspecies = glass\ncount = 18111\n"
+        "region_min = 0 0 0\nregion_max = 0.05 0.0015625 %g\n"
+        "[gas]\ndensity = 992\nviscosity = 0.0667\ncells = 32 1 72\n"
+        "[coupling]\ndrag = patankar\n",
+        -9.81 * sin(angle), -9.81 * cos(angle), y0);
+    if (!w)
+        return BDL_ERR_SCENE;
+    const double s = sin(angle), c = cos(angle), span = vertical ? 0.0 : b / (s * c);
+    out->speed_200_pnk =
+        vertical ? out->v0 : (y0 + span) * (1.0 - exp(-out->v0 * 200.0 * s / b)) / 200.0;
+    const int mid = w->gas->grid.n[0] / 2;
+    double next = 20.0;
+    bdl_result r = BDL_OK;
+    while (r == BDL_OK && w->time < t_end + 0.5 * w->dt) {
+        r = bdl_world_step(w);
+        ++out->steps;
+        if (r != BDL_OK || w->time < next - 0.5 * w->dt ||
+            out->samples == BDL_VERIFY_BOYCOTT_SAMPLES)
+            continue;
+        next += 20.0;
+        const int k = out->samples++;
+        out->t[k] = w->time;
+        out->y[k] = column_interface(w, mid - 1, mid, 0.5 * phi);
+        out->y_pnk[k] = vertical ? y0 - out->v0 * w->time
+                                 : (y0 + span) * exp(-out->v0 * w->time * s / b) - span;
+        if (w->time > 100.0 - 0.5 * w->dt) {
+            const double e = fabs(out->y[k] / out->y_pnk[k] - 1.0);
+            out->worst = isnan(out->worst) ? e : fmax(out->worst, e);
+        }
+        if (fabs(w->time - 200.0) < 0.5 * w->dt)
+            out->speed_200 = (y0 - out->y[k]) / 200.0;
+    }
+    if (r != BDL_OK)
+        bdl_error("%s", w->failure);
+    bdl_world_destroy(w);
+    return r;
+}
