@@ -428,6 +428,38 @@ int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f)
     return any;
 }
 
+int bdl_coupling_gains(const bdl_coupling *c, const bdl_gas *gas, long i, bdl_vec3 from,
+                       const double *f)
+{
+    BDL_ASSERT(c->first[i + 1] - c->first[i] == 1); // one kernel point: a sphere or a parcel
+    const bdl_grid *g = &gas->grid;
+    // The cell kernel at `from`, per axis: padded offsets and weights.
+    int off[3][BDL_KERNEL_MAX];
+    double w0[3][BDL_KERNEL_MAX];
+    for (int a = 0; a < 3; ++a) {
+        int pts[BDL_KERNEL_MAX];
+        axis_weights(c, g, a, 0.5, 0, g->n[a] - 1, bdl_v3_comp(from, a), pts, w0[a]);
+        for (int m = 0; m < c->points[a]; ++m)
+            off[a][m] = ((g->periodic[a] ? wrap(pts[m], g->n[a]) : pts[m]) + BDL_GRID_GHOST) *
+                        (int)g->stride[a];
+    }
+    const int *n = c->points;
+    int gains = 0;
+    const long pt = c->first[i];
+    FOR_KERNEL(c, pt, {
+        if (!gains && w > 0.0 && f[idx] > 0.0) {
+            double before = 0.0; // padded entries repeat a point with weight 0: sum them all
+            for (int kz = 0; kz < n[2]; ++kz)
+                for (int ky = 0; ky < n[1]; ++ky)
+                    for (int kx = 0; kx < n[0]; ++kx)
+                        if ((long)off[2][kz] + off[1][ky] + off[0][kx] == idx)
+                            before += w0[2][kz] * w0[1][ky] * w0[0][kx];
+            gains = w > before;
+        }
+    });
+    return gains;
+}
+
 /// n face fields at particle i (n <= 2), the mean over its kernel points: component a of f[k]
 /// from f[k][a] on the momentum faces of component a, into u[k][a]. One pass over the weights;
 /// each sum in the order of one field alone.

@@ -211,6 +211,11 @@ double bdl_coupling_interpolate(const bdl_coupling *c, long i, const double *f);
 /// Whether any cell to which particle i's kernel gives weight holds a positive value of f (padded
 /// cell array): for f >= 0 the same as bdl_coupling_interpolate(c, i, f) > 0, without the sums.
 int bdl_coupling_touches(const bdl_coupling *c, long i, const double *f);
+/// Whether particle i's kernel (where it was last located) gives more weight to a cell holding a
+/// positive value of f (padded cell array) than its kernel at `from` would: whether its move
+/// from there added to such a cell. Particles of one kernel point.
+int bdl_coupling_gains(const bdl_coupling *c, const bdl_gas *gas, long i, bdl_vec3 from,
+                       const double *f);
 
 /// A face quantity at particle i: component a the kernel average of f[a] over the momentum faces
 /// of component a (the weights the drag is deposited with).

@@ -75,7 +75,8 @@ bdl_result bdl_parcels_init(bdl_parcels *pc, const bdl_parcels_def *def, const b
     *pc = (bdl_parcels){0};
     pc->def = *def;
     pc->tau = bdl_grid_alloc(&gas->grid);
-    int ok = pc->tau != NULL;
+    pc->eps_begin = bdl_grid_alloc(&gas->grid);
+    int ok = pc->tau != NULL && pc->eps_begin != NULL;
     for (int a = 0; a < 3; ++a)
         ok = ok && (pc->grad[a] = bdl_grid_alloc(&gas->grid));
     const bdl_parcel_collision_law law = {.stiffness = def->collision_stiffness,
@@ -108,6 +109,7 @@ void bdl_parcels_free(bdl_parcels *pc)
     free(pc->scratch);
     free(pc->held);
     free(pc->tau);
+    free(pc->eps_begin);
     for (int a = 0; a < 3; ++a) {
         free(pc->grad[a]);
         free(pc->u_mean[a]);
@@ -252,7 +254,17 @@ static void remove_marked(bdl_parcels *pc, bdl_particles *p, bdl_parcels_report 
 // ---------------------------------------------------------------------------------------------
 // The packing guard.
 
-/// Whether any cell of the gas grid holds a solids fraction above close packing.
+/// Whether the cell at idx holds a solids fraction above close packing and above what it held
+/// at the start of the step (beyond round-off: the parcels' order, and so the deposit's sums,
+/// may have changed since).
+static int overfull_cell(const bdl_parcels *pc, const bdl_gas *gas, long idx)
+{
+    return 1.0 - gas->eps[idx] > pc->def.close_packing &&
+           gas->eps[idx] < pc->eps_begin[idx] - 1e-12;
+}
+
+/// Whether any cell of the gas grid is overfull (overfull_cell); the largest solids fraction of
+/// a cell into *max_solids.
 static int overfull(const bdl_parcels *pc, const bdl_gas *gas, double *max_solids)
 {
     const bdl_grid *g = &gas->grid;
@@ -261,18 +273,21 @@ static int overfull(const bdl_parcels *pc, const bdl_gas *gas, double *max_solid
     for (int k = 0; k < g->n[2]; ++k)
         for (int j = 0; j < g->n[1]; ++j)
             for (int i = 0; i < g->n[0]; ++i) {
-                const double theta = 1.0 - gas->eps[bdl_grid_index(g, i, j, k)];
-                top = fmax(top, theta);
-                any |= theta > pc->def.close_packing;
+                const long idx = bdl_grid_index(g, i, j, k);
+                top = fmax(top, 1.0 - gas->eps[idx]);
+                any |= overfull_cell(pc, gas, idx);
             }
     *max_solids = top;
     return any;
 }
 
-/// The solids fraction of the parcels where they are now; while a cell is above close packing,
-/// every parcel whose kernel reaches such a cell returns to where the step began, at rest (and
-/// with no collision acceleration of the step so far; its kernel weights recomputed, the others'
-/// kept).
+/// The solids fraction of the parcels where they are now; while a cell is overfull (above close
+/// packing and above its start), every parcel whose move added to such a cell returns to where
+/// the step began, at rest (and with no collision acceleration of the step so far; its kernel
+/// weights recomputed, the others' kept). An overfull cell then holds no more than at the start
+/// (the parcels that stay moved gave it no more than before), so each round ends one; a
+/// returned parcel may overfill another, which the next round mends: every round returns
+/// parcels for good, so the rounds end.
 static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
                         bdl_parcels_report *out)
 {
@@ -286,12 +301,13 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
         double *mark = pc->tau;
         const bdl_grid *g = &gas->grid;
         for (long idx = 0; idx < g->size; ++idx)
-            mark[idx] = 1.0 - gas->eps[idx] > pc->def.close_packing ? 1.0 : 0.0;
+            mark[idx] = overfull_cell(pc, gas, idx) ? 1.0 : 0.0;
         BDL_PARALLEL_FOR(
             p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
                 const bdl_vec3 x = p->pos[i], x0 = pc->start[i];
-                pc->held[i] =
-                    (x.x != x0.x || x.y != x0.y || x.z != x0.z) && bdl_coupling_touches(c, i, mark);
+                pc->held[i] = (x.x != x0.x || x.y != x0.y || x.z != x0.z) &&
+                              bdl_coupling_touches(c, i, mark) &&
+                              bdl_coupling_gains(c, gas, i, x0, mark);
                 if (pc->held[i]) {
                     p->pos[i] = x0;
                     p->vel[i] = bdl_v3_zero();
@@ -302,7 +318,7 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
         for (long i = 0; i < p->count; ++i)
             moved += pc->held[i];
         out->held += moved;
-        if (moved == 0) // the start was already overfull (a scene's initial state): go on
+        if (moved == 0) // only round-off above the start: go on
             return BDL_OK;
         if (bdl_coupling_relocate(c, gas, p, pc->held) != BDL_OK)
             return BDL_ERR_NOMEM;
@@ -473,6 +489,7 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
     // The parcels in cell order first (now and then), for the kernels' locality.
     if (reserve(pc, p->count) != BDL_OK || bdl_coupling_sort(c, gas, p, NULL) != BDL_OK)
         return BDL_ERR_NOMEM;
+    memcpy(pc->eps_begin, gas->eps, (size_t)gas->grid.size * sizeof(double));
     memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
     memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));
     pc->collisions.parallel_min = c->parallel_min;

@@ -19,11 +19,14 @@
 //     evaluated at the parcels' new positions and w += h a_k, so that the positions see the
 //     collisions of the step as they happen (symplectic Euler with the step h for the collision
 //     force); the velocity of the damping is w;
-//  2. the packing guard: while a cell's solids fraction exceeds theta_cs, every parcel whose
-//     kernel touches such a cell goes back to where the step began, its velocity (and model B's
-//     collision accelerations of the step) zeroed (the state at the start of the step had no such
-//     cell, so this ends) — what keeps theta below close packing however hard the parcels are
-//     driven; each held parcel is counted;
+//  2. the packing guard: while a cell's solids fraction exceeds theta_cs and what it held at the
+//     start of the step, every parcel whose move gave such a cell more of its kernel's weight
+//     goes back to where the step began, its velocity (and model B's collision accelerations of
+//     the step) zeroed (those cells then hold no more than at the start, so this ends) — what
+//     keeps theta below close packing however hard the parcels are driven; each held parcel is
+//     counted. Parcels moving out of a full cell, or past it, go on: a cell above close packing
+//     at the start (a random fill's) empties to it, and a jammed region relaxes, rather than
+//     freezing every parcel around it;
 //  3. the solids fraction theta^{n+1} (the coupling's kernels: the seed's trilinear kernel is
 //     the tent of half-width one cell), and A_b = g + A_cp at every parcel. Model A: the stress in
 //     the cells and its gradient on the faces, A_cp interpolated to the parcel. Model B: the last
@@ -113,6 +116,7 @@ typedef struct bdl_parcels {
     void *scratch;     ///< scratch for bdl_particles_permute
     uint8_t *held;     ///< scratch: the parcels leaving through outlets in this step
     double *tau;       ///< stress in the cells [Pa] (padded grid field)
+    double *eps_begin; ///< the gas's eps at the start of the step (padded grid field)
     double *grad[3];   ///< grad tau / theta on the faces [Pa/m]
     // Model B:
     bdl_parcel_collisions collisions; ///< the cell list and the force law (eta_c resolved)
