@@ -103,7 +103,8 @@ bdl_result bdl_world_parcels_init(bdl_world *w, bdl_scene_error *err)
     const long n = w->particles.capacity;
     w->coordination = calloc((size_t)(n > 0 ? n : 1), 1);
     w->coordination_capacity = n;
-    if (!w->coordination || bdl_neighbor_none(&w->neighbor, n) != BDL_OK)
+    if (!w->coordination || bdl_neighbor_none(&w->neighbor, n) != BDL_OK ||
+        bdl_neighbor_none(&w->neighbor, w->particles.count) != BDL_OK)
         return BDL_ERR_NOMEM;
     const bdl_gas_scene *gs = &w->scene.gas;
     const double automatic =
@@ -227,6 +228,8 @@ bdl_result bdl_world_parcels_step(bdl_world *w)
     w->coupling_seconds += report.parcel_seconds;
     w->removed += report.removed;
     w->removed_mass += report.removed_mass;
+    if (w->neighbor.count != w->particles.count) // the empty lists cover the parcels there are
+        bdl_neighbor_none(&w->neighbor, w->particles.count);
     w->parcels_held += report.held;
     w->max_solids = report.max_solids;
     w->parcel_pairs = report.contacts.pairs;
