@@ -542,15 +542,21 @@ typedef struct drag_deposit {
     double dt, cell_volume;
 } drag_deposit;
 
+/// The velocity the drag pulls the gas towards at particle i: v + dt A.
+static void drag_target(const drag_deposit *d, long i, double target[3])
+{
+    for (int a = 0; a < 3; ++a)
+        target[a] =
+            bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
+}
+
 static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, long shift,
                          double *const *out)
 {
     const drag_deposit *d = ctx;
     const double f = c->factor[i] / d->cell_volume * point_share(c, i);
     double target[3];
-    for (int a = 0; a < 3; ++a)
-        target[a] =
-            bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
+    drag_target(d, i, target);
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
         for (int a = 0; a < 3; ++a)
             FOR_FACE_KERNEL(c, pt, a, {
@@ -570,9 +576,7 @@ static void deposit_drag_share(const bdl_coupling *c, const void *ctx, long i, l
     const double s = bdl_particle_solids_volume(d->p, i) *
                      (1.0 - c->factor[i] * d->dt * d->p->inv_mass[i]) / d->cell_volume * share;
     double target[3];
-    for (int a = 0; a < 3; ++a)
-        target[a] =
-            bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
+    drag_target(d, i, target);
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
         for (int a = 0; a < 3; ++a)
             FOR_FACE_KERNEL(c, pt, a, {
