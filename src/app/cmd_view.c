@@ -71,6 +71,7 @@ typedef struct viewer {
     bdl_view view;
     int paused, show_help, quit;
     int reported_drawing; ///< the first frame with particles was logged (scripted sessions)
+    double fps;           ///< frames drawn per second, over the last second or so
     double speed_limit;   ///< simulated s per wall s; 0 = full speed
     double live_scale;    ///< factor on the live parameter
     char live_key[96];    ///< "" when the scene exposes none
@@ -382,16 +383,16 @@ static void status_line(viewer *v, const bdl_snapshot *s)
     if (v->speed_limit > 0.0)
         snprintf(speed, sizeof speed, "limit %.3g sim s/s", v->speed_limit);
     snprintf(v->status, sizeof v->status,
-             "%s   solver %.3g steps/s (%.3g sim s/s, %s)   "
+             "%s   solver %.3g steps/s (%.3g sim s/s, %s)   %.0f frames/s   "
              "colour: %s   H: help",
              v->paused ? "PAUSED" : "running", sps, sps * (v->world ? v->world->dt : 0.0), speed,
-             bdl_color_mode_names[v->view.color]);
+             v->fps, bdl_color_mode_names[v->view.color]);
 }
 
 static void run_viewer(viewer *v)
 {
-    long frame = 0;
-    double last = 0.0;
+    long frame = 0, counted = 0;
+    double last = 0.0, start = bdl_wall_seconds(), mark = start, sim_start = -1.0, sim_end = 0.0;
     while (!v->quit) {
         int w, h;
         bdl_context_drawable_size(v->context, &w, &h);
@@ -422,12 +423,25 @@ static void run_viewer(viewer *v)
         }
         bdl_context_present(v->context);
         ++frame;
+        if (s && sim_start < 0.0)
+            sim_start = s->time;
+        sim_end = s ? s->time : sim_end;
+        const double now_frame = bdl_wall_seconds();
+        if (++counted, now_frame - mark >= 1.0) { // the rate over the last second or so
+            v->fps = counted / (now_frame - mark);
+            mark = now_frame, counted = 0;
+        }
         // At most 60 frames a second, whatever the swap interval does.
         double now = bdl_wall_seconds(), wait = 1.0 / 60.0 - (now - last);
         if (wait > 0.0)
             SDL_Delay((Uint32)(wait * 1000.0));
         last = bdl_wall_seconds();
     }
+    const double wall = bdl_wall_seconds() - start;
+    printf("view: %ld frames in %.2f s (%.1f frames/s); %.3g s simulated meanwhile (%.3g of real "
+           "time)\n",
+           frame, wall, wall > 0.0 ? frame / wall : 0.0, sim_end - fmax(sim_start, 0.0),
+           wall > 0.0 ? (sim_end - fmax(sim_start, 0.0)) / wall : 0.0);
 }
 
 /// Opens the window and its renderer for the scene; prints why when it cannot.
