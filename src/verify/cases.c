@@ -599,7 +599,7 @@ static const bdl_verify_case cases[] = {
         .name = "parcel_boycott",
         .tolerance = 0.10, .tolerance_level = 0, .order_min = 0.0, .no_order = 1,
         .breaks = "late on the interface meets the sediment (some 9 cm of the column's axis at "
-                  "the end), which the estimate leaves out; the same column upright settles 2.2 "
+                  "the end), which the estimate leaves out; the same column upright settles 2.3 "
                   "times faster than the model's hindered speed at these 9 parcels per cell (the "
                   "parcels' noise drives convection: docs/parcels.md).",
         .title = "The Boycott effect: parcels in a column tilted 35 degrees",
