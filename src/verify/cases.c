@@ -604,9 +604,9 @@ static const bdl_verify_case cases[] = {
                   "parcels' noise drives convection: docs/parcels.md).",
         .title = "The Boycott effect: parcels in a column tilted 35 degrees",
         .model = "the paper's sec. 4.2 case (scenes/parcels_inclined.ini): 18 111 parcels of "
-                 "130-142 um glass at 0.1 in a viscous liquid, 32 x 72 cells, model A, dt 0.002 "
-                 "s (0.005 s lets the explicit stress oscillate in the packed sediment), gravity "
-                 "tilted 35 degrees from the column's axis",
+                 "130-142 um glass at 0.1 in a viscous liquid, 32 x 72 cells, model A, dt 0.005 "
+                 "s with up to 8 liquid sub-steps, gravity tilted 35 degrees from the column's "
+                 "axis",
         .reference = "the Ponder-Nakamura-Kuroda estimate dy/dt = -v0 (1 / cos a + y sin a / b) "
                      "with the model's hindered speed v0 (digest of seed 001, sec. 4.2: 52.33 cm "
                      "at 0 s, 43.60 at 100 s, 36.08 at 200 s, 29.61 at 300 s, 19.22 at 500 s)",

@@ -264,8 +264,8 @@ typedef struct bdl_verify_bimodal {
 bdl_result bdl_verify_parcel_bimodal(int case_b, double t_end, bdl_verify_bimodal *out);
 
 /// The Boycott effect (the paper's sec. 4.2): the 35-degree column of scenes/parcels_inclined.ini
-/// (gravity tilted, 18 111 parcels at random, 32 x 72 cells, dt 0.002 s), or with `vertical` the
-/// same column
+/// (gravity tilted, 18 111 parcels at random, 32 x 72 cells, dt 0.005 s with up to 8 liquid
+/// sub-steps), or with `vertical` the same column
 /// upright. The interface's axial position y(t) on the column's centre line (the crossing of
 /// half the initial solids fraction), every 20 s up to t_end, against the Ponder-Nakamura-
 /// Kuroda estimate y(t) = (y0 + b / (sin a cos a)) exp(-v0 t sin a / b) - b / (sin a cos a)

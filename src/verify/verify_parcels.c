@@ -217,14 +217,14 @@ bdl_result bdl_verify_parcel_boycott(int vertical, double t_end, bdl_verify_boyc
     out->v0 = eps * bdl_verify_implied_slip(BDL_DRAG_PATANKAR, eps, d, rho, mu,
                                             eps * (rho_p - rho) * 9.81, 1.0);
     bdl_world *w = bdl_verify_world(
-        "[run]\nend_time = 2000\ndt = 0.002\ngravity = %.17g 0 %.17g\nseed = 4\n"
+        "[run]\nend_time = 2000\ndt = 0.005\ngravity = %.17g 0 %.17g\nseed = 4\n"
         "[domain]\nmin = 0 0 0\nmax = 0.05 0.0015625 0.6\n"
         "[species glass]\ndistribution = uniform\ndiameter = 136e-6\ndiameter_min = 130e-6\n"
         "diameter_max = 142e-6\ndensity = 2420\nparcel_volume = 2.2573e-10\n"
         "[create suspension]\ntype = random\nspecies = glass\ncount = 18111\n"
         "region_min = 0 0 0\nregion_max = 0.05 0.0015625 %g\n"
         "[gas]\ndensity = 992\nviscosity = 0.0667\ncells = 32 1 72\n"
-        "[coupling]\ndrag = patankar\n",
+        "[coupling]\ndrag = patankar\n[parcels]\ngas_substeps = 8\n",
         -9.81 * sin(angle), -9.81 * cos(angle), y0);
     if (!w)
         return BDL_ERR_SCENE;
