@@ -429,8 +429,19 @@ static bdl_result gas_part(bdl_parcels *pc, bdl_gas *gas, double h, double reach
             gas->eps[idx] = pc->eps_start[idx] + reach * (pc->eps_end[idx] - pc->eps_start[idx]);
     else
         memcpy(gas->eps, pc->eps_end, (size_t)g->size * sizeof(double));
-    const bdl_result r = bdl_gas_step(gas, h);
-    return r == BDL_OK && h > 2.0 * bdl_gas_stable_dt(gas) ? BDL_ERR_UNSTABLE : r;
+    return bdl_gas_step(gas, h);
+}
+
+/// After a gas step of length h that converged: whether h passed the gas's CFL 1 (twice its
+/// stable step); if so the step and the stable step at its end into *out.
+static int past_cfl(const bdl_gas *gas, double h, bdl_parcels_report *out)
+{
+    const double stable = bdl_gas_stable_dt(gas);
+    if (!(h > 2.0 * stable))
+        return 0;
+    out->failed_dt = h;
+    out->stable_dt = stable;
+    return 1;
 }
 
 /// Step 5: the gas over dt. With gas_substeps G > 1 and dt above the gas's stable step, in
@@ -451,6 +462,8 @@ static bdl_result gas_steps(bdl_parcels *pc, bdl_gas *gas, double dt, double *u[
         out->gas_steps = 1;
         for (int a = 0; a < 3; ++a)
             u[a] = gas->u[a], grad_p[a] = gas->grad_p[a];
+        if (r == BDL_OK && past_cfl(gas, most == 1 ? dt : dt / most, out))
+            return BDL_ERR_UNSTABLE;
     } else {
         memcpy(pc->eps_start, gas->eps_old, bytes);
         memcpy(pc->eps_end, gas->eps, bytes);
@@ -468,6 +481,10 @@ static bdl_result gas_steps(bdl_parcels *pc, bdl_gas *gas, double dt, double *u[
             done = parts == 1 ? dt : done + h;
             r = gas_part(pc, gas, h, done < dt ? done / dt : 1.0);
             out->gas_steps++;
+            if (r == BDL_OK && past_cfl(gas, h, out)) {
+                out->failed_part = 1;
+                return BDL_ERR_UNSTABLE;
+            }
             const double scale = done < dt ? 1.0 : 1.0 / dt;
             for (int a = 0; a < 3; ++a) {
                 add_field(g, u[a], gas->u[a], h, scale);
@@ -476,8 +493,6 @@ static bdl_result gas_steps(bdl_parcels *pc, bdl_gas *gas, double dt, double *u[
         }
     }
     out->stable_dt = r == BDL_OK ? most * bdl_gas_stable_dt(gas) : 0.0;
-    if (r == BDL_OK && most == 1 && dt > 2.0 * out->stable_dt)
-        r = BDL_ERR_UNSTABLE;
     return r;
 }
 

@@ -148,8 +148,11 @@ typedef struct bdl_parcels_report {
     double stable_dt;             ///< the gas's stable step after this one, times gas_substeps
                                   ///< [s]; 0 if it failed
     int gas_steps;                ///< gas steps taken
-    double gas_seconds;           ///< wall time of the gas step [s]
-    double parcel_seconds;        ///< wall time of the rest [s]
+    double failed_dt;      ///< > 0: the step (or gas sub-step) that passed the gas's CFL 1 [s];
+                           ///< stable_dt is then the gas's stable step after it
+    int failed_part;       ///< that was a gas sub-step
+    double gas_seconds;    ///< wall time of the gas step [s]
+    double parcel_seconds; ///< wall time of the rest [s]
 } bdl_parcels_report;
 
 /// The parcel solver on the gas's domain. For model B def->collision_damping must be resolved

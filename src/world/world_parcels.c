@@ -237,8 +237,15 @@ bdl_result bdl_world_parcels_step(bdl_world *w)
     w->parcel_overlap = report.contacts.max_overlap;
     if (report.stable_dt > 0.0)
         w->gas_stable = report.stable_dt;
-    if (r == BDL_ERR_UNSTABLE)
-        bdl_world_gas_failure(w, "parcel step", "[run] dt", w->dt, report.stable_dt);
+    if (r == BDL_ERR_UNSTABLE && report.failed_part)
+        snprintf(w->failure, sizeof w->failure,
+                 "parcel step at t = %.6g s (step %ld): a gas sub-step of %.3g s ended above twice "
+                 "the gas's stable step %.3g s (CFL 1 or the viscous limit): the gas sped up more "
+                 "than twofold within it; lower [run] dt or raise [parcels] gas_substeps",
+                 w->time, w->step, report.failed_dt, report.stable_dt);
+    else if (r == BDL_ERR_UNSTABLE)
+        bdl_world_gas_failure(w, "parcel step", "[run] dt",
+                              report.failed_dt > 0.0 ? report.failed_dt : w->dt, report.stable_dt);
     if (r != BDL_OK)
         return r;
     w->gas_work += report.gas_work;
