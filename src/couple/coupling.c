@@ -534,12 +534,12 @@ bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, lo
     return bdl_v3(u[0], u[1], u[2]);
 }
 
-/// What the drag set-up deposits: beta = sum W a / V_cell into out[0..2], (beta v) = sum W a
-/// (v + dt A) / V_cell into out[3..5].
+/// What the drag set-up deposits (deposit_drag): the drag and, for parcels, the pressure share.
 typedef struct drag_deposit {
     const bdl_particles *p;
     const bdl_vec3 *accel;
     double dt, cell_volume;
+    int share; ///< deposit the pressure share's sum too
 } drag_deposit;
 
 /// The velocity the drag pulls the gas towards at particle i: v + dt A.
@@ -550,31 +550,19 @@ static void drag_target(const drag_deposit *d, long i, double target[3])
             bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
 }
 
+/// beta = sum W a / V_cell into out[0..2], (beta v) = sum W a (v + dt A) / V_cell into out[3..5],
+/// and with d->share C_pr's sum W V / (1 + D dt) / V_cell into out[6..8]: V / (1 + D dt) =
+/// V (1 - a dt / m).
 static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, long shift,
                          double *const *out)
 {
     const drag_deposit *d = ctx;
-    const double f = c->factor[i] / d->cell_volume * point_share(c, i);
-    double target[3];
-    drag_target(d, i, target);
-    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-        for (int a = 0; a < 3; ++a)
-            FOR_FACE_KERNEL(c, pt, a, {
-                out[a][idx - shift] += w * f;
-                out[3 + a][idx - shift] += w * f * target[a];
-            });
-}
-
-/// deposit_drag, and C_pr's sum W V / (1 + D dt) / V_cell into out[6..8]: V / (1 + D dt) =
-/// V (1 - a dt / m).
-static void deposit_drag_share(const bdl_coupling *c, const void *ctx, long i, long shift,
-                               double *const *out)
-{
-    const drag_deposit *d = ctx;
     const double share = point_share(c, i);
     const double f = c->factor[i] / d->cell_volume * share;
-    const double s = bdl_particle_solids_volume(d->p, i) *
-                     (1.0 - c->factor[i] * d->dt * d->p->inv_mass[i]) / d->cell_volume * share;
+    const double s = d->share ? bdl_particle_solids_volume(d->p, i) *
+                                    (1.0 - c->factor[i] * d->dt * d->p->inv_mass[i]) /
+                                    d->cell_volume * share
+                              : 0.0;
     double target[3];
     drag_target(d, i, target);
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
@@ -582,7 +570,8 @@ static void deposit_drag_share(const bdl_coupling *c, const void *ctx, long i, l
             FOR_FACE_KERNEL(c, pt, a, {
                 out[a][idx - shift] += w * f;
                 out[3 + a][idx - shift] += w * f * target[a];
-                out[6 + a][idx - shift] += w * s;
+                if (d->share)
+                    out[6 + a][idx - shift] += w * s;
             });
 }
 
@@ -604,14 +593,12 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             double D = K / density, m = density * bdl_particle_solids_volume(p, i);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
-    const drag_deposit ctx = {p, accel, dt, vc};
+    const drag_deposit ctx = {p, accel, dt, vc, gas->def.pressure_share};
     double *const out[9] = {gas->beta[0], gas->beta[1],  gas->beta[2],  gas->bv[0],   gas->bv[1],
                             gas->bv[2],   gas->share[0], gas->share[1], gas->share[2]};
-    if (!gas->def.pressure_share) {
-        bdl_coupling_deposit(c, g, p->count, 6, out, deposit_drag, &ctx);
+    bdl_coupling_deposit(c, g, p->count, ctx.share ? 9 : 6, out, deposit_drag, &ctx);
+    if (!ctx.share)
         return;
-    }
-    bdl_coupling_deposit(c, g, p->count, 9, out, deposit_drag_share, &ctx);
     for (int a = 0; a < 3; ++a)
         for (long idx = 0; idx < g->size; ++idx)
             gas->share[a][idx] = 1.0 - gas->share[a][idx];
