@@ -420,7 +420,7 @@ static void add_field(const bdl_grid *g, double *sum, const double *f, double w,
 }
 
 /// The gas over h, the solids fraction at the fraction `reach` of the way from the step's start
-/// to its end (1: its end exactly); fails at the gas's CFL 1 (twice its stable step).
+/// to its end (1: its end exactly).
 static bdl_result gas_part(bdl_parcels *pc, bdl_gas *gas, double h, double reach)
 {
     const bdl_grid *g = &gas->grid;
@@ -462,8 +462,13 @@ static bdl_result gas_steps(bdl_parcels *pc, bdl_gas *gas, double dt, double *u[
         out->gas_steps = 1;
         for (int a = 0; a < 3; ++a)
             u[a] = gas->u[a], grad_p[a] = gas->grad_p[a];
-        if (r == BDL_OK && past_cfl(gas, most == 1 ? dt : dt / most, out))
+        // In one part the gas may have sped up past its CFL (from rest, say); that fails only
+        // beyond what G parts could have taken, the next step sub-cycling at the new speed.
+        if (r == BDL_OK && past_cfl(gas, dt / most, out)) {
+            out->failed_dt = dt;
+            out->failed_part = most > 1;
             return BDL_ERR_UNSTABLE;
+        }
     } else {
         memcpy(pc->eps_start, gas->eps_old, bytes);
         memcpy(pc->eps_end, gas->eps, bytes);
