@@ -34,19 +34,6 @@ static const char scene_text[] =
     "[coupling]\ndrag = patankar\nkernel_width = 0.0075\n"
     "[parcels]\ndisplay = %s\n";
 
-static bdl_tent_field snapshot_field(const bdl_snapshot *s)
-{
-    bdl_tent_field f = {.cell = s->voidage};
-    for (int a = 0; a < 3; ++a) {
-        f.n[a] = s->voidage_n[a];
-        f.periodic[a] = s->voidage_periodic[a];
-        f.lo[a] = s->voidage_lo[a];
-        f.h[a] = s->voidage_h[a];
-        f.width[a] = s->voidage_kernel[a];
-    }
-    return f;
-}
-
 /// What a snapshot carries of parcels: radii, the real particles, no contacts, the gas's voidage.
 static void check_snapshot(const bdl_world *w, const bdl_snapshot *s, int parcel_display)
 {
@@ -75,7 +62,7 @@ static void check_snapshot(const bdl_world *w, const bdl_snapshot *s, int parcel
 /// the gas's voidage with the weights it deposited the parcels with.
 static void check_solids(const bdl_world *w, const bdl_snapshot *s, const char *when)
 {
-    const bdl_tent_field f = snapshot_field(s);
+    const bdl_tent_field f = bdl_snapshot_voidage_field(s);
     double worst = 0.0, most = 0.0;
     for (long i = 0; i < w->particles.count; ++i) {
         const double x[3] = {s->pos[3 * i], s->pos[3 * i + 1], s->pos[3 * i + 2]};
