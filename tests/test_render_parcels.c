@@ -62,7 +62,7 @@ static void check_snapshot(const bdl_world *w, const bdl_snapshot *s, int parcel
 /// the gas's voidage with the weights it deposited the parcels with.
 static void check_solids(const bdl_world *w, const bdl_snapshot *s, const char *when)
 {
-    const bdl_tent_field f = bdl_snapshot_voidage_field(s);
+    const bdl_tent_field f = bdl_render_voidage_field(s);
     double worst = 0.0, most = 0.0;
     for (long i = 0; i < w->particles.count; ++i) {
         const double x[3] = {s->pos[3 * i], s->pos[3 * i + 1], s->pos[3 * i + 2]};

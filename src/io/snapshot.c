@@ -73,16 +73,3 @@ void bdl_snapshot_free(bdl_snapshot *s)
     free(s->id);
     memset(s, 0, sizeof *s);
 }
-
-bdl_tent_field bdl_snapshot_voidage_field(const bdl_snapshot *s)
-{
-    bdl_tent_field f = {.cell = s->voidage};
-    for (int a = 0; a < 3; ++a) {
-        f.n[a] = s->voidage_n[a];
-        f.periodic[a] = s->voidage_periodic[a];
-        f.lo[a] = s->voidage_lo[a];
-        f.h[a] = s->voidage_h[a];
-        f.width[a] = s->voidage_kernel[a];
-    }
-    return f;
-}

@@ -13,7 +13,6 @@
 
 #include <stdint.h>
 
-#include "analysis/tent.h"
 #include "core/quat.h"
 #include "core/vec3.h"
 
@@ -70,8 +69,6 @@ int bdl_snapshot_reserve_slice(bdl_snapshot *s, long cells);
 /// Grows the gas voidage to hold `cells` values. Returns 0 when out of memory.
 int bdl_snapshot_reserve_voidage(bdl_snapshot *s, long cells);
 void bdl_snapshot_free(bdl_snapshot *s);
-/// The gas's voidage of the snapshot as a field its tent kernel samples (cells NULL: no gas).
-bdl_tent_field bdl_snapshot_voidage_field(const bdl_snapshot *s);
 
 /// The particles of one step as the solver holds them: valid only inside the callback that was
 /// given it.

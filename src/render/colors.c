@@ -201,10 +201,23 @@ static void own_voidage(bdl_render_colors *c, const bdl_snapshot *s)
         c->local_at[i] = bdl_voidage_at(&c->voidage, &s->pos[3 * i]);
 }
 
+bdl_tent_field bdl_render_voidage_field(const bdl_snapshot *s)
+{
+    bdl_tent_field f = {.cell = s->voidage};
+    for (int a = 0; a < 3; ++a) {
+        f.n[a] = s->voidage_n[a];
+        f.periodic[a] = s->voidage_periodic[a];
+        f.lo[a] = s->voidage_lo[a];
+        f.h[a] = s->voidage_h[a];
+        f.width[a] = s->voidage_kernel[a];
+    }
+    return f;
+}
+
 /// The gas's voidage at each particle, read with the coupling's kernel.
 static void gas_voidage(bdl_render_colors *c, const bdl_snapshot *s)
 {
-    const bdl_tent_field f = bdl_snapshot_voidage_field(s);
+    const bdl_tent_field f = bdl_render_voidage_field(s);
     for (long i = 0; i < s->count; ++i) {
         const double x[3] = {s->pos[3 * i], s->pos[3 * i + 1], s->pos[3 * i + 2]};
         c->local_at[i] = (float)bdl_tent_sample(&f, x);

@@ -8,6 +8,7 @@
 
 #include <stdint.h>
 
+#include "analysis/tent.h"
 #include "core/error.h"
 #include "io/snapshot.h"
 #include "render/camera.h"
@@ -76,5 +77,9 @@ void bdl_shade(const float base[3], const float n[3], const float view[3], float
 /// Unit and label of a colour mode, e.g. "speed", "m/s".
 const char *bdl_color_mode_label(bdl_color_mode mode);
 const char *bdl_color_mode_unit(bdl_color_mode mode);
+
+/// The gas's voidage of a snapshot as the field the solids and voidage colours sample with the
+/// coupling's tent kernel (cell NULL: no gas).
+bdl_tent_field bdl_render_voidage_field(const bdl_snapshot *s);
 
 #endif
