@@ -93,7 +93,7 @@ static void test_conservation_and_balance(int periodic_x, double width_cells)
     double worst = 0.0;
     const double dt = 2e-4;
     for (int step = 0; step < 5; ++step) {
-        bdl_coupling_drag_setup(&k, g, p, c.acc, dt);
+        bdl_coupling_drag_setup(&k, g, p, c.acc, NULL, dt);
         CHECK(bdl_gas_step(g, dt) == BDL_OK);
         bdl_vec3 *drag = malloc((size_t)p->count * sizeof(bdl_vec3));
         double sum[3] = {0, 0, 0}, gas[3], scale = 0.0;
@@ -174,7 +174,7 @@ static void test_threads(void)
             bdl_coupling_voidage(&k, g, p);
             if (step == 0)
                 memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
-            bdl_coupling_drag_setup(&k, g, p, c.acc, 1e-4);
+            bdl_coupling_drag_setup(&k, g, p, c.acc, NULL, 1e-4);
             CHECK(bdl_gas_step(g, 1e-4) == BDL_OK);
             bdl_coupling_forces(&k, g, p, c.acc, 1e-4, f, NULL);
             for (long i = 0; i < p->count; ++i)

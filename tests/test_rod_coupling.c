@@ -140,7 +140,7 @@ static void test_balance(void)
         const double dt = 2e-4;
         bdl_vec3 *drag = malloc(300 * sizeof(bdl_vec3));
         for (int step = 0; step < 4; ++step) {
-            bdl_coupling_drag_setup(&k, g, &p, acc, dt);
+            bdl_coupling_drag_setup(&k, g, &p, acc, NULL, dt);
             CHECK(bdl_gas_step(g, dt) == BDL_OK);
             bdl_coupling_forces(&k, g, &p, acc, dt, drag, NULL);
             double sum[3] = {0, 0, 0}, gas[3], scale = 0.0;
@@ -187,7 +187,7 @@ static void test_single_rod(void)
         CHECK(bdl_coupling_locate(&k, g, &p) == BDL_OK);
         bdl_coupling_voidage(&k, g, &p);
         const double eps = bdl_coupling_interpolate(&k, 0, g->eps);
-        bdl_coupling_drag_setup(&k, g, &p, NULL, 1e-12);
+        bdl_coupling_drag_setup(&k, g, &p, NULL, NULL, 1e-12);
         bdl_vec3 drag;
         bdl_coupling_forces(&k, g, &p, NULL, 1e-12, &drag, NULL);
         const bdl_drag_shape s = {.diameter = 1.5e-3, .shaft = 4.5e-3, .cos_theta = t ? 0.0 : 1.0};

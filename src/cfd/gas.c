@@ -70,7 +70,10 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
         g->d[a] = bdl_grid_alloc(&g->grid);
         if (def->pressure_share)
             ok = ok && (g->share[a] = bdl_grid_alloc(&g->grid)) &&
-                 (g->grad_p[a] = bdl_grid_alloc(&g->grid));
+                 (g->grad_p[a] = bdl_grid_alloc(&g->grid)) &&
+                 (g->flux_u[a] = bdl_grid_alloc(&g->grid)) &&
+                 (g->flux_p[a] = bdl_grid_alloc(&g->grid)) &&
+                 (g->flux_0[a] = bdl_grid_alloc(&g->grid));
         ok = ok && g->u[a] && g->bv[a] && g->beta[a] && g->source[a] && g->ustar[a] && g->coef[a] &&
              g->d[a];
     }
@@ -104,6 +107,9 @@ void bdl_gas_destroy(bdl_gas *g)
         free(g->d[a]);
         free(g->share[a]);
         free(g->grad_p[a]);
+        free(g->flux_u[a]);
+        free(g->flux_p[a]);
+        free(g->flux_0[a]);
     }
     free(g->p);
     free(g->eps);
@@ -340,15 +346,29 @@ static void unknown_faces(const bdl_gas *g, int a, int *lo, int *hi)
                          __VA_ARGS__;                                                              \
                      })
 
-/// d eps/dt + div(eps u) in the cell at idx, for face velocities u.
-static double volume_change(const bdl_gas *g, double *const u[3], long idx, double dt)
+/// The particles' volume flux still to come on the face at idx of axis a (gas.h: flux_u, flux_p,
+/// flux_0) for the face velocity u, with the pressure gradient's part when `grad` (NULL: without).
+static double solids_flux(const bdl_gas *g, int a, long idx, const double *u, const double *grad)
+{
+    if (!g->flux_u[a])
+        return 0.0;
+    const double f = g->flux_u[a][idx] * u[idx] + g->flux_0[a][idx];
+    return grad ? f - g->flux_p[a][idx] * grad[idx] : f;
+}
+
+/// d eps/dt + div(eps u + the particles' flux still to come) in the cell at idx, for face
+/// velocities u (and face pressure gradients grad, NULL: the flux's part in it left out).
+static double volume_change(const bdl_gas *g, double *const u[3], double *const grad[3], long idx,
+                            double dt)
 {
     const bdl_grid *gr = &g->grid;
     double div = (g->eps[idx] - g->eps_old[idx]) / dt;
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
+        const double *ga = grad ? grad[a] : NULL;
         div += (face_eps(g, g->eps, a, idx + s) * u[a][idx + s] -
-                face_eps(g, g->eps, a, idx) * u[a][idx]) /
+                face_eps(g, g->eps, a, idx) * u[a][idx] + solids_flux(g, a, idx + s, u[a], ga) -
+                solids_flux(g, a, idx, u[a], ga)) /
                gr->h[a];
     }
     return div;
@@ -401,6 +421,11 @@ static void boundary_faces(bdl_gas *g, double dt)
             FOR_PLANE(gr, a, 0, {
                 g->ustar[a][idx + n * s] = g->ustar[a][idx];
                 g->d[a][idx + n * s] = g->d[a][idx];
+                if (g->flux_u[a]) {
+                    g->flux_u[a][idx + n * s] = g->flux_u[a][idx];
+                    g->flux_p[a][idx + n * s] = g->flux_p[a][idx];
+                    g->flux_0[a][idx + n * s] = g->flux_0[a][idx];
+                }
             });
             continue;
         }
@@ -425,8 +450,8 @@ static void boundary_faces(bdl_gas *g, double dt)
     }
 }
 
-/// The pressure equation div(c grad p) = div(eps u*) + d eps / dt, c = eps d; returns whether
-/// the solver converged.
+/// The pressure equation div(c grad p) = div(eps u* + E u* + F) + d eps / dt, c = eps d + E d +
+/// C (gas.h); returns whether the solver converged.
 static int solve_pressure(bdl_gas *g, double dt, const double p_side[6])
 {
     const bdl_grid *gr = &g->grid;
@@ -436,6 +461,9 @@ static int solve_pressure(bdl_gas *g, double dt, const double p_side[6])
         BDL_PARALLEL_FOR(gr->size >= BDL_GRID_PARALLEL_MIN,
                          for (long idx = s; idx < gr->size; ++idx) c[idx] =
                              0.5 * (g->eps[idx] + g->eps[idx - s]) * g->d[a][idx];);
+        if (g->flux_u[a])
+            for (long idx = s; idx < gr->size; ++idx)
+                c[idx] += g->flux_u[a][idx] * g->d[a][idx] + g->flux_p[a][idx];
     }
     bdl_poisson_set_coefficients(g->poisson, g->coef);
     BDL_PARALLEL_FOR(
@@ -443,7 +471,7 @@ static int solve_pressure(bdl_gas *g, double dt, const double p_side[6])
         for (int k = 0; k < gr->n[2]; ++k) for (int j = 0; j < gr->n[1];
                                                 ++j) for (int i = 0; i < gr->n[0]; ++i) {
             const long idx = bdl_grid_index(gr, i, j, k);
-            g->rhs[idx] = volume_change(g, g->ustar, idx, dt);
+            g->rhs[idx] = volume_change(g, g->ustar, NULL, idx, dt);
         });
     int converged = bdl_poisson_solve(g->poisson, g->p, g->rhs, p_side, g->def.tolerance,
                                       g->def.max_iterations, &g->last_solve);
@@ -479,7 +507,11 @@ static void correct(bdl_gas *g, const double p_side[6])
                 g->grad_p[a][idx] = grad;
         });
         if (periodic)
-            FOR_PLANE(gr, a, 0, { u[idx + n * s] = u[idx]; });
+            FOR_PLANE(gr, a, 0, {
+                u[idx + n * s] = u[idx];
+                if (g->grad_p[a])
+                    g->grad_p[a][idx + n * s] = g->grad_p[a][idx];
+            });
     }
 }
 
@@ -496,7 +528,7 @@ static int check_balance(bdl_gas *g, double dt)
                 const long idx = bdl_grid_index(gr, i, j, k);
                 for (int a = 0; a < 3; ++a)
                     finite = finite && isfinite(g->u[a][idx]);
-                worst = fmax(worst, fabs(volume_change(g, g->u, idx, dt)) * dt);
+                worst = fmax(worst, fabs(volume_change(g, g->u, g->grad_p, idx, dt)) * dt);
             }
     g->mass_imbalance = worst;
     return finite;

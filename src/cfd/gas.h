@@ -6,10 +6,11 @@
 //
 //   (rho eps^{n+1}/dt + beta) u* = rho eps^n u^n/dt - rho div(eps u u)^n + eps mu lap(u^n)
 //                                  + eps^{n+1} rho g + (beta v_p) + s
-//   div(c grad p) = div(eps^{n+1} u*) + (eps^{n+1} - eps^n)/dt,
-//       c = eps^{n+1} d,  d = s / (rho eps^{n+1}/dt + beta),  s = eps^{n+1} (or `share`)
+//   div(c grad p) = div(eps^{n+1} u* + E u* + F) + (eps^{n+1} - eps^n)/dt,
+//       c = eps^{n+1} d + E d + C,  d = s / (rho eps^{n+1}/dt + beta),  s = eps^{n+1} (or `share`)
 //   u^{n+1} = u* - d grad p
 //
+// (E, C, F: the parcels' flux still to come, flux_u, flux_p, flux_0 below; zero for DEM particles)
 // so that the gas volume is conserved to the pressure solver's tolerance every step, and a drag
 // coefficient beta far above rho/dt stays stable (u follows the particles' velocity v_p).
 // beta and the product beta v_p are given on the velocity faces (deposited there by the
@@ -88,6 +89,16 @@ typedef struct bdl_gas {
     /// the drag's implicit response to the particles' own -grad p / rho_p.
     double *share[3];
     double *grad_p[3]; ///< with def.pressure_share: grad p on each face as the last step used it
+    /// With def.pressure_share (NULL otherwise): the particles' volume flux on each face that the
+    /// voidage eps^{n+1} does not hold yet, as it follows from the step's gas velocity and
+    /// pressure gradient, flux = flux_u u - flux_p grad p + flux_0 (normal components) [m/s].
+    /// Parcels moved with their old velocity (eps^{n+1}) and then with their new one, implicit in
+    /// the drag, hand it over (Patankar & Joseph 2001, the particle terms D_f of their pressure
+    /// equation): the continuity the pressure equation enforces is then that of the volume the
+    /// parcels really move, and a sediment whose drag ties it to the liquid stays at rest (with
+    /// the old velocity's flux alone, each step's liquid velocity answers the last step's solids
+    /// flux, v^{n+1} = -theta / (1 - theta) v^n, which grows above theta = 1/2).
+    double *flux_u[3], *flux_p[3], *flux_0[3];
 
     double *ustar[3], *coef[3], *rhs, *d[3]; ///< work arrays
     double time;

@@ -534,12 +534,13 @@ bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, lo
     return bdl_v3(u[0], u[1], u[2]);
 }
 
-/// What the drag set-up deposits (deposit_drag): the drag and, for parcels, the pressure share.
+/// What the drag set-up deposits (deposit_drag): the drag and, for parcels, the pressure share
+/// and the volume flux still to come.
 typedef struct drag_deposit {
     const bdl_particles *p;
-    const bdl_vec3 *accel;
+    const bdl_vec3 *accel, *moved;
     double dt, cell_volume;
-    int share; ///< deposit the pressure share's sum too
+    int share; ///< deposit the pressure share's and the flux's sums too
 } drag_deposit;
 
 /// The velocity the drag pulls the gas towards at particle i: v + dt A.
@@ -550,33 +551,88 @@ static void drag_target(const drag_deposit *d, long i, double target[3])
             bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
 }
 
+/// Adds f[k] times the flux weights of kernel point pt across the faces normal to axis a to
+/// into[k] (k < 3). The weights are those whose divergence is the change of the point's cell
+/// weights as it moves along a: with the trilinear kernel (a tent of one cell) the face between
+/// the two cell centres that bracket the point along a takes it whole (none when one cell takes
+/// all of the point's weight along a, beside a wall), times the cell weights across a — the
+/// charge-conserving deposit of particle-in-cell codes (Villasenor & Buneman 1992). The gas's
+/// continuity then sees exactly the volume the parcels' cell deposit moves (to first order in
+/// the move); the face kernel's weights would see a parcel at a cell centre move nothing. Wider
+/// tents take the face kernel's weights.
+static void deposit_flux(const bdl_coupling *c, long pt, int a, const double f[3],
+                         double *const into[3])
+{
+    if (c->reach[a] != 1.0) {
+        FOR_FACE_KERNEL(c, pt, a, {
+            into[0][idx] += w * f[0];
+            into[1][idx] += w * f[1];
+            into[2][idx] += w * f[2];
+        });
+        return;
+    }
+    const long at = 6 * pt * c->kmax;
+    const int *off = &c->offset[at];
+    const double *wt = &c->weight[at];
+    const long along = a * c->kmax;
+    if (c->points[a] < 2 || !(wt[along] > 0.0 && wt[along + 1] > 0.0))
+        return;
+    const int b = (a + 1) % 3, d = (a + 2) % 3;
+    const long ab = b * c->kmax, ad = d * c->kmax;
+    for (int kd = 0; kd < c->points[d]; ++kd)
+        for (int kb = 0; kb < c->points[b]; ++kb) {
+            const long idx = (long)off[along + 1] + off[ab + kb] + off[ad + kd];
+            const double w = wt[ab + kb] * wt[ad + kd];
+            into[0][idx] += w * f[0];
+            into[1][idx] += w * f[1];
+            into[2][idx] += w * f[2];
+        }
+}
+
 /// beta = sum W a / V_cell into out[0..2], (beta v) = sum W a (v + dt A) / V_cell into out[3..5],
-/// and with d->share C_pr's sum W V / (1 + D dt) / V_cell into out[6..8]: V / (1 + D dt) =
-/// V (1 - a dt / m).
+/// and with d->share C_pr's sum W V / (1 + D dt) / V_cell into out[6..8] (V / (1 + D dt) =
+/// V (1 - a dt / m)) and the volume flux still to come, sum W V (v^{n+1} - v - m) / V_cell with
+/// v^{n+1} = ((v + dt A) + D dt u - dt grad p / rho_p) / (1 + D dt) (m: d->moved), as its
+/// factors of u (out[9..11]), of -grad p (out[12..14]) and the rest (out[15..17]).
 static void deposit_drag(const bdl_coupling *c, const void *ctx, long i, long shift,
                          double *const *out)
 {
     const drag_deposit *d = ctx;
     const double share = point_share(c, i);
     const double f = c->factor[i] / d->cell_volume * share;
-    const double s = d->share ? bdl_particle_solids_volume(d->p, i) *
-                                    (1.0 - c->factor[i] * d->dt * d->p->inv_mass[i]) /
-                                    d->cell_volume * share
-                              : 0.0;
     double target[3];
     drag_target(d, i, target);
+    if (!d->share) {
+        for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+            for (int a = 0; a < 3; ++a)
+                FOR_FACE_KERNEL(c, pt, a, {
+                    out[a][idx - shift] += w * f;
+                    out[3 + a][idx - shift] += w * f * target[a];
+                });
+        return;
+    }
+    const double whole = bdl_particle_solids_volume(d->p, i) / d->cell_volume * share;
+    const double s = whole * (1.0 - c->factor[i] * d->dt * d->p->inv_mass[i]);
+    const double by_p = s * d->dt / particle_density(d->p, i);
+    double rest[3];
+    for (int a = 0; a < 3; ++a)
+        rest[a] = s * target[a] - whole * (bdl_v3_comp(d->p->vel[i], a) +
+                                           (d->moved ? bdl_v3_comp(d->moved[i], a) : 0.0));
     for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
-        for (int a = 0; a < 3; ++a)
+        for (int a = 0; a < 3; ++a) {
             FOR_FACE_KERNEL(c, pt, a, {
                 out[a][idx - shift] += w * f;
                 out[3 + a][idx - shift] += w * f * target[a];
-                if (d->share)
-                    out[6 + a][idx - shift] += w * s;
+                out[6 + a][idx - shift] += w * s;
             });
+            const double flux[3] = {whole - s, by_p, rest[a]};
+            double *const into[3] = {out[9 + a] - shift, out[12 + a] - shift, out[15 + a] - shift};
+            deposit_flux(c, pt, a, flux, into);
+        }
 }
 
 void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
-                             const bdl_vec3 *accel, double dt)
+                             const bdl_vec3 *accel, const bdl_vec3 *moved, double dt)
 {
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
@@ -593,10 +649,14 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             double D = K / density, m = density * bdl_particle_solids_volume(p, i);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
-    const drag_deposit ctx = {p, accel, dt, vc, gas->def.pressure_share};
-    double *const out[9] = {gas->beta[0], gas->beta[1],  gas->beta[2],  gas->bv[0],   gas->bv[1],
-                            gas->bv[2],   gas->share[0], gas->share[1], gas->share[2]};
-    bdl_coupling_deposit(c, g, p->count, ctx.share ? 9 : 6, out, deposit_drag, &ctx);
+    const drag_deposit ctx = {p, accel, moved, dt, vc, gas->def.pressure_share};
+    double *const out[BDL_COUPLING_FIELDS] = {
+        gas->beta[0],   gas->beta[1],   gas->beta[2],   gas->bv[0],     gas->bv[1],
+        gas->bv[2],     gas->share[0],  gas->share[1],  gas->share[2],  gas->flux_u[0],
+        gas->flux_u[1], gas->flux_u[2], gas->flux_p[0], gas->flux_p[1], gas->flux_p[2],
+        gas->flux_0[0], gas->flux_0[1], gas->flux_0[2]};
+    bdl_coupling_deposit(c, g, p->count, ctx.share ? BDL_COUPLING_FIELDS : 6, out, deposit_drag,
+                         &ctx);
     if (!ctx.share)
         return;
     for (int a = 0; a < 3; ++a)

@@ -47,8 +47,9 @@
 /// BDL_PARALLEL_MIN in core/parallel.h).
 #define BDL_COUPLING_PARALLEL_MIN 4096
 
-/// Most fields one deposit fills (the drag set-up's beta, beta v and the pressure share).
-#define BDL_COUPLING_FIELDS 9
+/// Most fields one deposit fills (the drag set-up's beta, beta v, the pressure share and the
+/// three factors of the volume flux still to come).
+#define BDL_COUPLING_FIELDS 18
 
 /// The deposit chunk of parcels (bdl_coupling_def.chunk): with the parcels in cell order (see
 /// bdl_coupling_sort) a chunk is a slab of the bed, and its sums cover little more than it.
@@ -192,9 +193,12 @@ void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particl
 /// Drag coefficients for a macro step of length dt: fills gas->beta and gas->bv. `accel`: each
 /// particle's acceleration other than drag (NULL: none). A gas with a pressure share (the
 /// parcels' implicit scheme) gets it too: gas->share = 1 - C_pr on the faces, C_pr = sum W V /
-/// (1 + D dt) / V_cell, the part of the particles' volume the drag does not tie to the gas.
+/// (1 + D dt) / V_cell, the part of the particles' volume the drag does not tie to the gas; and
+/// the particles' volume flux still to come (gas->flux_u, flux_p, flux_0): the particles moved
+/// by dt (v + moved) in this step (`moved`: NULL for none) and go on to move by dt (v^{n+1} - v -
+/// moved) once their velocity v^{n+1} is implicit in the drag (parcels/parcels.h).
 void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
-                             const bdl_vec3 *accel, double dt);
+                             const bdl_vec3 *accel, const bdl_vec3 *moved, double dt);
 
 /// After the gas step: drag and pressure force on every particle [N] for the macro step. NULL
 /// outputs are skipped.

@@ -103,7 +103,7 @@ bdl_result bdl_coupling_step(bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
     if (def->dt_last == 0.0) // the first step: the voidage had no earlier value
         memcpy(gas->eps_old, gas->eps, (size_t)gas->grid.size * sizeof(double));
     const bdl_vec3 mean_gradient = periodic_column(gas, p, def->gravity);
-    bdl_coupling_drag_setup(c, gas, p, c->accel, dt);
+    bdl_coupling_drag_setup(c, gas, p, c->accel, NULL, dt);
     const double t1 = bdl_wall_seconds();
     bdl_result r = bdl_gas_step(gas, dt);
     const double t2 = bdl_wall_seconds();

@@ -102,7 +102,7 @@ bdl_result bdl_parcels_init(bdl_parcels *pc, const bdl_parcels_def *def, const b
 void bdl_parcels_free(bdl_parcels *pc)
 {
     free(pc->start);
-    free(pc->start_v);
+    free(pc->moved);
     free(pc->accel);
     free(pc->value);
     free(pc->perm);
@@ -129,7 +129,7 @@ static bdl_result reserve(bdl_parcels *pc, long n)
         return BDL_OK;
     const long cap = n + n / 4 + 64;
     if (!bdl_grow((void **)&pc->start, cap, sizeof(bdl_vec3)) ||
-        !bdl_grow((void **)&pc->start_v, cap, sizeof(bdl_vec3)) ||
+        !bdl_grow((void **)&pc->moved, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&pc->accel, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&pc->value, cap, sizeof(double)) ||
         !bdl_grow((void **)&pc->perm, cap, sizeof(int32_t)) ||
@@ -196,6 +196,15 @@ static bdl_result collide(bdl_parcels *pc, bdl_particles *p, double h, const uin
     return BDL_OK;
 }
 
+/// How many of the first n flags are set.
+static long count_marked(const uint8_t *flags, long n)
+{
+    long count = 0;
+    for (long i = 0; i < n; ++i)
+        count += flags[i];
+    return count;
+}
+
 /// Moves every parcel by w dt in `substeps` parts h, meeting the sides within each (see
 /// parcels.h: w = v, or for model B v + h S with the collisions evaluated between the parts);
 /// the parcels beyond an outlet are marked in pc->held and move no more. Their count into
@@ -207,24 +216,27 @@ static bdl_result drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, d
     const int collisions = pc->def.model == BDL_PARCEL_COLLISIONS;
     const double h = dt / parts;
     memset(pc->held, 0, (size_t)p->count);
+    memset(pc->moved, 0, (size_t)p->count * sizeof(bdl_vec3));
     if (collisions)
         memset(pc->accel, 0, (size_t)p->count * sizeof(bdl_vec3));
-    *leaving = 0;
     for (int k = 0; k < parts; ++k) {
-        for (long i = 0; i < p->count; ++i) {
-            if (pc->held[i])
-                continue;
-            const bdl_vec3 w = collisions ? bdl_v3_madd(p->vel[i], pc->accel[i], h) : p->vel[i];
-            p->pos[i] = bdl_v3_madd(p->pos[i], w, h);
-            int out = 0;
-            for (int a = 0; a < 3; ++a)
-                out |= keep_inside(pc, gas, p, i, a);
-            pc->held[i] = (uint8_t)out;
-            *leaving += out;
-        }
+        BDL_PARALLEL_FOR(
+            p->count >= pc->collisions.parallel_min, for (long i = 0; i < p->count; ++i) {
+                if (pc->held[i])
+                    continue;
+                const bdl_vec3 w = collisions ? bdl_v3_madd(p->vel[i], pc->accel[i], h) : p->vel[i];
+                p->pos[i] = bdl_v3_madd(p->pos[i], w, h);
+                if (collisions)
+                    pc->moved[i] = bdl_v3_madd(pc->moved[i], pc->accel[i], h / parts);
+                int out = 0;
+                for (int a = 0; a < 3; ++a)
+                    out |= keep_inside(pc, gas, p, i, a);
+                pc->held[i] = (uint8_t)out;
+            });
         if (collisions && k + 1 < parts && collide(pc, p, h, pc->held, NULL) != BDL_OK)
             return BDL_ERR_NOMEM;
     }
+    *leaving = count_marked(pc->held, p->count);
     return BDL_OK;
 }
 
@@ -239,7 +251,7 @@ static void remove_marked(bdl_parcels *pc, bdl_particles *p, bdl_parcels_report 
         } else {
             pc->perm[kept] = (int32_t)i;
             pc->start[kept] = pc->start[i];
-            pc->start_v[kept] = pc->start_v[i];
+            pc->moved[kept] = pc->moved[i];
             pc->accel[kept] = pc->accel[i];
             ++kept;
         }
@@ -312,11 +324,10 @@ static bdl_result place(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_part
                     p->pos[i] = x0;
                     p->vel[i] = bdl_v3_zero();
                     pc->accel[i] = bdl_v3_zero();
+                    pc->moved[i] = bdl_v3_zero();
                 }
             });
-        long moved = 0;
-        for (long i = 0; i < p->count; ++i)
-            moved += pc->held[i];
+        const long moved = count_marked(pc->held, p->count);
         out->held += moved;
         if (moved == 0) // only round-off above the start: go on
             return BDL_OK;
@@ -378,9 +389,10 @@ static bdl_result collision_accel(bdl_parcels *pc, bdl_particles *p, bdl_vec3 gr
 // The step.
 
 /// v^{n+1} = v + a dt / m (u - v - dt A_b + dt grad p / rho_p) + dt (A_b - grad p / rho_p): the
-/// implicit update written as the drag the gas gave plus the other forces; the total drag on
-/// the parcels into `drag`, and the work of the gas's forces (drag and pressure) over the step,
-/// dt F . (v^n + v^{n+1}) / 2, into *work.
+/// implicit update written as the drag the gas gave plus the other forces; the move still to
+/// come, dt (v^{n+1} - v - m), into pc->moved (m: what it held, the drift's velocity beyond v);
+/// the total drag on the parcels into `drag`, and the work of the gas's forces (drag and
+/// pressure) over the step, dt F . (v^n + v^{n+1}) / 2, into *work.
 static void velocities(bdl_parcels *pc, const bdl_coupling *c, double *const gas_u[3],
                        double *const grad_p[3], bdl_particles *p, double dt, double drag[3],
                        double *work)
@@ -396,6 +408,7 @@ static void velocities(bdl_parcels *pc, const bdl_coupling *c, double *const gas
             const bdl_vec3 f = bdl_v3_scale(slip, c->factor[i]);
             const bdl_vec3 v0 = p->vel[i];
             p->vel[i] = bdl_v3_add(v0, bdl_v3_scale(bdl_v3_madd(other, f, m_inv), dt));
+            pc->moved[i] = bdl_v3_scale(bdl_v3_sub(bdl_v3_sub(p->vel[i], v0), pc->moved[i]), dt);
             // The drag as the gas booked it, a (u - v - dt A_b); the rest of f, a dt grad p /
             // rho_p, is the share of the pressure force the gas's 1 - C_pr handed over.
             p->load[i].force = bdl_v3_madd(f, gp, -c->factor[i] * dt / density);
@@ -501,6 +514,27 @@ static bdl_result gas_steps(bdl_parcels *pc, bdl_gas *gas, double dt, double *u[
     return r;
 }
 
+/// Step 7: every parcel moves on by dt (v^{n+1} - v^n - m) (pc->moved), so that over the step it
+/// moved by dt v^{n+1}, as the gas's pressure equation counted its volume flux; the sides met as
+/// in the drift, the guard as after it, and the gas's voidage (new and old) the parcels' there.
+static bdl_result settle(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
+                         bdl_parcels_report *out)
+{
+    BDL_PARALLEL_FOR(
+        p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
+            p->pos[i] = bdl_v3_add(p->pos[i], pc->moved[i]);
+            int beyond = 0;
+            for (int a = 0; a < 3; ++a)
+                beyond |= keep_inside(pc, gas, p, i, a);
+            pc->held[i] = (uint8_t)beyond;
+        });
+    if (count_marked(pc->held, p->count) > 0)
+        remove_marked(pc, p, out);
+    const bdl_result r = place(pc, c, gas, p, out);
+    memcpy(gas->eps_old, gas->eps, (size_t)gas->grid.size * sizeof(double));
+    return r;
+}
+
 bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
                             const bdl_parcels_step_def *def, bdl_parcels_report *out)
 {
@@ -511,7 +545,6 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         return BDL_ERR_NOMEM;
     memcpy(pc->eps_begin, gas->eps, (size_t)gas->grid.size * sizeof(double));
     memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
-    memcpy(pc->start_v, p->vel, (size_t)p->count * sizeof(bdl_vec3));
     pc->collisions.parallel_min = c->parallel_min;
     long leaving = 0;
     bdl_result r = drift(pc, gas, p, dt, &leaving);
@@ -530,7 +563,8 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         stress(pc, c, gas, p, def->gravity);
     if (r != BDL_OK)
         return r;
-    bdl_coupling_drag_setup(c, gas, p, pc->accel, dt); // and the pressure share 1 - C_pr
+    // and the pressure share 1 - C_pr and the flux still to come:
+    bdl_coupling_drag_setup(c, gas, p, pc->accel, pc->moved, dt);
     const double t1 = bdl_wall_seconds();
     double *u[3], *grad_p[3];
     r = gas_steps(pc, gas, dt, u, grad_p, out);
@@ -540,6 +574,9 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
         return r;
     velocities(pc, c, u, grad_p, p, dt, out->particle_drag, &out->gas_work);
     bdl_coupling_gas_drag(gas, u, out->gas_drag);
+    r = settle(pc, c, gas, p, out);
+    if (r != BDL_OK)
+        return r;
     out->parcel_seconds = (t1 - t0) + (bdl_wall_seconds() - t2);
     return BDL_OK;
 }

@@ -11,7 +11,8 @@
 //    solids volume, and parcel spheres push each other and the domain's sides with a soft-sphere
 //    force F_cp, A_cp = F_cp / M (M the parcel's mass).
 // A parcel steps at the gas's pace. One step of length dt (bdl_parcels_step):
-//  1. drift: x += w h in K = `substeps` equal parts h = dt / K; a parcel that reaches a side of
+//  1. drift: x += w h in K = `substeps` equal parts h = dt / K (the move step 7 completes); a
+//  parcel that reaches a side of
 //     the domain is reflected with the wall restitution (walls and inlets), wrapped (periodic) or
 //     removed (an outlet, counted with its mass). Model A: w = v^n. Model B sub-cycles the
 //     collisions within the step (the spirit of the paper's eqs. 25-27): w starts at v^n, and
@@ -49,7 +50,17 @@
 //       v^{n+1} = (v^n + dt (D u - grad p / rho_p + A_b)) / (1 + D dt),
 //     so that what the gas gives in drag and pressure, the parcels receive, to round-off (with
 //     m gas steps, u and grad p are their means over the m steps: the drag and pressure the gas
-//     gave, summed over its steps, is linear in them).
+//     gave, summed over its steps, is linear in them);
+//  7. the rest of the move: every parcel goes on by dt (v^{n+1} - w) (w the velocity its drift
+//     used), so that over the step it moved by dt v^{n+1}, the sides met and the guard kept as
+//     in steps 1-2, and the solids fraction theta^{n+1} deposited anew. The gas's pressure
+//     equation of step 5 counted that move: the drag set-up deposits the parcels' volume flux
+//     still to come, sum W V (v^{n+1} - w) / V_cell, as linear in the face's u and grad p (the
+//     paper's particle terms D_f of its pressure equation), so that the liquid makes room for the
+//     volume the parcels really move. With theta^{n+1} from the drift alone (the old velocities'
+//     flux) the liquid answers each step's solids flux a step late: in a sediment whose drag
+//     ties it to the liquid (D dt >> 1) v^{n+1} = -theta / (1 - theta) v^n, an oscillation of
+//     period two steps that grows once theta > 1/2.
 // Model B's step is bounded by the paper's (Cundall & Strack's) dt / K < 2 sqrt(M / k_c) and by
 // the explicit dashpot's dt / K < M / eta_c (bdl_parcels_collision_dt).
 #ifndef BDL_PARCELS_H
@@ -109,7 +120,8 @@ typedef struct bdl_parcels {
     bdl_parcels_def def;
     long capacity;
     bdl_vec3 *start;   ///< position at the start of the step [m]
-    bdl_vec3 *start_v; ///< velocity at the start of the step [m/s]
+    bdl_vec3 *moved;   ///< the drift's velocity beyond v (model B's collisions), then the move
+                       ///< still to come (step 7) [m/s, then m]
     bdl_vec3 *accel;   ///< A_b = g + A_cp over the step [m/s^2]
     double *value;     ///< scratch per parcel
     int32_t *perm;     ///< scratch: survivors of a removal

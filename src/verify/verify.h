@@ -269,7 +269,15 @@ bdl_result bdl_verify_parcel_bimodal(int case_b, double t_end, bdl_verify_bimoda
 /// upright. The interface's axial position y(t) on the column's centre line (the crossing of
 /// half the initial solids fraction), every 20 s up to t_end, against the Ponder-Nakamura-
 /// Kuroda estimate y(t) = (y0 + b / (sin a cos a)) exp(-v0 t sin a / b) - b / (sin a cos a)
-/// (digest of seed 001, sec. 4.2) with v0 the model's hindered speed at phi 0.1.
+/// (digest of seed 001, sec. 4.2) with v0 the model's hindered speed at phi 0.1; and against the
+/// same estimate above the sediment: the clear liquid made under the interface and the
+/// downward-facing wall above the sediment only, dy/dt = -v0 (1 / cos a + S sin a / b), where
+/// the suspension's length S = (y - r y0) / (1 - r), r = phi / theta_sed, keeps phi and the
+/// sediment below it takes the settled solids at model A's mean theta_sed (its 1-D balance under
+/// gravity's axial part): y(t) = r y0 - s' + (y0 (1 - r) + s') exp(-v0 t sin a / (b (1 - r))),
+/// s' = (1 - r) b / (sin a cos a), down to r y0 (all settled). Without the sediment the
+/// estimate falls below the height of the settled solids themselves (8.4 cm at 800 s; the solids
+/// fill at least phi y0 / theta_cs = 8.7 cm of the axis).
 #define BDL_VERIFY_BOYCOTT_SAMPLES 64
 typedef struct bdl_verify_boycott {
     double v0;                                ///< the model's hindered speed [m/s]
@@ -277,7 +285,10 @@ typedef struct bdl_verify_boycott {
     double t[BDL_VERIFY_BOYCOTT_SAMPLES];     ///< [s]
     double y[BDL_VERIFY_BOYCOTT_SAMPLES];     ///< measured [m]
     double y_pnk[BDL_VERIFY_BOYCOTT_SAMPLES]; ///< PNK (vertical: y0 - v0 t) [m]
-    double worst;                             ///< largest |y / y_pnk - 1| from 100 s on
+    double y_sed[BDL_VERIFY_BOYCOTT_SAMPLES]; ///< PNK above the sediment [m]
+    double theta_sed;                         ///< model A's sediment's mean solids fraction
+    double worst;                             ///< largest |y / y_sed - 1| from 100 s on
+    double worst_pnk;                         ///< largest |y / y_pnk - 1| from 100 to 500 s
     double speed_200;                         ///< mean axial speed over the first 200 s [m/s]
     double speed_200_pnk;                     ///< PNK's [m/s]
     long steps;

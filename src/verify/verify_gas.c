@@ -248,7 +248,7 @@ bdl_verify_terminal bdl_verify_terminal_slip(double d, double rho_p, bdl_drag_la
         bdl_coupling_voidage(&k, g, &p);
         if (step == 0)
             memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
-        bdl_coupling_drag_setup(&k, g, &p, &acc, dt);
+        bdl_coupling_drag_setup(&k, g, &p, &acc, NULL, dt);
         if (bdl_gas_step(g, dt) != BDL_OK)
             break;
         ++res.steps;
