@@ -355,7 +355,7 @@ static void test_gas_substeps(void)
 /// solids fraction of the drift alone in the liquid's continuity (the parcels' old velocities)
 /// the liquid answered each step's solids flux a step late, v^{n+1} = -theta / (1 - theta) v^n,
 /// and above theta = 1/2 an oscillation from step to step grew until the run stopped (at step
-/// 28 here: the liquid at some 4 m/s); the flux still to come (parcels.h, step 7) keeps it slow.
+/// 28 here: the liquid near 1 m/s); the flux still to come (parcels.h, step 7) keeps it slow.
 static void test_sediment_at_rest(void)
 {
     bdl_world *w = bdl_test_world(
