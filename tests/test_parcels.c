@@ -358,14 +358,14 @@ static void test_gas_substeps(void)
 /// 28 here: the liquid near 1 m/s); the flux still to come (parcels.h, step 7) keeps it slow.
 static void test_sediment_at_rest(void)
 {
-    bdl_world *w = bdl_test_world(
-        "[run]\nend_time = 10\ndt = 0.005\ngravity = 0 0 -9.81\nseed = 3\n"
-        "[domain]\nmin = 0 0 0\nmax = 0.01 0.0025 0.05\n"
-        "[species glass]\ndiameter = 198e-6\ndensity = 2990\nparcel_particles = 10\n"
-        "[create bed]\ntype = random\nspecies = glass\nvolume_fraction = 0.53\n"
-        "region_min = 0 0 0\nregion_max = 0.01 0.0025 0.02\n"
-        "[gas]\ndensity = 992\nviscosity = 0.0667\ncells = 4 1 20\n"
-        "[coupling]\ndrag = patankar\n");
+    bdl_world *w =
+        bdl_test_world("[run]\nend_time = 10\ndt = 0.005\ngravity = 0 0 -9.81\nseed = 3\n"
+                       "[domain]\nmin = 0 0 0\nmax = 0.01 0.0025 0.05\n"
+                       "[species glass]\ndiameter = 198e-6\ndensity = 2990\nparcel_particles = 10\n"
+                       "[create bed]\ntype = random\nspecies = glass\nvolume_fraction = 0.53\n"
+                       "region_min = 0 0 0\nregion_max = 0.01 0.0025 0.02\n"
+                       "[gas]\ndensity = 992\nviscosity = 0.0667\ncells = 4 1 20\n"
+                       "[coupling]\ndrag = patankar\n");
     CHECK(w != NULL);
     if (!w)
         return;
