@@ -28,3 +28,6 @@ bdl_add_test(test_particles SOURCES test_particles.c LABELS dem)
 # torqued rotation of rigid bodies (docs/theory-rods.md).
 bdl_add_test(test_capsule SOURCES test_capsule.c LABELS dem)
 bdl_add_test(test_rigid SOURCES test_rigid.c LABELS dem)
+# Mesh walls: face, edge and vertex contacts against the analytic plane, line and point; rolling
+# across triangles; a bed in a box of 12 triangles; the STL and OBJ reader on good and bad files.
+bdl_add_test(test_mesh SOURCES test_mesh.c LABELS dem)

@@ -256,7 +256,7 @@ static void test_patches(const char *scene, const blob *b)
     refused(scene, b, L.partner, &zero32, 4, "a pair is listed with its lower particle");
     refused(scene, b, L.start + 4 * (size_t)(L.n / 2), &big, 4, "before they start");
     refused(scene, b, L.start, &seven, 4, "the pairs of particle 0 start at 7");
-    refused(scene, b, L.wall_prim, &prim, 4, "wall contact 0 refers to wall primitive 100000 of");
+    refused(scene, b, L.wall_prim, &prim, 4, "wall contact 0 refers to wall surface 100000 of");
     refused(scene, b, L.species + 4 * 3, &seven, 4, "particle 3 is of species 7; the scene has 1");
     const unsigned char two = 2;
     refused(scene, b, L.touching + 1, &two, 1, "pair 1 has a contact flag of 2");

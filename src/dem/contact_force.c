@@ -381,7 +381,9 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
         int prim = nb->wall_prim[k];
         bdl_vec3 n;
         double gap = bdl_wall_gap(walls, prim, p->pos[i], r, &n);
-        if (gap >= 0.0) {
+        if (gap >= 0.0 || !bdl_wall_tri_counted(walls, nb->wall_prim + nb->wall_start[i],
+                                                nb->wall_start[i + 1] - nb->wall_start[i],
+                                                (int)(k - nb->wall_start[i]), p->pos[i], r)) {
             nb->wall_touching[k] = 0;
             nb->wall_force[k] = bdl_v3_zero();
             nb->wall_history[k] = bdl_v3_zero();
@@ -391,7 +393,7 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
             }
             continue;
         }
-        int wall = walls->prims[prim].wall;
+        int wall = bdl_wall_of(walls, prim);
         double arm = r + 0.5 * gap;
         bdl_contact_geom g;
         g.n = n;

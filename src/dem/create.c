@@ -161,13 +161,20 @@ static int grid_overlaps(const placement_grid *g, const bdl_particles *p, const 
 static int inside_walls(const bdl_walls *walls, const body *b)
 {
     const int tips = b->half_length > 0.0 ? 2 : 1;
-    for (int w = 0; w < walls->prim_count; ++w)
-        for (int k = 0; k < tips; ++k) {
-            bdl_vec3 n;
-            bdl_vec3 x = tips == 1 ? b->x : bdl_v3_madd(b->x, b->e, k ? 1.0 : -1.0);
+    for (int k = 0; k < tips; ++k) {
+        bdl_vec3 n;
+        bdl_vec3 x = tips == 1 ? b->x : bdl_v3_madd(b->x, b->e, k ? 1.0 : -1.0);
+        for (int w = 0; w < walls->prim_count; ++w)
             if (bdl_wall_gap(walls, w, x, b->r, &n) < 0.0)
                 return 0;
+        for (int w = 0; w < walls->wall_count; ++w) {
+            const int32_t *near = NULL;
+            int m = bdl_walls_near(walls, w, x, &near);
+            for (int t = 0; t < m; ++t)
+                if (bdl_wall_tri_gap(walls, near[t], x, b->r, &n, NULL) < 0.0)
+                    return 0;
         }
+    }
     return 1;
 }
 

@@ -99,7 +99,7 @@ double bdl_dem_wall_power(const bdl_particles *p, const bdl_neighbor *nb, const 
     for (long k = 0; k < entries; ++k) {
         if (!nb->wall_touching[k])
             continue;
-        int wall = walls->prims[nb->wall_prim[k]].wall;
+        int wall = bdl_wall_of(walls, nb->wall_prim[k]);
         power += bdl_v3_dot(nb->wall_force[k], walls->velocity[wall]);
     }
     return power;

@@ -396,7 +396,7 @@ static double wall_gap(const bdl_neighbor *nb, const bdl_particles *p, const bdl
                 bdl_wall_gap(walls, w, bdl_v3_sub(p->pos[i], e), p->radius[i], &normal));
 }
 
-/// Visits every wall primitive within the skin of particle i; `out` NULL counts only.
+/// Visits every wall surface within the skin of particle i; `out` NULL counts only.
 static int32_t scan_walls(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
                           long i, int32_t *out)
 {
@@ -406,6 +406,19 @@ static int32_t scan_walls(const bdl_neighbor *nb, const bdl_particles *p, const 
             if (out)
                 out[n] = w;
             ++n;
+        }
+    }
+    for (int w = 0; w < walls->wall_count; ++w) { // mesh walls hold spheres only
+        const int32_t *near = NULL;
+        const int m = bdl_walls_near(walls, w, p->pos[i], &near);
+        for (int t = 0; t < m; ++t) {
+            bdl_vec3 normal;
+            if (bdl_wall_tri_gap(walls, near[t], p->pos[i], p->radius[i], &normal, NULL) <
+                nb->skin) {
+                if (out)
+                    out[n] = walls->prim_count + near[t];
+                ++n;
+            }
         }
     }
     return n;
@@ -623,7 +636,7 @@ static int check_pairs(const bdl_neighbor *nb, long n, char *why, size_t len)
     return 1;
 }
 
-int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, size_t len)
+int bdl_neighbor_check(const bdl_neighbor *nb, long n, long prims, char *why, size_t len)
 {
     if (!check_offsets(nb->start, n, nb->pair_count, "pairs", why, len) ||
         !check_pairs(nb, n, why, len) ||
@@ -631,7 +644,7 @@ int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, siz
         return 0;
     for (long k = 0; k < nb->wall_pair_count; ++k) {
         if (nb->wall_prim[k] < 0 || nb->wall_prim[k] >= prims) {
-            snprintf(why, len, "wall contact %ld refers to wall primitive %d of %d", k,
+            snprintf(why, len, "wall contact %ld refers to wall surface %d of %ld", k,
                      (int)nb->wall_prim[k], prims);
             return 0;
         }

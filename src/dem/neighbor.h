@@ -145,6 +145,6 @@ bdl_result bdl_neighbor_reserve(bdl_neighbor *nb, long particles, long pairs, lo
 /// the counts stored, every pair (i, j) has i < j < n, every wall contact names a primitive in
 /// [0, prims), contact flags are 0 or 1, springs, their stored work and forces are finite. Returns
 /// 1, or 0 with the first violation in `why` ("pair 1234 refers to particle 99999 of 8070").
-int bdl_neighbor_check(const bdl_neighbor *nb, long n, int prims, char *why, size_t len);
+int bdl_neighbor_check(const bdl_neighbor *nb, long n, long prims, char *why, size_t len);
 
 #endif

@@ -134,7 +134,7 @@ static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wa
         }
         return;
     }
-    const int wall = walls->prims[prim].wall;
+    const int wall = bdl_wall_of(walls, prim);
     bdl_contact_geom g = {.n = c.n,
                           .overlap = c.overlap,
                           .m_eff = 1.0 / bdl_rod_inv_mass_at(p, i, c.arm_i, c.n),

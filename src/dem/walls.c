@@ -1,6 +1,9 @@
 #include "dem/walls.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
 
 #define PI 3.14159265358979323846
 
@@ -18,9 +21,319 @@ static void add_plane(bdl_walls *walls, int wall, bdl_vec3 point, bdl_vec3 norma
     p->radius = 0.0;
 }
 
-void bdl_walls_build(const bdl_wall_def *defs, int count, bdl_walls *walls)
+// -------------------------------------------------------------------------------- triangles --
+
+/// Bin index of a point, or -1 outside the bins.
+static long bin_of(const bdl_wall_bins *b, bdl_vec3 x)
 {
-    walls->prim_count = 0;
+    double c[3] = {(x.x - b->lo.x) / b->size, (x.y - b->lo.y) / b->size, (x.z - b->lo.z) / b->size};
+    long index = 0;
+    for (int a = 2; a >= 0; --a) {
+        if (!(c[a] >= 0.0 && c[a] < b->dims[a]))
+            return -1;
+        index = index * b->dims[a] + (long)c[a];
+    }
+    return index;
+}
+
+/// Whether triangle t may come within `reach` of bin (i, j, k): the bin's box grown by reach
+/// overlaps the triangle's box, and the bin's centre lies within reach plus half the bin's
+/// diagonal of the triangle's plane.
+static int bin_touches(const bdl_wall_bins *b, const bdl_wall_tri *t, int i, int j, int k,
+                       double reach)
+{
+    bdl_vec3 centre = bdl_v3(b->lo.x + (i + 0.5) * b->size, b->lo.y + (j + 0.5) * b->size,
+                             b->lo.z + (k + 0.5) * b->size);
+    return fabs(bdl_v3_dot(bdl_v3_sub(centre, t->a), t->normal)) <=
+           reach + 0.8660254037844387 * b->size;
+}
+
+/// Visits the bins a triangle may reach: counts it in b->start (bin + 1) when `cursor` is NULL,
+/// else appends it to each bin's list at the cursor. Returns the bins visited.
+static long bin_triangle(bdl_wall_bins *b, const bdl_wall_tri *t, long index, double reach,
+                         int32_t *cursor)
+{
+    int lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) {
+        double mn = fmin(fmin(bdl_v3_comp(t->a, a), bdl_v3_comp(t->b, a)), bdl_v3_comp(t->c, a));
+        double mx = fmax(fmax(bdl_v3_comp(t->a, a), bdl_v3_comp(t->b, a)), bdl_v3_comp(t->c, a));
+        lo[a] = (int)floor((mn - reach - bdl_v3_comp(b->lo, a)) / b->size);
+        hi[a] = (int)floor((mx + reach - bdl_v3_comp(b->lo, a)) / b->size);
+        lo[a] = lo[a] < 0 ? 0 : lo[a];
+        hi[a] = hi[a] >= b->dims[a] ? b->dims[a] - 1 : hi[a];
+    }
+    long visits = 0;
+    for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; ++i) {
+                if (!bin_touches(b, t, i, j, k, reach))
+                    continue;
+                long bin = ((long)k * b->dims[1] + j) * b->dims[0] + i;
+                if (cursor)
+                    b->tri[cursor[bin]++] = (int32_t)index;
+                else
+                    ++b->start[bin + 1];
+                ++visits;
+            }
+    return visits;
+}
+
+/// Bins of a size no smaller than reach, grown until there are at most 2^22 of them.
+static void size_bins(bdl_wall_bins *b, bdl_vec3 lo, bdl_vec3 hi, double reach)
+{
+    b->lo = bdl_v3(lo.x - reach, lo.y - reach, lo.z - reach);
+    b->size = reach > 0.0 ? reach : 1e-3;
+    for (;;) {
+        double cells = 1.0;
+        for (int a = 0; a < 3; ++a) {
+            b->dims[a] =
+                (int)ceil((bdl_v3_comp(hi, a) - bdl_v3_comp(lo, a) + 2.0 * reach) / b->size) + 1;
+            cells *= b->dims[a];
+        }
+        if (cells <= 4194304.0)
+            return;
+        b->size *= 2.0;
+    }
+}
+
+/// Bins the triangles first .. tri_count - 1 of one mesh wall.
+static bdl_result bin_mesh(bdl_walls *walls, int wall, long first, double reach)
+{
+    bdl_wall_bins *b = &walls->bins[wall];
+    bdl_vec3 lo = walls->tri[first].a, hi = lo;
+    for (long t = first; t < walls->tri_count; ++t)
+        for (int c = 0; c < 3; ++c) {
+            bdl_vec3 v = c == 0 ? walls->tri[t].a : c == 1 ? walls->tri[t].b : walls->tri[t].c;
+            lo = bdl_v3(fmin(lo.x, v.x), fmin(lo.y, v.y), fmin(lo.z, v.z));
+            hi = bdl_v3(fmax(hi.x, v.x), fmax(hi.y, v.y), fmax(hi.z, v.z));
+        }
+    size_bins(b, lo, hi, reach);
+    long bins = (long)b->dims[0] * b->dims[1] * b->dims[2];
+    b->start = calloc((size_t)bins + 1, sizeof *b->start);
+    int32_t *cursor = malloc((size_t)bins * sizeof *cursor);
+    if (!b->start || !cursor) {
+        free(cursor);
+        return BDL_ERR_NOMEM;
+    }
+    long entries = 0;
+    for (long t = first; t < walls->tri_count; ++t)
+        entries += bin_triangle(b, &walls->tri[t], t, reach, NULL);
+    if (entries > INT32_MAX) {
+        free(cursor);
+        return BDL_ERR_NOMEM;
+    }
+    for (long k = 0; k < bins; ++k)
+        b->start[k + 1] += b->start[k];
+    memcpy(cursor, b->start, (size_t)bins * sizeof *cursor);
+    b->tri = malloc((size_t)(entries > 0 ? entries : 1) * sizeof *b->tri);
+    if (b->tri)
+        for (long t = first; t < walls->tri_count; ++t)
+            bin_triangle(b, &walls->tri[t], t, reach, cursor);
+    free(cursor);
+    return b->tri ? BDL_OK : BDL_ERR_NOMEM;
+}
+
+/// Reads, places and bins one mesh wall; its vertex and edge ids follow the earlier meshes'.
+static bdl_result add_mesh(bdl_walls *walls, int wall, const bdl_wall_def *d, double reach,
+                           char *why, size_t why_len)
+{
+    bdl_mesh m;
+    char reason[400];
+    bdl_result r = bdl_mesh_read(d->file, &m, reason, sizeof reason);
+    if (r != BDL_OK) {
+        snprintf(why, why_len, "'%s' %s", d->file, reason);
+        return r;
+    }
+    bdl_mesh_transform(&m, d->scale, d->rotate, d->translate);
+    long first = walls->tri_count, vert0 = 0;
+    for (long t = 0; t < first; ++t)
+        for (int c = 0; c < 3; ++c)
+            vert0 = walls->tri[t].vert[c] + 1 > vert0 ? walls->tri[t].vert[c] + 1 : vert0;
+    bdl_wall_tri *tri = realloc(walls->tri, (size_t)(first + m.tri_count) * sizeof *tri);
+    if (!tri) {
+        bdl_mesh_free(&m);
+        snprintf(why, why_len, "'%s': not enough memory for %ld triangles", d->file, m.tri_count);
+        return BDL_ERR_NOMEM;
+    }
+    walls->tri = tri;
+    for (long t = 0; t < m.tri_count; ++t) {
+        bdl_wall_tri *w = &tri[first + t];
+        w->a = m.vertex[m.tri[t][0]];
+        w->b = m.vertex[m.tri[t][1]];
+        w->c = m.vertex[m.tri[t][2]];
+        w->normal = bdl_v3_normalize(bdl_v3_cross(bdl_v3_sub(w->b, w->a), bdl_v3_sub(w->c, w->a)));
+        w->wall = wall;
+        for (int c = 0; c < 3; ++c) {
+            w->vert[c] = (int32_t)(vert0 + m.tri[t][c]);
+            w->edge[c] = (int32_t)(walls->edge_count + m.tri_edge[t][c]);
+        }
+    }
+    walls->tri_count += m.tri_count;
+    walls->edge_count += m.edge_count;
+    bdl_mesh_free(&m);
+    r = bin_mesh(walls, wall, first, reach);
+    if (r != BDL_OK)
+        snprintf(why, why_len, "'%s': not enough memory to bin its triangles", d->file);
+    return r;
+}
+
+int bdl_walls_near(const bdl_walls *walls, int wall, bdl_vec3 x, const int32_t **list)
+{
+    const bdl_wall_bins *b = &walls->bins[wall];
+    long bin = b->start ? bin_of(b, bdl_v3_sub(x, walls->offset[wall])) : -1;
+    if (bin < 0)
+        return 0;
+    *list = b->tri + b->start[bin];
+    return (int)(b->start[bin + 1] - b->start[bin]);
+}
+
+/// Within this fraction of an edge's length of its end, or of a face's height of its border, a
+/// nearest point is taken to lie on the end or the border: a centre over a shared vertex or edge
+/// then finds that vertex or edge on every triangle that has it, whatever the round-off. (The
+/// distance moves by the square of the shift, far below round-off; the normal by 1e-10 of the
+/// ratio of edge length to distance at most.)
+#define SNAP 1e-10
+
+/// An edge's nearest point at parameter s from its first vertex k to vertex (k + 1) % 3.
+static bdl_vec3 on_edge(const bdl_wall_tri *t, int k, double s, bdl_wall_feature *f)
+{
+    const bdl_vec3 v[3] = {t->a, t->b, t->c};
+    if (s <= SNAP || s >= 1.0 - SNAP) {
+        const int end = s <= SNAP ? k : (k + 1) % 3;
+        *f = (bdl_wall_feature){BDL_FEATURE_VERTEX, t->vert[end]};
+        return v[end];
+    }
+    *f = (bdl_wall_feature){BDL_FEATURE_EDGE, t->edge[k]};
+    return bdl_v3_madd(v[k], bdl_v3_sub(v[(k + 1) % 3], v[k]), s);
+}
+
+/// The point of a triangle nearest p (rest frame), and the feature it lies on (Voronoi regions
+/// of the vertices, then the edges, else the face; see SNAP).
+static bdl_vec3 nearest_on_triangle(const bdl_wall_tri *t, bdl_vec3 p, bdl_wall_feature *f)
+{
+    const bdl_vec3 ab = bdl_v3_sub(t->b, t->a), ac = bdl_v3_sub(t->c, t->a);
+    const bdl_vec3 ap = bdl_v3_sub(p, t->a), bp = bdl_v3_sub(p, t->b), cp = bdl_v3_sub(p, t->c);
+    const double d1 = bdl_v3_dot(ab, ap), d2 = bdl_v3_dot(ac, ap);
+    const double d3 = bdl_v3_dot(ab, bp), d4 = bdl_v3_dot(ac, bp);
+    const double d5 = bdl_v3_dot(ab, cp), d6 = bdl_v3_dot(ac, cp);
+    if (d1 <= 0.0 && d2 <= 0.0)
+        return on_edge(t, 0, 0.0, f);
+    if (d3 >= 0.0 && d4 <= d3)
+        return on_edge(t, 1, 0.0, f);
+    if (d6 >= 0.0 && d5 <= d6)
+        return on_edge(t, 2, 0.0, f);
+    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+        return on_edge(t, 0, d1 / (d1 - d3), f);
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+        return on_edge(t, 1, (d4 - d3) / ((d4 - d3) + (d5 - d6)), f);
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+        return on_edge(t, 2, 1.0 - d2 / (d2 - d6), f);
+    // Inside: barycentric weights va, vb, vc (of a, b, c) over their sum.
+    const double sum = va + vb + vc, wa = va / sum, wb = vb / sum, wc = vc / sum;
+    if (wa <= SNAP) // on edge b-c
+        return on_edge(t, 1, wc / (wb + wc), f);
+    if (wb <= SNAP) // on edge c-a
+        return on_edge(t, 2, wa / (wa + wc), f);
+    if (wc <= SNAP) // on edge a-b
+        return on_edge(t, 0, wb / (wa + wb), f);
+    *f = (bdl_wall_feature){BDL_FEATURE_FACE, 0};
+    return p; // the face: the distance is the plane's (below)
+}
+
+double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double radius, bdl_vec3 *n,
+                        bdl_wall_feature *feature)
+{
+    const bdl_wall_tri *t = &walls->tri[index];
+    const bdl_vec3 p = bdl_v3_sub(x, walls->offset[t->wall]);
+    bdl_wall_feature f;
+    const bdl_vec3 q = nearest_on_triangle(t, p, &f);
+    if (feature)
+        *feature = f.kind == BDL_FEATURE_FACE ? (bdl_wall_feature){f.kind, (int32_t)index} : f;
+    if (f.kind == BDL_FEATURE_FACE) {
+        const double h = bdl_v3_dot(bdl_v3_sub(p, t->a), t->normal);
+        *n = h >= 0.0 ? t->normal : bdl_v3_neg(t->normal);
+        return fabs(h) - radius;
+    }
+    const bdl_vec3 d = bdl_v3_sub(p, q);
+    const double dist = bdl_v3_len(d);
+    *n = dist > 0.0 ? bdl_v3_scale(d, 1.0 / dist) : t->normal;
+    return dist - radius;
+}
+
+/// Whether triangle u lies on or behind the plane of triangle t as a sphere at x sees it (every
+/// corner of u not in front of t's plane, to round-off of the corners' distances).
+static int behind(const bdl_wall_tri *t, const bdl_wall_tri *u, bdl_vec3 x)
+{
+    const bdl_vec3 n =
+        bdl_v3_dot(bdl_v3_sub(x, t->a), t->normal) >= 0.0 ? t->normal : bdl_v3_neg(t->normal);
+    const bdl_vec3 v[3] = {u->a, u->b, u->c};
+    for (int k = 0; k < 3; ++k) {
+        const bdl_vec3 d = bdl_v3_sub(v[k], t->a);
+        if (bdl_v3_dot(d, n) > 1e-12 * bdl_v3_len(d))
+            return 0;
+    }
+    return 1;
+}
+
+/// Whether two touched triangles belong to one patch of overlap: they share a vertex and meet
+/// flat or convex as the sphere sees them (a concave join, as in the corner of a box, parts two
+/// patches that each push).
+static int one_patch(const bdl_walls *walls, int32_t a, int32_t b, bdl_vec3 x)
+{
+    const bdl_wall_tri *s = &walls->tri[a], *t = &walls->tri[b];
+    int shared = 0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            shared |= s->vert[i] == t->vert[j];
+    return shared && behind(s, t, x) && behind(t, s, x);
+}
+
+#define PATCH_MAX 64
+
+int bdl_wall_tri_counted(const bdl_walls *walls, const int32_t *surfaces, int count, int self,
+                         bdl_vec3 x, double radius)
+{
+    const long first = walls->prim_count;
+    if (surfaces[self] < first)
+        return 1;
+    // The touched triangles of the list (the first PATCH_MAX of them), with their gaps.
+    int32_t tri[PATCH_MAX];
+    double gap[PATCH_MAX];
+    int m = 0, me = -1;
+    for (int k = 0; k < count && m < PATCH_MAX; ++k) {
+        bdl_vec3 n;
+        double g;
+        if (surfaces[k] < first ||
+            (g = bdl_wall_tri_gap(walls, surfaces[k] - first, x, radius, &n, NULL)) >= 0.0)
+            continue;
+        me = k == self ? m : me;
+        tri[m] = (int32_t)(surfaces[k] - first);
+        gap[m++] = g;
+    }
+    if (me < 0)
+        return 1; // beyond the first PATCH_MAX touched: counted on its own
+    // Grow self's patch; self counts when no triangle of it is touched deeper (ties: the first).
+    int in[PATCH_MAX] = {0}, queue[PATCH_MAX], head = 0, tail = 0;
+    in[me] = 1;
+    queue[tail++] = me;
+    while (head < tail) {
+        const int a = queue[head++];
+        for (int b = 0; b < m; ++b)
+            if (!in[b] && one_patch(walls, tri[a], tri[b], x)) {
+                if (gap[b] < gap[me] || (gap[b] == gap[me] && b < me))
+                    return 0;
+                in[b] = 1;
+                queue[tail++] = b;
+            }
+    }
+    return 1;
+}
+
+bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bdl_walls *walls,
+                           char *why, size_t why_len)
+{
+    memset(walls, 0, sizeof *walls);
     walls->wall_count = count;
     for (int w = 0; w < count; ++w) {
         const bdl_wall_def *d = &defs[w];
@@ -45,6 +358,8 @@ void bdl_walls_build(const bdl_wall_def *defs, int count, bdl_walls *walls)
             p->radius = d->radius;
             break;
         }
+        case BDL_WALL_MESH:
+            break;
         }
         // A container wall stands still: the run is done in its frame (see world/world.h).
         const int moves = d->motion == BDL_MOTION_VIBRATE && d->frame != BDL_FRAME_CONTAINER;
@@ -55,7 +370,29 @@ void bdl_walls_build(const bdl_wall_def *defs, int count, bdl_walls *walls)
         walls->phase[w] = d->phase;
         walls->start[w] = d->start;
     }
+    for (int w = 0; w < count; ++w) {
+        if (defs[w].kind != BDL_WALL_MESH)
+            continue;
+        bdl_result r = add_mesh(walls, w, &defs[w], reach, why, why_len);
+        if (r != BDL_OK) {
+            bdl_walls_free(walls);
+            return r;
+        }
+    }
     bdl_walls_update(walls, 0.0);
+    return BDL_OK;
+}
+
+void bdl_walls_free(bdl_walls *walls)
+{
+    free(walls->tri);
+    for (int w = 0; w < BDL_MAX_WALLS; ++w) {
+        free(walls->bins[w].start);
+        free(walls->bins[w].tri);
+    }
+    walls->tri = NULL;
+    walls->tri_count = walls->edge_count = 0;
+    memset(walls->bins, 0, sizeof walls->bins);
 }
 
 void bdl_walls_update(bdl_walls *walls, double t)

@@ -4,11 +4,26 @@
 // moves rigidly with its wall: displacement s(t) = A sin(2 pi f (t - start) + phase) d along
 // the unit direction d from the start time on (zero before), velocity s'(t). Contacts treat a wall
 // as a body of infinite mass and radius (a cylinder's inside is concave: 1/R* = 1/r - 1/R_cyl).
+//
+// A mesh wall (dem/mesh.h) adds its triangles as surfaces after the primitives: surface index
+// prim_count + t is triangle t. A triangle is two-sided; a sphere touches it at the point of the
+// triangle nearest its centre, which lies on the face, on one of its edges or at a vertex (the
+// feature), with the normal from that point to the centre. A sphere near a join of triangles
+// overlaps several of them in one patch: touched triangles that share a vertex and meet flat or
+// convex (as the sphere sees them) form a patch, and each patch pushes once, through its
+// deepest contact (bdl_wall_tri_counted); a concave join, as in the corner of a box, parts two
+// patches. So a sphere rolling over a flat mesh feels the plane throughout, a ridge is felt as
+// its edge, a vertex as its point, a corner of a box as its two faces. Triangles are binned per
+// mesh wall in its rest frame for the neighbour search.
 #ifndef BDL_WALLS_H
 #define BDL_WALLS_H
 
+#include <stdint.h>
+
+#include "core/error.h"
 #include "core/vec3.h"
 #include "dem/material.h"
+#include "dem/mesh.h"
 
 #define BDL_MAX_WALLS 16
 #define BDL_MAX_PRIMS (6 * BDL_MAX_WALLS)
@@ -17,7 +32,9 @@
 #define BDL_WALL_KINDS(X)                                                                          \
     X(WALL_PLANE, "plane", "half-space boundary: particles stay on the side `normal` points to")   \
     X(WALL_BOX, "box", "the inside of an axis-aligned box (six planes)")                           \
-    X(WALL_CYLINDER, "cylinder", "the inside of a cylinder around an axis (infinite unless capped)")
+    X(WALL_CYLINDER, "cylinder",                                                                   \
+      "the inside of a cylinder around an axis (infinite unless capped)")                          \
+    X(WALL_MESH, "mesh", "triangles from an STL or OBJ file, touched from either side")
 BDL_CHOICES(bdl_wall_kind, BDL_WALL_KINDS);
 
 /// Prescribed motion of a wall ([wall NAME] motion).
@@ -40,6 +57,10 @@ typedef struct bdl_wall_def {
     bdl_vec3 normal;           ///< plane: unit normal into the particle side; cylinder: unit axis
     bdl_vec3 box_min, box_max; ///< box corners [m]
     double radius;             ///< cylinder radius [m]
+    char file[BDL_PATH_LEN];   ///< mesh: STL or OBJ file
+    double scale;              ///< mesh: factor on the file's coordinates (to metres)
+    bdl_vec3 rotate;           ///< mesh: angles about x, then y, then z [degrees]
+    bdl_vec3 translate;        ///< mesh: shift after scaling and rotating [m]
     bdl_motion_kind motion;
     bdl_vec3 direction;    ///< vibration direction (unit)
     double amplitude;      ///< A [m]
@@ -60,9 +81,42 @@ typedef struct bdl_wall_prim {
     double radius;   ///< cylinder radius [m]
 } bdl_wall_prim;
 
+/// A triangle of a mesh wall, at rest, with the welded ids of its vertices and edges (global
+/// over all meshes: edge k joins vertices k and (k + 1) % 3).
+typedef struct bdl_wall_tri {
+    bdl_vec3 a, b, c;
+    bdl_vec3 normal; ///< unit, (b - a) x (c - a) normalised
+    int32_t wall;
+    int32_t vert[3], edge[3];
+} bdl_wall_tri;
+
+/// What part of a triangle a sphere touches: its face, an edge or a vertex (with its id).
+typedef enum bdl_feature_kind {
+    BDL_FEATURE_FACE,
+    BDL_FEATURE_EDGE,
+    BDL_FEATURE_VERTEX
+} bdl_feature_kind;
+typedef struct bdl_wall_feature {
+    bdl_feature_kind kind;
+    int32_t id; ///< the triangle, the edge or the vertex
+} bdl_wall_feature;
+
+/// The triangles of one mesh wall in cubic bins (rest frame): a bin lists every triangle that
+/// comes within `reach` of it.
+typedef struct bdl_wall_bins {
+    bdl_vec3 lo;
+    double size;
+    int dims[3];
+    int32_t *start; ///< bins + 1 offsets into tri
+    int32_t *tri;
+} bdl_wall_bins;
+
 typedef struct bdl_walls {
     int prim_count;
     bdl_wall_prim prims[BDL_MAX_PRIMS];
+    long tri_count, edge_count;
+    bdl_wall_tri *tri;                 ///< surfaces prim_count .. prim_count + tri_count - 1
+    bdl_wall_bins bins[BDL_MAX_WALLS]; ///< of mesh walls (start NULL for the others)
     int wall_count;
     bdl_motion_kind motion[BDL_MAX_WALLS];
     bdl_vec3 direction[BDL_MAX_WALLS];
@@ -73,8 +127,40 @@ typedef struct bdl_walls {
     bdl_vec3 velocity[BDL_MAX_WALLS]; ///< [m/s]
 } bdl_walls;
 
-/// Expands `count` wall definitions into primitives, at rest at time 0.
-void bdl_walls_build(const bdl_wall_def *defs, int count, bdl_walls *walls);
+/// Expands `count` wall definitions into primitives, at rest at time 0; mesh walls are read
+/// from their files (why: the file and the reason on failure). `reach`: the largest distance at
+/// which a surface is looked for (the largest particle's diameter plus the neighbour skin) [m].
+bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bdl_walls *walls,
+                           char *why, size_t why_len);
+void bdl_walls_free(bdl_walls *walls);
+
+/// Surfaces: primitives and triangles.
+static inline long bdl_wall_surfaces(const bdl_walls *walls)
+{
+    return walls->prim_count + walls->tri_count;
+}
+
+/// The wall a surface belongs to.
+static inline int bdl_wall_of(const bdl_walls *walls, long surface)
+{
+    return surface < walls->prim_count ? walls->prims[surface].wall
+                                       : walls->tri[surface - walls->prim_count].wall;
+}
+
+/// The triangles of mesh wall `wall` that may lie within reach of x (0 and none outside its
+/// bins, or for another kind of wall); *list receives global triangle indices, ascending.
+int bdl_walls_near(const bdl_walls *walls, int wall, bdl_vec3 x, const int32_t **list);
+
+/// Gap and normal as bdl_wall_gap, for triangle t; `feature` (may be NULL) receives what part of
+/// it is nearest x.
+double bdl_wall_tri_gap(const bdl_walls *walls, long t, bdl_vec3 x, double radius, bdl_vec3 *n,
+                        bdl_wall_feature *feature);
+
+/// Whether the touching contact of a sphere (x, radius) with surface `surfaces[self]` counts:
+/// always for a primitive; for a triangle, when no triangle of its patch among the list is
+/// touched deeper (on a tie, when it comes first).
+int bdl_wall_tri_counted(const bdl_walls *walls, const int32_t *surfaces, int count, int self,
+                         bdl_vec3 x, double radius);
 
 /// Sets offset and velocity of every wall at time t [s].
 void bdl_walls_update(bdl_walls *walls, double t);
@@ -84,6 +170,8 @@ void bdl_walls_update(bdl_walls *walls, double t);
 static inline double bdl_wall_gap(const bdl_walls *walls, int prim, bdl_vec3 x, double radius,
                                   bdl_vec3 *n)
 {
+    if (prim >= walls->prim_count)
+        return bdl_wall_tri_gap(walls, prim - walls->prim_count, x, radius, n, NULL);
     const bdl_wall_prim *w = &walls->prims[prim];
     bdl_vec3 q = bdl_v3_sub(x, bdl_v3_add(w->point, walls->offset[w->wall]));
     if (w->kind == BDL_PRIM_PLANE) {
@@ -99,6 +187,8 @@ static inline double bdl_wall_gap(const bdl_walls *walls, int prim, bdl_vec3 x, 
 /// Effective radius of a sphere of radius r touching primitive `prim`.
 static inline double bdl_wall_r_eff(const bdl_walls *walls, int prim, double r)
 {
+    if (prim >= walls->prim_count)
+        return r;
     const bdl_wall_prim *w = &walls->prims[prim];
     if (w->kind == BDL_PRIM_CYLINDER && w->radius > r)
         return r * w->radius / (w->radius - r);

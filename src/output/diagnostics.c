@@ -99,7 +99,7 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         if (ratio > s->overlap)
             s->overlap = ratio;
         const bdl_contact_params *cp =
-            &w->wall_params[w->walls.prims[c.prim].wall * ns + p->species[i]];
+            &w->wall_params[bdl_wall_of(&w->walls, c.prim) * ns + p->species[i]];
         const bdl_spring u = {w->friction ? nb->wall_history[k] : bdl_v3_zero(),
                               nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};
         s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff, u);

@@ -143,7 +143,7 @@ bdl_result bdl_contacts_write(const bdl_world *w, const char *path)
         }
         for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k)
             if (bdl_world_wall_contact(w, i, k, &c))
-                write_contact(f, p, i, -1L - w->walls.prims[c.prim].wall, -1, c.point, c.overlap,
+                write_contact(f, p, i, -1L - bdl_wall_of(&w->walls, c.prim), -1, c.point, c.overlap,
                               c.normal);
     }
     if (ferror(f)) {

@@ -154,6 +154,13 @@ extern const char *const bdl_dia_lighting_labels[]; ///< "front-lit", "back-lit"
     X(SWEEP_UP_DOWN, "up_down", "to sweep_to and back to inlet_velocity")
 BDL_CHOICES(bdl_sweep, BDL_SWEEPS);
 
+/// What becomes of a particle whose centre crosses a face of the domain ([domain] outside).
+#define BDL_OUTSIDES(X)                                                                            \
+    X(OUTSIDE_REMOVE, "remove", "removed and counted (particles_out, mass_out in diagnostics)")    \
+    X(OUTSIDE_STOP, "stop", "the run stops with the particle named (a container that should "      \
+                            "hold every particle)")
+BDL_CHOICES(bdl_outside, BDL_OUTSIDES);
+
 /// A synthetic camera ([camera NAME], kind = dia): images of the particles as a DIA rig sees them,
 /// with the ground truth beside every image (src/dia).
 typedef struct bdl_dia_scene_def {
@@ -256,6 +263,7 @@ typedef struct bdl_scene {
     // [domain]
     bdl_vec3 domain_min, domain_max; ///< [m]
     int periodic[3];                 ///< periodic flags per axis
+    bdl_outside outside;             ///< a particle crossing a non-periodic face
 
     // [contact]
     bdl_normal_law law;

@@ -16,6 +16,7 @@ _Static_assert(sizeof(bdl_damping_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_rolling_model) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_size_dist) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_wall_kind) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_outside) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_motion_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_wall_frame) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
@@ -69,6 +70,7 @@ BDL_CHOICE_WORDS(bdl_dia_projection, BDL_DIA_PROJECTIONS);
 BDL_CHOICE_WORDS(bdl_dia_lighting, BDL_DIA_LIGHTINGS);
 const char *const bdl_dia_lighting_labels[] = {BDL_DIA_LIGHTINGS(BDL_ENUM_LABEL) NULL};
 BDL_CHOICE_WORDS(bdl_sweep, BDL_SWEEPS);
+BDL_CHOICE_WORDS(bdl_outside, BDL_OUTSIDES);
 BDL_CHOICE_WORDS(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
@@ -132,6 +134,10 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "upper corner of the simulation box; larger than min on every axis"},
     {S(DOMAIN), "periodic", .type = BDL_KEY_AXES, "-", IN_SCENE(periodic),
      .doc = "periodic axes: none, or letters among x y z (e.g. \"x y\")"},
+    {S(DOMAIN), "outside", .type = BDL_KEY_ENUM, "-", IN_SCENE(outside),
+     .def = {BDL_OUTSIDE_REMOVE}, .enum_names = bdl_outside_names,
+     .doc = "a particle whose centre crosses a face that is not periodic: remove (removed and "
+            "counted as particles_out and mass_out) or stop (the run stops and names it)"},
 
     // [contact]
     {S(CONTACT), "law", .type = BDL_KEY_ENUM, "-", IN_SCENE(law), .def = {BDL_LAW_HERTZ},
@@ -240,6 +246,16 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(WALL), "radius", NUM, "m", IN_WALL(radius), WHEN("type", BIT(BDL_WALL_CYLINDER)),
      .required = BIT(BDL_WALL_CYLINDER), .default_text = "required for cylinder", GT(0),
      .doc = "cylinder: radius (particles stay inside)"},
+    {S(WALL), "file", .type = BDL_KEY_PATH, "-", IN_WALL(file), WHEN("type", BIT(BDL_WALL_MESH)),
+     .required = BIT(BDL_WALL_MESH), .default_text = "required for mesh",
+     .doc = "mesh: STL (ASCII or binary) or OBJ file of triangles, relative to the scene folder"},
+    {S(WALL), "scale", NUM, "-", IN_WALL(scale), WHEN("type", BIT(BDL_WALL_MESH)), .def = {1},
+     GT(0), .doc = "mesh: factor on the file's coordinates (0.001 for a file in millimetres)"},
+    {S(WALL), "rotate", VEC, "deg", IN_WALL(rotate), WHEN("type", BIT(BDL_WALL_MESH)),
+     .def = {0, 0, 0},
+     .doc = "mesh: rotation after scaling, about x, then y, then z (right hand, degrees)"},
+    {S(WALL), "translate", VEC, "m", IN_WALL(translate), WHEN("type", BIT(BDL_WALL_MESH)),
+     .def = {0, 0, 0}, .doc = "mesh: shift after scaling and rotating"},
     {S(WALL), "motion", .type = BDL_KEY_ENUM, "-", IN_WALL(motion), .def = {BDL_MOTION_NONE},
      .enum_names = bdl_motion_kind_names, .doc = "wall motion"},
     {S(WALL), "direction", VEC, "-", .normalise = 1, IN_WALL(direction), .def = {0, 0, 1},

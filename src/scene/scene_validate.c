@@ -207,11 +207,33 @@ static void check_pair(bdl_scene_parser *p, bdl_scene_section *s)
     }
 }
 
+/// A mesh wall's file is read and checked now, so that a bad mesh is named with its key.
+static void check_mesh(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall_def *wall)
+{
+    for (int k = 0; k < p->scene->species_count; ++k)
+        if (p->scene->species[k].shape == BDL_SHAPE_ROD) {
+            fail_at_key(p, s, "type", 0,
+                        "mesh walls hold spheres only (rods: plane, box or "
+                        "cylinder walls)");
+            return;
+        }
+    bdl_mesh m;
+    char why[400], what[BDL_PATH_LEN + 420];
+    if (bdl_mesh_read(wall->file, &m, why, sizeof why) != BDL_OK) {
+        snprintf(what, sizeof what, "'%s' %s", wall->file, why);
+        fail_at_key(p, s, "file", 0, what);
+        return;
+    }
+    bdl_mesh_free(&m);
+}
+
 static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
 {
     bdl_wall_def *wall = &p->scene->walls[s->index];
     if (wall->kind == BDL_WALL_BOX)
         check_box(p, s, "min", "max");
+    if (wall->kind == BDL_WALL_MESH && !p->failed)
+        check_mesh(p, s, wall);
     if (p->failed || wall->motion != BDL_MOTION_VIBRATE)
         return;
     if (wall->frame == BDL_FRAME_CONTAINER)

@@ -71,12 +71,15 @@ int bdl_world_pair_contact(const bdl_world *w, long i, long j, bdl_world_contact
 }
 
 /// Spheres: the wall's gap at the centre; the relative velocity of the centre.
-static int sphere_wall(const bdl_world *w, long i, int prim, bdl_world_contact *c)
+static int sphere_wall(const bdl_world *w, long i, int32_t k, int prim, bdl_world_contact *c)
 {
     const bdl_particles *p = &w->particles;
     const double r = p->radius[i];
     const double gap = bdl_wall_gap(&w->walls, prim, p->pos[i], r, &c->n);
-    if (gap >= 0.0)
+    const bdl_neighbor *nb = &w->neighbor;
+    if (gap >= 0.0 || !bdl_wall_tri_counted(&w->walls, nb->wall_prim + nb->wall_start[i],
+                                            nb->wall_start[i + 1] - nb->wall_start[i],
+                                            (int)(k - nb->wall_start[i]), p->pos[i], r))
         return 0;
     c->overlap = -gap;
     c->point = bdl_v3_madd(p->pos[i], c->n, -(r + 0.5 * gap));
@@ -102,8 +105,8 @@ static int rod_wall(const bdl_world *w, long i, int prim, bdl_world_contact *c)
 int bdl_world_wall_contact(const bdl_world *w, long i, int32_t k, bdl_world_contact *c)
 {
     const bdl_particles *p = &w->particles;
-    const int prim = w->neighbor.wall_prim[k], wall = w->walls.prims[prim].wall;
-    if (!(p->rods ? rod_wall(w, i, prim, c) : sphere_wall(w, i, prim, c)))
+    const int prim = w->neighbor.wall_prim[k], wall = bdl_wall_of(&w->walls, prim);
+    if (!(p->rods ? rod_wall(w, i, prim, c) : sphere_wall(w, i, k, prim, c)))
         return 0;
     c->r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
     c->v_c = bdl_v3_sub(c->v_c, w->walls.velocity[wall]);

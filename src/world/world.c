@@ -350,7 +350,9 @@ bdl_result bdl_world_step(bdl_world *w)
     w->step++;
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
-    bdl_result r = w->gas ? remove_outflow(w, &max_move2) : BDL_OK;
+    const int outflow = w->outflow[0] | w->outflow[1] | w->outflow[2] | w->outflow[3] |
+                        w->outflow[4] | w->outflow[5];
+    bdl_result r = outflow ? remove_outflow(w, &max_move2) : BDL_OK;
     if (r == BDL_OK)
         r = pour(w);
     if (r != BDL_OK)
@@ -491,7 +493,7 @@ static int overlaps_wall(const bdl_world *w, long i, char *what, size_t len)
         if (bdl_world_wall_contact(w, i, k, &c) &&
             c.overlap > (w->scene.guards.initial_overlap + 1e-12) * p->radius[i]) {
             snprintf(what, len, "initial particle %u overlaps wall '%s' by %.3g%% of its radius",
-                     p->id[i], w->scene.walls[w->walls.prims[c.prim].wall].name,
+                     p->id[i], w->scene.walls[bdl_wall_of(&w->walls, c.prim)].name,
                      100.0 * c.overlap / p->radius[i]);
             return 1;
         }
@@ -541,19 +543,35 @@ static void build_contacts(bdl_world *w)
         w->background_damping[k] = scene->species[k].background_damping;
 }
 
+/// The largest particle's extent (a diameter, or a rod's length) plus the neighbour skin [m].
+static double contact_reach(const bdl_scene *scene, double *skin)
+{
+    double d_max = max_diameter(scene), extent = d_max;
+    for (int k = 0; k < scene->species_count; ++k)
+        extent = fmax(extent, bdl_species_max_extent(&scene->species[k]));
+    *skin = scene->skin * d_max;
+    return extent + *skin;
+}
+
 /// The walls at rest, with live scales of one, and the container whose frame the run is in.
-static void build_walls(bdl_world *w)
+static bdl_result build_walls(bdl_world *w, bdl_scene_error *err)
 {
     const bdl_scene *scene = &w->scene;
     for (int k = 0; k < BDL_MAX_WALLS; ++k)
         w->live.amplitude_scale[k] = w->live.frequency_scale[k] = 1.0;
     w->live.inlet_scale = 1.0;
-    bdl_walls_build(scene->walls, scene->wall_count, &w->walls);
+    double skin;
+    char why[600];
+    bdl_result r = bdl_walls_build(scene->walls, scene->wall_count, contact_reach(scene, &skin),
+                                   &w->walls, why, sizeof why);
+    if (r != BDL_OK)
+        snprintf(err->message, sizeof err->message, "%s: [wall] %s", scene->path, why);
     w->container = -1;
     for (int k = 0; k < scene->wall_count; ++k)
         if (scene->walls[k].motion == BDL_MOTION_VIBRATE &&
             scene->walls[k].frame == BDL_FRAME_CONTAINER)
             w->container = k;
+    return r;
 }
 
 /// The particles of every creator that makes them at the start; `first_id` receives the id of
@@ -591,13 +609,10 @@ static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
 static bdl_result build_neighbor(bdl_world *w, long expected, bdl_scene_error *err)
 {
     const bdl_scene *scene = &w->scene;
-    double d_max = max_diameter(scene), extent = d_max;
-    for (int k = 0; k < scene->species_count; ++k)
-        extent = fmax(extent, bdl_species_max_extent(&scene->species[k]));
-    double skin = scene->skin * d_max;
+    double skin, reach = contact_reach(scene, &skin), extent = reach - skin;
     bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,
-                                     scene->periodic, extent + skin, skin, expected, w->friction,
-                                     w->hertz, w->rolling, w->particles.rods);
+                                     scene->periodic, reach, skin, expected, w->friction, w->hertz,
+                                     w->rolling, w->particles.rods);
     if (r == BDL_ERR_SCENE)
         snprintf(err->message, sizeof err->message,
                  "%s: [domain] periodic axes must be at least 3 x (largest particle + skin) = %g "
@@ -652,17 +667,20 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
     w->parallel_min = BDL_PARALLEL_MIN;
     bdl_rng_seed(&w->rng, scene->seed);
     build_contacts(w);
-    build_walls(w);
+    bdl_result r = build_walls(w, err);
     // What the scene will need, before any of it is allocated.
     bdl_budget_estimate(w, &w->budget);
     long first_id[BDL_MAX_CREATES], expected = 0;
-    bdl_result r = bdl_budget_check(w, &w->budget, err);
+    if (r == BDL_OK)
+        r = bdl_budget_check(w, &w->budget, err);
     if (r == BDL_OK)
         r = create_particles(w, first_id, &expected, err);
     if (r == BDL_OK && scene->parcels.enabled) // no contacts: the gas's pace
         r = bdl_world_parcels_init(w, err);
     else if (r == BDL_OK)
         r = build_contact_solver(w, expected, err);
+    for (int f = 0; f < 6 && !scene->parcels.enabled; ++f) // besides the gas's outlets
+        w->outflow[f] |= !scene->periodic[f / 2] && scene->outside == BDL_OUTSIDE_REMOVE;
     if (r == BDL_OK)
         r = check_initial(w, first_id, err);
     if (r != BDL_OK) {
@@ -681,6 +699,7 @@ void bdl_world_destroy(bdl_world *w)
     bdl_world_gas_free(w);
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);
+    bdl_walls_free(&w->walls);
     bdl_force_work_free(&w->force_work);
     free(w->coordination);
     free(w->drop);

@@ -1,0 +1,390 @@
+// Mesh walls (dem/mesh.h, dem/walls.h): a sphere on a mesh feels what it would feel from the
+// analytic surface it touches.
+//
+// 1. On a face, on an edge and at a vertex: the force equals that of a plane through the touched
+//    point with the normal from it to the centre (that is the plane, line and point contact) to
+//    1e-12 relative; on shared edges and vertices of a flat mesh and at the apex of a pyramid the
+//    contact is counted once; a mesh is touched from either side.
+// 2. Rolling: a sphere carried across a plate of 200 triangles (over faces, edges, diagonals and
+//    vertices) feels the plane's force at every one of 2001 positions (1e-9 relative).
+// 3. A bed settles in a box of 12 triangles (binary STL) as in the primitive box: bed heights
+//    within one diameter.
+// 4. The reader: ASCII STL, binary STL and OBJ of the same square give the same mesh; bad files
+//    (empty, truncated, a huge header, NaN, non-manifold, zero area) are refused with a reason.
+#define _POSIX_C_SOURCE 200809L // mkdtemp, truncate
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "check.h"
+#include "dem/mesh.h"
+#include "scene_util.h"
+
+static char folder[] = "/tmp/bedlam-mesh-XXXXXX";
+static const double radius = 0.002;
+
+typedef struct tri {
+    bdl_vec3 v[3];
+} tri;
+
+static void path_of(char *out, size_t n, const char *name)
+{
+    snprintf(out, n, "%s/%s", folder, name);
+}
+
+static void write_text(const char *name, const char *text)
+{
+    char path[256];
+    path_of(path, sizeof path, name);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (f) {
+        fputs(text, f);
+        fclose(f);
+    }
+}
+
+static void write_stl_ascii(const char *name, const tri *t, int n)
+{
+    char path[256];
+    path_of(path, sizeof path, name);
+    FILE *f = fopen(path, "w");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    fprintf(f, "solid test\n");
+    for (int k = 0; k < n; ++k) {
+        fprintf(f, "  facet normal 0 0 0\n    outer loop\n");
+        for (int c = 0; c < 3; ++c)
+            fprintf(f, "      vertex %.17g %.17g %.17g\n", t[k].v[c].x, t[k].v[c].y, t[k].v[c].z);
+        fprintf(f, "    endloop\n  endfacet\n");
+    }
+    fprintf(f, "endsolid test\n");
+    fclose(f);
+}
+
+static void write_stl_binary(const char *name, const tri *t, int n, uint32_t claimed, long cut)
+{
+    char path[256];
+    path_of(path, sizeof path, name);
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL);
+    if (!f)
+        return;
+    char header[80] = "binary test mesh";
+    fwrite(header, 1, 80, f);
+    fwrite(&claimed, 4, 1, f);
+    for (int k = 0; k < n; ++k) {
+        float rec[12] = {0};
+        for (int c = 0; c < 3; ++c) {
+            rec[3 + 3 * c] = (float)t[k].v[c].x;
+            rec[4 + 3 * c] = (float)t[k].v[c].y;
+            rec[5 + 3 * c] = (float)t[k].v[c].z;
+        }
+        uint16_t attr = 0;
+        fwrite(rec, 4, 12, f);
+        fwrite(&attr, 2, 1, f);
+    }
+    fclose(f);
+    if (cut > 0)
+        CHECK(truncate(path, cut) == 0);
+}
+
+/// A square plate [-h, h]^2 at height z, split into m x m squares of two triangles each (a
+/// corner shared by several squares is computed once, so that it welds).
+static int plate(tri *out, int m, double h, double z)
+{
+    int n = 0;
+    for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+            double x0 = -h + 2.0 * h * i / m, x1 = -h + 2.0 * h * (i + 1) / m;
+            double y0 = -h + 2.0 * h * j / m, y1 = -h + 2.0 * h * (j + 1) / m;
+            bdl_vec3 a = bdl_v3(x0, y0, z), b = bdl_v3(x1, y0, z), c = bdl_v3(x1, y1, z),
+                     d = bdl_v3(x0, y1, z);
+            out[n++] = (tri){{a, b, c}};
+            out[n++] = (tri){{a, c, d}};
+        }
+    return n;
+}
+
+/// The force on one sphere at x (at rest, no gravity) from the wall described by `wall`.
+static bdl_vec3 force_at(const char *wall, bdl_vec3 x)
+{
+    char csv[256], text[2048];
+    path_of(csv, sizeof csv, "one.csv");
+    FILE *f = fopen(csv, "w");
+    fprintf(f, "x,y,z\n%.17g,%.17g,%.17g\n", x.x, x.y, x.z);
+    fclose(f);
+    snprintf(text, sizeof text,
+             "[guards]\ninitial_overlap = 0.5\n[run]\nend_time = 1\ngravity = 0 0 0\n[domain]\nmin "
+             "= -0.05 -0.05 -0.05\n"
+             "max = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\ndensity = 2500\n"
+             "youngs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\nfriction = 0.4\n"
+             "[wall w]\n%s\n[create one]\ntype = file\nspecies = glass\nfile = %s\n",
+             2.0 * radius, wall, csv);
+    bdl_world *w = bdl_test_world("%s", text);
+    bdl_vec3 force = w->particles.load[0].force;
+    bdl_world_destroy(w);
+    return force;
+}
+
+/// The plane through q whose normal points from q to x.
+static bdl_vec3 plane_force(bdl_vec3 q, bdl_vec3 x)
+{
+    bdl_vec3 n = bdl_v3_normalize(bdl_v3_sub(x, q));
+    char wall[256];
+    snprintf(wall, sizeof wall,
+             "type = plane\npoint = %.17g %.17g %.17g\nnormal = %.17g %.17g %.17g", q.x, q.y, q.z,
+             n.x, n.y, n.z);
+    return force_at(wall, x);
+}
+
+static double rel_diff(bdl_vec3 a, bdl_vec3 b)
+{
+    return bdl_v3_len(bdl_v3_sub(a, b)) / bdl_v3_len(b);
+}
+
+static void check_feature(const char *mesh_wall, const char *what, bdl_vec3 q, bdl_vec3 x)
+{
+    bdl_vec3 fm = force_at(mesh_wall, x), fp = plane_force(q, x);
+    double e = rel_diff(fm, fp);
+    printf("| %s | %.4g %.4g %.4g | %.3e |\n", what, fp.x, fp.y, fp.z, e);
+    CHECK_MSG(bdl_v3_len(fp) > 0.0 && e <= 1e-12, "%s: mesh force differs by %.3e", what, e);
+}
+
+static int box_triangles(tri *t);
+
+/// The corners and edges of a box of 12 triangles push as the primitive box's faces do.
+static void box_corner(void)
+{
+    tri t[12];
+    write_stl_ascii("box_ascii.stl", t, box_triangles(t));
+    char mesh[300];
+    snprintf(mesh, sizeof mesh, "type = mesh\nfile = %s/box_ascii.stl", folder);
+    const char *box = "type = box\nmin = 0 0 0\nmax = 0.02 0.02 0.06";
+    const bdl_vec3 at[3] = {bdl_v3(0.0019, 0.0019, 0.0019), bdl_v3(0.0019, 0.011, 0.0019),
+                            bdl_v3(0.013, 0.0185, 0.03)};
+    const char *what[3] = {"box of 12 triangles, in a corner (3 faces)",
+                           "box of 12 triangles, along an edge (2 faces)",
+                           "box of 12 triangles, on a side"};
+    for (int k = 0; k < 3; ++k) {
+        bdl_vec3 fm = force_at(mesh, at[k]), fb = force_at(box, at[k]);
+        double e = rel_diff(fm, fb);
+        printf("| %s | %.4g %.4g %.4g | %.3e |\n", what[k], fb.x, fb.y, fb.z, e);
+        CHECK_MSG(bdl_v3_len(fb) > 0.0 && e <= 1e-12, "%s: differs by %.3e", what[k], e);
+    }
+}
+
+static void features(void)
+{
+    tri t[64];
+    int n = plate(t, 4, 0.02, 0.0);
+    write_stl_ascii("plate.stl", t, n);
+    // A pyramid: apex (0, 0, 0.01) over the square [-0.005, 0.005]^2 at z = 0.
+    bdl_vec3 apex = bdl_v3(0, 0, 0.01), c[4] = {bdl_v3(-0.005, -0.005, 0), bdl_v3(0.005, -0.005, 0),
+                                                bdl_v3(0.005, 0.005, 0), bdl_v3(-0.005, 0.005, 0)};
+    tri pyr[4];
+    for (int k = 0; k < 4; ++k)
+        pyr[k] = (tri){{c[k], c[(k + 1) % 4], apex}};
+    write_stl_ascii("pyramid.stl", pyr, 4);
+    char plate_wall[512], pyramid_wall[512];
+    snprintf(plate_wall, sizeof plate_wall, "type = mesh\nfile = %s/plate.stl", folder);
+    snprintf(pyramid_wall, sizeof pyramid_wall, "type = mesh\nfile = %s/pyramid.stl", folder);
+    const double z = 0.0019, s = 0.01;
+    printf("\nSphere (r = %g m) against a mesh and against the plane through the touched point\n\n"
+           "| where | force of the plane (N) | relative difference |\n|---|---|---|\n",
+           radius);
+    check_feature(plate_wall, "face", bdl_v3(0.003, -0.004, 0), bdl_v3(0.003, -0.004, z));
+    check_feature(plate_wall, "face, from below", bdl_v3(0.003, -0.004, 0),
+                  bdl_v3(0.003, -0.004, -z));
+    check_feature(plate_wall, "on an inner edge", bdl_v3(s, 0.003, 0), bdl_v3(s, 0.003, z));
+    check_feature(plate_wall, "on a diagonal", bdl_v3(0.004, 0.004, 0), bdl_v3(0.004, 0.004, z));
+    check_feature(plate_wall, "on an inner vertex (6 triangles)", bdl_v3(s, s, 0), bdl_v3(s, s, z));
+    check_feature(plate_wall, "beyond the border edge", bdl_v3(0.02, 0.001, 0),
+                  bdl_v3(0.021, 0.001, 0.0015));
+    check_feature(plate_wall, "beyond the corner vertex", bdl_v3(0.02, 0.02, 0),
+                  bdl_v3(0.021, 0.021, 0.0012));
+    check_feature(pyramid_wall, "at a pyramid's apex (4 triangles)", apex,
+                  bdl_v3_add(apex, bdl_v3(0.0002, 0.0001, 0.0018)));
+    // Over the ridge between two faces of the pyramid: the edge from the corner to the apex.
+    bdl_vec3 mid = bdl_v3_scale(bdl_v3_add(c[1], apex), 0.5);
+    bdl_vec3 out = bdl_v3_normalize(bdl_v3(1, -1, 1)); // normal to that edge, between the faces
+    check_feature(pyramid_wall, "on a pyramid's ridge (2 triangles)", mid,
+                  bdl_v3_madd(mid, out, 0.0018));
+    box_corner();
+}
+
+/// A sphere carried across 200 triangles at a fixed overlap feels the plane's force throughout.
+static void rolling(void)
+{
+    tri t[256];
+    int n = plate(t, 10, 0.02, 0.0);
+    write_stl_ascii("fine.stl", t, n);
+    char csv[256], text[2048];
+    path_of(csv, sizeof csv, "roll.csv");
+    FILE *f = fopen(csv, "w");
+    fprintf(f, "x,y,z\n-0.015,-0.0035,0.0019\n");
+    fclose(f);
+    const char *fmt = "[guards]\ninitial_overlap = 0.5\n[run]\nend_time = 1\ngravity = 0 0 "
+                      "0\n[domain]\nmin = -0.05 -0.05 -0.05\n"
+                      "max = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\ndensity = 2500\n"
+                      "youngs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\n"
+                      "friction = 0.4\n[wall w]\n%s\n[create one]\ntype = file\nspecies = glass\n"
+                      "file = %s\n";
+    char mesh[300];
+    snprintf(mesh, sizeof mesh, "type = mesh\nfile = %s/fine.stl", folder);
+    snprintf(text, sizeof text, fmt, 2.0 * radius, mesh, csv);
+    bdl_world *wm = bdl_test_world("%s", text);
+    snprintf(text, sizeof text, fmt, 2.0 * radius, "type = plane\npoint = 0 0 0\nnormal = 0 0 1",
+             csv);
+    bdl_world *wp = bdl_test_world("%s", text);
+    double worst = 0.0;
+    for (int k = 0; k <= 2000; ++k) {
+        double x = -0.015 + 0.03 * k / 2000.0;
+        bdl_vec3 pos = bdl_v3(x, 0.25 * x, 0.0019); // crosses edges, diagonals and a vertex
+        if (k == 1000)
+            pos = bdl_v3(0.0, 0.0, 0.0019); // the vertex at the centre
+        wm->particles.pos[0] = wp->particles.pos[0] = pos;
+        CHECK(bdl_world_compute_forces(wm) == BDL_OK && bdl_world_compute_forces(wp) == BDL_OK);
+        double e = rel_diff(wm->particles.load[0].force, wp->particles.load[0].force);
+        if (e > 1e-9)
+            printf("  at (%.6f, %.6f): mesh %.6g plane %.6g\n", pos.x, pos.y,
+                   wm->particles.load[0].force.z, wp->particles.load[0].force.z);
+        worst = fmax(worst, e);
+    }
+    printf("\nRolling across 200 triangles, 2001 positions: largest relative force difference "
+           "from the plane %.3e\n",
+           worst);
+    CHECK_MSG(worst <= 1e-9, "the force jumps by %.3e at an edge", worst);
+    bdl_world_destroy(wm);
+    bdl_world_destroy(wp);
+}
+
+/// The 12 triangles of the box [0, 0.02] x [0, 0.02] x [0, 0.06].
+static int box_triangles(tri *t)
+{
+    const double L[3] = {0.02, 0.02, 0.06};
+    int n = 0;
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            bdl_vec3 q[4];
+            for (int k = 0; k < 4; ++k) {
+                double c[3];
+                c[axis] = side * L[axis];
+                c[u] = (k == 1 || k == 2) * L[u];
+                c[v] = (k >= 2) * L[v];
+                q[k] = bdl_v3(c[0], c[1], c[2]);
+            }
+            t[n++] = (tri){{q[0], q[1], q[2]}};
+            t[n++] = (tri){{q[0], q[2], q[3]}};
+        }
+    return n;
+}
+
+static double settled_height(const char *wall)
+{
+    bdl_world *w = bdl_test_world(
+        "[run]\nend_time = 1\n[domain]\nmin = -0.001 -0.001 -0.001\nmax = 0.021 0.021 0.061\n"
+        "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\ndensity = 2500\n"
+        "stiffness = 500\nrestitution = 0.3\nfriction = 0.3\n[wall w]\n%s\n"
+        "[create bed]\ntype = random\nspecies = glass\ncount = 120\nregion_min = 0.0015 0.0015 "
+        "0.0015\nregion_max = 0.0185 0.0185 0.0585\n",
+        wall);
+    while (w->time < 0.6)
+        CHECK(bdl_world_step(w) == BDL_OK);
+    double top = 0.0, mean = 0.0;
+    const bdl_particles *p = &w->particles;
+    for (long i = 0; i < p->count; ++i) {
+        top = fmax(top, p->pos[i].z);
+        mean += p->pos[i].z / (double)p->count;
+    }
+    printf("| %s | %ld | %.5f | %.5f |\n", strstr(wall, "mesh") ? "12 triangles" : "box", p->count,
+           mean, top);
+    CHECK(p->count == 120);
+    bdl_world_destroy(w);
+    return mean;
+}
+
+static void box_bed(void)
+{
+    tri t[12];
+    write_stl_binary("box.stl", t, box_triangles(t), 12, 0);
+    char mesh[300];
+    snprintf(mesh, sizeof mesh, "type = mesh\nfile = %s/box.stl", folder);
+    printf("\nA bed of 120 beads (d = 3 mm) settled for 0.6 s\n\n| walls | particles | mean "
+           "height (m) | top (m) |\n|---|---|---|---|\n");
+    double hm = settled_height(mesh);
+    double hb = settled_height("type = box\nmin = 0 0 0\nmax = 0.02 0.02 0.06");
+    CHECK_MSG(fabs(hm - hb) < 0.003, "mean heights %.5f and %.5f differ by more than a diameter",
+              hm, hb);
+}
+
+static void expect_refused(const char *name, const char *reason)
+{
+    char path[256], why[400];
+    path_of(path, sizeof path, name);
+    bdl_mesh m;
+    bdl_result r = bdl_mesh_read(path, &m, why, sizeof why);
+    printf("| %s | %s |\n", name, r == BDL_OK ? "(read)" : why);
+    CHECK_MSG(r != BDL_OK && strstr(why, reason), "%s: expected '%s', got '%s'", name, reason,
+              r == BDL_OK ? "success" : why);
+}
+
+static void reader(void)
+{
+    tri sq[2] = {{{bdl_v3(0, 0, 0), bdl_v3(1, 0, 0), bdl_v3(1, 1, 0)}},
+                 {{bdl_v3(0, 0, 0), bdl_v3(1, 1, 0), bdl_v3(0, 1, 0)}}};
+    write_stl_ascii("square.stl", sq, 2);
+    write_stl_binary("square_bin.stl", sq, 2, 2, 0);
+    write_text("square.obj", "# a square\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    const char *names[3] = {"square.stl", "square_bin.stl", "square.obj"};
+    for (int k = 0; k < 3; ++k) {
+        char path[256], why[400];
+        path_of(path, sizeof path, names[k]);
+        bdl_mesh m;
+        CHECK_MSG(bdl_mesh_read(path, &m, why, sizeof why) == BDL_OK, "%s: %s", names[k], why);
+        CHECK(m.tri_count == 2 && m.vertex_count == 4 && m.edge_count == 5);
+        bdl_mesh_free(&m);
+    }
+    write_text("empty.stl", "");
+    write_stl_binary("truncated.stl", sq, 2, 2, 84 + 50 + 20);
+    write_stl_binary("huge.stl", sq, 2, 100000000u, 0);
+    write_text("nan.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex nan 0 0\n"
+                          "vertex 0 1 0\nendloop\nendfacet\nendsolid x\n");
+    tri fin[3] = {{{bdl_v3(0, 0, 0), bdl_v3(1, 0, 0), bdl_v3(0, 1, 0)}},
+                  {{bdl_v3(0, 0, 0), bdl_v3(1, 0, 0), bdl_v3(0, -1, 0)}},
+                  {{bdl_v3(0, 0, 0), bdl_v3(1, 0, 0), bdl_v3(0, 0, 1)}}};
+    write_stl_ascii("fin.stl", fin, 3);
+    tri flat[1] = {{{bdl_v3(0, 0, 0), bdl_v3(1, 0, 0), bdl_v3(2, 0, 0)}}};
+    write_stl_ascii("flat.stl", flat, 1);
+    write_text("bad.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
+    printf("\nRefused meshes\n\n| file | reason |\n|---|---|\n");
+    expect_refused("empty.stl", "too short");
+    expect_refused("truncated.stl", "truncated");
+    expect_refused("huge.stl", "100000000 triangles");
+    expect_refused("nan.stl", "line 5");
+    expect_refused("fin.stl", "not a manifold");
+    expect_refused("flat.stl", "zero area");
+    expect_refused("bad.obj", "line 3");
+}
+
+int main(void)
+{
+    if (!mkdtemp(folder)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    reader();
+    features();
+    rolling();
+    box_bed();
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", folder);
+    if (system(cmd) != 0)
+        fprintf(stderr, "could not remove %s\n", folder);
+    return bdl_test_summary("test_mesh");
+}
