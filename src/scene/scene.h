@@ -157,8 +157,9 @@ BDL_CHOICES(bdl_sweep, BDL_SWEEPS);
 /// What becomes of a particle whose centre crosses a face of the domain ([domain] outside).
 #define BDL_OUTSIDES(X)                                                                            \
     X(OUTSIDE_REMOVE, "remove", "removed and counted (particles_out, mass_out in diagnostics)")    \
-    X(OUTSIDE_STOP, "stop", "the run stops with the particle named (a container that should "      \
-                            "hold every particle)")
+    X(OUTSIDE_STOP, "stop",                                                                        \
+      "the run stops with the particle named (a container that should "                            \
+      "hold every particle)")
 BDL_CHOICES(bdl_outside, BDL_OUTSIDES);
 
 /// A synthetic camera ([camera NAME], kind = dia): images of the particles as a DIA rig sees them,
