@@ -31,3 +31,5 @@ bdl_add_test(test_rigid SOURCES test_rigid.c LABELS dem)
 # Mesh walls: face, edge and vertex contacts against the analytic plane, line and point; rolling
 # across triangles; a bed in a box of 12 triangles; the STL and OBJ reader on good and bad files.
 bdl_add_test(test_mesh SOURCES test_mesh.c LABELS dem)
+# A rotating drum: the dynamic angle of repose rises with friction and rate; no slip at the wall.
+bdl_add_test(test_drum SOURCES test_drum.c LABELS "dem;slow" TIMEOUT 1800)

@@ -89,3 +89,17 @@ set_tests_properties(cli_limits_fifo PROPERTIES LABELS cli TIMEOUT 20)
 
 # The overflow-checked size arithmetic, the physical memory and the regular-file check.
 bdl_add_test(test_sizes SOURCES test_sizes.c LABELS core TIMEOUT 10)
+
+# Bad mesh files for a [wall] type = mesh: each named with its file and the reason.
+foreach(bad "empty.stl;is empty" "truncated.stl;is truncated: its header claims 2 triangles"
+    "huge_header.stl;has a header that claims 100000000 triangles; at most 4000000"
+    "nan.obj;line 3: 'v' needs three finite numbers"
+    "fin.obj;is not a manifold: the edge from \\(0, 0, 0\\) to \\(1, 0, 0\\) is shared by more than two"
+    "missing.stl;cannot be read: No such file or directory")
+  list(GET bad 0 file)
+  list(GET bad 1 reason)
+  string(REGEX REPLACE "\\..*" "" stem ${file})
+  bdl_limit_expect(cli_limits_mesh_${stem} 2
+    "\\[wall plate\\] file = .*meshes/${file}: '.*meshes/${file}' ${reason}"
+    check ${L}/limits_mesh.ini --set wall.plate.file=meshes/${file})
+endforeach()

@@ -70,7 +70,7 @@ static void print_solids_module(const bdl_world *w)
            w->friction ? "tangential spring with history, Coulomb friction"
                        : "frictionless (no tangential history)",
            w->rolling ? "; rolling resistance" : "");
-    printf("  walls: %d (%d surfaces)%s\n", s->wall_count, w->walls.prim_count,
+    printf("  walls: %d (%ld surfaces)%s\n", s->wall_count, bdl_wall_surfaces(&w->walls),
            bdl_walls_max_speed(&w->walls) > 0 ? ", moving" : "");
 }
 

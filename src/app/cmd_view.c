@@ -111,7 +111,7 @@ static int load_script(viewer *v, const char *path)
 }
 
 /// The live parameter a scene exposes: the gas inlet velocity when the scene has an inlet, else
-/// the first vibrating wall's amplitude.
+/// the first vibrating wall's amplitude or turning wall's rate.
 static void find_live_parameter(viewer *v)
 {
     v->live_key[0] = '\0';
@@ -122,9 +122,9 @@ static void find_live_parameter(viewer *v)
             return;
         }
     for (int k = 0; k < v->scene->wall_count; ++k)
-        if (v->scene->walls[k].motion == BDL_MOTION_VIBRATE) {
-            snprintf(v->live_key, sizeof v->live_key, "wall.%s.amplitude_scale",
-                     v->scene->walls[k].name);
+        if (v->scene->walls[k].motion != BDL_MOTION_NONE) {
+            snprintf(v->live_key, sizeof v->live_key, "wall.%s.%s_scale", v->scene->walls[k].name,
+                     v->scene->walls[k].motion == BDL_MOTION_ROTATE ? "frequency" : "amplitude");
             return;
         }
 }

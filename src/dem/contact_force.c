@@ -398,7 +398,8 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
         bdl_contact_geom g;
         g.n = n;
         g.overlap = -gap;
-        g.v_c = bdl_v3_sub(bdl_v3_sub(p->vel[i], walls->velocity[wall]),
+        g.v_c = bdl_v3_sub(bdl_v3_sub(p->vel[i], bdl_wall_velocity_at(
+                                                     walls, wall, bdl_v3_madd(p->pos[i], n, -arm))),
                            bdl_v3_scale(bdl_v3_cross(p->omega[i], n), arm));
         g.m_eff = 1.0 / p->inv_mass[i];
         g.r_eff = bdl_wall_r_eff(walls, prim, r);

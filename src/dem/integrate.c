@@ -7,6 +7,7 @@
 
 #include "core/parallel.h"
 #include "dem/rigid.h"
+#include "dem/rod_force.h"
 
 /// Kick and drift of the spheres lo..hi-1, swept backwards; returns the largest squared
 /// displacement since the lists were built.
@@ -86,21 +87,39 @@ double bdl_dem_kick_drift_rods(bdl_particles *p, bdl_vec3 gravity, double h, dou
     return max2;
 }
 
+/// Where contact k of particle i touches its wall (the middle of the overlap; with rods where
+/// the force pass puts it).
+static bdl_vec3 wall_contact_point(const bdl_particles *p, const bdl_walls *walls, long i, int prim)
+{
+    if (p->rods) {
+        bdl_rod_contact rc;
+        return bdl_rod_wall_contact_of(p, walls, i, prim, &rc) ? bdl_v3_add(p->pos[i], rc.arm_i)
+                                                               : p->pos[i];
+    }
+    bdl_vec3 n;
+    const double gap = bdl_wall_gap(walls, prim, p->pos[i], p->radius[i], &n);
+    return bdl_v3_madd(p->pos[i], n, -(p->radius[i] + 0.5 * gap));
+}
+
 double bdl_dem_wall_power(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls)
 {
     int moving = 0;
     for (int w = 0; w < walls->wall_count; ++w)
         moving |= walls->motion[w] != BDL_MOTION_NONE;
-    if (!moving)
+    if (!moving || !nb->wall_start)
         return 0.0;
     // Serial in list order: the result is the same for any thread count.
     double power = 0.0;
-    long entries = nb->wall_start ? nb->wall_start[p->count] : 0;
-    for (long k = 0; k < entries; ++k) {
-        if (!nb->wall_touching[k])
-            continue;
-        int wall = bdl_wall_of(walls, nb->wall_prim[k]);
-        power += bdl_v3_dot(nb->wall_force[k], walls->velocity[wall]);
-    }
+    for (long i = 0; i < p->count; ++i)
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+            if (!nb->wall_touching[k])
+                continue;
+            const int prim = nb->wall_prim[k], wall = bdl_wall_of(walls, prim);
+            const bdl_vec3 v =
+                walls->motion[wall] == BDL_MOTION_ROTATE
+                    ? bdl_wall_velocity_at(walls, wall, wall_contact_point(p, walls, i, prim))
+                    : walls->velocity[wall];
+            power += bdl_v3_dot(nb->wall_force[k], v);
+        }
     return power;
 }

@@ -140,7 +140,7 @@ static void wall_contact(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *wa
                           .m_eff = 1.0 / bdl_rod_inv_mass_at(p, i, c.arm_i, c.n),
                           .r_eff = bdl_wall_r_eff(walls, prim, p->radius[i])};
     g.v_c = bdl_v3_sub(bdl_v3_add(p->vel[i], bdl_v3_cross(p->omega[i], c.arm_i)),
-                       walls->velocity[wall]);
+                       bdl_wall_velocity_at(walls, wall, bdl_v3_add(p->pos[i], c.arm_i)));
     const bdl_contact_params *cp = def->wall_params + wall * def->species_count + p->species[i];
     const bdl_spring u = {nb->wall_history[k],
                           nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};

@@ -245,6 +245,10 @@ double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double r
                         bdl_wall_feature *feature)
 {
     const bdl_wall_tri *t = &walls->tri[index];
+    if (walls->gone[t->wall]) {
+        *n = bdl_v3_zero();
+        return INFINITY;
+    }
     const bdl_vec3 p = bdl_v3_sub(x, walls->offset[t->wall]);
     bdl_wall_feature f;
     const bdl_vec3 q = nearest_on_triangle(t, p, &f);
@@ -369,6 +373,14 @@ bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bd
         walls->omega[w] = 2.0 * PI * d->frequency;
         walls->phase[w] = d->phase;
         walls->start[w] = d->start;
+        walls->open_time[w] = d->open_time;
+        if (d->motion == BDL_MOTION_ROTATE) {
+            walls->motion[w] = BDL_MOTION_ROTATE;
+            walls->center[w] = d->rotation_center;
+            walls->turn[w] = bdl_v3_scale(bdl_v3_normalize(d->rotation_axis), d->angular_velocity);
+            walls->radius[w] = d->kind == BDL_WALL_CYLINDER ? d->radius : 0.0;
+            walls->omega[w] = 1.0; // the live factor on the rate (bdl_world_apply_live)
+        }
     }
     for (int w = 0; w < count; ++w) {
         if (defs[w].kind != BDL_WALL_MESH)
@@ -398,7 +410,11 @@ void bdl_walls_free(bdl_walls *walls)
 void bdl_walls_update(bdl_walls *walls, double t)
 {
     for (int w = 0; w < walls->wall_count; ++w) {
-        if (walls->motion[w] == BDL_MOTION_NONE || t < walls->start[w]) {
+        walls->gone[w] = t >= walls->open_time[w];
+        walls->spin[w] = walls->motion[w] == BDL_MOTION_ROTATE && t >= walls->start[w]
+                             ? bdl_v3_scale(walls->turn[w], walls->omega[w])
+                             : bdl_v3_zero();
+        if (walls->motion[w] != BDL_MOTION_VIBRATE || t < walls->start[w]) {
             walls->offset[w] = bdl_v3_zero();
             walls->velocity[w] = bdl_v3_zero();
             continue;
@@ -425,7 +441,9 @@ double bdl_walls_max_speed(const bdl_walls *walls)
 {
     double m = 0.0;
     for (int w = 0; w < walls->wall_count; ++w) {
-        double v = walls->amplitude[w] * walls->omega[w];
+        double v = walls->motion[w] == BDL_MOTION_ROTATE
+                       ? bdl_v3_len(walls->turn[w]) * walls->omega[w] * walls->radius[w]
+                       : walls->amplitude[w] * walls->omega[w];
         if (v > m)
             m = v;
     }

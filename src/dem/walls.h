@@ -5,7 +5,7 @@
 // the unit direction d from the start time on (zero before), velocity s'(t). Contacts treat a wall
 // as a body of infinite mass and radius (a cylinder's inside is concave: 1/R* = 1/r - 1/R_cyl).
 //
-// A mesh wall (dem/mesh.h) adds its triangles as surfaces after the primitives: surface index
+// A mesh wall (core/mesh.h) adds its triangles as surfaces after the primitives: surface index
 // prim_count + t is triangle t. A triangle is two-sided; a sphere touches it at the point of the
 // triangle nearest its centre, which lies on the face, on one of its edges or at a vertex (the
 // feature), with the normal from that point to the centre. A sphere near a join of triangles
@@ -23,7 +23,7 @@
 #include "core/error.h"
 #include "core/vec3.h"
 #include "dem/material.h"
-#include "dem/mesh.h"
+#include "core/mesh.h"
 
 #define BDL_MAX_WALLS 16
 #define BDL_MAX_PRIMS (6 * BDL_MAX_WALLS)
@@ -40,7 +40,10 @@ BDL_CHOICES(bdl_wall_kind, BDL_WALL_KINDS);
 /// Prescribed motion of a wall ([wall NAME] motion).
 #define BDL_MOTIONS(X)                                                                             \
     X(MOTION_NONE, "none", "at rest")                                                              \
-    X(MOTION_VIBRATE, "vibrate", "displacement A sin(2 pi f t + phase) along `direction`")
+    X(MOTION_VIBRATE, "vibrate", "displacement A sin(2 pi f t + phase) along `direction`")         \
+    X(MOTION_ROTATE, "rotate",                                                                     \
+      "turns about an axis at a constant rate; the turn must leave the shape unchanged (a "        \
+      "cylinder about its own axis, a plane across the axis): a drum")
 BDL_CHOICES(bdl_motion_kind, BDL_MOTIONS);
 
 /// The frame a vibrating wall is seen from ([wall NAME] frame).
@@ -61,6 +64,10 @@ typedef struct bdl_wall_def {
     double scale;              ///< mesh: factor on the file's coordinates (to metres)
     bdl_vec3 rotate;           ///< mesh: angles about x, then y, then z [degrees]
     bdl_vec3 translate;        ///< mesh: shift after scaling and rotating [m]
+    double open_time;          ///< simulated time the wall is taken away (INFINITY: never) [s]
+    bdl_vec3 rotation_axis;    ///< rotate: unit axis (right hand)
+    bdl_vec3 rotation_center;  ///< rotate: a point on the axis [m]
+    double angular_velocity;   ///< rotate: rate [rad/s]
     bdl_motion_kind motion;
     bdl_vec3 direction;    ///< vibration direction (unit)
     double amplitude;      ///< A [m]
@@ -121,7 +128,13 @@ typedef struct bdl_walls {
     bdl_motion_kind motion[BDL_MAX_WALLS];
     bdl_vec3 direction[BDL_MAX_WALLS];
     double amplitude[BDL_MAX_WALLS], omega[BDL_MAX_WALLS], phase[BDL_MAX_WALLS];
-    double start[BDL_MAX_WALLS]; ///< time the vibration starts [s]
+    double start[BDL_MAX_WALLS];     ///< time the vibration starts [s]
+    double open_time[BDL_MAX_WALLS]; ///< time the wall is taken away [s]
+    bdl_vec3 center[BDL_MAX_WALLS];  ///< rotate: a point on the axis [m]
+    bdl_vec3 turn[BDL_MAX_WALLS];    ///< rotate: axis times the rate (set, before live scaling)
+    double radius[BDL_MAX_WALLS];    ///< rotate: the cylinder's radius (0 for a plane) [m]
+    bdl_vec3 spin[BDL_MAX_WALLS];    ///< live angular velocity (zero before the start) [rad/s]
+    uint8_t gone[BDL_MAX_WALLS];     ///< taken away (open_time passed): touches nothing
     // Live values, refreshed by bdl_walls_update; scaled by the live amplitude factor of commands.
     bdl_vec3 offset[BDL_MAX_WALLS];   ///< displacement from rest [m]
     bdl_vec3 velocity[BDL_MAX_WALLS]; ///< [m/s]
@@ -162,7 +175,8 @@ double bdl_wall_tri_gap(const bdl_walls *walls, long t, bdl_vec3 x, double radiu
 int bdl_wall_tri_counted(const bdl_walls *walls, const int32_t *surfaces, int count, int self,
                          bdl_vec3 x, double radius);
 
-/// Sets offset and velocity of every wall at time t [s].
+/// Sets offset and velocity of every wall at time t [s], and takes away those whose open_time
+/// has come.
 void bdl_walls_update(bdl_walls *walls, double t);
 
 /// Distance-to-contact query. Returns the gap s = (distance from the surface) - radius along the
@@ -173,6 +187,10 @@ static inline double bdl_wall_gap(const bdl_walls *walls, int prim, bdl_vec3 x, 
     if (prim >= walls->prim_count)
         return bdl_wall_tri_gap(walls, prim - walls->prim_count, x, radius, n, NULL);
     const bdl_wall_prim *w = &walls->prims[prim];
+    if (walls->gone[w->wall]) {
+        *n = bdl_v3_zero();
+        return INFINITY;
+    }
     bdl_vec3 q = bdl_v3_sub(x, bdl_v3_add(w->point, walls->offset[w->wall]));
     if (w->kind == BDL_PRIM_PLANE) {
         *n = w->normal;
@@ -193,6 +211,15 @@ static inline double bdl_wall_r_eff(const bdl_walls *walls, int prim, double r)
     if (w->kind == BDL_PRIM_CYLINDER && w->radius > r)
         return r * w->radius / (w->radius - r);
     return r;
+}
+
+/// Velocity of wall `wall`'s surface at point x: its translation plus its spin about its axis.
+static inline bdl_vec3 bdl_wall_velocity_at(const bdl_walls *walls, int wall, bdl_vec3 x)
+{
+    const bdl_vec3 s = walls->spin[wall];
+    if (s.x == 0.0 && s.y == 0.0 && s.z == 0.0)
+        return walls->velocity[wall];
+    return bdl_v3_add(walls->velocity[wall], bdl_v3_cross(s, bdl_v3_sub(x, walls->center[wall])));
 }
 
 /// Largest displacement any wall has made since the offsets in `ref` were taken [m].

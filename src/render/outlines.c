@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/mesh.h"
 #include "render/renderer_internal.h"
 
 #define CIRCLE_SEGS 64
@@ -143,6 +144,43 @@ static void push_cylinder(bdl_render_outlines *o, bdl_vec3 point, bdl_vec3 axis,
     }
 }
 
+/// A mesh wall's feature edges: its borders and the folds sharper than 20 degrees (a cone reads
+/// by its rim and its outlet, not by every facet). Nothing is drawn when the file cannot be read
+/// (the scene check has named the reason already).
+static void push_mesh(bdl_render_outlines *o, const bdl_wall_def *d)
+{
+    bdl_mesh m;
+    char why[400];
+    if (bdl_mesh_read(d->file, &m, why, sizeof why) != BDL_OK)
+        return;
+    bdl_mesh_transform(&m, d->scale, d->rotate, d->translate);
+    int32_t(*side)[2] = malloc((size_t)m.edge_count * sizeof *side);
+    if (side) {
+        for (long e = 0; e < m.edge_count; ++e)
+            side[e][0] = side[e][1] = -1;
+        for (long t = 0; t < m.tri_count; ++t)
+            for (int k = 0; k < 3; ++k)
+                side[m.tri_edge[t][k]][side[m.tri_edge[t][k]][0] < 0 ? 0 : 1] = (int32_t)t;
+        for (long e = 0; e < m.edge_count; ++e) {
+            int fold = side[e][1] < 0;
+            if (!fold) {
+                bdl_vec3 n[2];
+                for (int k = 0; k < 2; ++k) {
+                    const int32_t *t = m.tri[side[e][k]];
+                    n[k] =
+                        bdl_v3_normalize(bdl_v3_cross(bdl_v3_sub(m.vertex[t[1]], m.vertex[t[0]]),
+                                                      bdl_v3_sub(m.vertex[t[2]], m.vertex[t[0]])));
+                }
+                fold = fabs(bdl_v3_dot(n[0], n[1])) < cos(20.0 * BDL_PI / 180.0);
+            }
+            if (fold)
+                push_segment(o, m.vertex[m.edge[e][0]], m.vertex[m.edge[e][1]]);
+        }
+        free(side);
+    }
+    bdl_mesh_free(&m);
+}
+
 void bdl_render_outlines_build(bdl_renderer *r)
 {
     const bdl_scene *s = &r->scene;
@@ -158,6 +196,8 @@ void bdl_render_outlines_build(bdl_renderer *r)
             push_box(o, d->box_min, d->box_max);
         else if (d->kind == BDL_WALL_PLANE)
             push_plane(o, d->point, d->normal, s->domain_min, s->domain_max);
+        else if (d->kind == BDL_WALL_MESH)
+            push_mesh(o, d);
         else
             push_cylinder(o, d->point, d->normal, d->radius, s->domain_min, s->domain_max);
         o->groups[o->group_count++] = (bdl_line_group){w, first, o->line_count - first};

@@ -227,6 +227,35 @@ static void check_mesh(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall
     bdl_mesh_free(&m);
 }
 
+/// A turning wall must keep its shape: a cylinder about its own axis, a plane across the axis.
+static void check_rotation(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall_def *wall)
+{
+    const bdl_vec3 a = bdl_v3_normalize(wall->rotation_axis);
+    const double tol = 1e-9;
+    const char *why = NULL;
+    if (wall->kind == BDL_WALL_CYLINDER) {
+        const bdl_vec3 q = bdl_v3_sub(wall->rotation_center, wall->point);
+        const double off = bdl_v3_len(bdl_v3_madd(q, wall->normal, -bdl_v3_dot(q, wall->normal)));
+        if (fabs(fabs(bdl_v3_dot(a, wall->normal)) - 1.0) > tol)
+            why = "a cylinder turns about its own axis: rotation_axis must be parallel to axis";
+        else if (off > tol * wall->radius)
+            why = "a cylinder turns about its own axis: rotation_center must lie on it";
+    } else if (wall->kind == BDL_WALL_PLANE) {
+        if (fabs(fabs(bdl_v3_dot(a, wall->normal)) - 1.0) > tol)
+            why = "a plane keeps its place only turning about its normal: rotation_axis must be "
+                  "parallel to normal";
+    } else {
+        why = "only cylinders (about their axis) and planes (about their normal) turn without "
+              "changing shape; boxes and meshes cannot rotate";
+    }
+    if (why)
+        fail_at_key(p, s,
+                    wall->kind == BDL_WALL_CYLINDER || wall->kind == BDL_WALL_PLANE
+                        ? "rotation_axis"
+                        : "motion",
+                    0, why);
+}
+
 static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
 {
     bdl_wall_def *wall = &p->scene->walls[s->index];
@@ -234,6 +263,8 @@ static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
         check_box(p, s, "min", "max");
     if (wall->kind == BDL_WALL_MESH && !p->failed)
         check_mesh(p, s, wall);
+    if (wall->motion == BDL_MOTION_ROTATE && !p->failed)
+        check_rotation(p, s, wall);
     if (p->failed || wall->motion != BDL_MOTION_VIBRATE)
         return;
     if (wall->frame == BDL_FRAME_CONTAINER)

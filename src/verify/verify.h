@@ -18,6 +18,44 @@
 #define BDL_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define BDL_PRINTF(a, b)
+/// Discharge of a flat-bottomed silo through a central orifice (scenes/silo_discharge.ini):
+/// `count` glass beads of d = 3 mm in a cylinder 72 mm across settle on a floor (a mesh annulus
+/// written to a temporary OBJ file) held shut by a plug taken away at t_open = 0.5 s. The bulk
+/// density rho_b is measured in the settled bed at t_open (centres in r < 25 mm, 10 < z < 40 mm);
+/// the rate W is the least-squares slope of the mass out (removed 30 mm below the floor) over
+/// [t_open + 0.2 s, t_end]; Beverloo's W = C rho_b sqrt(g) (D - k d)^2.5 with C = 0.58, k = 1.5
+/// (Beverloo, Leniger & van de Velde 1961; Nedderman 1992, ch. 10).
+typedef struct bdl_verify_silo {
+    double orifice;        ///< D [m]
+    double bulk_density;   ///< rho_b [kg/m^3]
+    double rate;           ///< W measured [kg/s]
+    double rate_beverloo;  ///< W predicted [kg/s]
+    long out;              ///< beads removed
+    long left;             ///< beads in the silo at the end
+    double mass_imbalance; ///< |mass in + mass out - mass at start| / mass at start
+    long steps;
+} bdl_verify_silo;
+bdl_result bdl_verify_silo_discharge(double orifice, long count, double t_end,
+                                     bdl_verify_silo *out);
+
+/// A rotating drum (scenes/rotating_drum.ini): 2600 glass beads of 3 mm fill 39 % of a drum of
+/// radius 50 mm, periodic along its axis (y, 20 mm), turning at `omega` [rad/s] from 0.3 s. The
+/// dynamic angle of repose is the slope of a line fitted to the free surface (the highest centre
+/// in each 6 mm bin of x across the middle 50 mm) every 0.1 s from 1.2 to 2.5 s; the wall drives
+/// the bed without slip when the beads touching the drum meet it at its speed: the tangential
+/// velocity of their surface at the wall (centre plus spin) over omega R, in the drum's bottom
+/// quarter. The drum's wall
+/// friction is 1.0 (a rough drum; at 0.5 the bed slips back at 3 rad/s).
+typedef struct bdl_verify_drum {
+    double friction, omega; ///< of the beads and the drum; [rad/s]
+    double angle;           ///< mean dynamic angle of repose [degrees]
+    double angle_sd;        ///< its standard deviation over the samples [degrees]
+    double carried;         ///< mean speed ratio of the beads touching the drum's bottom quarter
+    int samples;
+    long steps;
+} bdl_verify_drum;
+bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum *out);
+
 #endif
 
 /// One run of a case at one refinement.
@@ -300,5 +338,43 @@ double bdl_verify_solids_above(const bdl_world *w, double z);
 /// Height of the highest crossing of the horizontally averaged solids fraction through `level`,
 /// from the top down, interpolated between cell centres [m].
 double bdl_verify_parcel_interface(const bdl_world *w, double level);
+
+/// Discharge of a flat-bottomed silo through a central orifice (scenes/silo_discharge.ini):
+/// `count` glass beads of d = 3 mm in a cylinder 72 mm across settle on a floor (a mesh annulus
+/// written to a temporary OBJ file) held shut by a plug taken away at t_open = 0.5 s. The bulk
+/// density rho_b is measured in the settled bed at t_open (centres in r < 25 mm, 10 < z < 40 mm);
+/// the rate W is the least-squares slope of the mass out (removed 30 mm below the floor) over
+/// [t_open + 0.2 s, t_end]; Beverloo's W = C rho_b sqrt(g) (D - k d)^2.5 with C = 0.58, k = 1.5
+/// (Beverloo, Leniger & van de Velde 1961; Nedderman 1992, ch. 10).
+typedef struct bdl_verify_silo {
+    double orifice;        ///< D [m]
+    double bulk_density;   ///< rho_b [kg/m^3]
+    double rate;           ///< W measured [kg/s]
+    double rate_beverloo;  ///< W predicted [kg/s]
+    long out;              ///< beads removed
+    long left;             ///< beads in the silo at the end
+    double mass_imbalance; ///< |mass in + mass out - mass at start| / mass at start
+    long steps;
+} bdl_verify_silo;
+bdl_result bdl_verify_silo_discharge(double orifice, long count, double t_end,
+                                     bdl_verify_silo *out);
+
+/// A rotating drum (scenes/rotating_drum.ini): 2600 glass beads of 3 mm fill 39 % of a drum of
+/// radius 50 mm, periodic along its axis (y, 20 mm), turning at `omega` [rad/s] from 0.3 s. The
+/// dynamic angle of repose is the slope of a line fitted to the free surface (the highest centre
+/// in each 6 mm bin of x across the middle 50 mm) every 0.1 s from 1.2 to 2.5 s; the wall drives
+/// the bed without slip when the beads touching the drum meet it at its speed: the tangential
+/// velocity of their surface at the wall (centre plus spin) over omega R, in the drum's bottom
+/// quarter. The drum's wall
+/// friction is 1.0 (a rough drum; at 0.5 the bed slips back at 3 rad/s).
+typedef struct bdl_verify_drum {
+    double friction, omega; ///< of the beads and the drum; [rad/s]
+    double angle;           ///< mean dynamic angle of repose [degrees]
+    double angle_sd;        ///< its standard deviation over the samples [degrees]
+    double carried;         ///< mean speed ratio of the beads touching the drum's bottom quarter
+    int samples;
+    long steps;
+} bdl_verify_drum;
+bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum *out);
 
 #endif

@@ -109,7 +109,7 @@ int bdl_world_wall_contact(const bdl_world *w, long i, int32_t k, bdl_world_cont
     if (!(p->rods ? rod_wall(w, i, prim, c) : sphere_wall(w, i, k, prim, c)))
         return 0;
     c->r_eff = bdl_wall_r_eff(&w->walls, prim, p->radius[i]);
-    c->v_c = bdl_v3_sub(c->v_c, w->walls.velocity[wall]);
+    c->v_c = bdl_v3_sub(c->v_c, bdl_wall_velocity_at(&w->walls, wall, c->point));
     const double m_eff =
         p->rods ? 1.0 / bdl_rod_inv_mass_at(p, i, bdl_v3_sub(c->point, p->pos[i]), c->n)
                 : 1.0 / p->inv_mass[i];

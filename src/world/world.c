@@ -163,6 +163,8 @@ void bdl_world_apply_live(bdl_world *w)
                            w->live.inlet_scale * w->scene.gas.jet_velocity);
     for (int k = 0; k < w->scene.wall_count; ++k) {
         const bdl_wall_def *d = &w->scene.walls[k];
+        if (d->motion == BDL_MOTION_ROTATE) // the rate, as a factor on the scene's
+            w->walls.omega[k] = w->live.frequency_scale[k];
         if (d->motion != BDL_MOTION_VIBRATE || d->frame == BDL_FRAME_CONTAINER)
             continue; // a container wall's motion is read by bdl_world_gravity
         w->walls.amplitude[k] = d->amplitude * w->live.amplitude_scale[k];

@@ -1,4 +1,5 @@
-// bedlam — triangle meshes for walls: STL (ASCII and binary) and OBJ files, welded and checked.
+// bedlam — triangle meshes (for walls, and their outlines in the renderer): STL (ASCII and binary)
+// and OBJ files, welded and checked.
 //
 // A mesh is read as a triangle soup, then welded: vertices with bitwise equal coordinates become
 // one (CAD exporters write a shared corner with the same digits in every facet), and every edge

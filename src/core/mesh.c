@@ -1,4 +1,4 @@
-#include "dem/mesh.h"
+#include "core/mesh.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -139,13 +139,15 @@ static int read_stl_ascii(const char *text, size_t size, soup *s, char *why, siz
 
 static int read_stl_binary(const unsigned char *data, size_t size, soup *s, char *why, size_t len)
 {
+    if (size == 0)
+        return fail(why, len, "is empty");
     if (size < 84)
         return fail(why, len, "is %zu bytes, too short for a binary STL (84-byte header)", size);
     uint32_t n = (uint32_t)data[80] | (uint32_t)data[81] << 8 | (uint32_t)data[82] << 16 |
                  (uint32_t)data[83] << 24;
     if ((long)n > BDL_MESH_MAX_TRIANGLES)
-        return fail(why, len, "header claims %lu triangles; at most %ld are read", (unsigned long)n,
-                    BDL_MESH_MAX_TRIANGLES);
+        return fail(why, len, "has a header that claims %lu triangles; at most %ld are read",
+                    (unsigned long)n, BDL_MESH_MAX_TRIANGLES);
     size_t need = 84 + 50 * (size_t)n;
     if (size < need)
         return fail(why, len,
