@@ -153,3 +153,11 @@ bdl_cli_expect(cli_parcels_display 2 "display = point" check ${PROJECT_SOURCE_DI
 bdl_cli_expect(cli_bench_parcels_help 0 "parcel updates per second" bench parcels --help)
 bdl_cli_expect(cli_bench_parcels 0 "speed-up 2 vs 1 threads: [0-9.]+x; the state after the window is the same bit for bit" bench parcels ${PROJECT_SOURCE_DIR}/scenes/parcels_settling.ini --warmup 0.02 --time 0.02)
 bdl_cli_expect(cli_bench_parcels_no_parcels 2 "has no parcels" bench parcels ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --time 0.01)
+
+# With no display `bedlam view` stops at once (exit 2) and says how to get frames headless,
+# instead of running unseen on SDL's offscreen driver.
+add_test(NAME cli_view_no_display COMMAND ${CMAKE_COMMAND} -DEXPECT=2
+  "-DCONTAINS=no display: neither X11 \\(DISPLAY\\) nor Wayland"
+  "-DCMD=${CMAKE_COMMAND};-E;env;--unset=DISPLAY;--unset=WAYLAND_DISPLAY;--unset=SDL_VIDEODRIVER;$<TARGET_FILE:bedlam>;view;${CMAKE_SOURCE_DIR}/scenes/bouncing_ball.ini"
+  -P ${BDL_EXPECT})
+set_tests_properties(cli_view_no_display PROPERTIES LABELS cli TIMEOUT 5)

@@ -48,10 +48,10 @@ set key top right
 set arrow from 5, graph 0 to 5, graph 1 nohead dt 2 lc rgb '#808080'
 do for [c in 'bed_height probe_pressure_drop'] {
   set title (c eq 'bed_height' ? 'bed height' : 'pressure drop between the probes at 5 and 35 mm')
-  stats '$vm/analysis/'.c.'/spectrum.csv' every ::1 using 2 nooutput name 'V'
-  stats '$gm/analysis/'.c.'/spectrum.csv' every ::1 using 2 nooutput name 'G'
-  plot '$vm/analysis/'.c.'/spectrum.csv' every ::1 using 1:(\$2/V_max) with lines lw 2 lc rgb '#c03030' title 'vibrated (5 Hz)', \
-       '$gm/analysis/'.c.'/spectrum.csv' every ::1 using 1:(\$2/G_max) with lines lw 2 lc rgb '#3060c0' title 'gas only'
+  stats '$vm/analysis/'.c.'/spectrum_'.c.'.csv' every ::1 using 2 nooutput name 'V'
+  stats '$gm/analysis/'.c.'/spectrum_'.c.'.csv' every ::1 using 2 nooutput name 'G'
+  plot '$vm/analysis/'.c.'/spectrum_'.c.'.csv' every ::1 using 1:(\$2/V_max) with lines lw 2 lc rgb '#c03030' title 'vibrated (5 Hz)', \
+       '$gm/analysis/'.c.'/spectrum_'.c.'.csv' every ::1 using 1:(\$2/G_max) with lines lw 2 lc rgb '#3060c0' title 'gas only'
 }
 unset multiplot
 GP

@@ -23,7 +23,7 @@ typedef struct spectrum {
 static bdl_result write_spectrum(const bdl_analyze_opts *o, const spectrum *s)
 {
     char path[1300];
-    snprintf(path, sizeof path, "%s/spectrum.csv", o->out);
+    snprintf(path, sizeof path, "%s/spectrum_%s.csv", o->out, o->column);
     bdl_atomic_file af;
     if (bdl_atomic_open_csv(&af, path, "frequency,power") != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
@@ -36,16 +36,18 @@ static bdl_result write_spectrum(const bdl_analyze_opts *o, const spectrum *s)
 static void plot_spectrum(const bdl_analyze_opts *o, const spectrum *s)
 {
     char path[1300];
-    snprintf(path, sizeof path, "%s/spectrum.gp", o->out);
-    bdl_analyze_plot(path,
-                     "set terminal pngcairo size 900,500 font 'DejaVu Sans,11'\n"
-                     "set output '%s/spectrum.png'\nset datafile separator ','\n"
-                     "set xlabel 'frequency [Hz]'\nset ylabel 'power (|FFT|^2, Hamming window)'\n"
-                     "set xrange [0:%g]\nset grid\nset key top right\n"
-                     "set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb '#c03030'\n"
-                     "plot '%s/spectrum.csv' every ::1 using 1:2 with lines lw 2 lc rgb '#3060c0' "
-                     "title '%s, %.1f-%.1f s; peak %.2f Hz' noenhanced\n",
-                     o->out, o->fmax, s->peak, s->peak, o->out, o->column, s->t0, s->t1, s->peak);
+    snprintf(path, sizeof path, "%s/spectrum_%s.gp", o->out, o->column);
+    bdl_analyze_plot(
+        path,
+        "set terminal pngcairo size 900,500 font 'DejaVu Sans,11'\n"
+        "set output '%s/spectrum_%s.png'\nset datafile separator ','\n"
+        "set xlabel 'frequency [Hz]'\nset ylabel 'power (|FFT|^2, Hamming window)'\n"
+        "set xrange [0:%g]\nset grid\nset key top right\n"
+        "set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb '#c03030'\n"
+        "plot '%s/spectrum_%s.csv' every ::1 using 1:2 with lines lw 2 lc rgb '#3060c0' "
+        "title '%s, %.1f-%.1f s; peak %.2f Hz' noenhanced\n",
+        o->out, o->column, o->fmax, s->peak, s->peak, o->out, o->column, o->column, s->t0, s->t1,
+        s->peak);
 }
 
 bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o)

@@ -40,7 +40,7 @@ static const char usage_first[] =
     "\n"
     "spectrum: the power spectrum of a column (default pressure_drop) between --from and --to\n"
     "(default: the whole run), with a Hamming window, and its dominant frequency between --fmin\n"
-    "and --fmax (default 0.2 and 20 Hz). Writes spectrum.csv and spectrum.png.\n"
+    "and --fmax (default 0.2 and 20 Hz). Writes spectrum_COLUMN.csv and spectrum_COLUMN.png.\n"
     "\n"
     "mean: the time average of a column between --from and --to, its standard deviation, and the\n"
     "standard error of the average from 10 consecutive blocks (which allows for correlation in\n"

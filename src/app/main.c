@@ -23,7 +23,9 @@ static const char usage[] =
     "                observed orders, tables and plots in docs/validation/\n"
     "  calibrate DIR fit the 2D-to-3D solids fraction of synthetic camera images ([camera NAME]\n"
     "                kind = dia) against their truth; apply a fit to any images\n"
-    "  analyze WHAT RUN  a finished run's pressure-drop sweep (U_mf) or spectrum of a column\n"
+    "  analyze WHAT RUN  a finished run's outputs: sweep (U_mf), spectrum, mean, phase and\n"
+    "                profile of a column, contact networks, dia images, rod orientation,\n"
+    "                ptv tracks (bedlam analyze --help)\n"
     "\n"
     "Every command takes --help. Exit codes: 0 success, 1 run-time failure (instability,\n"
     "interrupted), 2 bad input (scene, options).\n"
@@ -43,6 +45,7 @@ int bdl_exit_code(bdl_result r)
     case BDL_ERR_ARGS:
     case BDL_ERR_OUTPUT_DIR:
     case BDL_ERR_CHECKPOINT:
+    case BDL_ERR_NO_DISPLAY:
         return 2;
     default:
         return 1;

@@ -20,7 +20,8 @@
     X(ERR_INTERRUPTED, "run interrupted")                                                          \
     X(ERR_NO_RESULT, "the data do not determine a result")                                         \
     X(ERR_TOLERANCE, "a verified result is outside its tolerance")                                 \
-    X(ERR_GL, "no OpenGL context (display, driver or library missing)")
+    X(ERR_GL, "no OpenGL context (display, driver or library missing)")                            \
+    X(ERR_NO_DISPLAY, "no display to open a window on")
 
 typedef enum bdl_result {
 #define BDL_X_ENUM(name, text) BDL_##name,

@@ -90,6 +90,7 @@ bdl_result bdl_context_create(const bdl_context_def *def, bdl_context **out, cha
         return BDL_ERR_GL;
     }
     char first[512] = "";
+    bdl_result last = BDL_ERR_GL;
     for (int k = 0; k < 2 && order[k] != BDL_GL_AUTO; ++k) {
         bdl_context *c = calloc(1, sizeof *c);
         if (!c)
@@ -97,7 +98,7 @@ bdl_result bdl_context_create(const bdl_context_def *def, bdl_context **out, cha
         c->backend = order[k];
         c->width = def->width;
         c->height = def->height;
-        bdl_result r = open_backend(c, def, why, why_len);
+        bdl_result r = last = open_backend(c, def, why, why_len);
         if (r == BDL_OK) {
             *out = c;
             return BDL_OK;
@@ -112,7 +113,7 @@ bdl_result bdl_context_create(const bdl_context_def *def, bdl_context **out, cha
             snprintf(why, why_len, "%s; %s", first, second);
         }
     }
-    return BDL_ERR_GL;
+    return last;
 }
 
 void bdl_context_destroy(bdl_context *c)

@@ -40,9 +40,22 @@ bdl_result bdl_context_open_sdl(bdl_context *c, const bdl_context_def *def, char
                  "sdl: no display (%s); headless frames need no display: use "
                  "`bedlam run` with [output] frame_interval",
                  SDL_GetError());
-        return BDL_ERR_GL;
+        return BDL_ERR_NO_DISPLAY;
     }
     c->close = close_sdl;
+    // With no window system SDL falls back to drivers that show nothing ("offscreen", "dummy"):
+    // a viewer would run unseen. Only a driver asked for by name is taken as meant.
+    const char *driver = SDL_GetCurrentVideoDriver();
+    if (driver && !getenv("SDL_VIDEODRIVER") &&
+        (!strcmp(driver, "offscreen") || !strcmp(driver, "dummy"))) {
+        snprintf(why, why_len,
+                 "no display: neither X11 (DISPLAY) nor Wayland (WAYLAND_DISPLAY) can be reached, "
+                 "and SDL's '%s' driver would show nothing. Run where a display is, or write "
+                 "frames headless with `bedlam run` and [output] frame_interval "
+                 "(SDL_VIDEODRIVER=%s forces the invisible window)",
+                 driver, driver);
+        return BDL_ERR_NO_DISPLAY;
+    }
     SDL_GL_SetAttribute(SDL_GL_CONTEXT_PROFILE_MASK, SDL_GL_CONTEXT_PROFILE_CORE);
     SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
     SDL_GL_SetAttribute(SDL_GL_CONTEXT_MINOR_VERSION, 3);

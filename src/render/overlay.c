@@ -221,24 +221,77 @@ static void legend(bdl_renderer *r, bdl_color_mode mode, int width, int height)
          y - box * (float)count - 1.6f * lh, title, text_color);
 }
 
+#define HELP_COLUMNS 6
+
+/// The cells of one help line: the text between runs of two or more spaces (a key, what it
+/// does, the next key, ...). Returns their number; each cell is copied into cells[k].
+static int help_cells(const char *line, size_t n, char cells[HELP_COLUMNS][128])
+{
+    int count = 0;
+    size_t k = 0;
+    while (k < n && count < HELP_COLUMNS) {
+        while (k < n && line[k] == ' ')
+            ++k;
+        size_t start = k;
+        while (k < n && !(line[k] == ' ' && (k + 1 >= n || line[k + 1] == ' ')))
+            ++k;
+        if (k > start)
+            snprintf(cells[count++], 128, "%.*s", (int)(k - start), line + start);
+    }
+    return count;
+}
+
+/// The viewer's key help, centred: one line of text per line of `help`, its cells set in
+/// columns as wide as their widest entry (the font is proportional, so spaces cannot align); the
+/// last cell of a line with fewer cells than the others spans the columns left.
 static void help_box(bdl_render_overlay *o, const char *help, int width, int height)
 {
-    float lh = bdl_font_line_height(o->font);
-    int lines = 1;
-    float w = 0.0f;
-    char line[256];
-    for (const char *s = help; *s;) {
+    const float lh = bdl_font_line_height(o->font), gap = 18.0f;
+    float column[HELP_COLUMNS] = {0}, span = 0.0f;
+    char cells[HELP_COLUMNS][128];
+    int lines = 0, most = 0;
+    for (const char *s = help; *s; ++lines) {
         const char *e = strchr(s, '\n');
-        size_t n = e ? (size_t)(e - s) : strlen(s);
-        snprintf(line, sizeof line, "%.*s", (int)(n < 255 ? n : 255), s);
-        w = fmaxf(w, text_width(o, line));
+        const size_t n = e ? (size_t)(e - s) : strlen(s);
+        most = help_cells(s, n, cells) > most ? help_cells(s, n, cells) : most;
         s += n + (e != NULL);
-        lines += e != NULL;
     }
-    float x0 = 0.5f * ((float)width - w) - 16.0f, y0 = 0.5f * ((float)height - lh * lines) - 12.0f;
+    for (int pass = 0; pass < 2; ++pass) // the columns, then what the spanning cells need
+        for (const char *s = help; *s;) {
+            const char *e = strchr(s, '\n');
+            const size_t n = e ? (size_t)(e - s) : strlen(s);
+            const int m = help_cells(s, n, cells);
+            float x = 0.0f;
+            for (int c = 0; c < m; ++c) {
+                const int spans = c == m - 1 && m < most;
+                if (pass == 0 && !spans)
+                    column[c] = fmaxf(column[c], text_width(o, cells[c]));
+                if (pass == 1 && spans)
+                    span = fmaxf(span, x + text_width(o, cells[c]));
+                x += column[c] + gap;
+            }
+            s += n + (e != NULL);
+        }
+    float w = -gap;
+    for (int c = 0; c < most; ++c)
+        w += column[c] + gap;
+    w = fmaxf(w, span);
+    const float x0 = 0.5f * ((float)width - w) - 16.0f,
+                y0 = 0.5f * ((float)height - lh * (float)lines) - 12.0f;
     static const uint8_t shade[4] = {10, 12, 16, 215};
-    rect(o, x0, y0, x0 + w + 32.0f, y0 + lh * lines + 24.0f, shade);
-    text(o, x0 + 16.0f, y0 + 12.0f, help, text_color);
+    rect(o, x0, y0, x0 + w + 32.0f, y0 + lh * (float)lines + 24.0f, shade);
+    float y = y0 + 12.0f;
+    for (const char *s = help; *s; y += lh) {
+        const char *e = strchr(s, '\n');
+        const size_t n = e ? (size_t)(e - s) : strlen(s);
+        const int m = help_cells(s, n, cells);
+        float x = x0 + 16.0f;
+        for (int c = 0; c < m; ++c) {
+            text(o, x, y, cells[c], text_color);
+            x += column[c] + gap;
+        }
+        s += n + (e != NULL);
+    }
 }
 
 /// Top left: time, step and particle count, the view's status line, the slice's range.

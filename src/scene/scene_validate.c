@@ -404,6 +404,37 @@ static int section_used(const bdl_scene_section *s)
     return 0;
 }
 
+/// The jet rectangle on every inlet side: jet_max above jet_min, and inside the face, on the two
+/// axes along the face (the coordinate normal to the side is not read).
+static void check_jet(bdl_scene_parser *p, bdl_scene_section *gas)
+{
+    const bdl_scene *sc = p->scene;
+    const bdl_gas_scene *g = &sc->gas;
+    for (int side = 0; side < 6 && !p->failed; ++side) {
+        if (sc->periodic[side / 2] || g->side[side] != BDL_SIDE_INLET)
+            continue;
+        for (int b = 0; b < 3 && !p->failed; ++b) {
+            if (b == side / 2)
+                continue;
+            const double lo = bdl_v3_comp(g->jet_min, b), hi = bdl_v3_comp(g->jet_max, b);
+            const double dlo = bdl_v3_comp(sc->domain_min, b), dhi = bdl_v3_comp(sc->domain_max, b);
+            const double tol = 1e-9 * (dhi - dlo);
+            char what[TEXT_LEN];
+            if (!(hi > lo))
+                snprintf(what, sizeof what, "not larger than jet_min on the %s axis (%g <= %g)",
+                         axis_name(b), hi, lo);
+            else if (lo < dlo - tol || hi > dhi + tol)
+                snprintf(what, sizeof what,
+                         "the jet %g..%g m on the %s axis reaches outside the inlet face, which "
+                         "spans [domain] %g..%g m",
+                         lo, hi, axis_name(b), dlo, dhi);
+            else
+                continue;
+            fail_at_key(p, gas, !(hi > lo) || hi > dhi + tol ? "jet_max" : "jet_min", 0, what);
+        }
+    }
+}
+
 /// [gas] and [coupling]: present or not; whole cell counts; inlets with a velocity.
 static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_section *coupling)
 {
@@ -438,6 +469,10 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
         fail_at_key(p, gas, "jet_velocity", 0, "a jet needs jet_min and jet_max");
         return;
     }
+    if (g->has_jet_min && g->has_jet_max)
+        check_jet(p, gas);
+    if (p->failed)
+        return;
     if (g->has_probe_low != g->has_probe_high) {
         fail_at_key(p, gas, g->has_probe_low ? "probe_low" : "probe_high", 0,
                     "the pressure probes come in pairs: give probe_low and probe_high");

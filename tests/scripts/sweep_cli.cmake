@@ -19,7 +19,7 @@ endif()
 execute_process(COMMAND ${BEDLAM} analyze spectrum ${WORK} --from 0.5 --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
-if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/analysis/spectrum.csv)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/analysis/spectrum_pressure_drop.csv)
   message(FATAL_ERROR "analyze spectrum failed (${rc})")
 endif()
 execute_process(COMMAND ${BEDLAM} analyze mean ${WORK} --column mean_height --from 0.5
