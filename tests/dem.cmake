@@ -33,3 +33,6 @@ bdl_add_test(test_rigid SOURCES test_rigid.c LABELS dem)
 bdl_add_test(test_mesh SOURCES test_mesh.c LABELS dem)
 # A rotating drum: the dynamic angle of repose rises with friction and rate; no slip at the wall.
 bdl_add_test(test_drum SOURCES test_drum.c LABELS "dem;slow" TIMEOUT 1800)
+# Janssen's silo: the floor's load saturates with the fill height, as Janssen's formula says
+# for the K and the wall friction the beds mobilise.
+bdl_add_test(test_janssen SOURCES test_janssen.c LABELS "dem;slow" TIMEOUT 1800)

@@ -374,6 +374,11 @@ bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bd
         walls->phase[w] = d->phase;
         walls->start[w] = d->start;
         walls->open_time[w] = d->open_time;
+        if (d->motion == BDL_MOTION_MOVE) {
+            walls->motion[w] = BDL_MOTION_MOVE;
+            walls->drive[w] = d->velocity;
+            walls->stop[w] = d->stop;
+        }
         if (d->motion == BDL_MOTION_ROTATE) {
             walls->motion[w] = BDL_MOTION_ROTATE;
             walls->center[w] = d->rotation_center;
@@ -414,6 +419,12 @@ void bdl_walls_update(bdl_walls *walls, double t)
         walls->spin[w] = walls->motion[w] == BDL_MOTION_ROTATE && t >= walls->start[w]
                              ? bdl_v3_scale(walls->turn[w], walls->omega[w])
                              : bdl_v3_zero();
+        if (walls->motion[w] == BDL_MOTION_MOVE && t >= walls->start[w]) {
+            const double end = fmin(t, walls->stop[w]);
+            walls->offset[w] = bdl_v3_scale(walls->drive[w], end - walls->start[w]);
+            walls->velocity[w] = t < walls->stop[w] ? walls->drive[w] : bdl_v3_zero();
+            continue;
+        }
         if (walls->motion[w] != BDL_MOTION_VIBRATE || t < walls->start[w]) {
             walls->offset[w] = bdl_v3_zero();
             walls->velocity[w] = bdl_v3_zero();
@@ -443,7 +454,8 @@ double bdl_walls_max_speed(const bdl_walls *walls)
     for (int w = 0; w < walls->wall_count; ++w) {
         double v = walls->motion[w] == BDL_MOTION_ROTATE
                        ? bdl_v3_len(walls->turn[w]) * walls->omega[w] * walls->radius[w]
-                       : walls->amplitude[w] * walls->omega[w];
+                   : walls->motion[w] == BDL_MOTION_MOVE ? bdl_v3_len(walls->drive[w])
+                                                         : walls->amplitude[w] * walls->omega[w];
         if (v > m)
             m = v;
     }

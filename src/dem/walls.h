@@ -41,6 +41,7 @@ BDL_CHOICES(bdl_wall_kind, BDL_WALL_KINDS);
 #define BDL_MOTIONS(X)                                                                             \
     X(MOTION_NONE, "none", "at rest")                                                              \
     X(MOTION_VIBRATE, "vibrate", "displacement A sin(2 pi f t + phase) along `direction`")         \
+    X(MOTION_MOVE, "move", "moves at a constant velocity from `start` to `stop` (a piston)")       \
     X(MOTION_ROTATE, "rotate",                                                                     \
       "turns about an axis at a constant rate; the turn must leave the shape unchanged (a "        \
       "cylinder about its own axis, a plane across the axis): a drum")
@@ -65,6 +66,8 @@ typedef struct bdl_wall_def {
     bdl_vec3 rotate;           ///< mesh: angles about x, then y, then z [degrees]
     bdl_vec3 translate;        ///< mesh: shift after scaling and rotating [m]
     double open_time;          ///< simulated time the wall is taken away (INFINITY: never) [s]
+    bdl_vec3 velocity;         ///< move: velocity [m/s]
+    double stop;               ///< move: simulated time the motion ends (INFINITY: never) [s]
     bdl_vec3 rotation_axis;    ///< rotate: unit axis (right hand)
     bdl_vec3 rotation_center;  ///< rotate: a point on the axis [m]
     double angular_velocity;   ///< rotate: rate [rad/s]
@@ -134,6 +137,8 @@ typedef struct bdl_walls {
     bdl_vec3 turn[BDL_MAX_WALLS];    ///< rotate: axis times the rate (set, before live scaling)
     double radius[BDL_MAX_WALLS];    ///< rotate: the cylinder's radius (0 for a plane) [m]
     bdl_vec3 spin[BDL_MAX_WALLS];    ///< live angular velocity (zero before the start) [rad/s]
+    bdl_vec3 drive[BDL_MAX_WALLS];   ///< move: velocity [m/s]
+    double stop[BDL_MAX_WALLS];      ///< move: time the motion ends [s]
     uint8_t gone[BDL_MAX_WALLS];     ///< taken away (open_time passed): touches nothing
     // Live values, refreshed by bdl_walls_update; scaled by the live amplitude factor of commands.
     bdl_vec3 offset[BDL_MAX_WALLS];   ///< displacement from rest [m]

@@ -56,34 +56,48 @@ bdl_result bdl_world_vtp_write(const bdl_world *w, const char *path)
     const int rods = p->rods;
     int32_t *id = malloc((size_t)m * sizeof(int32_t));
     int32_t *coord = malloc((size_t)m * sizeof(int32_t));
+    bdl_vec3 *contact = malloc((size_t)m * sizeof(bdl_vec3));
+    bdl_vec3 *drag = p->fluid ? malloc((size_t)m * sizeof(bdl_vec3)) : NULL;
     bdl_vec3 *axis = rods ? malloc((size_t)m * sizeof(bdl_vec3)) : NULL;
     double *length = rods ? malloc((size_t)m * sizeof(double)) : NULL;
     bdl_result r = BDL_ERR_NOMEM;
-    if (id && coord && (!rods || (axis && length))) {
+    if (id && coord && contact && (!p->fluid || drag) && (!rods || (axis && length))) {
         for (long i = 0; i < n; ++i) {
             id[i] = (int32_t)p->id[i];
             coord[i] = w->coordination[i];
+            contact[i] = p->load[i].force;
+            if (drag) // the drag's share of the gas's force on the particle
+                drag[i] = bdl_v3_scale(p->drag_accel[i], 1.0 / p->inv_mass[i]);
         }
         if (rods)
             rod_axes(p, axis, length);
-        // Rod scenes add the orientation quaternion (w x y z, body z along the axis), the unit
-        // axis (for ParaView's glyph filter) and the tip-to-tip length.
-        bdl_vtk_array arrays[] = {
+        // contact_force: the particle's contacts and walls (and background damping) this step;
+        // with a gas, drag_force. Rod scenes add the orientation quaternion (w x y z, body z
+        // along the axis), the unit axis (for ParaView's glyph filter) and the tip-to-tip
+        // length.
+        bdl_vtk_array arrays[11] = {
             {"radius", BDL_VTK_FLOAT64, 1, p->radius},
             {"velocity", BDL_VTK_FLOAT64, 3, p->vel},
             {"omega", BDL_VTK_FLOAT64, 3, p->omega},
             {"id", BDL_VTK_INT32, 1, id},
             {"species", BDL_VTK_INT32, 1, p->species},
             {"coordination", BDL_VTK_INT32, 1, coord},
-            {"orientation", BDL_VTK_FLOAT64, 4, p->orient},
-            {"axis", BDL_VTK_FLOAT64, 3, axis},
-            {"length", BDL_VTK_FLOAT64, 1, length},
+            {"contact_force", BDL_VTK_FLOAT64, 3, contact},
         };
-        const int count = (int)(sizeof arrays / sizeof arrays[0]) - (rods ? 0 : 3);
+        int count = 7;
+        if (drag)
+            arrays[count++] = (bdl_vtk_array){"drag_force", BDL_VTK_FLOAT64, 3, drag};
+        if (rods) {
+            arrays[count++] = (bdl_vtk_array){"orientation", BDL_VTK_FLOAT64, 4, p->orient};
+            arrays[count++] = (bdl_vtk_array){"axis", BDL_VTK_FLOAT64, 3, axis};
+            arrays[count++] = (bdl_vtk_array){"length", BDL_VTK_FLOAT64, 1, length};
+        }
         r = bdl_vtp_write(path, n, p->pos, arrays, count);
     }
     free(id);
     free(coord);
+    free(contact);
+    free(drag);
     free(axis);
     free(length);
     return r;

@@ -265,6 +265,8 @@ static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
         check_mesh(p, s, wall);
     if (wall->motion == BDL_MOTION_ROTATE && !p->failed)
         check_rotation(p, s, wall);
+    if (wall->motion == BDL_MOTION_MOVE && !p->failed && !(wall->stop > wall->start))
+        fail_at_key(p, s, "stop", 0, "must be later than start");
     if (p->failed || wall->motion != BDL_MOTION_VIBRATE)
         return;
     if (wall->frame == BDL_FRAME_CONTAINER)

@@ -56,6 +56,28 @@ typedef struct bdl_verify_drum {
 } bdl_verify_drum;
 bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum *out);
 
+/// Janssen's silo (scenes/silo_janssen.ini): `count` glass beads of 3 mm settle for 1 s in a
+/// cylinder 40 mm across on a flat floor (wall friction 0.5). Averaged over the last 0.2 s: the
+/// floor's force, the bulk density in the core, the fill height H = mass / (rho_b A), and in
+/// slabs of the bed's middle half the ratio K = sigma_h / sigma_v of the wall's normal stress to
+/// the vertical stress the column above carries (its weight less the wall's friction on it), and
+/// the friction the wall mobilises, |tau_w| / sigma_h. Janssen (1895): the floor carries
+/// rho_b g A lambda (1 - exp(-H / lambda)), lambda = R / (2 mu_w K).
+typedef struct bdl_verify_janssen {
+    long count;
+    double height;       ///< H [m]
+    double bulk_density; ///< rho_b [kg/m^3]
+    double floor_mass;   ///< the floor's force over g [kg]
+    double fill_mass;    ///< the beads' mass [kg]
+    double k;            ///< K measured (NAN when the bed is too shallow for slabs)
+    double mobilised;    ///< |tau_w| / sigma_h at the wall of the same slabs
+    long steps;
+} bdl_verify_janssen;
+bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out);
+/// Janssen's floor mass for a fill of height H [kg].
+double bdl_verify_janssen_mass(double bulk_density, double radius, double mu_wall, double k,
+                               double height);
+
 #endif
 
 /// One run of a case at one refinement.
@@ -376,5 +398,27 @@ typedef struct bdl_verify_drum {
     long steps;
 } bdl_verify_drum;
 bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum *out);
+
+/// Janssen's silo (scenes/silo_janssen.ini): `count` glass beads of 3 mm settle for 1 s in a
+/// cylinder 40 mm across on a flat floor (wall friction 0.5). Averaged over the last 0.2 s: the
+/// floor's force, the bulk density in the core, the fill height H = mass / (rho_b A), and in
+/// slabs of the bed's middle half the ratio K = sigma_h / sigma_v of the wall's normal stress to
+/// the vertical stress the column above carries (its weight less the wall's friction on it), and
+/// the friction the wall mobilises, |tau_w| / sigma_h. Janssen (1895): the floor carries
+/// rho_b g A lambda (1 - exp(-H / lambda)), lambda = R / (2 mu_w K).
+typedef struct bdl_verify_janssen {
+    long count;
+    double height;       ///< H [m]
+    double bulk_density; ///< rho_b [kg/m^3]
+    double floor_mass;   ///< the floor's force over g [kg]
+    double fill_mass;    ///< the beads' mass [kg]
+    double k;            ///< K measured (NAN when the bed is too shallow for slabs)
+    double mobilised;    ///< |tau_w| / sigma_h at the wall of the same slabs
+    long steps;
+} bdl_verify_janssen;
+bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out);
+/// Janssen's floor mass for a fill of height H [kg].
+double bdl_verify_janssen_mass(double bulk_density, double radius, double mu_wall, double k,
+                               double height);
 
 #endif

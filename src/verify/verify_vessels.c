@@ -213,3 +213,139 @@ bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum
     }
     return r == BDL_OK && !isfinite(out->angle) ? BDL_ERR_NO_RESULT : r;
 }
+
+// ---------------------------------------------------------------------------------- janssen --
+
+#define JANSSEN_RADIUS 0.02
+#define JANSSEN_SLABS  4
+
+double bdl_verify_janssen_mass(double bulk_density, double radius, double mu_wall, double k,
+                               double height)
+{
+    const double lambda = radius / (2.0 * mu_wall * k);
+    return bulk_density * BDL_PI * radius * radius * lambda * (1.0 - exp(-height / lambda));
+}
+
+/// Sums over the wall contacts of the particles: the floor's vertical force, and per slab of
+/// [z0, z1) the cylinder's radial and vertical force on the particles whose centres lie in it,
+/// and the weight and the cylinder's vertical force on those above each slab's middle.
+typedef struct janssen_sums {
+    double floor;
+    double radial[JANSSEN_SLABS], shear[JANSSEN_SLABS];
+    double weight_above[JANSSEN_SLABS], lift_above[JANSSEN_SLABS];
+} janssen_sums;
+
+static void janssen_sample(const bdl_world *w, double z0, double z1, janssen_sums *s)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    const double dz = (z1 - z0) / JANSSEN_SLABS, g = 9.81;
+    for (long i = 0; i < p->count; ++i) {
+        const bdl_vec3 x = p->pos[i];
+        const double rho = hypot(x.x, x.y);
+        const int slab = (int)floor((x.z - z0) / dz);
+        double lift = 0.0, radial = 0.0;
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+            if (!nb->wall_touching[k])
+                continue;
+            const bdl_vec3 f = nb->wall_force[k];
+            if (bdl_wall_of(&w->walls, nb->wall_prim[k]) == 1) { // the floor
+                s->floor += f.z;
+                continue;
+            }
+            lift += f.z;
+            radial -= rho > 0.0 ? (f.x * x.x + f.y * x.y) / rho : 0.0; // pushing inwards
+        }
+        if (slab >= 0 && slab < JANSSEN_SLABS) {
+            s->radial[slab] += radial;
+            s->shear[slab] += lift;
+        }
+        for (int b = 0; b < JANSSEN_SLABS; ++b)
+            if (x.z > z0 + (b + 0.5) * dz) {
+                s->weight_above[b] += g / p->inv_mass[i];
+                s->lift_above[b] += lift;
+            }
+    }
+}
+
+/// Bulk density of the settled bed in its core: centres within 2 d of the axis' distance from
+/// the wall kept out, heights between a quarter and three quarters of the bed.
+static double janssen_density(const bdl_world *w, double height)
+{
+    const bdl_particles *p = &w->particles;
+    const double rc = JANSSEN_RADIUS - 0.006, z0 = 0.25 * height, z1 = 0.75 * height;
+    double mass = 0.0;
+    for (long i = 0; i < p->count; ++i) {
+        const bdl_vec3 x = p->pos[i];
+        if (x.x * x.x + x.y * x.y < rc * rc && x.z >= z0 && x.z < z1)
+            mass += 1.0 / p->inv_mass[i];
+    }
+    return mass / (BDL_PI * rc * rc * (z1 - z0));
+}
+
+/// K and the mobilised friction from the slabs' sums (NAN for a bed under 8 diameters).
+static void janssen_ratio(const janssen_sums *s, double height, bdl_verify_janssen *out)
+{
+    if (height < 8.0 * 0.003)
+        return;
+    const double r = JANSSEN_RADIUS, dz = 0.5 * height / JANSSEN_SLABS;
+    double k = 0.0, mob = 0.0;
+    for (int b = 0; b < JANSSEN_SLABS; ++b) {
+        const double sigma_h = s->radial[b] / (2.0 * BDL_PI * r * dz);
+        const double sigma_v = (s->weight_above[b] - s->lift_above[b]) / (BDL_PI * r * r);
+        k += sigma_h / sigma_v / JANSSEN_SLABS;
+        mob += fabs(s->shear[b]) / s->radial[b] / JANSSEN_SLABS;
+    }
+    out->k = k;
+    out->mobilised = mob;
+}
+
+bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out)
+{
+    *out = (bdl_verify_janssen){.count = count, .k = NAN, .mobilised = NAN};
+    const double r = JANSSEN_RADIUS, area = BDL_PI * r * r;
+    // A region twice the settled height (random insertion reaches about half of close packing).
+    const double top = 0.0015 + 2.0 * count * BDL_PI / 6.0 * 27e-9 / (0.6 * area);
+    bdl_world *w = bdl_verify_world(
+        "[run]\nend_time = 1.0\ndt_fraction = 0.05\ngravity = 0 0 -9.81\nseed = 11\n"
+        "[domain]\nmin = -0.021 -0.021 -0.002\nmax = 0.021 0.021 %.6g\n[contact]\nlaw = linear\n"
+        "[species glass]\ndiameter = 0.003\ndensity = 2500\nstiffness = 2000\n"
+        "restitution = 0.5\nfriction = 0.5\n"
+        "[wall silo]\ntype = cylinder\npoint = 0 0 0\naxis = 0 0 1\nradius = %g\n"
+        "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\nmotion = move\n"
+        "velocity = 0 0 -0.005\nstart = 0.6\nstop = 0.8\n"
+        "[create bed]\ntype = random\nspecies = glass\ncount = %ld\n"
+        "region_min = -0.02 -0.02 0.0015\nregion_max = 0.02 0.02 %.6g\n",
+        top + 0.01, r, count, top);
+    if (!w)
+        return BDL_ERR_SCENE;
+    janssen_sums sums = {0};
+    int samples = 0;
+    bdl_result r_step = BDL_OK;
+    double next = 0.9, mass = 0.0;
+    for (long i = 0; i < w->particles.count; ++i)
+        mass += 1.0 / w->particles.inv_mass[i];
+    out->fill_mass = mass;
+    out->height = mass / (1500.0 * area); // a first guess, for the slabs (rho_b replaces it)
+    while (r_step == BDL_OK && w->time < 1.0 - 0.5 * w->dt) {
+        r_step = bdl_world_step(w);
+        ++out->steps;
+        if (r_step != BDL_OK || w->time < next - 0.5 * w->dt)
+            continue;
+        next += 0.01;
+        if (samples == 0) { // the bed has settled: its density, height and slabs
+            out->bulk_density = janssen_density(w, out->height);
+            out->height = mass / (out->bulk_density * area);
+        }
+        janssen_sample(w, 0.25 * out->height, 0.75 * out->height, &sums);
+        ++samples;
+    }
+    if (r_step != BDL_OK)
+        bdl_error("%s", w->failure);
+    bdl_world_destroy(w);
+    if (samples == 0)
+        return r_step != BDL_OK ? r_step : BDL_ERR_NO_RESULT;
+    out->floor_mass = sums.floor / samples / 9.81;
+    janssen_ratio(&sums, out->height, out);
+    return r_step;
+}
