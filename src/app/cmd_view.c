@@ -379,14 +379,31 @@ static void mouse(viewer *v, const SDL_Event *e, int height)
 static void status_line(viewer *v, const bdl_snapshot *s)
 {
     double sps = s ? s->steps_per_second : 0.0;
-    char speed[64] = "full speed";
+    char speed[64] = "full speed", live[128] = "";
     if (v->speed_limit > 0.0)
         snprintf(speed, sizeof speed, "limit %.3g sim s/s", v->speed_limit);
+    if (v->live_key[0]) { // what ] and [ change, and its factor now
+        char what[96];
+        snprintf(what, sizeof what, "%s", v->live_key + (strncmp(v->live_key, "wall.", 5) ? 0 : 5));
+        char *dot = strrchr(what, '.');
+        if (dot) // "gas.inlet_scale" -> "gas inlet", "drum.frequency_scale" -> "drum frequency"
+            *dot = ' ';
+        char *tail = strstr(what, "_scale");
+        if (tail)
+            *tail = '\0';
+        snprintf(live, sizeof live, "   ]/[: %s x%.3g", what, v->live_scale);
+    }
+    double t = 0.0;
+    long step = 0, particles = 0;
+    int finished = 0;
+    if (v->loop)
+        bdl_loop_progress(v->loop, &t, &step, &particles, &finished);
+    const char *state = finished ? "FINISHED (R restarts)" : v->paused ? "PAUSED" : "running";
     snprintf(v->status, sizeof v->status,
              "%s   solver %.3g steps/s (%.3g sim s/s, %s)   %.0f frames/s   "
-             "colour: %s   H: help",
-             v->paused ? "PAUSED" : "running", sps, sps * (v->world ? v->world->dt : 0.0), speed,
-             v->fps, bdl_color_mode_names[v->view.color]);
+             "colour: %s%s   H: help",
+             state, finished ? 0.0 : sps, finished ? 0.0 : sps * (v->world ? v->world->dt : 0.0),
+             speed, v->fps, bdl_color_mode_names[v->view.color], live);
 }
 
 static void run_viewer(viewer *v)

@@ -403,9 +403,10 @@ const bdl_scene_key bdl_scene_keys[] = {
 
     // [camera]
     {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},
-     .enum_names = bdl_view_preset_names,
+     .default_text = "iso; front for a pseudo-2D domain", .enum_names = bdl_view_preset_names,
      .doc = "preset direction: iso (front-right, above), front (along +y, the x-z plane), side "
-            "(along -x), top (down -z)"},
+            "(along -x), top (down -z); a domain whose y is thinner than a fifth of x and of z "
+            "is seen from the front unless view is given"},
     {S(CAMERA), "projection", .type = BDL_KEY_ENUM, "-", IN_CAMERA(projection),
      .def = {BDL_PROJ_PERSPECTIVE}, .enum_names = bdl_projection_names,
      .doc = "perspective or orthographic (no foreshortening: pseudo-2D beds, DIA)"},

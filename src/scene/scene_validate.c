@@ -592,6 +592,12 @@ static void check_singletons(bdl_scene_parser *p)
         fail_at_key(p, camera, "gas_field", 0, "needs a [gas] section (this scene has no gas)");
     if (!p->failed)
         check_box(p, domain, "min", "max");
+    // A pseudo-2D bed (y thinner than a fifth of x and of z) is seen from the front unless the
+    // scene says otherwise: from the iso corner it would be a sliver.
+    const bdl_vec3 span = bdl_v3_sub(p->scene->domain_max, p->scene->domain_min);
+    if (!p->failed && !(camera && given(camera, key_of(camera, "view"))) && 5.0 * span.y < span.x &&
+        5.0 * span.y < span.z)
+        p->scene->camera.view = BDL_VIEW_FRONT;
     if (!p->failed && p->scene->guards.dt_warn > p->scene->guards.dt_refuse) {
         int warn_given = given(guards, key_of(guards, "dt_warn"));
         fail_at_key(p, guards, warn_given ? "dt_warn" : "dt_refuse", 0,
