@@ -23,3 +23,7 @@ add_test(NAME cli_orientation_hand COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FI
   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/orientation_hand
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/orientation_hand.cmake)
 set_tests_properties(cli_orientation_hand PROPERTIES LABELS "analysis;cli" TIMEOUT 60)
+add_test(NAME cli_fields COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_SOURCE_DIR}/scenes/fluidized_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fields_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fields_cli.cmake)
+set_tests_properties(cli_fields PROPERTIES LABELS "analysis;cli" TIMEOUT 300)

@@ -25,6 +25,7 @@ typedef struct bdl_analyze_opts {
     const char *fit; ///< dia: a calibrate fit.json, for the mass flux (NULL: none)
     double density;  ///< dia: the particles' density with --fit [kg/m^3] (NAN: not given)
     double height;   ///< dia: height of the mass-flux profile [m]
+    double cell;     ///< fields: cell size [m] (0: three mean diameters)
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);
@@ -32,6 +33,8 @@ bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_mean(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_phase(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_profile(const bdl_analyze_opts *o);
+/// Time-averaged solids fraction and velocity on a grid, from the run's particle files.
+bdl_result bdl_analyze_fields(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_networks(const bdl_analyze_opts *o);
 /// A synthetic camera's folder (RUN/dia/NAME): the image-analysis chain against the truth.
 bdl_result bdl_analyze_dia(const bdl_analyze_opts *o);

@@ -20,6 +20,7 @@ static const char usage_first[] =
     "       bedlam analyze phase RUN --column NAME --period P [--start T] [--from-cycle A]\n"
     "                            [--to-cycle B] [--bins N] [--below X] [--out DIR] [--no-plots]\n"
     "       bedlam analyze profile RUN [--from T] [--to T] [--out DIR] [--no-plots]\n"
+    "       bedlam analyze fields RUN [--from T] [--to T] [--cell H] [--out DIR]\n"
     "       bedlam analyze networks CONTACTS.csv [--bins N] [--fmax F] [--out DIR] [--no-plots]\n"
     "       bedlam analyze dia RUN/dia/NAME [--fit FIT.json --density RHO [--height H]]\n"
     "                          [--out DIR]\n"
@@ -52,6 +53,11 @@ static const char usage_first[] =
     "wall_force below a small value: the bed in flight). Writes phase_NAME.csv and\n"
     "phase_NAME.png (with the column against the cycle count beside it).\n"
     "\n"
+    "fields: the solids fraction and the solids velocity averaged over the particle files\n"
+    "(particles.pvd) between --from and --to, on cubic cells of --cell metres (default three\n"
+    "mean diameters) over the domain: each particle's volume (and volume times velocity) in the\n"
+    "cell of its centre. Writes fields.vti (ParaView; the velocity is NaN where no solids\n"
+    "passed).\n\n"
     "profile: the solids fraction of each gas cell layer (RUN/profile.csv, runs with a gas)\n"
     "averaged between --from and --to: the solids fraction against height. Writes profile.csv\n"
     "and profile.png.\n"
@@ -129,6 +135,7 @@ static const bdl_option options[] = {
     {"--fit", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, fit)},
     {"--density", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, density)},
     {"--height", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, height)},
+    {"--cell", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, cell)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.
@@ -242,7 +249,7 @@ static const analysis analyses[] = {
     {"mean", bdl_analyze_mean},         {"phase", bdl_analyze_phase},
     {"networks", bdl_analyze_networks}, {"profile", bdl_analyze_profile},
     {"dia", bdl_analyze_dia},           {"orientation", bdl_analyze_orientation},
-    {"ptv", bdl_analyze_ptv},
+    {"ptv", bdl_analyze_ptv},           {"fields", bdl_analyze_fields},
 };
 
 bdl_result bdl_cmd_analyze(int argc, char **argv)
@@ -265,8 +272,8 @@ bdl_result bdl_cmd_analyze(int argc, char **argv)
     if (!o.run || !a) {
         fprintf(stderr,
                 "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
-                "'profile RUN', 'orientation RUN', 'networks CONTACTS.csv', 'dia RUN/dia/NAME' or "
-                "'ptv RUN/dia/NAME'\n\n%s",
+                "'profile RUN', 'fields RUN', 'orientation RUN', 'networks CONTACTS.csv', "
+                "'dia RUN/dia/NAME' or 'ptv RUN/dia/NAME'\n\n%s",
                 analyze_usage);
         return BDL_ERR_ARGS;
     }

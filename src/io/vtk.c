@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L // getline
 #include "io/vtk.h"
 
+#include <errno.h>
+#include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -361,6 +363,116 @@ bdl_pvd *bdl_pvd_continue(const char *pvd_path, double t_keep)
         return NULL;
     }
     return pvd;
+}
+
+bdl_pvd *bdl_pvd_read(const char *pvd_path, char *why, size_t why_len)
+{
+    bdl_pvd *pvd = calloc(1, sizeof *pvd);
+    if (!pvd || !(pvd->path = copy_string(pvd_path))) {
+        snprintf(why, why_len, "out of memory");
+        bdl_pvd_destroy(pvd);
+        return NULL;
+    }
+    FILE *in = bdl_open_regular(pvd_path, why, why_len);
+    if (!in || read_entries(pvd, in, INFINITY) != BDL_OK) {
+        if (in) {
+            fclose(in);
+            snprintf(why, why_len, "out of memory");
+        }
+        bdl_pvd_destroy(pvd);
+        return NULL;
+    }
+    fclose(in);
+    return pvd;
+}
+
+long bdl_pvd_count(const bdl_pvd *pvd) { return pvd->count; }
+
+const char *bdl_pvd_file(const bdl_pvd *pvd, long k, double *time)
+{
+    *time = pvd->entries[k].time;
+    return pvd->entries[k].file;
+}
+
+bdl_result bdl_vtp_open(const char *path, bdl_vtp_file *f, char *why, size_t why_len)
+{
+    *f = (bdl_vtp_file){0};
+    if (bdl_check_regular_file(path, NULL, why, why_len) != BDL_OK)
+        return BDL_ERR_IO;
+    f->data = bdl_read_file(path, &f->size);
+    if (!f->data) {
+        snprintf(why, why_len, "cannot be read: %s", strerror(errno));
+        return BDL_ERR_IO;
+    }
+    const char *piece = strstr(f->data, "<Piece ");
+    const char *app = strstr(f->data, "<AppendedData encoding=\"raw\">");
+    const char *mark = app ? strchr(app, '_') : NULL;
+    char text[64];
+    char *end = NULL;
+    if (piece && xml_attribute(piece, "NumberOfPoints", text, sizeof text))
+        f->points = strtol(text, &end, 10);
+    if (!piece || !end || *end || f->points < 0 || !mark ||
+        !strstr(f->data, "header_type=\"UInt64\"")) {
+        snprintf(why, why_len, "is not a particle file bedlam wrote (no points or appended data)");
+        bdl_vtp_close(f);
+        return BDL_ERR_IO;
+    }
+    f->appended = (size_t)(mark + 1 - f->data);
+    return BDL_OK;
+}
+
+/// The DataArray element named `name` in the header (before the appended data), or NULL.
+static const char *vtp_element(const bdl_vtp_file *f, const char *name)
+{
+    char key[96];
+    snprintf(key, sizeof key, "Name=\"%s\"", name);
+    const char *at = strstr(f->data, key);
+    if (!at || (size_t)(at - f->data) >= f->appended)
+        return NULL;
+    while (at > f->data && *at != '<')
+        --at;
+    return at;
+}
+
+bdl_result bdl_vtp_array(const bdl_vtp_file *f, const char *name, int components, double **out,
+                         char *why, size_t why_len)
+{
+    *out = NULL;
+    const char *e = vtp_element(f, name);
+    char type[32], comps[32], offset_text[32];
+    if (!e || !xml_attribute(e, "type", type, sizeof type) ||
+        !xml_attribute(e, "NumberOfComponents", comps, sizeof comps) ||
+        !xml_attribute(e, "offset", offset_text, sizeof offset_text) ||
+        strcmp(type, "Float64") != 0 || atoi(comps) != components) {
+        snprintf(why, why_len, "has no Float64 array '%s' of %d components", name, components);
+        return BDL_ERR_IO;
+    }
+    const unsigned long long offset = strtoull(offset_text, NULL, 10);
+    const size_t bytes = (size_t)f->points * (size_t)components * sizeof(double);
+    uint64_t header = 0;
+    if (offset > f->size || f->size - f->appended < offset + 8 + bytes) {
+        snprintf(why, why_len, "is truncated: array '%s' runs past the end", name);
+        return BDL_ERR_IO;
+    }
+    memcpy(&header, f->data + f->appended + offset, 8);
+    if (header != bytes) {
+        snprintf(why, why_len, "array '%s' holds %llu bytes, %zu expected", name,
+                 (unsigned long long)header, bytes);
+        return BDL_ERR_IO;
+    }
+    *out = malloc(bytes > 0 ? bytes : 1);
+    if (!*out) {
+        snprintf(why, why_len, "out of memory");
+        return BDL_ERR_NOMEM;
+    }
+    memcpy(*out, f->data + f->appended + offset + 8, bytes);
+    return BDL_OK;
+}
+
+void bdl_vtp_close(bdl_vtp_file *f)
+{
+    free(f->data);
+    *f = (bdl_vtp_file){0};
 }
 
 void bdl_pvd_destroy(bdl_pvd *pvd)

@@ -60,4 +60,29 @@ bdl_result bdl_pvd_add(bdl_pvd *pvd, double time, const char *relative_file);
 /// Frees the collection (the file stays on disk). NULL is allowed.
 void bdl_pvd_destroy(bdl_pvd *pvd);
 
+/// Reads a collection for analysis, without writing anything: NULL (with the reason in `why`)
+/// when it cannot be read.
+bdl_pvd *bdl_pvd_read(const char *pvd_path, char *why, size_t why_len);
+/// Entries of a collection, and entry k's time [s] and file (as stored: relative to the .pvd).
+long bdl_pvd_count(const bdl_pvd *pvd);
+const char *bdl_pvd_file(const bdl_pvd *pvd, long k, double *time);
+
+/// A .vtp file as bedlam writes it (appended raw data, UInt64 headers), loaded for reading its
+/// point arrays. Input is untrusted: every array's size is checked against the file.
+typedef struct bdl_vtp_file {
+    char *data;
+    size_t size;
+    long points;
+    size_t appended; ///< offset of the appended data's first byte
+} bdl_vtp_file;
+
+/// Loads and checks the header; BDL_ERR_IO with the reason in `why` otherwise.
+bdl_result bdl_vtp_open(const char *path, bdl_vtp_file *f, char *why, size_t why_len);
+/// Copies the Float64 array `name` ("Points" for the positions) of `components` components into
+/// out (points * components values, malloc'ed). BDL_ERR_IO with the reason when it is missing,
+/// of another type or shape, or runs past the end of the file.
+bdl_result bdl_vtp_array(const bdl_vtp_file *f, const char *name, int components, double **out,
+                         char *why, size_t why_len);
+void bdl_vtp_close(bdl_vtp_file *f);
+
 #endif

@@ -162,6 +162,8 @@ static void log_setup(const run *r)
         return;
     }
     bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);
+    bdl_info("domain: %.17g %.17g %.17g to %.17g %.17g %.17g m", s->domain_min.x, s->domain_min.y,
+             s->domain_min.z, s->domain_max.x, s->domain_max.y, s->domain_max.z);
     for (int k = 0; k < s->species_count; ++k) {
         const bdl_species_def *sp = &s->species[k];
         const bdl_contact_params *cp = &w->pair_params[k * s->species_count + k];
