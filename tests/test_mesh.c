@@ -217,6 +217,18 @@ static void features(void)
     check_feature(pyramid_wall, "on a pyramid's ridge (2 triangles)", mid,
                   bdl_v3_madd(mid, out, 0.0018));
     box_corner();
+    // A disk with a hole (an orifice plate) of 64 sides: on its face it is the plane; over the
+    // hole, nothing; beyond a corner of its rim's polygon, the point.
+    const char *disk = "type = disk\npoint = 0 0 0\nnormal = 0 0 1\nradius = 0.03\n"
+                       "hole_radius = 0.008\nsegments = 64";
+    check_feature(disk, "disk of 64 sides, on its face", bdl_v3(0.015, 0.004, 0),
+                  bdl_v3(0.015, 0.004, z));
+    const bdl_vec3 corner = bdl_v3(0.0, 0.03, 0.0); // a vertex of the rim
+    check_feature(disk, "disk, beyond a corner of its rim", corner,
+                  bdl_v3_add(corner, bdl_v3(0.0, 0.001, 0.0015)));
+    const bdl_vec3 none = force_at(disk, bdl_v3(0.0, 0.0, z));
+    printf("| disk, over the middle of its hole | (no contact) | %.3e N |\n", bdl_v3_len(none));
+    CHECK(bdl_v3_len(none) == 0.0);
 }
 
 /// A sphere carried across 200 triangles at a fixed overlap feels the plane's force throughout.

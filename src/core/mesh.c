@@ -362,6 +362,18 @@ static int looks_ascii(const char *text, size_t size)
     return (size_t)(p - text) + 5 <= size && !strncmp(p, "solid", 5) && !memchr(text, 0, size);
 }
 
+/// Welds and checks a soup (freed here) into m.
+static bdl_result finish(soup *s, bdl_mesh *m, char *why, size_t why_len)
+{
+    int ok = s->count > 0 || fail(why, why_len, "holds no triangle");
+    ok = ok && weld_vertices(s, m, why, why_len) && check_areas(m, why, why_len) &&
+         weld_edges(m, why, why_len);
+    free(s->corner);
+    if (!ok)
+        bdl_mesh_free(m);
+    return ok ? BDL_OK : BDL_ERR_SCENE;
+}
+
 bdl_result bdl_mesh_read(const char *path, bdl_mesh *m, char *why, size_t why_len)
 {
     memset(m, 0, sizeof *m);
@@ -379,14 +391,74 @@ bdl_result bdl_mesh_read(const char *path, bdl_mesh *m, char *why, size_t why_le
                  ? read_stl_ascii(text, size, &s, why, why_len)
                  : read_stl_binary((const unsigned char *)text, size, &s, why, why_len);
     free(text);
-    if (ok && s.count == 0)
-        ok = fail(why, why_len, "holds no triangle");
-    ok = ok && weld_vertices(&s, m, why, why_len) && check_areas(m, why, why_len) &&
-         weld_edges(m, why, why_len);
-    free(s.corner);
-    if (!ok)
-        bdl_mesh_free(m);
-    return ok ? BDL_OK : BDL_ERR_SCENE;
+    if (!ok) {
+        free(s.corner);
+        return BDL_ERR_SCENE;
+    }
+    return finish(&s, m, why, why_len);
+}
+
+/// Two unit vectors across the unit axis a.
+static void across(bdl_vec3 a, bdl_vec3 *u, bdl_vec3 *v)
+{
+    const bdl_vec3 t = fabs(a.x) < 0.9 ? bdl_v3(1, 0, 0) : bdl_v3(0, 1, 0);
+    *u = bdl_v3_normalize(bdl_v3_cross(a, t));
+    *v = bdl_v3_cross(a, *u);
+}
+
+/// Point k of a ring of `segments` points of radius r around c in the plane of u, v.
+static bdl_vec3 ring_point(bdl_vec3 c, bdl_vec3 u, bdl_vec3 v, double r, int k, int segments)
+{
+    const double phi = 2.0 * BDL_PI * (double)(k % segments) / (double)segments;
+    // Each point from its own angle, so that a corner shared by two triangles has the same bits.
+    return bdl_v3_add(c, bdl_v3_add(bdl_v3_scale(u, r * cos(phi)), bdl_v3_scale(v, r * sin(phi))));
+}
+
+/// The band between two rings (radius r0 around c0, r1 around c1; a ring of radius 0 is its
+/// centre, a fan), `segments` quadrilaterals of two triangles.
+static int band(soup *s, bdl_vec3 c0, double r0, bdl_vec3 c1, double r1, bdl_vec3 axis,
+                int segments, char *why, size_t len)
+{
+    bdl_vec3 u, v;
+    across(axis, &u, &v);
+    for (int k = 0; k < segments; ++k) {
+        const bdl_vec3 a = ring_point(c0, u, v, r0, k, segments),
+                       b = ring_point(c0, u, v, r0, k + 1, segments),
+                       c = ring_point(c1, u, v, r1, k + 1, segments),
+                       d = ring_point(c1, u, v, r1, k, segments);
+        const bdl_vec3 t1[3] = {a, b, c}, t2[3] = {a, c, d};
+        // A ring of radius 0 is a point: its side of the quadrilateral has no area.
+        if ((r0 > 0.0 && !soup_add(s, t1, why, len)) || (r1 > 0.0 && !soup_add(s, t2, why, len)))
+            return 0;
+    }
+    return 1;
+}
+
+bdl_result bdl_mesh_disk(bdl_mesh *m, bdl_vec3 centre, bdl_vec3 normal, double radius,
+                         double hole_radius, int segments, char *why, size_t why_len)
+{
+    memset(m, 0, sizeof *m);
+    soup s = {0};
+    const bdl_vec3 n = bdl_v3_normalize(normal);
+    if (!band(&s, centre, hole_radius, centre, radius, n, segments, why, why_len)) {
+        free(s.corner);
+        return BDL_ERR_SCENE;
+    }
+    return finish(&s, m, why, why_len);
+}
+
+bdl_result bdl_mesh_frustum(bdl_mesh *m, bdl_vec3 base, bdl_vec3 axis, double radius,
+                            double radius_top, double height, int segments, char *why,
+                            size_t why_len)
+{
+    memset(m, 0, sizeof *m);
+    soup s = {0};
+    const bdl_vec3 a = bdl_v3_normalize(axis), top = bdl_v3_madd(base, a, height);
+    if (!band(&s, base, radius, top, radius_top, a, segments, why, why_len)) {
+        free(s.corner);
+        return BDL_ERR_SCENE;
+    }
+    return finish(&s, m, why, why_len);
 }
 
 void bdl_mesh_transform(bdl_mesh *m, double scale, bdl_vec3 angles_deg, bdl_vec3 translate)

@@ -34,6 +34,17 @@ typedef struct bdl_mesh {
 /// follows the path (naming the line or the triangle).
 bdl_result bdl_mesh_read(const char *path, bdl_mesh *m, char *why, size_t why_len);
 
+/// A flat ring (a disk when hole_radius is 0): centre, normal, outer and inner radius [m], as
+/// `segments` quadrilaterals (a fan of triangles without a hole). The circles are polygons of
+/// `segments` sides through points on them.
+bdl_result bdl_mesh_disk(bdl_mesh *m, bdl_vec3 centre, bdl_vec3 normal, double radius,
+                         double hole_radius, int segments, char *why, size_t why_len);
+/// The side of a frustum, open at both ends: the centre of its base circle, the axis towards the
+/// top, the radii of the base and the top (one of them may be 0: a cone) and the height [m].
+bdl_result bdl_mesh_frustum(bdl_mesh *m, bdl_vec3 base, bdl_vec3 axis, double radius,
+                            double radius_top, double height, int segments, char *why,
+                            size_t why_len);
+
 /// Scales about the origin, rotates by angles_deg about x, then y, then z (degrees, right hand),
 /// then translates, every vertex.
 void bdl_mesh_transform(bdl_mesh *m, double scale, bdl_vec3 angles_deg, bdl_vec3 translate);

@@ -133,18 +133,31 @@ static bdl_result bin_mesh(bdl_walls *walls, int wall, long first, double reach)
     return b->tri ? BDL_OK : BDL_ERR_NOMEM;
 }
 
+bdl_result bdl_wall_mesh_of(const bdl_wall_def *d, bdl_mesh *m, char *why, size_t why_len)
+{
+    if (d->kind == BDL_WALL_DISK)
+        return bdl_mesh_disk(m, d->point, d->normal, d->radius, d->hole_radius, d->segments, why,
+                             why_len);
+    if (d->kind == BDL_WALL_CONE)
+        return bdl_mesh_frustum(m, d->point, d->normal, d->radius, d->radius_top, d->height,
+                                d->segments, why, why_len);
+    bdl_result r = bdl_mesh_read(d->file, m, why, why_len);
+    if (r == BDL_OK)
+        bdl_mesh_transform(m, d->scale, d->rotate, d->translate);
+    return r;
+}
+
 /// Reads, places and bins one mesh wall; its vertex and edge ids follow the earlier meshes'.
 static bdl_result add_mesh(bdl_walls *walls, int wall, const bdl_wall_def *d, double reach,
                            char *why, size_t why_len)
 {
     bdl_mesh m;
     char reason[400];
-    bdl_result r = bdl_mesh_read(d->file, &m, reason, sizeof reason);
+    bdl_result r = bdl_wall_mesh_of(d, &m, reason, sizeof reason);
     if (r != BDL_OK) {
-        snprintf(why, why_len, "'%s' %s", d->file, reason);
+        snprintf(why, why_len, "'%s' %s", d->kind == BDL_WALL_MESH ? d->file : d->name, reason);
         return r;
     }
-    bdl_mesh_transform(&m, d->scale, d->rotate, d->translate);
     long first = walls->tri_count, vert0 = 0;
     for (long t = 0; t < first; ++t)
         for (int c = 0; c < 3; ++c)
@@ -363,7 +376,9 @@ bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bd
             break;
         }
         case BDL_WALL_MESH:
-            break;
+        case BDL_WALL_DISK:
+        case BDL_WALL_CONE:
+            break; // triangles, added below
         }
         // A container wall stands still: the run is done in its frame (see world/world.h).
         const int moves = d->motion == BDL_MOTION_VIBRATE && d->frame != BDL_FRAME_CONTAINER;
@@ -388,7 +403,8 @@ bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bd
         }
     }
     for (int w = 0; w < count; ++w) {
-        if (defs[w].kind != BDL_WALL_MESH)
+        if (defs[w].kind != BDL_WALL_MESH && defs[w].kind != BDL_WALL_DISK &&
+            defs[w].kind != BDL_WALL_CONE)
             continue;
         bdl_result r = add_mesh(walls, w, &defs[w], reach, why, why_len);
         if (r != BDL_OK) {

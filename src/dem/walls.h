@@ -34,7 +34,9 @@
     X(WALL_BOX, "box", "the inside of an axis-aligned box (six planes)")                           \
     X(WALL_CYLINDER, "cylinder",                                                                   \
       "the inside of a cylinder around an axis (infinite unless capped)")                          \
-    X(WALL_MESH, "mesh", "triangles from an STL or OBJ file, touched from either side")
+    X(WALL_MESH, "mesh", "triangles from an STL or OBJ file, touched from either side")            \
+    X(WALL_DISK, "disk", "a flat disk, or a ring with a hole (an orifice plate), finite")          \
+    X(WALL_CONE, "cone", "the side of a cone or frustum, or of a finite tube, open at both ends")
 BDL_CHOICES(bdl_wall_kind, BDL_WALL_KINDS);
 
 /// Prescribed motion of a wall ([wall NAME] motion).
@@ -60,7 +62,11 @@ typedef struct bdl_wall_def {
     bdl_vec3 point;            ///< plane: a point on it; cylinder: a point on the axis [m]
     bdl_vec3 normal;           ///< plane: unit normal into the particle side; cylinder: unit axis
     bdl_vec3 box_min, box_max; ///< box corners [m]
-    double radius;             ///< cylinder radius [m]
+    double radius;             ///< cylinder radius; disk: outer; cone: of the base circle [m]
+    double hole_radius;        ///< disk: radius of the hole (0: none) [m]
+    double radius_top;         ///< cone: radius of the top circle [m]
+    double height;             ///< cone: from the base circle to the top one along axis [m]
+    int segments;              ///< disk, cone: sides of the polygons the circles are
     char file[BDL_PATH_LEN];   ///< mesh: STL or OBJ file
     double scale;              ///< mesh: factor on the file's coordinates (to metres)
     bdl_vec3 rotate;           ///< mesh: angles about x, then y, then z [degrees]
@@ -151,6 +157,10 @@ typedef struct bdl_walls {
 bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bdl_walls *walls,
                            char *why, size_t why_len);
 void bdl_walls_free(bdl_walls *walls);
+
+/// The triangles of a mesh, disk or cone wall, placed (a mesh file read, scaled, turned and
+/// shifted; a disk or cone made as polygons of `segments` sides).
+bdl_result bdl_wall_mesh_of(const bdl_wall_def *d, bdl_mesh *m, char *why, size_t why_len);
 
 /// Surfaces: primitives and triangles.
 static inline long bdl_wall_surfaces(const bdl_walls *walls)

@@ -181,6 +181,29 @@ static void push_mesh(bdl_render_outlines *o, const bdl_wall_def *d)
     bdl_mesh_free(&m);
 }
 
+/// A disk's rim and hole; a cone's two circles and four lines down its side.
+static void push_round(bdl_render_outlines *o, const bdl_wall_def *d)
+{
+    bdl_vec3 u, v;
+    const bdl_vec3 a = bdl_v3_normalize(d->normal);
+    basis(a, &u, &v);
+    if (d->kind == BDL_WALL_DISK) {
+        push_circle(o, d->point, u, v, d->radius);
+        if (d->hole_radius > 0.0)
+            push_circle(o, d->point, u, v, d->hole_radius);
+        return;
+    }
+    const bdl_vec3 top = bdl_v3_madd(d->point, a, d->height);
+    push_circle(o, d->point, u, v, d->radius);
+    if (d->radius_top > 0.0)
+        push_circle(o, top, u, v, d->radius_top);
+    for (int s = 0; s < 4; ++s) {
+        const bdl_vec3 dir = bdl_v3_scale(s & 1 ? v : u, s & 2 ? -1.0 : 1.0);
+        push_segment(o, bdl_v3_madd(d->point, dir, d->radius),
+                     bdl_v3_madd(top, dir, d->radius_top));
+    }
+}
+
 void bdl_render_outlines_build(bdl_renderer *r)
 {
     const bdl_scene *s = &r->scene;
@@ -198,6 +221,8 @@ void bdl_render_outlines_build(bdl_renderer *r)
             push_plane(o, d->point, d->normal, s->domain_min, s->domain_max);
         else if (d->kind == BDL_WALL_MESH)
             push_mesh(o, d);
+        else if (d->kind == BDL_WALL_DISK || d->kind == BDL_WALL_CONE)
+            push_round(o, d);
         else
             push_cylinder(o, d->point, d->normal, d->radius, s->domain_min, s->domain_max);
         o->groups[o->group_count++] = (bdl_line_group){w, first, o->line_count - first};

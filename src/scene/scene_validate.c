@@ -213,46 +213,50 @@ static void check_mesh(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall
     for (int k = 0; k < p->scene->species_count; ++k)
         if (p->scene->species[k].shape == BDL_SHAPE_ROD) {
             fail_at_key(p, s, "type", 0,
-                        "mesh walls hold spheres only (rods: plane, box or "
+                        "mesh, disk and cone walls hold spheres only (rods: plane, box or "
                         "cylinder walls)");
             return;
         }
     bdl_mesh m;
     char why[400], what[BDL_PATH_LEN + 420];
-    if (bdl_mesh_read(wall->file, &m, why, sizeof why) != BDL_OK) {
-        snprintf(what, sizeof what, "'%s' %s", wall->file, why);
-        fail_at_key(p, s, "file", 0, what);
+    if (bdl_wall_mesh_of(wall, &m, why, sizeof why) != BDL_OK) {
+        if (wall->kind == BDL_WALL_MESH)
+            snprintf(what, sizeof what, "'%s' %s", wall->file, why);
+        else
+            snprintf(what, sizeof what, "its triangles: %s", why);
+        fail_at_key(p, s, wall->kind == BDL_WALL_MESH ? "file" : "type", 0, what);
         return;
     }
     bdl_mesh_free(&m);
 }
 
-/// A turning wall must keep its shape: a cylinder about its own axis, a plane across the axis.
+/// A turning wall must keep its shape: a cylinder or cone about its own axis, a plane or disk
+/// about its normal.
 static void check_rotation(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall_def *wall)
 {
     const bdl_vec3 a = bdl_v3_normalize(wall->rotation_axis);
     const double tol = 1e-9;
     const char *why = NULL;
-    if (wall->kind == BDL_WALL_CYLINDER) {
+    if (wall->kind == BDL_WALL_CYLINDER || wall->kind == BDL_WALL_CONE) {
         const bdl_vec3 q = bdl_v3_sub(wall->rotation_center, wall->point);
         const double off = bdl_v3_len(bdl_v3_madd(q, wall->normal, -bdl_v3_dot(q, wall->normal)));
         if (fabs(fabs(bdl_v3_dot(a, wall->normal)) - 1.0) > tol)
-            why = "a cylinder turns about its own axis: rotation_axis must be parallel to axis";
+            why = "a cylinder or cone turns about its own axis: rotation_axis must be parallel to "
+                  "axis";
         else if (off > tol * wall->radius)
-            why = "a cylinder turns about its own axis: rotation_center must lie on it";
-    } else if (wall->kind == BDL_WALL_PLANE) {
+            why = "a cylinder or cone turns about its own axis: rotation_center must lie on it";
+    } else if (wall->kind == BDL_WALL_PLANE || wall->kind == BDL_WALL_DISK) {
         if (fabs(fabs(bdl_v3_dot(a, wall->normal)) - 1.0) > tol)
-            why = "a plane keeps its place only turning about its normal: rotation_axis must be "
-                  "parallel to normal";
+            why = "a plane or disk keeps its place only turning about its normal: rotation_axis "
+                  "must be parallel to normal";
     } else {
-        why = "only cylinders (about their axis) and planes (about their normal) turn without "
-              "changing shape; boxes and meshes cannot rotate";
+        why = "only cylinders and cones (about their axis), planes and disks (about their "
+              "normal) turn without changing shape; boxes and meshes cannot rotate";
     }
     if (why)
         fail_at_key(p, s,
-                    wall->kind == BDL_WALL_CYLINDER || wall->kind == BDL_WALL_PLANE
-                        ? "rotation_axis"
-                        : "motion",
+                    wall->kind == BDL_WALL_BOX || wall->kind == BDL_WALL_MESH ? "motion"
+                                                                              : "rotation_axis",
                     0, why);
 }
 
@@ -261,7 +265,11 @@ static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
     bdl_wall_def *wall = &p->scene->walls[s->index];
     if (wall->kind == BDL_WALL_BOX)
         check_box(p, s, "min", "max");
-    if (wall->kind == BDL_WALL_MESH && !p->failed)
+    if (wall->kind == BDL_WALL_DISK && !p->failed && !(wall->hole_radius < wall->radius))
+        fail_at_key(p, s, "hole_radius", 0, "must be smaller than radius");
+    if ((wall->kind == BDL_WALL_MESH || wall->kind == BDL_WALL_DISK ||
+         wall->kind == BDL_WALL_CONE) &&
+        !p->failed)
         check_mesh(p, s, wall);
     if (wall->motion == BDL_MOTION_ROTATE && !p->failed)
         check_rotation(p, s, wall);
