@@ -351,6 +351,30 @@ static void discharge(void)
     CHECK(s.mass_imbalance < 1e-12);
 }
 
+/// A random fill in a cylindrical region: every bead inside the cylinder inscribed in the box,
+/// and the region's volume fraction taken of the cylinder.
+static void cylinder_region(void)
+{
+    bdl_world *w = bdl_test_world(
+        "[run]\nend_time = 1\n[domain]\nmin = -0.03 -0.03 0\nmax = 0.03 0.03 0.1\n"
+        "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\ndensity = 2500\n"
+        "stiffness = 2000\nrestitution = 0.5\n"
+        "[create bed]\ntype = random\nspecies = glass\nvolume_fraction = 0.2\n"
+        "region_shape = cylinder\nregion_axis = z\nregion_min = -0.02 -0.025 0.01\n"
+        "region_max = 0.02 0.025 0.05\n");
+    const bdl_particles *p = &w->particles;
+    double worst = 0.0;
+    for (long i = 0; i < p->count; ++i)
+        worst = fmax(worst, hypot(p->pos[i].x, p->pos[i].y) + p->radius[i]);
+    const double expected = 0.2 * BDL_PI * 0.02 * 0.02 * 0.04 / (BDL_PI / 6.0 * 27e-9);
+    printf("\nRandom fill of a cylindrical region (radius 20 mm): %ld beads (%.0f asked), the "
+           "farthest reaching %.5f m from the axis\n",
+           p->count, expected, worst);
+    CHECK(worst <= 0.02 + 1e-15);
+    CHECK(labs(p->count - lrint(expected)) <= 1);
+    bdl_world_destroy(w);
+}
+
 static void expect_refused(const char *name, const char *reason)
 {
     char path[256], why[400];
@@ -407,6 +431,7 @@ int main(void)
         return 1;
     }
     reader();
+    cylinder_region();
     features();
     rolling();
     box_bed();

@@ -102,9 +102,7 @@ static void print_warnings(const bdl_world *w)
             continue;
         const bdl_species_def *sp = &s->species[cd->species];
         const double vp = bdl_species_volume(sp, sp->diameter);
-        double vol = 1.0;
-        for (int a = 0; a < 3; ++a)
-            vol *= bdl_v3_comp(cd->region_max, a) - bdl_v3_comp(cd->region_min, a);
+        const double vol = bdl_create_region_volume(cd);
         const double phi =
             cd->volume_fraction > 0.0 ? cd->volume_fraction : (double)cd->count * vp / vol;
         if (sp->shape == BDL_SHAPE_SPHERE && phi > RSA_JAMMING)

@@ -228,6 +228,44 @@ static int grid_for_region(placement_grid *g, const bdl_particles *p, bdl_vec3 l
     return 1;
 }
 
+/// The cylinder of a region: its axis, the centre of its cross-section, its radius [m].
+static void region_cylinder(const bdl_create_def *c, int *u, int *v, double *cu, double *cv,
+                            double *radius)
+{
+    *u = (c->region_axis + 1) % 3;
+    *v = (c->region_axis + 2) % 3;
+    const double lu = bdl_v3_comp(c->region_min, *u), hu = bdl_v3_comp(c->region_max, *u);
+    const double lv = bdl_v3_comp(c->region_min, *v), hv = bdl_v3_comp(c->region_max, *v);
+    *cu = 0.5 * (lu + hu);
+    *cv = 0.5 * (lv + hv);
+    *radius = 0.5 * fmin(hu - lu, hv - lv);
+}
+
+/// A point drawn uniformly in the region, at least `r` inside its boundary.
+static bdl_vec3 draw_in_region(const bdl_create_def *c, bdl_rng *rng, double r)
+{
+    bdl_vec3 x;
+    if (c->region_shape == BDL_REGION_BOX) {
+        // One draw per statement: argument evaluation order is unspecified in C.
+        x.x = bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r);
+        x.y = bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r);
+        x.z = bdl_rng_range(rng, c->region_min.z + r, c->region_max.z - r);
+        return x;
+    }
+    int u, v;
+    double cu, cv, radius;
+    region_cylinder(c, &u, &v, &cu, &cv, &radius);
+    const double a = c->region_axis;
+    const double along = bdl_rng_range(rng, bdl_v3_comp(c->region_min, (int)a) + r,
+                                       bdl_v3_comp(c->region_max, (int)a) - r);
+    const double rho = fmax(0.0, radius - r) * sqrt(bdl_rng_uniform(rng));
+    const double phi = 2.0 * BDL_PI * bdl_rng_uniform(rng);
+    bdl_v3_set_comp(&x, c->region_axis, along);
+    bdl_v3_set_comp(&x, u, cu + rho * cos(phi));
+    bdl_v3_set_comp(&x, v, cv + rho * sin(phi));
+    return x;
+}
+
 /// Draws a centre uniformly in the creator's region (a whole sphere inside it) and a rod's
 /// orientation; true when the particle lies in the region and overlaps no wall and no particle.
 static int try_place(const bdl_create_def *c, const bdl_create_context *ctx,
@@ -235,11 +273,7 @@ static int try_place(const bdl_create_def *c, const bdl_create_context *ctx,
                      body *b)
 {
     bdl_rng *rng = ctx->rng;
-    bdl_vec3 x;
-    // One draw per statement: argument evaluation order is unspecified in C.
-    x.x = bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r);
-    x.y = bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r);
-    x.z = bdl_rng_range(rng, c->region_min.z + r, c->region_max.z - r);
+    const bdl_vec3 x = draw_in_region(c, rng, r);
     *b = sphere_at(x, r);
     orient(b, &ctx->species[c->species], rng);
     return (b->half_length == 0.0 || inside_region(c, b)) && inside_walls(ctx->walls, b) &&
@@ -257,9 +291,15 @@ static bdl_vec3 draw_velocity(const bdl_create_def *c, bdl_rng *rng)
     return bdl_v3_madd(c->velocity, bdl_v3_normalize(d), c->velocity_jitter * bdl_rng_uniform(rng));
 }
 
-static double region_volume(const bdl_create_def *c)
+double bdl_create_region_volume(const bdl_create_def *c)
 {
     bdl_vec3 l = bdl_v3_sub(c->region_max, c->region_min);
+    if (c->region_shape == BDL_REGION_CYLINDER) {
+        int u, v;
+        double cu, cv, radius;
+        region_cylinder(c, &u, &v, &cu, &cv, &radius);
+        return BDL_PI * radius * radius * bdl_v3_comp(l, c->region_axis);
+    }
     return l.x * l.y * l.z;
 }
 
@@ -319,11 +359,7 @@ static bdl_result create_random_parcels(const bdl_create_def *c, const bdl_creat
     for (long placed = 0; placed < target;) {
         body b;
         const double d = bdl_species_draw_diameter(s, ctx->rng);
-        bdl_vec3 x;
-        x.x = bdl_rng_range(ctx->rng, c->region_min.x, c->region_max.x);
-        x.y = bdl_rng_range(ctx->rng, c->region_min.y, c->region_max.y);
-        x.z = bdl_rng_range(ctx->rng, c->region_min.z, c->region_max.z);
-        b = sphere_at(x, 0.5 * d);
+        b = sphere_at(draw_in_region(c, ctx->rng, 0.0), 0.5 * d);
         if (!inside_walls(ctx->walls, &b))
             continue;
         if (add_checked(p, NULL, &b, draw_velocity(c, ctx->rng), ctx, c->species) < 0)
@@ -377,8 +413,8 @@ static bdl_result create_random(const bdl_create_def *c, const bdl_create_contex
     double r_max = largest_radius(ctx);
     long target = c->count;
     if (target < 0)
-        target =
-            (long)floor(c->volume_fraction * region_volume(c) / mean_placed_volume(s, rng) + 0.5);
+        target = (long)floor(
+            c->volume_fraction * bdl_create_region_volume(c) / mean_placed_volume(s, rng) + 0.5);
     if (p->parcels)
         return create_random_parcels(c, ctx, target, p);
     placement_grid g;
@@ -840,7 +876,7 @@ double bdl_create_expected(const bdl_create_def *c, const bdl_species_def *s)
     }
     if (c->kind == BDL_CREATE_RANDOM && c->count <= 0)
         return floor(
-            c->volume_fraction * region_volume(c) /
+            c->volume_fraction * bdl_create_region_volume(c) /
                 (bdl_species_volume(s, s->diameter) * bdl_species_parcel_count(s, s->diameter)) +
             0.5);
     return c->count > 0 ? (double)c->count : 0.0;
@@ -861,9 +897,9 @@ long bdl_create_estimate_total(const bdl_create_def *creates, int count,
         double vp = bdl_species_volume(s, d) * bdl_species_parcel_count(s, d);
         double h = bdl_species_is_parcel(s) ? lattice_spacing(def, s) : d;
         if (def->kind == BDL_CREATE_RANDOM)
-            total += (long)(def->volume_fraction * region_volume(def) / vp) + 1;
+            total += (long)(def->volume_fraction * bdl_create_region_volume(def) / vp) + 1;
         else if (def->kind == BDL_CREATE_LATTICE)
-            total += (long)(region_volume(def) / (h * h * h)) + 1;
+            total += (long)(bdl_create_region_volume(def) / (h * h * h)) + 1;
         else
             total += count_rows(def->file);
     }

@@ -21,13 +21,22 @@
     X(CREATE_FILE, "file", "positions (and optionally diameter, velocity) from a CSV file")
 BDL_CHOICES(bdl_create_kind, BDL_CREATE_KINDS);
 
+/// The shape of a random or pour creator's region ([create NAME] region_shape).
+#define BDL_REGION_SHAPES(X)                                                                       \
+    X(REGION_BOX, "box", "the box region_min..region_max")                                         \
+    X(REGION_CYLINDER, "cylinder",                                                                 \
+      "the cylinder inscribed in that box along region_axis (a silo's or a drum's inside)")
+BDL_CHOICES(bdl_region_shape, BDL_REGION_SHAPES);
+
 typedef struct bdl_create_def {
     char name[BDL_NAME_LEN];
     bdl_create_kind kind;
-    int species;             ///< species index
-    bdl_vec3 region_min;     ///< [m]
-    bdl_vec3 region_max;     ///< [m]
-    long count;              ///< number of particles (random, lattice, pour); -1 if not given
+    int species;                   ///< species index
+    bdl_vec3 region_min;           ///< [m]
+    bdl_vec3 region_max;           ///< [m]
+    bdl_region_shape region_shape; ///< random, pour: box or the cylinder inscribed in it
+    int region_axis;               ///< the cylinder's axis (0 x, 1 y, 2 z)
+    long count;                    ///< number of particles (random, lattice, pour); -1 if not given
     double volume_fraction;  ///< target solids fraction of the region (random); < 0 if not given
     double spacing;          ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
     double rate;             ///< pour rate [particles/s]
@@ -36,6 +45,9 @@ typedef struct bdl_create_def {
     double velocity_jitter;  ///< random velocity magnitude added [m/s]
     char file[BDL_PATH_LEN]; ///< CSV path
 } bdl_create_def;
+
+/// Volume of a creator's region: its box, or the cylinder inscribed in it [m^3].
+double bdl_create_region_volume(const bdl_create_def *c);
 
 /// What creators draw on besides their own definition.
 typedef struct bdl_create_context {

@@ -17,6 +17,7 @@ _Static_assert(sizeof(bdl_rolling_model) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_size_dist) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_wall_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_outside) == sizeof(int), "enum size");
+_Static_assert(sizeof(bdl_region_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_motion_kind) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_wall_frame) == sizeof(int), "enum size");
 _Static_assert(sizeof(bdl_create_kind) == sizeof(int), "enum size");
@@ -71,6 +72,7 @@ BDL_CHOICE_WORDS(bdl_dia_lighting, BDL_DIA_LIGHTINGS);
 const char *const bdl_dia_lighting_labels[] = {BDL_DIA_LIGHTINGS(BDL_ENUM_LABEL) NULL};
 BDL_CHOICE_WORDS(bdl_sweep, BDL_SWEEPS);
 BDL_CHOICE_WORDS(bdl_outside, BDL_OUTSIDES);
+BDL_CHOICE_WORDS(bdl_region_shape, BDL_REGION_SHAPES);
 BDL_CHOICE_WORDS(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
 
 #define IN_SCENE(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, field)
@@ -359,6 +361,13 @@ const bdl_scene_key bdl_scene_keys[] = {
      .required = BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR),
      .default_text = "required for random, lattice, pour",
      .doc = "upper corner of the region (inside the domain)"},
+    {S(CREATE), "region_shape", .type = BDL_KEY_ENUM, "-", IN_CREATE(region_shape),
+     WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_POUR)), .def = {BDL_REGION_BOX},
+     .enum_names = bdl_region_shape_names,
+     .doc = "random, pour: the box, or the cylinder inscribed in it along region_axis"},
+    {S(CREATE), "region_axis", .type = BDL_KEY_ENUM, "-", IN_CREATE(region_axis),
+     WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_POUR)), .def = {2},
+     .enum_names = axis_names, .doc = "random, pour: the axis of a cylindrical region"},
     {S(CREATE), "count", .type = BDL_KEY_LONG, "-", IN_CREATE(count),
      WHEN("type", BIT(BDL_CREATE_RANDOM) | BIT(BDL_CREATE_LATTICE) | BIT(BDL_CREATE_POUR)),
      .required = BIT(BDL_CREATE_POUR), .def = {-1},
