@@ -18,66 +18,6 @@
 #define BDL_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define BDL_PRINTF(a, b)
-/// Discharge of a flat-bottomed silo through a central orifice (scenes/silo_discharge.ini):
-/// `count` glass beads of d = 3 mm in a cylinder 72 mm across settle on a floor (a mesh annulus
-/// written to a temporary OBJ file) held shut by a plug taken away at t_open = 0.5 s. The bulk
-/// density rho_b is measured in the settled bed at t_open (centres in r < 25 mm, 10 < z < 40 mm);
-/// the rate W is the least-squares slope of the mass out (removed 30 mm below the floor) over
-/// [t_open + 0.2 s, t_end]; Beverloo's W = C rho_b sqrt(g) (D - k d)^2.5 with C = 0.58, k = 1.5
-/// (Beverloo, Leniger & van de Velde 1961; Nedderman 1992, ch. 10).
-typedef struct bdl_verify_silo {
-    double orifice;        ///< D [m]
-    double bulk_density;   ///< rho_b [kg/m^3]
-    double rate;           ///< W measured [kg/s]
-    double rate_beverloo;  ///< W predicted [kg/s]
-    long out;              ///< beads removed
-    long left;             ///< beads in the silo at the end
-    double mass_imbalance; ///< |mass in + mass out - mass at start| / mass at start
-    long steps;
-} bdl_verify_silo;
-bdl_result bdl_verify_silo_discharge(double orifice, long count, double t_end,
-                                     bdl_verify_silo *out);
-
-/// A rotating drum (scenes/rotating_drum.ini): 2600 glass beads of 3 mm fill 39 % of a drum of
-/// radius 50 mm, periodic along its axis (y, 20 mm), turning at `omega` [rad/s] from 0.3 s. The
-/// dynamic angle of repose is the slope of a line fitted to the free surface (the highest centre
-/// in each 6 mm bin of x across the middle 50 mm) every 0.1 s from 1.2 to 2.5 s; the wall drives
-/// the bed without slip when the beads touching the drum meet it at its speed: the tangential
-/// velocity of their surface at the wall (centre plus spin) over omega R, in the drum's bottom
-/// quarter. The drum's wall
-/// friction is 1.0 (a rough drum; at 0.5 the bed slips back at 3 rad/s).
-typedef struct bdl_verify_drum {
-    double friction, omega; ///< of the beads and the drum; [rad/s]
-    double angle;           ///< mean dynamic angle of repose [degrees]
-    double angle_sd;        ///< its standard deviation over the samples [degrees]
-    double carried;         ///< mean speed ratio of the beads touching the drum's bottom quarter
-    int samples;
-    long steps;
-} bdl_verify_drum;
-bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum *out);
-
-/// Janssen's silo (scenes/silo_janssen.ini): `count` glass beads of 3 mm settle for 1 s in a
-/// cylinder 40 mm across on a flat floor (wall friction 0.5). Averaged over the last 0.2 s: the
-/// floor's force, the bulk density in the core, the fill height H = mass / (rho_b A), and in
-/// slabs of the bed's middle half the ratio K = sigma_h / sigma_v of the wall's normal stress to
-/// the vertical stress the column above carries (its weight less the wall's friction on it), and
-/// the friction the wall mobilises, |tau_w| / sigma_h. Janssen (1895): the floor carries
-/// rho_b g A lambda (1 - exp(-H / lambda)), lambda = R / (2 mu_w K).
-typedef struct bdl_verify_janssen {
-    long count;
-    double height;       ///< H [m]
-    double bulk_density; ///< rho_b [kg/m^3]
-    double floor_mass;   ///< the floor's force over g [kg]
-    double fill_mass;    ///< the beads' mass [kg]
-    double k;            ///< K measured (NAN when the bed is too shallow for slabs)
-    double mobilised;    ///< |tau_w| / sigma_h at the wall of the same slabs
-    long steps;
-} bdl_verify_janssen;
-bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out);
-/// Janssen's floor mass for a fill of height H [kg].
-double bdl_verify_janssen_mass(double bulk_density, double radius, double mu_wall, double k,
-                               double height);
-
 #endif
 
 /// One run of a case at one refinement.
