@@ -375,6 +375,24 @@ static void cylinder_region(void)
     bdl_world_destroy(w);
 }
 
+/// A pour with a time window stops at stop_time, short of its count.
+static void pour_window(void)
+{
+    bdl_world *w = bdl_test_world(
+        "[run]\nend_time = 1\n[domain]\nmin = -0.03 -0.03 0\nmax = 0.03 0.03 0.1\n"
+        "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\ndensity = 2500\n"
+        "stiffness = 2000\nrestitution = 0.5\n[wall floor]\ntype = plane\npoint = 0 0 0\n"
+        "normal = 0 0 1\n[create rain]\ntype = pour\nspecies = glass\ncount = 1000\n"
+        "rate = 10000\nstart_time = 0.005\nstop_time = 0.02\nregion_shape = cylinder\n"
+        "region_min = -0.025 -0.025 0.05\nregion_max = 0.025 0.025 0.09\n");
+    while (w->time < 0.04)
+        CHECK(bdl_world_step(w) == BDL_OK);
+    printf("\nPour of 1000 at 10 000/s from 0.005 to 0.02 s: %ld particles at 0.04 s\n",
+           w->particles.count);
+    CHECK(w->particles.count > 100 && w->particles.count <= 151);
+    bdl_world_destroy(w);
+}
+
 static void expect_refused(const char *name, const char *reason)
 {
     char path[256], why[400];
@@ -432,6 +450,7 @@ int main(void)
     }
     reader();
     cylinder_region();
+    pour_window();
     features();
     rolling();
     box_bed();

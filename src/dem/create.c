@@ -806,7 +806,7 @@ long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, d
                      long *poured, bdl_particles *p)
 {
     bdl_rng *rng = ctx->rng;
-    if (t < def->start_time || *poured >= def->count)
+    if (t < def->start_time || t >= def->stop_time || *poured >= def->count)
         return 0;
     const double due_now = floor((t - def->start_time) * def->rate) + 1.0;
     const long due = due_now < (double)def->count ? (long)due_now : def->count;

@@ -41,6 +41,7 @@ typedef struct bdl_create_def {
     double spacing;          ///< lattice spacing [m]; < 0 -> 1.0001 max diameter
     double rate;             ///< pour rate [particles/s]
     double start_time;       ///< pour start [s]
+    double stop_time;        ///< pour: no insertion from this time on (INFINITY: none) [s]
     bdl_vec3 velocity;       ///< initial velocity [m/s]
     double velocity_jitter;  ///< random velocity magnitude added [m/s]
     char file[BDL_PATH_LEN]; ///< CSV path

@@ -395,6 +395,8 @@ static void check_create(bdl_scene_parser *p, bdl_scene_section *s)
     }
     if (create->kind == BDL_CREATE_RANDOM)
         check_one_of(p, s, "count", "volume_fraction", " for type = random");
+    if (create->kind == BDL_CREATE_POUR && !(create->stop_time > create->start_time))
+        fail_at_key(p, s, "stop_time", 0, "must be later than start_time");
     if (create->kind == BDL_CREATE_LATTICE && given(s, key_of(s, "spacing")) &&
         create->spacing < diameter)
         fail_at_key(p, s, "spacing", 0,
