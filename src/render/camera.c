@@ -68,7 +68,8 @@ void bdl_camera_fit(bdl_camera *cam, const float lo[3], const float hi[3], float
         float x = fabsf(glm_vec3_dot(q, r)), y = fabsf(glm_vec3_dot(q, u));
         float toward = -glm_vec3_dot(q, f); // how far the corner is in front of the target
         // Orthographic: the half height must cover the corner; perspective: the corner's cone.
-        float dx = x / (tan_half * aspect), dy = y / tan_half;
+        // Across, the middle 82 % only: the colour bar and its labels take the right edge.
+        float dx = x / (tan_half * aspect * 0.82f), dy = y / tan_half;
         float d = fmaxf(dx, dy) + (cam->ortho ? 0.0f : toward);
         need = fmaxf(need, d);
     }
