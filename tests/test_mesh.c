@@ -391,6 +391,20 @@ static void pour_window(void)
            w->particles.count);
     CHECK(w->particles.count > 100 && w->particles.count <= 151);
     bdl_world_destroy(w);
+    // The same pour onto a sink in the middle of the box: what falls in is removed and counted.
+    w = bdl_test_world("[run]\nend_time = 1\n[domain]\nmin = -0.03 -0.03 0\nmax = 0.03 0.03 0.1\n"
+                       "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\n"
+                       "density = 2500\nstiffness = 2000\nrestitution = 0.5\n[wall floor]\n"
+                       "type = plane\npoint = 0 0 0\nnormal = 0 0 1\n[create rain]\ntype = pour\n"
+                       "species = glass\ncount = 300\nrate = 20000\nregion_min = -0.025 -0.025 "
+                       "0.05\nregion_max = 0.025 0.025 0.09\n[sink hole]\nmin = -0.01 -0.01 0\n"
+                       "max = 0.01 0.01 0.02\n");
+    while (w->time < 0.15)
+        CHECK(bdl_world_step(w) == BDL_OK);
+    printf("A sink 20 mm square under a pour of 300: %ld removed, %ld left\n", w->removed,
+           w->particles.count);
+    CHECK(w->removed > 20 && w->removed + w->particles.count == 300);
+    bdl_world_destroy(w);
 }
 
 static void expect_refused(const char *name, const char *reason)

@@ -127,6 +127,8 @@ static void print_modules(const bdl_world *w)
     char gas[256];
     bdl_world_gas_describe(w, gas, sizeof gas);
     printf("  gas: %s\n", gas);
+    if (s->sink_count > 0)
+        printf("  sinks: %d (particles entering them are removed and counted)\n", s->sink_count);
     printf("  periodic axes: %s%s%s%s\n", s->periodic[0] ? "x " : "", s->periodic[1] ? "y " : "",
            s->periodic[2] ? "z " : "",
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");

@@ -27,6 +27,15 @@
 #define BDL_MAX_PAIRS   64
 #define BDL_MAX_CREATES 16
 #define BDL_MAX_DIA     4
+#define BDL_MAX_SINKS   8
+
+/// A region that removes the particles whose centres enter it ([sink NAME]), counting them with
+/// those that leave the domain.
+typedef struct bdl_sink_def {
+    char name[BDL_NAME_LEN];
+    bdl_vec3 min, max; ///< the box [m]
+    double start_time; ///< simulated time it starts removing [s]
+} bdl_sink_def;
 
 /// Largest length of [run] gravity [m/s^2]: about 1e5 g, above the strongest fields granular
 /// beds are studied in (geotechnical and rotating-bed centrifuges reach a few hundred g); a
@@ -282,6 +291,8 @@ typedef struct bdl_scene {
     bdl_create_def creates[BDL_MAX_CREATES];
     int dia_count;
     bdl_dia_scene_def dias[BDL_MAX_DIA];
+    int sink_count;
+    bdl_sink_def sinks[BDL_MAX_SINKS];
 
     /// Lines of the section headers in the scene file, for messages (0: not from the file).
     struct {

@@ -28,6 +28,7 @@ typedef enum bdl_section_kind {
     BDL_SECTION_WALL,
     BDL_SECTION_CREATE,
     BDL_SECTION_DIA, ///< [camera NAME]: the same word as [camera], with a name
+    BDL_SECTION_SINK,
     BDL_SECTION_KIND_COUNT
 } bdl_section_kind;
 
@@ -97,7 +98,8 @@ extern const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT];
 
 #define BDL_SCENE_KEY_CAPACITY 256
 #define BDL_SCENE_MAX_SECTIONS                                                                     \
-    (5 + BDL_MAX_SPECIES + BDL_MAX_PAIRS + BDL_MAX_WALLS + BDL_MAX_CREATES)
+    (BDL_SECTION_SPECIES + BDL_MAX_SPECIES + BDL_MAX_PAIRS + BDL_MAX_WALLS + BDL_MAX_CREATES +     \
+     BDL_MAX_DIA + BDL_MAX_SINKS)
 /// Line number recorded for a value that came from a --set override.
 #define BDL_LINE_SET (-1)
 /// Longest line accepted in a scene file (characters, without the newline).

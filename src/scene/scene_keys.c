@@ -50,6 +50,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
     [BDL_SECTION_CREATE] = {"create", "create NAME", 1, BDL_MAX_CREATES},
     [BDL_SECTION_DIA] = {"camera", "camera NAME", 1, BDL_MAX_DIA},
+    [BDL_SECTION_SINK] = {"sink", "sink NAME", 1, BDL_MAX_SINKS},
 };
 
 // Words of the choices that are the scene's own (the solver modules define theirs beside their
@@ -82,6 +83,7 @@ BDL_CHOICE_WORDS(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
     .flag_offset = offsetof(bdl_pair_def, has_##field)
 #define IN_WALL(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
 #define IN_CREATE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_create_def, field)
+#define IN_SINK(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_sink_def, field)
 #define IN_DIA(field)    .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_dia_scene_def, field)
 #define IN_CAMERA(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, camera.field)
 #define IN_CAMERA_FLAGGED(field)                                                                   \
@@ -397,6 +399,14 @@ const bdl_scene_key bdl_scene_keys[] = {
      .default_text = "required for file",
      .doc = "file: CSV file of positions (optionally diameters, velocities, rod axes), relative "
             "to the scene folder"},
+
+    // [sink NAME]
+    {S(SINK), "min", VEC, "m", IN_SINK(min), REQUIRED,
+     .doc = "lower corner of the box whose particles are removed"},
+    {S(SINK), "max", VEC, "m", IN_SINK(max), REQUIRED,
+     .doc = "upper corner of the box, larger than min on every axis"},
+    {S(SINK), "start_time", NUM, "s", IN_SINK(start_time), .def = {0}, GE(0),
+     .doc = "simulated time the sink starts removing particles"},
 
     // [output]
     {S(OUTPUT), "diagnostics_interval", NUM, "s", IN_SCENE(output.diagnostics_interval),
@@ -858,6 +868,8 @@ void *bdl_scene_key_field(const bdl_scene_key *key, bdl_scene *scene, bdl_scene_
         base = (char *)&scene->creates[section->index];
     else if (key->section == BDL_SECTION_DIA)
         base = (char *)&scene->dias[section->index];
+    else if (key->section == BDL_SECTION_SINK)
+        base = (char *)&scene->sinks[section->index];
     return base + key->offset;
 }
 

@@ -719,8 +719,9 @@ int bdl_scene_validate(bdl_scene_parser *p)
                        "no [species NAME] section: at least one species is required");
     // Species first: pairs and creators refer to them and to their diameters.
     static const bdl_section_kind order[] = {BDL_SECTION_SPECIES, BDL_SECTION_PAIR,
-                                             BDL_SECTION_WALL, BDL_SECTION_CREATE, BDL_SECTION_DIA};
-    for (int k = 0; k < 5; ++k) {
+                                             BDL_SECTION_WALL,    BDL_SECTION_CREATE,
+                                             BDL_SECTION_DIA,     BDL_SECTION_SINK};
+    for (int k = 0; k < 6; ++k) {
         for (int i = 0; i < p->section_count && !p->failed; ++i) {
             bdl_scene_section *s = &p->sections[i];
             if (s->kind != order[k])
@@ -736,6 +737,8 @@ int bdl_scene_validate(bdl_scene_parser *p)
                 check_wall(p, s);
             else if (s->kind == BDL_SECTION_DIA)
                 check_dia(p, s);
+            else if (s->kind == BDL_SECTION_SINK)
+                check_box(p, s, "min", "max");
             else
                 check_create(p, s);
         }

@@ -262,7 +262,8 @@ static bdl_result pour(bdl_world *w)
     return BDL_OK;
 }
 
-/// True when x lies beyond a face of the domain where the gas has a pressure outlet.
+/// True when x lies beyond a face of the domain that removes particles (a gas outlet, or any
+/// with [domain] outside = remove), or in a [sink] that has started.
 static int beyond_outlet(const bdl_world *w, bdl_vec3 x)
 {
     for (int a = 0; a < 3; ++a) {
@@ -271,11 +272,17 @@ static int beyond_outlet(const bdl_world *w, bdl_vec3 x)
             (w->outflow[2 * a + 1] && c > bdl_v3_comp(w->scene.domain_max, a)))
             return 1;
     }
+    for (int k = 0; k < w->scene.sink_count; ++k) {
+        const bdl_sink_def *s = &w->scene.sinks[k];
+        if (w->time >= s->start_time && x.x >= s->min.x && x.x <= s->max.x && x.y >= s->min.y &&
+            x.y <= s->max.y && x.z >= s->min.z && x.z <= s->max.z)
+            return 1;
+    }
     return 0;
 }
 
-/// Removes the particles that crossed a gas outlet face during the drift, booking their number,
-/// mass and energy; the lists are rebuilt without them (`*max_move2` then 0).
+/// Removes the particles that crossed a removing face or entered a sink during the drift, booking
+/// their number, mass and energy; the lists are rebuilt without them (`*max_move2` then 0).
 static bdl_result remove_outflow(bdl_world *w, double *max_move2)
 {
     bdl_particles *p = &w->particles;
@@ -353,7 +360,7 @@ bdl_result bdl_world_step(bdl_world *w)
     w->time += w->dt;
     bdl_walls_update(&w->walls, w->time);
     const int outflow = w->outflow[0] | w->outflow[1] | w->outflow[2] | w->outflow[3] |
-                        w->outflow[4] | w->outflow[5];
+                        w->outflow[4] | w->outflow[5] | (w->scene.sink_count > 0);
     bdl_result r = outflow ? remove_outflow(w, &max_move2) : BDL_OK;
     if (r == BDL_OK)
         r = pour(w);
