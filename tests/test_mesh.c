@@ -277,6 +277,52 @@ static void rolling(void)
     bdl_world_destroy(wp);
 }
 
+/// A sphere pressed onto the plate by gravity and dragged over 12 mm of it (edges and diagonals)
+/// (its velocity set every step, below and above the friction's limit): the force it feels, the
+/// tangential spring included, is the plane's at every step, so the spring passes from triangle to
+/// triangle.
+static void dragging(void)
+{
+    const char *fmt = "[run]\nend_time = 1\n[domain]\nmin = -0.05 -0.05 -0.05\n"
+                      "max = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\ndensity = 2500\n"
+                      "youngs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\n"
+                      "friction = 0.4\n[wall w]\n%s\n[create one]\ntype = file\n"
+                      "species = glass\nfile = %s\n";
+    char csv[256], text[2048], mesh[300];
+    path_of(csv, sizeof csv, "drag.csv");
+    FILE *f = fopen(csv, "w");
+    fprintf(f, "x,y,z\n-0.006,-0.0035,0.002\n");
+    fclose(f);
+    snprintf(mesh, sizeof mesh, "type = mesh\nfile = %s/fine.stl", folder);
+    snprintf(text, sizeof text, fmt, 2.0 * radius, mesh, csv);
+    bdl_world *wm = bdl_test_world("%s", text);
+    snprintf(text, sizeof text, fmt, 2.0 * radius, "type = plane\npoint = 0 0 0\nnormal = 0 0 1",
+             csv);
+    bdl_world *wp = bdl_test_world("%s", text);
+    double worst = 0.0, ft = 0.0;
+    long steps = 0;
+    while (wm->particles.pos[0].x < 0.006 && steps < 400000) {
+        const double speed = steps < 5000 ? 0.002 : 0.05; // sticking, then sliding
+        bdl_world *w[2] = {wm, wp};
+        for (int k = 0; k < 2; ++k) {
+            w[k]->particles.vel[0] = bdl_v3(speed, 0.25 * speed, w[k]->particles.vel[0].z);
+            w[k]->particles.omega[0] = bdl_v3_zero();
+            CHECK(bdl_world_step(w[k]) == BDL_OK);
+        }
+        const bdl_vec3 a = wm->particles.load[0].force, b = wp->particles.load[0].force;
+        worst = fmax(worst, bdl_v3_len(bdl_v3_sub(a, b)) / fmax(bdl_v3_len(b), 1e-30));
+        ft = fmax(ft, hypot(b.x, b.y));
+        ++steps;
+    }
+    printf("\nDragged 12 mm over the plate (%ld steps, tangential force up to %.3g N): largest "
+           "relative force difference from the plane %.3e\n",
+           steps, ft, worst);
+    CHECK(ft > 0.0);
+    CHECK_MSG(worst <= 1e-9, "the tangential spring does not pass between triangles: %.3e", worst);
+    bdl_world_destroy(wm);
+    bdl_world_destroy(wp);
+}
+
 /// The 12 triangles of the box [0, 0.02] x [0, 0.02] x [0, 0.06].
 static int box_triangles(tri *t)
 {
@@ -467,6 +513,7 @@ int main(void)
     pour_window();
     features();
     rolling();
+    dragging();
     box_bed();
     discharge();
     char cmd[300];

@@ -370,6 +370,58 @@ static inline bdl_vec3 slot_torque_j(const pair_batch *b, int q)
     return bdl_v3(b->tjx[q], b->tjy[q], b->tjz[q]);
 }
 
+/// Whether entry k of particle i's wall list (a triangle) touches and counts now.
+static int triangle_counts(const bdl_particles *p, const bdl_neighbor *nb, const bdl_walls *walls,
+                           long i, int32_t k)
+{
+    bdl_vec3 n;
+    const int32_t k0 = nb->wall_start[i], prim = nb->wall_prim[k];
+    return prim >= walls->prim_count &&
+           bdl_wall_gap(walls, prim, p->pos[i], p->radius[i], &n) < 0.0 &&
+           bdl_wall_tri_counted(walls, nb->wall_prim + k0, nb->wall_start[i + 1] - k0,
+                                (int)(k - k0), p->pos[i], p->radius[i]);
+}
+
+#define CARRY_MAX 32
+
+/// A sphere passing from one triangle of a mesh wall to the next keeps its tangential spring:
+/// a triangle contact that starts this step takes over the spring (and the work it holds) of a
+/// triangle contact of the same wall that ends this step, before the pass below updates either.
+/// (Particles with more than CARRY_MAX wall entries start afresh, as at the join of two
+/// primitive walls.)
+static void carry_springs(const bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls, long i)
+{
+    const int32_t k0 = nb->wall_start[i], m = nb->wall_start[i + 1] - k0;
+    if (walls->tri_count == 0 || m < 2 || m > CARRY_MAX)
+        return;
+    uint8_t now[CARRY_MAX];
+    int starts = 0, ends = 0;
+    for (int32_t k = 0; k < m; ++k) {
+        now[k] = (uint8_t)triangle_counts(p, nb, walls, i, k0 + k);
+        starts += now[k] && !nb->wall_touching[k0 + k];
+        ends += !now[k] && nb->wall_touching[k0 + k] && nb->wall_prim[k0 + k] >= walls->prim_count;
+    }
+    for (int32_t k = 0; k < m && starts > 0 && ends > 0; ++k) {
+        if (!now[k] || nb->wall_touching[k0 + k])
+            continue;
+        for (int32_t e = 0; e < m; ++e) {
+            const int32_t a = k0 + k, b = k0 + e;
+            if (now[e] || !nb->wall_touching[b] || nb->wall_prim[b] < walls->prim_count ||
+                bdl_wall_of(walls, nb->wall_prim[b]) != bdl_wall_of(walls, nb->wall_prim[a]))
+                continue;
+            nb->wall_history[a] = nb->wall_history[b];
+            nb->wall_history[b] = bdl_v3_zero();
+            if (nb->wall_spring_work) { // moved, not released
+                nb->wall_spring_work[a] = nb->wall_spring_work[b];
+                nb->wall_spring_work[b] = 0.0;
+            }
+            nb->wall_touching[b] = 0;
+            --ends;
+            break;
+        }
+    }
+}
+
 /// Wall contacts of particle i, added to f and t.
 static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls,
                           const bdl_force_def *def, long i, bdl_vec3 *f, bdl_vec3 *t,
@@ -377,6 +429,8 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
 {
     int ns = def->species_count;
     double r = p->radius[i];
+    if (def->friction)
+        carry_springs(p, nb, walls, i);
     for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
         int prim = nb->wall_prim[k];
         bdl_vec3 n;
