@@ -203,7 +203,8 @@ int bdl_ckpt_check_state(const bdl_world *w, double saved_dt, char *why, size_t 
     const bdl_particles *p = &w->particles;
     int ok = check_scalars(w, saved_dt, what, sizeof what) &&
              check_particles(w, what, sizeof what) &&
-             bdl_neighbor_check(&w->neighbor, p->count, bdl_wall_surfaces(&w->walls), what, sizeof what) &&
+             bdl_neighbor_check(&w->neighbor, p->count, bdl_wall_surfaces(&w->walls), what,
+                                sizeof what) &&
              check_gas(w, saved_dt, what, sizeof what);
     if (!ok)
         snprintf(why, why_len, "is not a consistent state: %s", what);
