@@ -37,12 +37,19 @@ static void path_of(char *out, size_t n, const char *name)
     snprintf(out, n, "%s/%s", folder, name);
 }
 
-static void write_text(const char *name, const char *text)
+/// Opens NAME in the test's folder for writing (a failed check and NULL if it cannot).
+static FILE *open_in(const char *name, const char *mode)
 {
     char path[256];
     path_of(path, sizeof path, name);
-    FILE *f = fopen(path, "w");
+    FILE *f = fopen(path, mode);
     CHECK(f != NULL);
+    return f;
+}
+
+static void write_text(const char *name, const char *text)
+{
+    FILE *f = open_in(name, "w");
     if (f) {
         fputs(text, f);
         fclose(f);
@@ -51,10 +58,7 @@ static void write_text(const char *name, const char *text)
 
 static void write_stl_ascii(const char *name, const tri *t, int n)
 {
-    char path[256];
-    path_of(path, sizeof path, name);
-    FILE *f = fopen(path, "w");
-    CHECK(f != NULL);
+    FILE *f = open_in(name, "w");
     if (!f)
         return;
     fprintf(f, "solid test\n");
@@ -70,10 +74,7 @@ static void write_stl_ascii(const char *name, const tri *t, int n)
 
 static void write_stl_binary(const char *name, const tri *t, int n, uint32_t claimed, long cut)
 {
-    char path[256];
-    path_of(path, sizeof path, name);
-    FILE *f = fopen(path, "wb");
-    CHECK(f != NULL);
+    FILE *f = open_in(name, "wb");
     if (!f)
         return;
     char header[80] = "binary test mesh";
@@ -91,6 +92,8 @@ static void write_stl_binary(const char *name, const tri *t, int n, uint32_t cla
         fwrite(&attr, 2, 1, f);
     }
     fclose(f);
+    char path[256];
+    path_of(path, sizeof path, name);
     if (cut > 0)
         CHECK(truncate(path, cut) == 0);
 }
@@ -112,22 +115,26 @@ static int plate(tri *out, int m, double h, double z)
     return n;
 }
 
+/// A world of one glass sphere at x (read from a CSV file) against the wall described by `wall`,
+/// under `gravity`; it may start overlapping the wall by up to half its radius.
+static bdl_world *one_sphere(const char *wall, bdl_vec3 x, const char *gravity)
+{
+    char csv[256], row[128];
+    path_of(csv, sizeof csv, "one.csv");
+    snprintf(row, sizeof row, "x,y,z\n%.17g,%.17g,%.17g\n", x.x, x.y, x.z);
+    write_text("one.csv", row);
+    return bdl_test_world(
+        "[guards]\ninitial_overlap = 0.5\n[run]\nend_time = 1\ngravity = %s\n[domain]\n"
+        "min = -0.05 -0.05 -0.05\nmax = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\n"
+        "density = 2500\nyoungs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\n"
+        "friction = 0.4\n[wall w]\n%s\n[create one]\ntype = file\nspecies = glass\nfile = %s\n",
+        gravity, 2.0 * radius, wall, csv);
+}
+
 /// The force on one sphere at x (at rest, no gravity) from the wall described by `wall`.
 static bdl_vec3 force_at(const char *wall, bdl_vec3 x)
 {
-    char csv[256], text[2048];
-    path_of(csv, sizeof csv, "one.csv");
-    FILE *f = fopen(csv, "w");
-    fprintf(f, "x,y,z\n%.17g,%.17g,%.17g\n", x.x, x.y, x.z);
-    fclose(f);
-    snprintf(text, sizeof text,
-             "[guards]\ninitial_overlap = 0.5\n[run]\nend_time = 1\ngravity = 0 0 0\n[domain]\nmin "
-             "= -0.05 -0.05 -0.05\n"
-             "max = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\ndensity = 2500\n"
-             "youngs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\nfriction = 0.4\n"
-             "[wall w]\n%s\n[create one]\ntype = file\nspecies = glass\nfile = %s\n",
-             2.0 * radius, wall, csv);
-    bdl_world *w = bdl_test_world("%s", text);
+    bdl_world *w = one_sphere(wall, x, "0 0 0");
     bdl_vec3 force = w->particles.load[0].force;
     bdl_world_destroy(w);
     return force;
@@ -237,24 +244,11 @@ static void rolling(void)
     tri t[256];
     int n = plate(t, 10, 0.02, 0.0);
     write_stl_ascii("fine.stl", t, n);
-    char csv[256], text[2048];
-    path_of(csv, sizeof csv, "roll.csv");
-    FILE *f = fopen(csv, "w");
-    fprintf(f, "x,y,z\n-0.015,-0.0035,0.0019\n");
-    fclose(f);
-    const char *fmt = "[guards]\ninitial_overlap = 0.5\n[run]\nend_time = 1\ngravity = 0 0 "
-                      "0\n[domain]\nmin = -0.05 -0.05 -0.05\n"
-                      "max = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\ndensity = 2500\n"
-                      "youngs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\n"
-                      "friction = 0.4\n[wall w]\n%s\n[create one]\ntype = file\nspecies = glass\n"
-                      "file = %s\n";
     char mesh[300];
     snprintf(mesh, sizeof mesh, "type = mesh\nfile = %s/fine.stl", folder);
-    snprintf(text, sizeof text, fmt, 2.0 * radius, mesh, csv);
-    bdl_world *wm = bdl_test_world("%s", text);
-    snprintf(text, sizeof text, fmt, 2.0 * radius, "type = plane\npoint = 0 0 0\nnormal = 0 0 1",
-             csv);
-    bdl_world *wp = bdl_test_world("%s", text);
+    const bdl_vec3 start = bdl_v3(-0.015, -0.0035, 0.0019);
+    bdl_world *wm = one_sphere(mesh, start, "0 0 0");
+    bdl_world *wp = one_sphere("type = plane\npoint = 0 0 0\nnormal = 0 0 1", start, "0 0 0");
     double worst = 0.0;
     for (int k = 0; k <= 2000; ++k) {
         double x = -0.015 + 0.03 * k / 2000.0;
@@ -283,22 +277,11 @@ static void rolling(void)
 /// triangle.
 static void dragging(void)
 {
-    const char *fmt = "[run]\nend_time = 1\n[domain]\nmin = -0.05 -0.05 -0.05\n"
-                      "max = 0.05 0.05 0.05\n[species glass]\ndiameter = %g\ndensity = 2500\n"
-                      "youngs_modulus = 1e7\npoisson_ratio = 0.25\nrestitution = 0.7\n"
-                      "friction = 0.4\n[wall w]\n%s\n[create one]\ntype = file\n"
-                      "species = glass\nfile = %s\n";
-    char csv[256], text[2048], mesh[300];
-    path_of(csv, sizeof csv, "drag.csv");
-    FILE *f = fopen(csv, "w");
-    fprintf(f, "x,y,z\n-0.006,-0.0035,0.002\n");
-    fclose(f);
+    char mesh[300];
     snprintf(mesh, sizeof mesh, "type = mesh\nfile = %s/fine.stl", folder);
-    snprintf(text, sizeof text, fmt, 2.0 * radius, mesh, csv);
-    bdl_world *wm = bdl_test_world("%s", text);
-    snprintf(text, sizeof text, fmt, 2.0 * radius, "type = plane\npoint = 0 0 0\nnormal = 0 0 1",
-             csv);
-    bdl_world *wp = bdl_test_world("%s", text);
+    const bdl_vec3 start = bdl_v3(-0.006, -0.0035, 0.002);
+    bdl_world *wm = one_sphere(mesh, start, "0 0 -9.81");
+    bdl_world *wp = one_sphere("type = plane\npoint = 0 0 0\nnormal = 0 0 1", start, "0 0 -9.81");
     double worst = 0.0, ft = 0.0;
     long steps = 0;
     while (wm->particles.pos[0].x < 0.006 && steps < 400000) {

@@ -171,7 +171,7 @@ static int inside_walls(const bdl_walls *walls, const body *b)
             const int32_t *near = NULL;
             int m = bdl_walls_near(walls, w, x, &near);
             for (int t = 0; t < m; ++t)
-                if (bdl_wall_tri_gap(walls, near[t], x, b->r, &n, NULL) < 0.0)
+                if (bdl_wall_tri_gap(walls, near[t], x, b->r, &n) < 0.0)
                     return 0;
         }
     }

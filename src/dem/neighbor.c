@@ -413,8 +413,7 @@ static int32_t scan_walls(const bdl_neighbor *nb, const bdl_particles *p, const 
         const int m = bdl_walls_near(walls, w, p->pos[i], &near);
         for (int t = 0; t < m; ++t) {
             bdl_vec3 normal;
-            if (bdl_wall_tri_gap(walls, near[t], p->pos[i], p->radius[i], &normal, NULL) <
-                nb->skin) {
+            if (bdl_wall_tri_gap(walls, near[t], p->pos[i], p->radius[i], &normal) < nb->skin) {
                 if (out)
                     out[n] = walls->prim_count + near[t];
                 ++n;

@@ -147,7 +147,7 @@ bdl_result bdl_wall_mesh_of(const bdl_wall_def *d, bdl_mesh *m, char *why, size_
     return r;
 }
 
-/// Reads, places and bins one mesh wall; its vertex and edge ids follow the earlier meshes'.
+/// Reads, places and bins one mesh wall; its vertex ids follow the earlier meshes'.
 static bdl_result add_mesh(bdl_walls *walls, int wall, const bdl_wall_def *d, double reach,
                            char *why, size_t why_len)
 {
@@ -158,10 +158,7 @@ static bdl_result add_mesh(bdl_walls *walls, int wall, const bdl_wall_def *d, do
         snprintf(why, why_len, "'%s' %s", d->kind == BDL_WALL_MESH ? d->file : d->name, reason);
         return r;
     }
-    long first = walls->tri_count, vert0 = 0;
-    for (long t = 0; t < first; ++t)
-        for (int c = 0; c < 3; ++c)
-            vert0 = walls->tri[t].vert[c] + 1 > vert0 ? walls->tri[t].vert[c] + 1 : vert0;
+    const long first = walls->tri_count, vert0 = walls->vertex_count;
     bdl_wall_tri *tri = realloc(walls->tri, (size_t)(first + m.tri_count) * sizeof *tri);
     if (!tri) {
         bdl_mesh_free(&m);
@@ -176,13 +173,11 @@ static bdl_result add_mesh(bdl_walls *walls, int wall, const bdl_wall_def *d, do
         w->c = m.vertex[m.tri[t][2]];
         w->normal = bdl_v3_normalize(bdl_v3_cross(bdl_v3_sub(w->b, w->a), bdl_v3_sub(w->c, w->a)));
         w->wall = wall;
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < 3; ++c)
             w->vert[c] = (int32_t)(vert0 + m.tri[t][c]);
-            w->edge[c] = (int32_t)(walls->edge_count + m.tri_edge[t][c]);
-        }
     }
     walls->tri_count += m.tri_count;
-    walls->edge_count += m.edge_count;
+    walls->vertex_count += m.vertex_count;
     bdl_mesh_free(&m);
     r = bin_mesh(walls, wall, first, reach);
     if (r != BDL_OK)
@@ -201,61 +196,57 @@ int bdl_walls_near(const bdl_walls *walls, int wall, bdl_vec3 x, const int32_t *
 }
 
 /// Within this fraction of an edge's length of its end, or of a face's height of its border, a
-/// nearest point is taken to lie on the end or the border: a centre over a shared vertex or edge
-/// then finds that vertex or edge on every triangle that has it, whatever the round-off. (The
-/// distance moves by the square of the shift, far below round-off; the normal by 1e-10 of the
-/// ratio of edge length to distance at most.)
+/// nearest point is taken to lie on the end or the border, so that round-off cannot put a centre
+/// over a shared vertex or edge on different parts of the triangles around it. (The distance
+/// moves by the square of the shift, far below round-off; the normal by 1e-10 of the ratio of
+/// edge length to distance at most.)
 #define SNAP 1e-10
 
 /// An edge's nearest point at parameter s from its first vertex k to vertex (k + 1) % 3.
-static bdl_vec3 on_edge(const bdl_wall_tri *t, int k, double s, bdl_wall_feature *f)
+static bdl_vec3 on_edge(const bdl_wall_tri *t, int k, double s)
 {
     const bdl_vec3 v[3] = {t->a, t->b, t->c};
-    if (s <= SNAP || s >= 1.0 - SNAP) {
-        const int end = s <= SNAP ? k : (k + 1) % 3;
-        *f = (bdl_wall_feature){BDL_FEATURE_VERTEX, t->vert[end]};
-        return v[end];
-    }
-    *f = (bdl_wall_feature){BDL_FEATURE_EDGE, t->edge[k]};
+    if (s <= SNAP || s >= 1.0 - SNAP)
+        return v[s <= SNAP ? k : (k + 1) % 3];
     return bdl_v3_madd(v[k], bdl_v3_sub(v[(k + 1) % 3], v[k]), s);
 }
 
-/// The point of a triangle nearest p (rest frame), and the feature it lies on (Voronoi regions
-/// of the vertices, then the edges, else the face; see SNAP).
-static bdl_vec3 nearest_on_triangle(const bdl_wall_tri *t, bdl_vec3 p, bdl_wall_feature *f)
+/// The point of a triangle nearest p (rest frame): on a vertex or an edge (their Voronoi regions
+/// first), or, with *face set, inside the face (the point returned is then p itself; see SNAP).
+static bdl_vec3 nearest_on_triangle(const bdl_wall_tri *t, bdl_vec3 p, int *face)
 {
+    *face = 0;
     const bdl_vec3 ab = bdl_v3_sub(t->b, t->a), ac = bdl_v3_sub(t->c, t->a);
     const bdl_vec3 ap = bdl_v3_sub(p, t->a), bp = bdl_v3_sub(p, t->b), cp = bdl_v3_sub(p, t->c);
     const double d1 = bdl_v3_dot(ab, ap), d2 = bdl_v3_dot(ac, ap);
     const double d3 = bdl_v3_dot(ab, bp), d4 = bdl_v3_dot(ac, bp);
     const double d5 = bdl_v3_dot(ab, cp), d6 = bdl_v3_dot(ac, cp);
     if (d1 <= 0.0 && d2 <= 0.0)
-        return on_edge(t, 0, 0.0, f);
+        return on_edge(t, 0, 0.0);
     if (d3 >= 0.0 && d4 <= d3)
-        return on_edge(t, 1, 0.0, f);
+        return on_edge(t, 1, 0.0);
     if (d6 >= 0.0 && d5 <= d6)
-        return on_edge(t, 2, 0.0, f);
+        return on_edge(t, 2, 0.0);
     const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
     if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-        return on_edge(t, 0, d1 / (d1 - d3), f);
+        return on_edge(t, 0, d1 / (d1 - d3));
     if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-        return on_edge(t, 1, (d4 - d3) / ((d4 - d3) + (d5 - d6)), f);
+        return on_edge(t, 1, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
     if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-        return on_edge(t, 2, 1.0 - d2 / (d2 - d6), f);
+        return on_edge(t, 2, 1.0 - d2 / (d2 - d6));
     // Inside: barycentric weights va, vb, vc (of a, b, c) over their sum.
     const double sum = va + vb + vc, wa = va / sum, wb = vb / sum, wc = vc / sum;
     if (wa <= SNAP) // on edge b-c
-        return on_edge(t, 1, wc / (wb + wc), f);
+        return on_edge(t, 1, wc / (wb + wc));
     if (wb <= SNAP) // on edge c-a
-        return on_edge(t, 2, wa / (wa + wc), f);
+        return on_edge(t, 2, wa / (wa + wc));
     if (wc <= SNAP) // on edge a-b
-        return on_edge(t, 0, wb / (wa + wb), f);
-    *f = (bdl_wall_feature){BDL_FEATURE_FACE, 0};
+        return on_edge(t, 0, wb / (wa + wb));
+    *face = 1;
     return p; // the face: the distance is the plane's (below)
 }
 
-double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double radius, bdl_vec3 *n,
-                        bdl_wall_feature *feature)
+double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double radius, bdl_vec3 *n)
 {
     const bdl_wall_tri *t = &walls->tri[index];
     if (walls->gone[t->wall]) {
@@ -263,11 +254,9 @@ double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double r
         return INFINITY;
     }
     const bdl_vec3 p = bdl_v3_sub(x, walls->offset[t->wall]);
-    bdl_wall_feature f;
-    const bdl_vec3 q = nearest_on_triangle(t, p, &f);
-    if (feature)
-        *feature = f.kind == BDL_FEATURE_FACE ? (bdl_wall_feature){f.kind, (int32_t)index} : f;
-    if (f.kind == BDL_FEATURE_FACE) {
+    int face;
+    const bdl_vec3 q = nearest_on_triangle(t, p, &face);
+    if (face) {
         const double h = bdl_v3_dot(bdl_v3_sub(p, t->a), t->normal);
         *n = h >= 0.0 ? t->normal : bdl_v3_neg(t->normal);
         return fabs(h) - radius;
@@ -322,7 +311,7 @@ int bdl_wall_tri_counted(const bdl_walls *walls, const int32_t *surfaces, int co
         bdl_vec3 n;
         double g;
         if (surfaces[k] < first ||
-            (g = bdl_wall_tri_gap(walls, surfaces[k] - first, x, radius, &n, NULL)) >= 0.0)
+            (g = bdl_wall_tri_gap(walls, surfaces[k] - first, x, radius, &n)) >= 0.0)
             continue;
         me = k == self ? m : me;
         tri[m] = (int32_t)(surfaces[k] - first);
@@ -424,7 +413,7 @@ void bdl_walls_free(bdl_walls *walls)
         free(walls->bins[w].tri);
     }
     walls->tri = NULL;
-    walls->tri_count = walls->edge_count = 0;
+    walls->tri_count = walls->vertex_count = 0;
     memset(walls->bins, 0, sizeof walls->bins);
 }
 

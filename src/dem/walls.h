@@ -97,25 +97,14 @@ typedef struct bdl_wall_prim {
     double radius;   ///< cylinder radius [m]
 } bdl_wall_prim;
 
-/// A triangle of a mesh wall, at rest, with the welded ids of its vertices and edges (global
-/// over all meshes: edge k joins vertices k and (k + 1) % 3).
+/// A triangle of a mesh wall, at rest, with the welded ids of its vertices (global over all
+/// meshes: triangles that share a vertex id meet there).
 typedef struct bdl_wall_tri {
     bdl_vec3 a, b, c;
     bdl_vec3 normal; ///< unit, (b - a) x (c - a) normalised
     int32_t wall;
-    int32_t vert[3], edge[3];
+    int32_t vert[3];
 } bdl_wall_tri;
-
-/// What part of a triangle a sphere touches: its face, an edge or a vertex (with its id).
-typedef enum bdl_feature_kind {
-    BDL_FEATURE_FACE,
-    BDL_FEATURE_EDGE,
-    BDL_FEATURE_VERTEX
-} bdl_feature_kind;
-typedef struct bdl_wall_feature {
-    bdl_feature_kind kind;
-    int32_t id; ///< the triangle, the edge or the vertex
-} bdl_wall_feature;
 
 /// The triangles of one mesh wall in cubic bins (rest frame): a bin lists every triangle that
 /// comes within `reach` of it.
@@ -130,7 +119,7 @@ typedef struct bdl_wall_bins {
 typedef struct bdl_walls {
     int prim_count;
     bdl_wall_prim prims[BDL_MAX_PRIMS];
-    long tri_count, edge_count;
+    long tri_count, vertex_count;
     bdl_wall_tri *tri;                 ///< surfaces prim_count .. prim_count + tri_count - 1
     bdl_wall_bins bins[BDL_MAX_WALLS]; ///< of mesh walls (start NULL for the others)
     int wall_count;
@@ -179,10 +168,9 @@ static inline int bdl_wall_of(const bdl_walls *walls, long surface)
 /// bins, or for another kind of wall); *list receives global triangle indices, ascending.
 int bdl_walls_near(const bdl_walls *walls, int wall, bdl_vec3 x, const int32_t **list);
 
-/// Gap and normal as bdl_wall_gap, for triangle t; `feature` (may be NULL) receives what part of
-/// it is nearest x.
-double bdl_wall_tri_gap(const bdl_walls *walls, long t, bdl_vec3 x, double radius, bdl_vec3 *n,
-                        bdl_wall_feature *feature);
+/// Gap and normal as bdl_wall_gap, for triangle t (its face, or the nearest of its edges and
+/// corners).
+double bdl_wall_tri_gap(const bdl_walls *walls, long t, bdl_vec3 x, double radius, bdl_vec3 *n);
 
 /// Whether the touching contact of a sphere (x, radius) with surface `surfaces[self]` counts:
 /// always for a primitive; for a triangle, when no triangle of its patch among the list is
@@ -200,7 +188,7 @@ static inline double bdl_wall_gap(const bdl_walls *walls, int prim, bdl_vec3 x, 
                                   bdl_vec3 *n)
 {
     if (prim >= walls->prim_count)
-        return bdl_wall_tri_gap(walls, prim - walls->prim_count, x, radius, n, NULL);
+        return bdl_wall_tri_gap(walls, prim - walls->prim_count, x, radius, n);
     const bdl_wall_prim *w = &walls->prims[prim];
     if (walls->gone[w->wall]) {
         *n = bdl_v3_zero();
