@@ -103,3 +103,15 @@ foreach(bad "empty.stl;is empty" "truncated.stl;is truncated: its header claims 
     "\\[wall plate\\] file = .*meshes/${file}: '.*meshes/${file}' ${reason}"
     check ${L}/limits_mesh.ini --set wall.plate.file=meshes/${file})
 endforeach()
+
+# A fill region of region_shape = mesh needs an inside: an open plate, a tetrahedron with one
+# triangle turned the other way and a mesh that reaches out of the region's box are refused.
+bdl_limit_expect(cli_limits_region_open 2
+  "region_file = .*meshes/plate.obj: '.*meshes/plate.obj' is not a closed, consistently turned surface: the edge from \\(-0.02, -0.02, 0\\) to \\(-0.02, 0.02, 0\\) borders one triangle only"
+  check ${L}/limits_region.ini --set create.bed.region_file=meshes/plate.obj)
+bdl_limit_expect(cli_limits_region_flipped 2
+  "'.*meshes/tetra_flipped.obj' is not a closed, consistently turned surface: the edge from \\(0, 0, 0\\) to \\(0.02, 0, 0\\) is run the same way by its two triangles"
+  check ${L}/limits_region.ini --set create.bed.region_file=meshes/tetra_flipped.obj)
+bdl_limit_expect(cli_limits_region_outside 2
+  "\\[create bed\\] region_file = .*meshes/tetra.obj: the mesh, placed, spans \\(0.005, 0, 0\\) to \\(0.025, 0.02, 0.02\\): region_min and region_max must enclose it"
+  check ${L}/limits_region.ini --set "create.bed.region_translate=0.005 0 0")

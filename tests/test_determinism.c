@@ -92,8 +92,8 @@ static void test_coupled(void)
     bdl_world_destroy(b);
 }
 
-// A vessel: a turning tube on a mesh floor smaller than it (beads fall past the floor's corners
-// and leave through the bottom of the domain, removed and counted), a plug taken away and a
+// A vessel: a turning tube on a turning mesh floor smaller than it (beads fall past the floor's
+// corners and leave through the bottom of the domain, removed and counted), a plug taken away and a
 // piston pressing from above: mesh lists and patches, turning and moving walls, removals.
 static const char *const vessel_text =
     "[run]\nend_time = 1\ndt_fraction = 0.05\nseed = 9\n"
@@ -103,6 +103,7 @@ static const char *const vessel_text =
     "[wall tube]\ntype = cylinder\npoint = 0 0 0\naxis = 0 0 1\nradius = 0.025\n"
     "motion = rotate\nrotation_axis = 0 0 1\nrotation_center = 0 0 0\nangular_velocity = 20\n"
     "[wall floor]\ntype = mesh\nfile = scenes/meshes/plate.obj\nrotate = 0 0 30\n"
+    "motion = rotate\nrotation_axis = 0 0 1\nrotation_center = 0.002 0 0\nangular_velocity = -15\n"
     "[wall plug]\ntype = plane\npoint = 0 0 -0.001\nnormal = 0 0 1\nopen_time = 0.005\n"
     "[wall piston]\ntype = plane\npoint = 0 0 0.06\nnormal = 0 0 -1\nmotion = move\n"
     "velocity = 0 0 -0.5\nstart = 0.002\nstop = 0.02\n"

@@ -11,7 +11,11 @@
 //    within one diameter.
 // 4. A silo of 1500 beads discharging through a mesh orifice: every bead out counted, the mass
 //    balance closed (the rate against Beverloo is `bedlam verify silo_beverloo`).
-// 5. The reader: ASCII STL, binary STL and OBJ of the same square give the same mesh; bad files
+// 5. A turning mesh: a plate turned by an angle is touched as the turned plane (1e-12); a paddle
+//    turning about an axis in its plane sweeps up a sphere at rest (found by the neighbour lists
+//    through the sweep) and throws it off at (1 + e) times its surface speed at the contact.
+// 6. Fills (random and pour) inside a closed mesh: volume exact, every bead wholly inside.
+// 7. The reader: ASCII STL, binary STL and OBJ of the same square give the same mesh; bad files
 //    (empty, truncated, a huge header, NaN, non-manifold, zero area) are refused with a reason.
 #define _POSIX_C_SOURCE 200809L // mkdtemp, truncate
 #include <math.h>
@@ -306,6 +310,95 @@ static void dragging(void)
     bdl_world_destroy(wp);
 }
 
+/// Plate of 32 triangles in z = 0 turning about x: at angles through a whole turn, points above
+/// and below it see the turned plane.
+static void turned_plate(void)
+{
+    tri t[32];
+    write_stl_ascii("turn.stl", t, plate(t, 4, 0.02, 0.0));
+    char mesh[400];
+    snprintf(mesh, sizeof mesh,
+             "type = mesh\nfile = %s/turn.stl\nmotion = rotate\nrotation_axis = 1 0 0\n"
+             "rotation_center = 0 0 0\nangular_velocity = 1",
+             folder);
+    bdl_world *w = one_sphere(mesh, bdl_v3(0.0, 0.0, 0.04), "0 0 0");
+    double worst = 0.0;
+    const double angles[] = {0.3, 1.1, 2.5, 4.0, -0.7};
+    const double heights[] = {0.0015, -0.0015, 0.003};
+    for (int a = 0; a < 5; ++a) {
+        w->walls.angle[0] = angles[a];
+        bdl_walls_update(&w->walls, w->time);
+        const bdl_quat q = bdl_q_axis_angle(bdl_v3(1.0, 0.0, 0.0), angles[a]);
+        for (int k = 0; k < 3; ++k)
+            for (int s = 0; s < 7; ++s) {
+                const double u = -0.017 + 0.0053 * s, v = 0.013 - 0.0041 * s;
+                const bdl_vec3 x = bdl_q_rotate(q, bdl_v3(u, v, heights[k]));
+                const bdl_vec3 n0 = bdl_q_rotate(q, bdl_v3(0.0, 0.0, heights[k] > 0 ? 1.0 : -1.0));
+                const int32_t *near = NULL;
+                const int m = bdl_walls_near(&w->walls, 0, x, &near);
+                double gap = INFINITY;
+                bdl_vec3 n = bdl_v3_zero();
+                for (int i = 0; i < m; ++i) {
+                    bdl_vec3 ni;
+                    const double g = bdl_wall_tri_gap(&w->walls, near[i], x, radius, &ni);
+                    if (g < gap) {
+                        gap = g;
+                        n = ni;
+                    }
+                }
+                CHECK(m > 0);
+                worst = fmax(worst, fabs(gap - (fabs(heights[k]) - radius)) / radius);
+                worst = fmax(worst, bdl_v3_len(bdl_v3_sub(n, n0)));
+            }
+    }
+    printf("\nPlate turned by 5 angles: largest difference from the turned plane %.3e\n", worst);
+    CHECK_MSG(worst <= 1e-12, "a turned mesh is not the turned plane: %.3e", worst);
+    bdl_world_destroy(w);
+}
+
+/// A paddle (the rectangle x in [4, 40] mm, z in [-10, 10] mm of the plane y = 0, 16 triangles)
+/// turning at 20 rad/s about z meets a frictionless sphere at rest half a radian ahead of it,
+/// 25 mm from the axis: the sphere leaves at (1 + e) times the paddle's speed at the contact,
+/// omega sqrt(r^2 - R^2), along the paddle's normal.
+static void paddle(void)
+{
+    tri t[16];
+    int n = 0;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 2; ++j) {
+            const double x0 = 0.004 + 0.009 * i, x1 = x0 + 0.009, z0 = -0.01 + 0.01 * j,
+                         z1 = z0 + 0.01;
+            const bdl_vec3 a = bdl_v3(x0, 0, z0), b = bdl_v3(x1, 0, z0), c = bdl_v3(x1, 0, z1),
+                           d = bdl_v3(x0, 0, z1);
+            t[n++] = (tri){{a, b, c}};
+            t[n++] = (tri){{a, c, d}};
+        }
+    write_stl_ascii("paddle.stl", t, n);
+    char mesh[400];
+    snprintf(mesh, sizeof mesh,
+             "type = mesh\nfile = %s/paddle.stl\nmotion = rotate\nrotation_axis = 0 0 1\n"
+             "rotation_center = 0 0 0\nangular_velocity = 20\nfriction = 0",
+             folder);
+    const double r0 = 0.025, phi = 0.5, omega = 20.0, e = 0.7;
+    bdl_world *w = one_sphere(mesh, bdl_v3(r0 * cos(phi), r0 * sin(phi), 0.0), "0 0 0");
+    int touched = 0;
+    long steps = 0;
+    while (steps < 200000 && !(touched && bdl_v3_len(w->particles.load[0].force) == 0.0)) {
+        CHECK(bdl_world_step(w) == BDL_OK);
+        touched |= bdl_v3_len(w->particles.load[0].force) > 0.0;
+        ++steps;
+    }
+    const double expected = (1.0 + e) * omega * sqrt(r0 * r0 - radius * radius);
+    const double speed = bdl_v3_len(w->particles.vel[0]);
+    printf("Paddle at %g rad/s: sphere thrown at %.5f m/s after %ld steps (turned %.4f rad), "
+           "(1 + e) omega r_c = %.5f m/s: %+.2e\n",
+           omega, speed, steps, w->walls.angle[0], expected, speed / expected - 1.0);
+    CHECK_MSG(touched, "the turning paddle never met the sphere (lists not rebuilt on its sweep)");
+    CHECK_MSG(fabs(speed / expected - 1.0) < 0.01, "thrown at %.5f m/s, expected %.5f", speed,
+              expected);
+    bdl_world_destroy(w);
+}
+
 /// The 12 triangles of the box [0, 0.02] x [0, 0.02] x [0, 0.06].
 static int box_triangles(tri *t)
 {
@@ -404,6 +497,54 @@ static void cylinder_region(void)
     bdl_world_destroy(w);
 }
 
+/// Random fill and pour in the inside of a closed mesh, an octahedron |x| + |y| + |z| <= a
+/// (8 triangles, all turning inwards: the way they turn does not matter, only that they agree):
+/// its volume 4/3 a^3 exactly, the count a volume fraction asks for, every bead wholly inside.
+static void mesh_region(void)
+{
+    const double a = 0.02;
+    const bdl_vec3 v[6] = {{a, 0, 0}, {-a, 0, 0}, {0, a, 0}, {0, -a, 0}, {0, 0, a}, {0, 0, -a}};
+    tri t[8];
+    for (int k = 0; k < 8; ++k) {
+        const bdl_vec3 x = v[k & 1], y = v[2 + (k >> 1 & 1)], z = v[4 + (k >> 2 & 1)];
+        const int odd = ((k & 1) + (k >> 1 & 1) + (k >> 2 & 1)) & 1;
+        t[k] = odd ? (tri){{x, y, z}} : (tri){{x, z, y}};
+    }
+    write_stl_ascii("octahedron.stl", t, 8);
+    const char *const ways[2] = {"type = random\nvolume_fraction = 0.2",
+                                 "type = pour\ncount = 150\nrate = 30000"};
+    for (int k = 0; k < 2; ++k) {
+        bdl_world *w = bdl_test_world(
+            "[run]\nend_time = 1\ngravity = 0 0 0\n[domain]\nmin = -0.03 -0.03 -0.03\n"
+            "max = 0.03 0.03 0.05\n[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\n"
+            "density = 2500\nstiffness = 2000\nrestitution = 0.5\n[create bed]\n%s\n"
+            "species = glass\nregion_shape = mesh\nregion_file = %s/octahedron.stl\n"
+            "region_translate = 0 0 0.01\nregion_min = -0.025 -0.025 -0.015\n"
+            "region_max = 0.025 0.025 0.035\n",
+            ways[k], folder);
+        if (!w)
+            continue;
+        while (k == 1 && w->time < 0.012)
+            CHECK(bdl_world_step(w) == BDL_OK);
+        const bdl_particles *p = &w->particles;
+        double worst = -INFINITY; // largest reach of a bead beyond the faces
+        for (long i = 0; i < p->count; ++i) {
+            const double l1 = fabs(p->pos[i].x) + fabs(p->pos[i].y) + fabs(p->pos[i].z - 0.01);
+            worst = fmax(worst, (l1 - a) / sqrt(3.0) + p->radius[i]);
+        }
+        const double volume = w->scene.creates[0].region_volume;
+        const double expected = 0.2 * 4.0 / 3.0 * a * a * a / (BDL_PI / 6.0 * 27e-9);
+        printf("%s in an octahedron (volume %.6e m^3, exact %.6e): %ld beads (%s %.0f); the "
+               "farthest reaches %.2e m beyond a face\n",
+               k ? "Pour" : "Random fill", volume, 4.0 / 3.0 * a * a * a, p->count,
+               k ? "poured by 0.012 s of" : "asked", k ? 150.0 : expected, worst);
+        CHECK(fabs(volume / (4.0 / 3.0 * a * a * a) - 1.0) < 1e-14);
+        CHECK(worst <= 1e-15);
+        CHECK(k ? p->count == 150 : labs(p->count - lrint(expected)) <= 1);
+        bdl_world_destroy(w);
+    }
+}
+
 /// A pour with a time window stops at stop_time, short of its count.
 static void pour_window(void)
 {
@@ -493,10 +634,13 @@ int main(void)
     }
     reader();
     cylinder_region();
+    mesh_region();
     pour_window();
     features();
     rolling();
     dragging();
+    turned_plate();
+    paddle();
     box_bed();
     discharge();
     char cmd[300];

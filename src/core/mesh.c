@@ -476,6 +476,137 @@ void bdl_mesh_transform(bdl_mesh *m, double scale, bdl_vec3 angles_deg, bdl_vec3
     }
 }
 
+/// Within this fraction of an edge's length of its end, or of a face's height of its border, a
+/// nearest point is taken to lie on the end or the border, so that round-off cannot put a centre
+/// over a shared vertex or edge on different parts of the triangles around it. (The distance
+/// moves by the square of the shift, far below round-off; the normal by 1e-10 of the ratio of
+/// edge length to distance at most.)
+#define SNAP 1e-10
+
+/// An edge's nearest point at parameter s from its first vertex k to vertex (k + 1) % 3.
+static bdl_vec3 on_edge(const bdl_vec3 *v, int k, double s)
+{
+    if (s <= SNAP || s >= 1.0 - SNAP)
+        return v[s <= SNAP ? k : (k + 1) % 3];
+    return bdl_v3_madd(v[k], bdl_v3_sub(v[(k + 1) % 3], v[k]), s);
+}
+
+bdl_vec3 bdl_triangle_nearest(bdl_vec3 a, bdl_vec3 b, bdl_vec3 c, bdl_vec3 p, int *face)
+{
+    *face = 0;
+    const bdl_vec3 v[3] = {a, b, c};
+    const bdl_vec3 ab = bdl_v3_sub(b, a), ac = bdl_v3_sub(c, a);
+    const bdl_vec3 ap = bdl_v3_sub(p, a), bp = bdl_v3_sub(p, b), cp = bdl_v3_sub(p, c);
+    const double d1 = bdl_v3_dot(ab, ap), d2 = bdl_v3_dot(ac, ap);
+    const double d3 = bdl_v3_dot(ab, bp), d4 = bdl_v3_dot(ac, bp);
+    const double d5 = bdl_v3_dot(ab, cp), d6 = bdl_v3_dot(ac, cp);
+    if (d1 <= 0.0 && d2 <= 0.0)
+        return on_edge(v, 0, 0.0);
+    if (d3 >= 0.0 && d4 <= d3)
+        return on_edge(v, 1, 0.0);
+    if (d6 >= 0.0 && d5 <= d6)
+        return on_edge(v, 2, 0.0);
+    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
+        return on_edge(v, 0, d1 / (d1 - d3));
+    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+        return on_edge(v, 1, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
+        return on_edge(v, 2, 1.0 - d2 / (d2 - d6));
+    // Inside: barycentric weights va, vb, vc (of a, b, c) over their sum.
+    const double sum = va + vb + vc, wa = va / sum, wb = vb / sum, wc = vc / sum;
+    if (wa <= SNAP) // on edge b-c
+        return on_edge(v, 1, wc / (wb + wc));
+    if (wb <= SNAP) // on edge c-a
+        return on_edge(v, 2, wa / (wa + wc));
+    if (wc <= SNAP) // on edge a-b
+        return on_edge(v, 0, wb / (wa + wb));
+    *face = 1;
+    return p; // the face: the distance is the plane's (below)
+}
+
+long bdl_mesh_unclosed_edge(const bdl_mesh *m, int *border)
+{
+    // Per edge: the triangles on it, and whether the first runs it from edge[0] to edge[1].
+    uint8_t *sides = calloc((size_t)(m->edge_count > 0 ? m->edge_count : 1), 2);
+    if (!sides)
+        return -2;
+    long bad = -1;
+    for (long t = 0; t < m->tri_count && bad < 0; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const int32_t e = m->tri_edge[t][k];
+            const uint8_t forward = m->tri[t][k] == m->edge[e][0];
+            if (sides[2 * e]++ == 0)
+                sides[2 * e + 1] = forward;
+            else if (sides[2 * e + 1] == forward)
+                bad = e; // both triangles run the edge the same way
+        }
+    *border = 0;
+    for (long e = 0; e < m->edge_count && bad < 0; ++e)
+        if (sides[2 * e] == 1) {
+            bad = e;
+            *border = 1;
+        }
+    free(sides);
+    return bad;
+}
+
+/// The corners of triangle t.
+static void corners(const bdl_mesh *m, long t, bdl_vec3 *a, bdl_vec3 *b, bdl_vec3 *c)
+{
+    *a = m->vertex[m->tri[t][0]];
+    *b = m->vertex[m->tri[t][1]];
+    *c = m->vertex[m->tri[t][2]];
+}
+
+double bdl_mesh_volume(const bdl_mesh *m)
+{
+    double v = 0.0;
+    for (long t = 0; t < m->tri_count; ++t) {
+        bdl_vec3 a, b, c;
+        corners(m, t, &a, &b, &c);
+        v += bdl_v3_dot(a, bdl_v3_cross(b, c));
+    }
+    return v / 6.0;
+}
+
+double bdl_mesh_winding(const bdl_mesh *m, bdl_vec3 x)
+{
+    double sum = 0.0;
+    for (long t = 0; t < m->tri_count; ++t) {
+        bdl_vec3 a, b, c;
+        corners(m, t, &a, &b, &c);
+        a = bdl_v3_sub(a, x);
+        b = bdl_v3_sub(b, x);
+        c = bdl_v3_sub(c, x);
+        const double la = bdl_v3_len(a), lb = bdl_v3_len(b), lc = bdl_v3_len(c);
+        const double num = bdl_v3_dot(a, bdl_v3_cross(b, c));
+        const double den =
+            la * lb * lc + bdl_v3_dot(a, b) * lc + bdl_v3_dot(a, c) * lb + bdl_v3_dot(b, c) * la;
+        sum += 2.0 * atan2(num, den); // the solid angle the triangle subtends at x
+    }
+    return sum / (4.0 * 3.14159265358979323846);
+}
+
+double bdl_mesh_distance(const bdl_mesh *m, bdl_vec3 x)
+{
+    double d2 = INFINITY;
+    for (long t = 0; t < m->tri_count; ++t) {
+        bdl_vec3 a, b, c;
+        corners(m, t, &a, &b, &c);
+        int face;
+        bdl_vec3 q = bdl_triangle_nearest(a, b, c, x, &face);
+        if (face) { // the plane's distance
+            const bdl_vec3 n = bdl_v3_cross(bdl_v3_sub(b, a), bdl_v3_sub(c, a));
+            const double h = bdl_v3_dot(bdl_v3_sub(x, a), n);
+            d2 = fmin(d2, h * h / bdl_v3_len2(n));
+        } else {
+            d2 = fmin(d2, bdl_v3_len2(bdl_v3_sub(x, q)));
+        }
+    }
+    return sqrt(d2);
+}
+
 void bdl_mesh_free(bdl_mesh *m)
 {
     free(m->vertex);

@@ -49,6 +49,30 @@ bdl_result bdl_mesh_frustum(bdl_mesh *m, bdl_vec3 base, bdl_vec3 axis, double ra
 /// then translates, every vertex.
 void bdl_mesh_transform(bdl_mesh *m, double scale, bdl_vec3 angles_deg, bdl_vec3 translate);
 
+/// The point of the triangle (a, b, c) nearest p: on a vertex or an edge (their Voronoi regions
+/// first), or, with *face set, inside the face (the point returned is then p itself, the
+/// distance the plane's). Within 1e-10 of an edge's length of a vertex, or of the face's height
+/// of an edge, the point is put on that vertex or edge (so that round-off cannot put a point
+/// over a shared vertex on different features of the triangles around it).
+bdl_vec3 bdl_triangle_nearest(bdl_vec3 a, bdl_vec3 b, bdl_vec3 c, bdl_vec3 p, int *face);
+
+/// An edge that keeps the mesh from being a closed, consistently turned surface: one that
+/// borders one triangle only (*border set), or whose two triangles run it the same way (they turn
+/// opposite ways); -1 when there is none, -2 when out of memory.
+long bdl_mesh_unclosed_edge(const bdl_mesh *m, int *border);
+
+/// The volume a closed mesh encloses, signed: positive when its triangles turn counter-clockwise
+/// seen from outside [m^3].
+double bdl_mesh_volume(const bdl_mesh *m);
+
+/// The winding number of a closed mesh about x: the solid angle its triangles subtend at x over
+/// 4 pi (Van Oosterom & Strackee's formula per triangle): +-1 inside, 0 outside, whichever way
+/// the triangles turn.
+double bdl_mesh_winding(const bdl_mesh *m, bdl_vec3 x);
+
+/// The distance from x to the nearest point of the mesh [m].
+double bdl_mesh_distance(const bdl_mesh *m, bdl_vec3 x);
+
 void bdl_mesh_free(bdl_mesh *m);
 
 #endif

@@ -245,7 +245,7 @@ static void region_cylinder(const bdl_create_def *c, int *u, int *v, double *cu,
 static bdl_vec3 draw_in_region(const bdl_create_def *c, bdl_rng *rng, double r)
 {
     bdl_vec3 x;
-    if (c->region_shape == BDL_REGION_BOX) {
+    if (c->region_shape != BDL_REGION_CYLINDER) { // a box, or the box around a mesh
         // One draw per statement: argument evaluation order is unspecified in C.
         x.x = bdl_rng_range(rng, c->region_min.x + r, c->region_max.x - r);
         x.y = bdl_rng_range(rng, c->region_min.y + r, c->region_max.y - r);
@@ -266,6 +266,21 @@ static bdl_vec3 draw_in_region(const bdl_create_def *c, bdl_rng *rng, double r)
     return x;
 }
 
+/// Whether a body lies wholly inside the creator's mesh (any body, when its region is no mesh):
+/// a sphere's centre (a rod's two tips) inside, and at least its radius from the surface.
+static int inside_mesh(const bdl_create_def *c, const bdl_create_context *ctx, const body *b)
+{
+    if (c->region_shape != BDL_REGION_MESH)
+        return 1;
+    for (int tip = 0; tip < (b->half_length > 0.0 ? 2 : 1); ++tip) {
+        const bdl_vec3 x = bdl_v3_madd(b->x, b->e, tip ? -1.0 : 1.0);
+        if (!(fabs(bdl_mesh_winding(ctx->region, x)) > 0.5) ||
+            bdl_mesh_distance(ctx->region, x) < b->r)
+            return 0;
+    }
+    return 1;
+}
+
 /// Draws a centre uniformly in the creator's region (a whole sphere inside it) and a rod's
 /// orientation; true when the particle lies in the region and overlaps no wall and no particle.
 static int try_place(const bdl_create_def *c, const bdl_create_context *ctx,
@@ -277,7 +292,7 @@ static int try_place(const bdl_create_def *c, const bdl_create_context *ctx,
     *b = sphere_at(x, r);
     orient(b, &ctx->species[c->species], rng);
     return (b->half_length == 0.0 || inside_region(c, b)) && inside_walls(ctx->walls, b) &&
-           !grid_overlaps(g, p, b, r_max);
+           !grid_overlaps(g, p, b, r_max) && inside_mesh(c, ctx, b);
 }
 
 static bdl_vec3 draw_velocity(const bdl_create_def *c, bdl_rng *rng)
@@ -291,8 +306,21 @@ static bdl_vec3 draw_velocity(const bdl_create_def *c, bdl_rng *rng)
     return bdl_v3_madd(c->velocity, bdl_v3_normalize(d), c->velocity_jitter * bdl_rng_uniform(rng));
 }
 
+bdl_result bdl_create_region_mesh(const bdl_create_def *c, bdl_mesh *m, char *why, size_t why_len)
+{
+    char reason[400];
+    bdl_result r = bdl_mesh_read(c->region_file, m, reason, sizeof reason);
+    if (r == BDL_OK)
+        bdl_mesh_transform(m, c->region_scale, c->region_rotate, c->region_translate);
+    else
+        snprintf(why, why_len, "'%s' %s", c->region_file, reason);
+    return r;
+}
+
 double bdl_create_region_volume(const bdl_create_def *c)
 {
+    if (c->region_shape == BDL_REGION_MESH)
+        return c->region_volume;
     bdl_vec3 l = bdl_v3_sub(c->region_max, c->region_min);
     if (c->region_shape == BDL_REGION_CYLINDER) {
         int u, v;
@@ -360,7 +388,7 @@ static bdl_result create_random_parcels(const bdl_create_def *c, const bdl_creat
         body b;
         const double d = bdl_species_draw_diameter(s, ctx->rng);
         b = sphere_at(draw_in_region(c, ctx->rng, 0.0), 0.5 * d);
-        if (!inside_walls(ctx->walls, &b))
+        if (!inside_walls(ctx->walls, &b) || !inside_mesh(c, ctx, &b))
             continue;
         if (add_checked(p, NULL, &b, draw_velocity(c, ctx->rng), ctx, c->species) < 0)
             return BDL_ERR_NOMEM;
@@ -818,10 +846,14 @@ long bdl_create_pour(const bdl_create_def *def, const bdl_create_context *ctx, d
         return -1;
     long added = 0;
     const bdl_species_def *s = &ctx->species[def->species];
+    // 50 tries per particle in the region; more where the region fills less of its box.
+    const bdl_vec3 box = bdl_v3_sub(def->region_max, def->region_min);
+    const double tries = 50.0 * box.x * box.y * box.z / bdl_create_region_volume(def);
+    const int attempts = tries < 5000.0 ? (int)ceil(tries) : 5000;
     while (*poured < due) {
         double r = 0.5 * bdl_species_draw_diameter(s, rng);
         int placed = 0;
-        for (int attempt = 0; attempt < 50 && !placed; ++attempt) {
+        for (int attempt = 0; attempt < attempts && !placed; ++attempt) {
             body b;
             if (!try_place(def, ctx, &g, p, r, r_max, &b))
                 continue;

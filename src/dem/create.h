@@ -25,7 +25,10 @@ BDL_CHOICES(bdl_create_kind, BDL_CREATE_KINDS);
 #define BDL_REGION_SHAPES(X)                                                                       \
     X(REGION_BOX, "box", "the box region_min..region_max")                                         \
     X(REGION_CYLINDER, "cylinder",                                                                 \
-      "the cylinder inscribed in that box along region_axis (a silo's or a drum's inside)")
+      "the cylinder inscribed in that box along region_axis (a silo's or a drum's inside)")        \
+    X(REGION_MESH, "mesh",                                                                         \
+      "the inside of the closed mesh region_file, which must lie within the box (a vessel of "     \
+      "any shape)")
 BDL_CHOICES(bdl_region_shape, BDL_REGION_SHAPES);
 
 typedef struct bdl_create_def {
@@ -45,10 +48,18 @@ typedef struct bdl_create_def {
     bdl_vec3 velocity;       ///< initial velocity [m/s]
     double velocity_jitter;  ///< random velocity magnitude added [m/s]
     char file[BDL_PATH_LEN]; ///< CSV path
+    char region_file[BDL_PATH_LEN]; ///< mesh region: STL or OBJ file of a closed surface
+    double region_scale;            ///< mesh region: factor on the file's coordinates
+    bdl_vec3 region_rotate;         ///< mesh region: angles about x, then y, then z [degrees]
+    bdl_vec3 region_translate;      ///< mesh region: shift after scaling and rotating [m]
+    double region_volume; ///< mesh region: the volume it encloses (set when the scene is read)
 } bdl_create_def;
 
-/// Volume of a creator's region: its box, or the cylinder inscribed in it [m^3].
+/// Volume of a creator's region: its box, the cylinder inscribed in it, or its mesh's [m^3].
 double bdl_create_region_volume(const bdl_create_def *c);
+
+/// The closed mesh of a creator with region_shape = mesh, read and placed.
+bdl_result bdl_create_region_mesh(const bdl_create_def *c, bdl_mesh *m, char *why, size_t why_len);
 
 /// What creators draw on besides their own definition.
 typedef struct bdl_create_context {
@@ -56,6 +67,7 @@ typedef struct bdl_create_context {
     int species_count;
     const bdl_walls *walls; ///< particles are placed clear of them
     bdl_rng *rng;           ///< every draw, in a fixed order
+    const bdl_mesh *region; ///< the mesh of the creator run, with region_shape = mesh
 } bdl_create_context;
 
 /// Creates the particles of a random, lattice or file creator at the start of a run. A creator

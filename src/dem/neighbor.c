@@ -479,8 +479,10 @@ static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bd
         return r;
     nb->wall_pair_count = count;
     BDL_PARALLEL_FOR(team, for (long i = 0; i < n; ++i) list_walls(nb, p, walls, old_count, i););
-    for (int w = 0; w < walls->wall_count; ++w)
+    for (int w = 0; w < walls->wall_count; ++w) {
         nb->wall_offset_at_build[w] = walls->offset[w];
+        nb->wall_angle_at_build[w] = walls->angle[w];
+    }
     return BDL_OK;
 }
 
@@ -541,7 +543,8 @@ int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, con
         }
     }
     double move = sqrt(max2);
-    double wall_move = bdl_walls_max_shift(walls, nb->wall_offset_at_build);
+    double wall_move =
+        bdl_walls_max_shift(walls, nb->wall_offset_at_build, nb->wall_angle_at_build);
     return 2.0 * move > nb->skin || move + wall_move > nb->skin;
 }
 
@@ -658,8 +661,10 @@ int bdl_neighbor_check(const bdl_neighbor *nb, long n, long prims, char *why, si
         }
     }
     for (int w = 0; w < BDL_MAX_WALLS; ++w)
-        if (!bdl_v3_isfinite(nb->wall_offset_at_build[w])) {
-            snprintf(why, len, "the offset of wall %d at the last list build is not finite", w);
+        if (!bdl_v3_isfinite(nb->wall_offset_at_build[w]) ||
+            !isfinite(nb->wall_angle_at_build[w])) {
+            snprintf(why, len,
+                     "the offset or angle of wall %d at the last list build is not finite", w);
             return 0;
         }
     return 1;

@@ -69,9 +69,10 @@ typedef struct bdl_neighbor {
     long old_wall_capacity;
 
     bdl_vec3 wall_offset_at_build[BDL_MAX_WALLS];
-    int32_t *perm;  ///< scratch: new index -> old index
-    int32_t *pcell; ///< scratch: ranked cell of each particle
-    void *scratch;  ///< scratch for permutations (count * 24 bytes)
+    double wall_angle_at_build[BDL_MAX_WALLS]; ///< turned angles of the walls then [rad]
+    int32_t *perm;                             ///< scratch: new index -> old index
+    int32_t *pcell;                            ///< scratch: ranked cell of each particle
+    void *scratch;                             ///< scratch for permutations (count * 24 bytes)
     long scratch_count;
     int friction, rolling;
     int mindlin; ///< Hertz-Mindlin springs (friction and the Hertz law): their work is kept

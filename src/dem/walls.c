@@ -188,62 +188,11 @@ static bdl_result add_mesh(bdl_walls *walls, int wall, const bdl_wall_def *d, do
 int bdl_walls_near(const bdl_walls *walls, int wall, bdl_vec3 x, const int32_t **list)
 {
     const bdl_wall_bins *b = &walls->bins[wall];
-    long bin = b->start ? bin_of(b, bdl_v3_sub(x, walls->offset[wall])) : -1;
+    long bin = b->start ? bin_of(b, bdl_wall_to_rest(walls, wall, x)) : -1;
     if (bin < 0)
         return 0;
     *list = b->tri + b->start[bin];
     return (int)(b->start[bin + 1] - b->start[bin]);
-}
-
-/// Within this fraction of an edge's length of its end, or of a face's height of its border, a
-/// nearest point is taken to lie on the end or the border, so that round-off cannot put a centre
-/// over a shared vertex or edge on different parts of the triangles around it. (The distance
-/// moves by the square of the shift, far below round-off; the normal by 1e-10 of the ratio of
-/// edge length to distance at most.)
-#define SNAP 1e-10
-
-/// An edge's nearest point at parameter s from its first vertex k to vertex (k + 1) % 3.
-static bdl_vec3 on_edge(const bdl_wall_tri *t, int k, double s)
-{
-    const bdl_vec3 v[3] = {t->a, t->b, t->c};
-    if (s <= SNAP || s >= 1.0 - SNAP)
-        return v[s <= SNAP ? k : (k + 1) % 3];
-    return bdl_v3_madd(v[k], bdl_v3_sub(v[(k + 1) % 3], v[k]), s);
-}
-
-/// The point of a triangle nearest p (rest frame): on a vertex or an edge (their Voronoi regions
-/// first), or, with *face set, inside the face (the point returned is then p itself; see SNAP).
-static bdl_vec3 nearest_on_triangle(const bdl_wall_tri *t, bdl_vec3 p, int *face)
-{
-    *face = 0;
-    const bdl_vec3 ab = bdl_v3_sub(t->b, t->a), ac = bdl_v3_sub(t->c, t->a);
-    const bdl_vec3 ap = bdl_v3_sub(p, t->a), bp = bdl_v3_sub(p, t->b), cp = bdl_v3_sub(p, t->c);
-    const double d1 = bdl_v3_dot(ab, ap), d2 = bdl_v3_dot(ac, ap);
-    const double d3 = bdl_v3_dot(ab, bp), d4 = bdl_v3_dot(ac, bp);
-    const double d5 = bdl_v3_dot(ab, cp), d6 = bdl_v3_dot(ac, cp);
-    if (d1 <= 0.0 && d2 <= 0.0)
-        return on_edge(t, 0, 0.0);
-    if (d3 >= 0.0 && d4 <= d3)
-        return on_edge(t, 1, 0.0);
-    if (d6 >= 0.0 && d5 <= d6)
-        return on_edge(t, 2, 0.0);
-    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0)
-        return on_edge(t, 0, d1 / (d1 - d3));
-    if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-        return on_edge(t, 1, (d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0)
-        return on_edge(t, 2, 1.0 - d2 / (d2 - d6));
-    // Inside: barycentric weights va, vb, vc (of a, b, c) over their sum.
-    const double sum = va + vb + vc, wa = va / sum, wb = vb / sum, wc = vc / sum;
-    if (wa <= SNAP) // on edge b-c
-        return on_edge(t, 1, wc / (wb + wc));
-    if (wb <= SNAP) // on edge c-a
-        return on_edge(t, 2, wa / (wa + wc));
-    if (wc <= SNAP) // on edge a-b
-        return on_edge(t, 0, wb / (wa + wb));
-    *face = 1;
-    return p; // the face: the distance is the plane's (below)
 }
 
 double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double radius, bdl_vec3 *n)
@@ -253,22 +202,27 @@ double bdl_wall_tri_gap(const bdl_walls *walls, long index, bdl_vec3 x, double r
         *n = bdl_v3_zero();
         return INFINITY;
     }
-    const bdl_vec3 p = bdl_v3_sub(x, walls->offset[t->wall]);
+    const bdl_vec3 p = bdl_wall_to_rest(walls, t->wall, x);
     int face;
-    const bdl_vec3 q = nearest_on_triangle(t, p, &face);
+    const bdl_vec3 q = bdl_triangle_nearest(t->a, t->b, t->c, p, &face);
+    double gap;
     if (face) {
         const double h = bdl_v3_dot(bdl_v3_sub(p, t->a), t->normal);
         *n = h >= 0.0 ? t->normal : bdl_v3_neg(t->normal);
-        return fabs(h) - radius;
+        gap = fabs(h) - radius;
+    } else {
+        const bdl_vec3 d = bdl_v3_sub(p, q);
+        const double dist = bdl_v3_len(d);
+        *n = dist > 0.0 ? bdl_v3_scale(d, 1.0 / dist) : t->normal;
+        gap = dist - radius;
     }
-    const bdl_vec3 d = bdl_v3_sub(p, q);
-    const double dist = bdl_v3_len(d);
-    *n = dist > 0.0 ? bdl_v3_scale(d, 1.0 / dist) : t->normal;
-    return dist - radius;
+    if (walls->turns[t->wall])
+        *n = bdl_q_rotate(walls->turned[t->wall], *n);
+    return gap;
 }
 
-/// Whether triangle u lies on or behind the plane of triangle t as a sphere at x sees it (every
-/// corner of u not in front of t's plane, to round-off of the corners' distances).
+/// Whether triangle u lies on or behind the plane of triangle t as a sphere at x (rest frame) sees
+/// it (every corner of u not in front of t's plane, to round-off of the corners' distances).
 static int behind(const bdl_wall_tri *t, const bdl_wall_tri *u, bdl_vec3 x)
 {
     const bdl_vec3 n =
@@ -292,7 +246,10 @@ static int one_patch(const bdl_walls *walls, int32_t a, int32_t b, bdl_vec3 x)
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
             shared |= s->vert[i] == t->vert[j];
-    return shared && behind(s, t, x) && behind(t, s, x);
+    if (!shared)
+        return 0;
+    x = bdl_wall_to_rest(walls, s->wall, x); // the two share a vertex: one wall
+    return behind(s, t, x) && behind(t, s, x);
 }
 
 #define PATCH_MAX 64
@@ -334,6 +291,20 @@ int bdl_wall_tri_counted(const bdl_walls *walls, const int32_t *surfaces, int co
             }
     }
     return 1;
+}
+
+/// The farthest a vertex of mesh wall `wall` (triangles first ..) lies from its axis [m].
+static double reach_from_axis(const bdl_walls *walls, int wall, long first)
+{
+    double far = 0.0;
+    const bdl_vec3 a = walls->axis[wall], c = walls->center[wall];
+    for (long t = first; t < walls->tri_count; ++t)
+        for (int k = 0; k < 3; ++k) {
+            const bdl_wall_tri *u = &walls->tri[t];
+            const bdl_vec3 q = bdl_v3_sub(k == 0 ? u->a : k == 1 ? u->b : u->c, c);
+            far = fmax(far, bdl_v3_len(bdl_v3_madd(q, a, -bdl_v3_dot(q, a))));
+        }
+    return far;
 }
 
 bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bdl_walls *walls,
@@ -386,19 +357,26 @@ bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bd
         if (d->motion == BDL_MOTION_ROTATE) {
             walls->motion[w] = BDL_MOTION_ROTATE;
             walls->center[w] = d->rotation_center;
-            walls->turn[w] = bdl_v3_scale(bdl_v3_normalize(d->rotation_axis), d->angular_velocity);
+            walls->axis[w] = bdl_v3_normalize(d->rotation_axis);
+            walls->turn[w] = bdl_v3_scale(walls->axis[w], d->angular_velocity);
             walls->radius[w] = d->kind == BDL_WALL_CYLINDER ? d->radius : 0.0;
             walls->omega[w] = 1.0; // the live factor on the rate (bdl_world_apply_live)
         }
+        walls->turned[w] = bdl_q_identity();
     }
     for (int w = 0; w < count; ++w) {
         if (defs[w].kind != BDL_WALL_MESH && defs[w].kind != BDL_WALL_DISK &&
             defs[w].kind != BDL_WALL_CONE)
             continue;
+        const long first = walls->tri_count;
         bdl_result r = add_mesh(walls, w, &defs[w], reach, why, why_len);
         if (r != BDL_OK) {
             bdl_walls_free(walls);
             return r;
+        }
+        if (walls->motion[w] == BDL_MOTION_ROTATE) {
+            walls->turns[w] = 1;
+            walls->radius[w] = reach_from_axis(walls, w, first);
         }
     }
     bdl_walls_update(walls, 0.0);
@@ -424,6 +402,8 @@ void bdl_walls_update(bdl_walls *walls, double t)
         walls->spin[w] = walls->motion[w] == BDL_MOTION_ROTATE && t >= walls->start[w]
                              ? bdl_v3_scale(walls->turn[w], walls->omega[w])
                              : bdl_v3_zero();
+        if (walls->turns[w])
+            walls->turned[w] = bdl_q_axis_angle(walls->axis[w], walls->angle[w]);
         if (walls->motion[w] == BDL_MOTION_MOVE && t >= walls->start[w]) {
             const double end = fmin(t, walls->stop[w]);
             walls->offset[w] = bdl_v3_scale(walls->drive[w], end - walls->start[w]);
@@ -442,11 +422,19 @@ void bdl_walls_update(bdl_walls *walls, double t)
     }
 }
 
-double bdl_walls_max_shift(const bdl_walls *walls, const bdl_vec3 *ref)
+void bdl_walls_turn(bdl_walls *walls, double dt)
+{
+    for (int w = 0; w < walls->wall_count; ++w)
+        if (walls->turns[w])
+            walls->angle[w] += bdl_v3_dot(walls->spin[w], walls->axis[w]) * dt;
+}
+
+double bdl_walls_max_shift(const bdl_walls *walls, const bdl_vec3 *ref, const double *ref_angle)
 {
     double m = 0.0;
     for (int w = 0; w < walls->wall_count; ++w) {
-        double d = bdl_v3_len(bdl_v3_sub(walls->offset[w], ref[w]));
+        double d = bdl_v3_len(bdl_v3_sub(walls->offset[w], ref[w])) +
+                   walls->radius[w] * fabs(walls->angle[w] - ref_angle[w]) * walls->turns[w];
         if (d > m)
             m = d;
     }

@@ -15,12 +15,20 @@
 // patches. So a sphere rolling over a flat mesh feels the plane throughout, a ridge is felt as
 // its edge, a vertex as its point, a corner of a box as its two faces. Triangles are binned per
 // mesh wall in its rest frame for the neighbour search.
+//
+// A triangle wall (mesh, disk, cone) may turn about any axis: its turned angle is state, advanced
+// by the live rate each step (bdl_walls_turn) and saved in checkpoints. A sphere is looked at
+// from the wall's own frame (its centre turned back by the angle), so the triangles and their
+// bins stay at rest; normals are turned forward into the lab. A turn sweeps the surface by at
+// most the farthest vertex's distance from the axis times the angle, which the neighbour lists
+// count as the wall's shift.
 #ifndef BDL_WALLS_H
 #define BDL_WALLS_H
 
 #include <stdint.h>
 
 #include "core/error.h"
+#include "core/quat.h"
 #include "core/vec3.h"
 #include "dem/material.h"
 #include "core/mesh.h"
@@ -45,8 +53,8 @@ BDL_CHOICES(bdl_wall_kind, BDL_WALL_KINDS);
     X(MOTION_VIBRATE, "vibrate", "displacement A sin(2 pi f t + phase) along `direction`")         \
     X(MOTION_MOVE, "move", "moves at a constant velocity from `start` to `stop` (a piston)")       \
     X(MOTION_ROTATE, "rotate",                                                                     \
-      "turns about an axis at a constant rate; the turn must leave the shape unchanged (a "        \
-      "cylinder about its own axis, a plane across the axis): a drum")
+      "turns about an axis at a constant rate: a mesh, disk or cone about any axis (a mixer "      \
+      "blade); a cylinder about its own axis (a drum), a plane about its normal")
 BDL_CHOICES(bdl_motion_kind, BDL_MOTIONS);
 
 /// The frame a vibrating wall is seen from ([wall NAME] frame).
@@ -130,7 +138,12 @@ typedef struct bdl_walls {
     double open_time[BDL_MAX_WALLS]; ///< time the wall is taken away [s]
     bdl_vec3 center[BDL_MAX_WALLS];  ///< rotate: a point on the axis [m]
     bdl_vec3 turn[BDL_MAX_WALLS];    ///< rotate: axis times the rate (set, before live scaling)
-    double radius[BDL_MAX_WALLS];    ///< rotate: the cylinder's radius (0 for a plane) [m]
+    bdl_vec3 axis[BDL_MAX_WALLS];    ///< rotate: unit axis
+    double radius[BDL_MAX_WALLS];    ///< rotate: the cylinder's radius, or a triangle wall's
+                                     ///< farthest vertex from the axis (0 for a plane) [m]
+    uint8_t turns[BDL_MAX_WALLS];    ///< rotate: a triangle wall, whose triangles turn with it
+    double angle[BDL_MAX_WALLS];     ///< rotate: the angle turned since the start (state) [rad]
+    bdl_quat turned[BDL_MAX_WALLS];  ///< rotate: the turn by `angle` about the axis
     bdl_vec3 spin[BDL_MAX_WALLS];    ///< live angular velocity (zero before the start) [rad/s]
     bdl_vec3 drive[BDL_MAX_WALLS];   ///< move: velocity [m/s]
     double stop[BDL_MAX_WALLS];      ///< move: time the motion ends [s]
@@ -182,6 +195,21 @@ int bdl_wall_tri_counted(const bdl_walls *walls, const int32_t *surfaces, int co
 /// has come.
 void bdl_walls_update(bdl_walls *walls, double t);
 
+/// Advances the turned angle of every turning wall by its present spin over dt [s] (call before
+/// bdl_walls_update for the new time).
+void bdl_walls_turn(bdl_walls *walls, double dt);
+
+/// A point of the lab as wall `wall` sees it at rest: less the wall's offset, turned back by its
+/// turned angle about its axis (triangle walls only).
+static inline bdl_vec3 bdl_wall_to_rest(const bdl_walls *walls, int wall, bdl_vec3 x)
+{
+    const bdl_vec3 p = bdl_v3_sub(x, walls->offset[wall]);
+    if (!walls->turns[wall])
+        return p;
+    const bdl_vec3 c = walls->center[wall];
+    return bdl_v3_add(c, bdl_q_unrotate(walls->turned[wall], bdl_v3_sub(p, c)));
+}
+
 /// Distance-to-contact query. Returns the gap s = (distance from the surface) - radius along the
 /// normal n pointing from the wall into the particle (s < 0: overlap -s), for a sphere at x.
 static inline double bdl_wall_gap(const bdl_walls *walls, int prim, bdl_vec3 x, double radius,
@@ -225,8 +253,9 @@ static inline bdl_vec3 bdl_wall_velocity_at(const bdl_walls *walls, int wall, bd
     return bdl_v3_add(walls->velocity[wall], bdl_v3_cross(s, bdl_v3_sub(x, walls->center[wall])));
 }
 
-/// Largest displacement any wall has made since the offsets in `ref` were taken [m].
-double bdl_walls_max_shift(const bdl_walls *walls, const bdl_vec3 *ref);
+/// Largest displacement any wall's surface has made since the offsets in `ref` and the turned
+/// angles in `ref_angle` were taken [m].
+double bdl_walls_max_shift(const bdl_walls *walls, const bdl_vec3 *ref, const double *ref_angle);
 
 /// Largest speed any wall reaches over a cycle [m/s].
 double bdl_walls_max_speed(const bdl_walls *walls);

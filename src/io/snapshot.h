@@ -34,8 +34,9 @@ typedef struct bdl_snapshot {
     long step;
     int wall_count;
     float wall_offset[BDL_SNAPSHOT_WALLS]
-                     [3];    ///< displacement of each (vibrating) wall from rest [m]
-    double steps_per_second; ///< the solver's recent speed (0 if unknown)
+                     [3];                 ///< displacement of each (vibrating) wall from rest [m]
+    float wall_angle[BDL_SNAPSHOT_WALLS]; ///< angle each turning wall has turned [rad]
+    double steps_per_second;              ///< the solver's recent speed (0 if unknown)
     // A slice of a gas field, when [camera] gas_field asks for one (slice_n[0] == 0: none).
     int slice_field;                ///< bdl_gas_field
     int slice_axis;                 ///< normal of the slice plane

@@ -138,6 +138,7 @@ int bdl_capture(bdl_snapshot *s, const bdl_world *w)
         s->wall_offset[k][0] = (float)w->walls.offset[k].x;
         s->wall_offset[k][1] = (float)w->walls.offset[k].y;
         s->wall_offset[k][2] = (float)w->walls.offset[k].z;
+        s->wall_angle[k] = (float)w->walls.angle[k];
     }
     return capture_slice(s, w) && capture_voidage(s, w);
 }

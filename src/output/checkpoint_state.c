@@ -140,11 +140,12 @@ static int check_scalars(const bdl_world *w, double saved_dt, char *why, size_t 
                                w->live.inlet_scale};
     int finite = first_bad(energies, 7, ANY) < 0 && w->removed >= 0 &&
                  first_bad(w->live.amplitude_scale, BDL_MAX_WALLS, ANY) < 0 &&
-                 first_bad(w->live.frequency_scale, BDL_MAX_WALLS, ANY) < 0;
+                 first_bad(w->live.frequency_scale, BDL_MAX_WALLS, ANY) < 0 &&
+                 first_bad(w->walls.angle, BDL_MAX_WALLS, ANY) < 0;
     if (!finite) {
         snprintf(why, len,
-                 "its energy bookkeeping, outflow counters or live parameters are not "
-                 "finite (or a count is negative)");
+                 "its energy bookkeeping, outflow counters, live parameters or walls' turned "
+                 "angles are not finite (or a count is negative)");
         return 0;
     }
     if ((w->rng.s[0] | w->rng.s[1] | w->rng.s[2] | w->rng.s[3]) == 0) {

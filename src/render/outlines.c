@@ -1,6 +1,7 @@
 // bedlam — the domain and the walls as thin outlines, so the container reads without hiding the
 // bed. Built once from the scene as line segments, one group per wall; each group is drawn
-// shifted by its wall's current offset, so a vibrating box moves on screen.
+// shifted by its wall's current offset and turned by its turned angle, so a vibrating box moves
+// and a mixer's blade turns on screen.
 #include <cglm/cglm.h>
 #include <math.h>
 #include <stdlib.h>
@@ -263,8 +264,18 @@ void bdl_render_outlines_draw(bdl_renderer *r, const bdl_snapshot *s, const bdl_
         const bdl_line_group *lg = &o->groups[g];
         mat4 m;
         memcpy(m, f->view_proj, sizeof m);
-        if (lg->wall >= 0 && lg->wall < s->wall_count)
+        if (lg->wall >= 0 && lg->wall < s->wall_count) {
             glm_translate(m, (float *)s->wall_offset[lg->wall]);
+            const bdl_wall_def *d = &r->scene.walls[lg->wall];
+            if (s->wall_angle[lg->wall] != 0.0f && d->motion == BDL_MOTION_ROTATE) {
+                vec3 c = {(float)d->rotation_center.x, (float)d->rotation_center.y,
+                          (float)d->rotation_center.z};
+                vec3 a = {(float)d->rotation_axis.x, (float)d->rotation_axis.y,
+                          (float)d->rotation_axis.z};
+                glm_normalize(a);
+                glm_rotate_at(m, c, s->wall_angle[lg->wall], a);
+            }
+        }
         glUniformMatrix4fv(offset_at, 1, GL_FALSE, (const float *)m);
         // The domain box is faint; walls are clearer.
         float a = lg->wall < 0 ? 0.35f : 0.8f;

@@ -230,34 +230,34 @@ static void check_mesh(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall
     bdl_mesh_free(&m);
 }
 
-/// A turning wall must keep its shape: a cylinder or cone about its own axis, a plane or disk
-/// about its normal.
+/// A turning wall: triangles (mesh, disk, cone) turn about any axis; a cylinder must keep its
+/// shape, turning about its own axis, and a plane about its normal; a box cannot turn.
 static void check_rotation(bdl_scene_parser *p, bdl_scene_section *s, const bdl_wall_def *wall)
 {
     const bdl_vec3 a = bdl_v3_normalize(wall->rotation_axis);
     const double tol = 1e-9;
     const char *why = NULL;
-    if (wall->kind == BDL_WALL_CYLINDER || wall->kind == BDL_WALL_CONE) {
+    if (wall->kind == BDL_WALL_MESH || wall->kind == BDL_WALL_DISK || wall->kind == BDL_WALL_CONE)
+        return;
+    if (wall->kind == BDL_WALL_CYLINDER) {
         const bdl_vec3 q = bdl_v3_sub(wall->rotation_center, wall->point);
         const double off = bdl_v3_len(bdl_v3_madd(q, wall->normal, -bdl_v3_dot(q, wall->normal)));
         if (fabs(fabs(bdl_v3_dot(a, wall->normal)) - 1.0) > tol)
-            why = "a cylinder or cone turns about its own axis: rotation_axis must be parallel to "
-                  "axis";
+            why = "an infinite cylinder turns only about its own axis: rotation_axis must be "
+                  "parallel to axis (a cone wall with equal radii is a finite tube that turns "
+                  "about any axis)";
         else if (off > tol * wall->radius)
-            why = "a cylinder or cone turns about its own axis: rotation_center must lie on it";
-    } else if (wall->kind == BDL_WALL_PLANE || wall->kind == BDL_WALL_DISK) {
+            why = "an infinite cylinder turns only about its own axis: rotation_center must lie "
+                  "on it";
+    } else if (wall->kind == BDL_WALL_PLANE) {
         if (fabs(fabs(bdl_v3_dot(a, wall->normal)) - 1.0) > tol)
-            why = "a plane or disk keeps its place only turning about its normal: rotation_axis "
-                  "must be parallel to normal";
+            why = "an infinite plane turns only about its normal: rotation_axis must be parallel "
+                  "to normal (a disk or mesh turns about any axis)";
     } else {
-        why = "only cylinders and cones (about their axis), planes and disks (about their "
-              "normal) turn without changing shape; boxes and meshes cannot rotate";
+        why = "a box cannot turn (make it of a mesh, which turns about any axis)";
     }
     if (why)
-        fail_at_key(p, s,
-                    wall->kind == BDL_WALL_BOX || wall->kind == BDL_WALL_MESH ? "motion"
-                                                                              : "rotation_axis",
-                    0, why);
+        fail_at_key(p, s, wall->kind == BDL_WALL_BOX ? "motion" : "rotation_axis", 0, why);
 }
 
 static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
@@ -337,6 +337,50 @@ static void check_region(bdl_scene_parser *p, bdl_scene_section *s, double diame
     }
 }
 
+/// A mesh region: its file read and placed, closed, within the region's box; its volume kept.
+static void check_region_mesh(bdl_scene_parser *p, bdl_scene_section *s, bdl_create_def *c)
+{
+    bdl_mesh m;
+    char what[BDL_PATH_LEN + 480];
+    if (bdl_create_region_mesh(c, &m, what, sizeof what) != BDL_OK) {
+        fail_at_key(p, s, "region_file", 0, what);
+        return;
+    }
+    int border_only = 0;
+    const long border = bdl_mesh_unclosed_edge(&m, &border_only);
+    bdl_vec3 lo = m.vertex[0], hi = m.vertex[0];
+    for (long k = 1; k < m.vertex_count; ++k) {
+        lo =
+            bdl_v3(fmin(lo.x, m.vertex[k].x), fmin(lo.y, m.vertex[k].y), fmin(lo.z, m.vertex[k].z));
+        hi =
+            bdl_v3(fmax(hi.x, m.vertex[k].x), fmax(hi.y, m.vertex[k].y), fmax(hi.z, m.vertex[k].z));
+    }
+    const bdl_vec3 blo = c->region_min, bhi = c->region_max;
+    if (border == -2) {
+        fail_at_key(p, s, "region_file", 0, "needs more memory than there is");
+    } else if (border >= 0) {
+        const bdl_vec3 a = m.vertex[m.edge[border][0]], b = m.vertex[m.edge[border][1]];
+        snprintf(what, sizeof what,
+                 "'%s' is not a closed, consistently turned surface: the edge from (%g, %g, %g) "
+                 "to (%g, %g, %g) %s (a region needs an inside)",
+                 c->region_file, a.x, a.y, a.z, b.x, b.y, b.z,
+                 border_only
+                     ? "borders one triangle only"
+                     : "is run the same way by its two triangles (they face opposite ways)");
+        fail_at_key(p, s, "region_file", 0, what);
+    } else if (lo.x < blo.x || lo.y < blo.y || lo.z < blo.z || hi.x > bhi.x || hi.y > bhi.y ||
+               hi.z > bhi.z) {
+        snprintf(what, sizeof what,
+                 "the mesh, placed, spans (%g, %g, %g) to (%g, %g, %g): region_min and "
+                 "region_max must enclose it",
+                 lo.x, lo.y, lo.z, hi.x, hi.y, hi.z);
+        fail_at_key(p, s, "region_file", 0, what);
+    } else {
+        c->region_volume = fabs(bdl_mesh_volume(&m));
+    }
+    bdl_mesh_free(&m);
+}
+
 /// Exactly one of two keys; `first` is named when both are missing.
 static void check_one_of(bdl_scene_parser *p, bdl_scene_section *s, const char *first,
                          const char *second, const char *why)
@@ -403,6 +447,8 @@ static void check_create(bdl_scene_parser *p, bdl_scene_section *s)
                     "smaller than the largest diameter: particles would overlap");
     if (!p->failed)
         check_region(p, s, diameter);
+    if (!p->failed && create->region_shape == BDL_REGION_MESH)
+        check_region_mesh(p, s, create);
 }
 
 /// True when the section is in the file or one of its keys was set.

@@ -245,10 +245,11 @@ static bdl_create_context create_context(bdl_world *w)
 
 static bdl_result pour(bdl_world *w)
 {
-    const bdl_create_context ctx = create_context(w);
+    bdl_create_context ctx = create_context(w);
     for (int c = 0; c < w->scene.create_count; ++c) {
         if (w->scene.creates[c].kind != BDL_CREATE_POUR)
             continue;
+        ctx.region = &w->region_mesh[c];
         long before = w->particles.count;
         long added =
             bdl_create_pour(&w->scene.creates[c], &ctx, w->time, &w->poured[c], &w->particles);
@@ -358,6 +359,7 @@ bdl_result bdl_world_step(bdl_world *w)
                                : bdl_dem_kick_drift(p, g_now, h, w->dt);
     w->step++;
     w->time += w->dt;
+    bdl_walls_turn(&w->walls, w->dt);
     bdl_walls_update(&w->walls, w->time);
     const int outflow = w->outflow[0] | w->outflow[1] | w->outflow[2] | w->outflow[3] |
                         w->outflow[4] | w->outflow[5] | (w->scene.sink_count > 0);
@@ -598,11 +600,16 @@ static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
     long reserve = *expected < 64 ? 64 : (*expected > 10000000 ? 10000000 : *expected);
     if (bdl_particles_reserve(&w->particles, reserve) != BDL_OK)
         return BDL_ERR_NOMEM;
-    const bdl_create_context ctx = create_context(w);
+    bdl_create_context ctx = create_context(w);
     for (int c = 0; c < scene->create_count; ++c) {
         first_id[c] = w->particles.next_id;
         char why[768];
-        bdl_result r = bdl_create_initial(&scene->creates[c], &ctx, &w->particles, why, sizeof why);
+        bdl_result r = BDL_OK;
+        if (scene->creates[c].region_shape == BDL_REGION_MESH)
+            r = bdl_create_region_mesh(&scene->creates[c], &w->region_mesh[c], why, sizeof why);
+        ctx.region = &w->region_mesh[c];
+        if (r == BDL_OK)
+            r = bdl_create_initial(&scene->creates[c], &ctx, &w->particles, why, sizeof why);
         if (r == BDL_ERR_SCENE)
             snprintf(err->message, sizeof err->message, "%s:%d: [create %s]: %s", scene->path,
                      scene->line.creates[c], scene->creates[c].name, why);
@@ -709,6 +716,8 @@ void bdl_world_destroy(bdl_world *w)
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);
     bdl_walls_free(&w->walls);
+    for (int c = 0; c < BDL_MAX_CREATES; ++c)
+        bdl_mesh_free(&w->region_mesh[c]);
     bdl_force_work_free(&w->force_work);
     free(w->coordination);
     free(w->drop);

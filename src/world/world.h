@@ -51,12 +51,13 @@ typedef struct bdl_world {
     int friction; ///< any sliding friction: tangential history is kept
     int rolling;  ///< rolling resistance active
 
-    long parallel_min;            ///< force pass on one thread below this particle count
-    double dt;                    ///< time step [s]
-    double time;                  ///< simulated time [s]
-    long step;                    ///< steps taken
-    bdl_rng rng;                  ///< used by pouring
-    long poured[BDL_MAX_CREATES]; ///< particles inserted so far by each pour creator
+    long parallel_min;                     ///< force pass on one thread below this particle count
+    double dt;                             ///< time step [s]
+    double time;                           ///< simulated time [s]
+    long step;                             ///< steps taken
+    bdl_rng rng;                           ///< used by pouring
+    long poured[BDL_MAX_CREATES];          ///< particles inserted so far by each pour creator
+    bdl_mesh region_mesh[BDL_MAX_CREATES]; ///< creators with region_shape = mesh: the mesh
 
     bdl_live_params live;
 
