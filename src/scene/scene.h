@@ -48,6 +48,9 @@ typedef struct bdl_sink_def {
 /// times are stepped through one interval at a time, so an interval of 1e-300 s would never
 /// advance.
 #define BDL_MAX_OUTPUTS 1e9
+/// Most cells of the grid of the time-averaged solids fields (bedlam analyze fields --cell): 5e7
+/// cells hold 1.6 GB of sums and write a .vti file of several GB.
+#define BDL_MAX_FIELD_CELLS 5e7
 
 typedef struct bdl_output_def {
     double diagnostics_interval;   ///< [s] between rows of diagnostics.csv
