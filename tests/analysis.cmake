@@ -28,3 +28,7 @@ add_test(NAME cli_fields COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${CMAKE_SOURCE_DIR}/scenes/fluidized_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fields_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fields_cli.cmake)
 set_tests_properties(cli_fields PROPERTIES LABELS "analysis;cli" TIMEOUT 300)
+add_test(NAME cli_fields_run COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSOURCE=${CMAKE_SOURCE_DIR} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fields_run_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fields_run_cli.cmake)
+set_tests_properties(cli_fields_run PROPERTIES LABELS "analysis;cli" TIMEOUT 300)

@@ -1,13 +1,20 @@
-// Time-averaged solids fields (analysis/fields.h) against known answers: a lattice of equal
-// spheres filling a box region gives its packing fraction in the cells inside it and nothing
-// outside, every particle's volume lands on the grid, a translating lattice moves at its velocity,
-// rods and parcels count their own volumes.
+// Time-averaged solids fields (analysis/fields.h, output/fields_out.h) against known answers: a
+// lattice of equal spheres filling a box region gives its packing fraction in the cells inside it
+// and nothing outside, every particle's volume lands on the grid, a translating lattice moves at
+// its velocity, rods and parcels count their own volumes; the sums file comes back bit for bit and
+// a damaged or foreign one is refused.
+#define _POSIX_C_SOURCE 200809L // mkdtemp
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "check.h"
+#include "scene_util.h"
 #include "analysis/fields.h"
+#include "core/file.h"
+#include "output/fields_out.h"
 
 enum { NX = 10, NY = 10, NZ = 15, COUNT = NX * NY * NZ };
 static const double spacing = 0.01, radius = 0.004;
@@ -107,10 +114,90 @@ static void test_grid(void)
     CHECK(bdl_fields_create(&f, lo, box_hi, NAN, 5e7) == BDL_ERR_ARGS);
 }
 
+static long size_of(const char *path)
+{
+    long size = -1;
+    char why[256];
+    bdl_check_regular_file(path, &size, why, sizeof why);
+    return size;
+}
+
+/// A changed byte, a cut and a stranger's file are refused with the reason.
+static void refused_sums(const char *path, const char *dir)
+{
+    char bad[1200], why[1400];
+    size_t size = 0;
+    char *data = bdl_read_file(path, &size);
+    snprintf(bad, sizeof bad, "%s/bad.sums", dir);
+    bdl_fields f;
+    bdl_fields_stamp stamp;
+    data[size / 2] ^= 0x10;
+    bdl_write_file_atomic(bad, data, size);
+    CHECK(bdl_fields_sums_load(&f, &stamp, bad, why, sizeof why) == BDL_ERR_CHECKPOINT);
+    CHECK_MSG(strstr(why, "fails its checksum") != NULL, "%s", why);
+    data[size / 2] ^= 0x10;
+    bdl_write_file_atomic(bad, data, size - 9);
+    CHECK(bdl_fields_sums_load(&f, &stamp, bad, why, sizeof why) == BDL_ERR_CHECKPOINT);
+    CHECK_MSG(strstr(why, "is truncated") != NULL, "%s", why);
+    bdl_write_file_atomic(bad, "BDLCKPT7 and more", 17);
+    CHECK(bdl_fields_sums_load(&f, &stamp, bad, why, sizeof why) == BDL_ERR_CHECKPOINT);
+    CHECK_MSG(strstr(why, "is not a fields.sums file") != NULL, "%s", why);
+    free(data);
+    unlink(bad);
+}
+
+/// The sums of a world's particles saved and loaded back bit for bit, matched against the
+/// world's state; another step or setting does not match.
+static void test_sums_file(void)
+{
+    bdl_world *w = bdl_test_world(
+        "[run]\nend_time = 1\n[domain]\nmin = 0 0 0\nmax = 0.04 0.02 0.06\n"
+        "[species s]\ndiameter = 0.004\ndensity = 2500\nyoungs_modulus = 1e7\nrestitution = 0.5\n"
+        "[create bed]\ntype = lattice\ncount = 40\nregion_min = 0 0 0\nregion_max = 0.04 0.02 "
+        "0.03\nvelocity = 0.1 0 -0.2\n[output]\nfields_interval = 0.01\n");
+    CHECK_CLOSE(bdl_fields_world_cell(w), 0.012, 1e-12);
+    bdl_fields f, back;
+    char why[1400], dir[] = "/tmp/bedlam-fields-XXXXXX", path[1200];
+    CHECK(mkdtemp(dir) != NULL);
+    CHECK(bdl_fields_create_world(&f, w, bdl_fields_world_cell(w), why, sizeof why) == BDL_OK);
+    CHECK(bdl_fields_add_world(&f, w) == BDL_OK && bdl_fields_add_world(&f, w) == BDL_OK);
+    CHECK(f.deposited == f.total && f.particles == 80);
+    const bdl_fields_stamp stamp = bdl_fields_stamp_of(w, bdl_fields_world_cell(w));
+    snprintf(path, sizeof path, "%s/fields.sums", dir);
+    CHECK(bdl_fields_sums_save(&f, &stamp, path) == BDL_OK);
+    CHECK(size_of(path) ==
+          8 + 4 + 8 + 5 * 8 + 16 + 48 + 16 + 32 + 4 * 8 * bdl_fields_cells(&f) + 4);
+    bdl_fields_stamp got;
+    CHECK(bdl_fields_sums_load(&back, &got, path, why, sizeof why) == BDL_OK);
+    const size_t cells = (size_t)bdl_fields_cells(&f);
+    CHECK(memcmp(&got, &stamp, sizeof stamp) == 0);
+    CHECK(memcmp(back.n, f.n, sizeof f.n) == 0 && memcmp(back.h, f.h, sizeof f.h) == 0);
+    CHECK(memcmp(back.volume, f.volume, cells * sizeof(double)) == 0);
+    CHECK(memcmp(back.momentum, f.momentum, 3 * cells * sizeof(double)) == 0);
+    CHECK(back.samples == 2 && back.deposited == f.deposited && back.last == f.last);
+    CHECK(bdl_fields_stamp_matches(&back, &got, w, why, sizeof why));
+    got.step = 7;
+    CHECK(!bdl_fields_stamp_matches(&back, &got, w, why, sizeof why) && strstr(why, "step 7"));
+    got.step = stamp.step;
+    got.start = 0.5;
+    CHECK(!bdl_fields_stamp_matches(&back, &got, w, why, sizeof why) && strstr(why, "0.5 s"));
+    refused_sums(path, dir);
+    snprintf(path, sizeof path, "%s/fields.vti", dir);
+    CHECK(bdl_fields_vti_write(&f, path) == BDL_OK && size_of(path) > 0);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/fields.sums", dir);
+    unlink(path);
+    rmdir(dir);
+    bdl_fields_free(&f);
+    bdl_fields_free(&back);
+    bdl_world_destroy(w);
+}
+
 int main(void)
 {
     test_lattice();
     test_volumes();
     test_grid();
+    test_sums_file();
     return bdl_test_summary("test_fields");
 }

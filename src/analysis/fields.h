@@ -15,7 +15,8 @@
 // (`deposited` against `total` says how much volume that was). The particles are added one after
 // the other in their order, so the sums are the same bits on any number of threads.
 //
-// Used by `bedlam analyze fields` on the particle files of a run.
+// Used by a run while it goes ([output] fields_interval) and by `bedlam analyze fields` on the
+// particle files of a finished one.
 #ifndef BDL_FIELDS_H
 #define BDL_FIELDS_H
 

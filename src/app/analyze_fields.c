@@ -1,11 +1,12 @@
 // bedlam analyze fields — time-averaged solids fraction and solids velocity on a grid, from the
 // particle files (particles.pvd, vtk/particles_NNNNNN.vtp) of a run.
 //
-// Each particle file in the window is one sample of analysis/fields.h: each particle's volume (a
-// rod's from the `length` array, a parcel's times its `parcel_count`) in the cell that holds its
-// centre, and its volume times its velocity. The grid covers the domain (from run.log) in cells
-// of about --cell metres (default three mean diameters of the first file of the window). Centres
-// outside the domain are not counted (the summary says how much volume that was).
+// Each particle file in the window is one sample of analysis/fields.h, the arithmetic a run with
+// [output] fields_interval does as it goes: each particle's volume (a rod's from the `length`
+// array, a parcel's times its `parcel_count`) in the cell that holds its centre, and its volume
+// times its velocity. The grid covers the domain (from run.log) in cells of about --cell metres
+// (default three mean diameters of the first file of the window). Centres outside the domain are
+// not counted (the summary says how much volume that was).
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
