@@ -3,6 +3,7 @@
 bdl_add_test(test_analysis SOURCES test_analysis.c LABELS analysis)
 bdl_add_test(test_series SOURCES test_series.c LABELS analysis)
 bdl_add_test(test_rod_angles SOURCES test_rod_angles.c LABELS analysis)
+bdl_add_test(test_fields SOURCES test_fields.c LABELS analysis)
 add_test(NAME cli_sweep COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/sweep.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/sweep_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sweep_cli.cmake)
@@ -27,3 +28,7 @@ add_test(NAME cli_fields COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${CMAKE_SOURCE_DIR}/scenes/fluidized_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fields_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fields_cli.cmake)
 set_tests_properties(cli_fields PROPERTIES LABELS "analysis;cli" TIMEOUT 300)
+add_test(NAME cli_fields_run COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSOURCE=${CMAKE_SOURCE_DIR} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fields_run_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fields_run_cli.cmake)
+set_tests_properties(cli_fields_run PROPERTIES LABELS "analysis;cli" TIMEOUT 300)

@@ -32,6 +32,16 @@ bdl_cli_expect(cli_dt_too_big 2 "contact time" check ${S}/dt_too_big.ini)
 bdl_cli_expect(cli_dt_too_big_run 2 "contact time" run ${S}/dt_too_big.ini --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/dt)
 bdl_cli_expect(cli_unwritable_out 2 "not writable" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --quiet --out /proc/bedlam-cannot-write-here)
 bdl_cli_expect(cli_bad_threads 2 "threads" run ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini --threads zero)
+# [output] fields_*: bad values refused with the key (exit 2), the default cell too when it makes
+# too many cells over the domain (the run refuses it before it starts; the memory limit raised so
+# that the estimate does not refuse it first), and the estimate of a grid too large for memory.
+set(BALL ${PROJECT_SOURCE_DIR}/scenes/bouncing_ball.ini)
+bdl_cli_expect(cli_fields_negative 2 "fields_interval = -1: out of range; allowed: >= 0 .s." check ${BALL} --set output.fields_interval=-1)
+bdl_cli_expect(cli_fields_nan 2 "fields_start = nan: not a finite number" check ${BALL} --set output.fields_start=nan)
+bdl_cli_expect(cli_fields_cell_large 2 "fields_cell = 0.5: larger than the domain" check ${BALL} --set output.fields_cell=0.5)
+bdl_cli_expect(cli_fields_cell_small 2 "fields_cell = 1e-05: makes about 2e.12 cells over the domain, more than 5e.07" run ${BALL} --set output.fields_cell=1e-5 --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/fields_small)
+bdl_cli_expect(cli_fields_default_cell 2 "fields_cell is not given, and its default, three mean diameters of the particles .0.03 m., makes 1.18e.09 cells" run ${BALL} --set output.fields_interval=0.01 "--set;domain.min=-20 -20 0;--set;domain.max=20 20 20" --set guards.max_memory=1e12 --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/fields_default)
+bdl_cli_expect(cli_fields_memory 2 "fields_cell = 0.001 m: about 1.3e.08 bytes for a fields grid of 2e.06 cells, above .guards. max_memory = 1e.08" check ${BALL} --set output.fields_interval=0.01 --set output.fields_cell=0.001 --set guards.max_memory=1e8)
 bdl_cli_expect(cli_unstable 1 "overlap" run ${S}/explode.ini --quiet --out ${CMAKE_CURRENT_BINARY_DIR}/runs/explode)
 # An elastic sticking Hertz-Mindlin impact runs through the default guards (checked every step).
 bdl_cli_expect(cli_oblique_stick 0 "done: t = 0.0009" run ${S}/oblique_stick.ini --out ${CMAKE_CURRENT_BINARY_DIR}/runs/oblique_stick)

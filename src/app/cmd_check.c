@@ -210,10 +210,11 @@ static void print_resources(const bdl_world *w)
         printf("resources (estimated before anything was built): %.3g particles, %.3g neighbour "
                "pairs, %.3g gas cells (ghost layers included)\n",
                b->particles, b->pairs, b->gas_cells);
-    printf("  memory: about %.3g MB (particles and pairs %.3g MB, gas %.3g MB, images %.3g MB); "
-           "limit [guards] max_memory = %.3g MB%s\n",
+    printf("  memory: about %.3g MB (particles and pairs %.3g MB, gas %.3g MB, images %.3g MB, "
+           "fields %.3g MB); limit [guards] max_memory = %.3g MB%s\n",
            b->bytes / 1e6, b->particle_bytes / 1e6, b->gas_bytes / 1e6, b->image_bytes / 1e6,
-           b->max_memory / 1e6, g->max_memory > 0.0 ? "" : " (80 % of the physical memory)");
+           b->fields_bytes / 1e6, b->max_memory / 1e6,
+           g->max_memory > 0.0 ? "" : " (80 % of the physical memory)");
     printf("  steps: %.4g; limit [guards] max_steps = %g\n", b->steps, g->max_steps);
 }
 

@@ -87,6 +87,8 @@ bdl_result bdl_world_vtp_write(const bdl_world *w, const char *path)
         int count = 7;
         if (drag)
             arrays[count++] = (bdl_vtk_array){"drag_force", BDL_VTK_FLOAT64, 3, drag};
+        if (p->parcels) // the real particles each parcel stands for
+            arrays[count++] = (bdl_vtk_array){"parcel_count", BDL_VTK_FLOAT64, 1, p->parcel_count};
         if (rods) {
             arrays[count++] = (bdl_vtk_array){"orientation", BDL_VTK_FLOAT64, 4, p->orient};
             arrays[count++] = (bdl_vtk_array){"axis", BDL_VTK_FLOAT64, 3, axis};

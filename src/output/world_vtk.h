@@ -1,6 +1,7 @@
 // bedlam — a world's particles and gas fields as VTK XML files (ParaView).
 //
-//   particles .vtp: centres, radius, velocity, spin, id, species, coordination
+//   particles .vtp: centres, radius, velocity, spin, id, species, coordination (parcels: the
+//                   real particles each stands for, parcel_count)
 //   gas .vti:       voidage, pressure and gas velocity (face values averaged to the centres)
 #ifndef BDL_WORLD_VTK_H
 #define BDL_WORLD_VTK_H

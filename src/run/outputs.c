@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/file.h"
@@ -16,6 +17,7 @@
 #include "core/timer.h"
 #include "output/capture.h"
 #include "output/checkpoint.h"
+#include "output/fields_out.h"
 #include "output/granular_out.h"
 #include "output/rod_angles_out.h"
 #include "output/world_vtk.h"
@@ -89,21 +91,79 @@ static bdl_result write_vtk(bdl_run_outputs *o)
     return r == BDL_OK ? r : failed_write(o, r, path);
 }
 
-/// The world's state as checkpoint/NAME; a written state.bdlckpt is the run's last good one.
+/// A sample of the particles for fields.vti, counted from fields_start on.
+static bdl_result sample_fields(bdl_run_outputs *o)
+{
+    const bdl_world *w = o->world;
+    if (!due(w, w->scene.output.fields_start))
+        return BDL_OK;
+    const bdl_result r = bdl_fields_add_world(&o->fields, w);
+    if (r != BDL_OK) {
+        char path[1200];
+        path_join(path, sizeof path, o->out, "fields.vti");
+        return failed_write(o, r, path);
+    }
+    return r;
+}
+
+/// fields.vti of the samples so far (none yet: nothing written); `failure` says why it failed.
+static bdl_result write_fields(const bdl_run_outputs *o, char *failure, size_t len)
+{
+    if (o->fields.samples == 0)
+        return BDL_OK;
+    char path[1200];
+    path_join(path, sizeof path, o->out, "fields.vti");
+    const bdl_result r = bdl_fields_vti_write(&o->fields, path);
+    if (r == BDL_ERR_IO)
+        bdl_describe_write_error(failure, len, path, errno);
+    else if (r != BDL_OK)
+        snprintf(failure, len, "%s: %s", path, bdl_result_text(r));
+    return r;
+}
+
+/// The sums of the fields, before the checkpoint of the same state: checkpoint/fields.sums. The
+/// sums of the last good checkpoint move aside to fields.prev.sums first, so that whenever the run
+/// is killed one of the two files holds the sums of the checkpoint on the disk.
+static bdl_result save_sums(bdl_run_outputs *o, char *failure, size_t len)
+{
+    char path[1200], previous[1200];
+    path_join(path, sizeof path, o->out, "checkpoint/fields.sums");
+    path_join(previous, sizeof previous, o->out, "checkpoint/fields.prev.sums");
+    if (o->sums_at_good && rename(path, previous) != 0) {
+        bdl_describe_write_error(failure, len, previous, errno);
+        return BDL_ERR_IO;
+    }
+    o->sums_at_good = 0;
+    const bdl_fields_stamp stamp = bdl_fields_stamp_of(o->world, o->fields_cell);
+    const bdl_result r = bdl_fields_sums_save(&o->fields, &stamp, path);
+    if (r != BDL_OK)
+        bdl_describe_write_error(failure, len, path, errno);
+    return r;
+}
+
+/// The world's state as checkpoint/NAME; a written state.bdlckpt is the run's last good one, with
+/// the sums of the fields beside it. fields.vti is written with every checkpoint, just before it.
 static bdl_result write_checkpoint(bdl_run_outputs *o, const char *name, char *failure, size_t len)
 {
     char file[64], path[1200];
     snprintf(file, sizeof file, "checkpoint/%s", name);
     path_join(path, sizeof path, o->out, file);
-    bdl_result r = bdl_checkpoint_save(o->world, path);
+    const int good = strcmp(name, "state.bdlckpt") == 0;
+    bdl_result r = good && o->fields_on ? save_sums(o, failure, len) : BDL_OK;
+    if (r == BDL_OK && o->fields_on)
+        r = write_fields(o, failure, len);
+    if (r != BDL_OK)
+        return r;
+    r = bdl_checkpoint_save(o->world, path);
     if (r == BDL_ERR_IO)
         bdl_describe_write_error(failure, len, path, errno);
     else if (r != BDL_OK)
         snprintf(failure, len, "%s: %s", path, bdl_result_text(r));
-    if (r == BDL_OK && strcmp(name, "state.bdlckpt") == 0) {
+    if (r == BDL_OK && good) {
         snprintf(o->good_path, sizeof o->good_path, "%s", path);
         o->good_time = o->world->time;
         o->good_step = o->world->step;
+        o->sums_at_good = o->fields_on;
     }
     return r;
 }
@@ -355,18 +415,97 @@ static bdl_result open_files(bdl_run_outputs *o, int resume)
     return BDL_OK;
 }
 
+/// Whether two paths name the same file.
+static int same_file(const char *a, const char *b)
+{
+    struct stat sa, sb;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev &&
+           sa.st_ino == sb.st_ino;
+}
+
+/// A resumed run's sums of the fields: those beside the checkpoint it resumed from that are of
+/// its state and settings (fields.sums, or fields.prev.sums when the run was killed between
+/// writing the two). Returns 0 when there are none (the log says why).
+static int resume_sums(bdl_run_outputs *o)
+{
+    const bdl_world *w = o->world;
+    static const char *const names[2] = {"fields.sums", "fields.prev.sums"};
+    char folder[1200], path[1300], mine[1200], why[2][1400];
+    snprintf(folder, sizeof folder, "%s", o->good_path);
+    char *slash = strrchr(folder, '/');
+    if (slash)
+        *slash = '\0';
+    else
+        snprintf(folder, sizeof folder, ".");
+    for (int k = 0; k < 2; ++k) {
+        snprintf(path, sizeof path, "%s/%s", folder, names[k]);
+        bdl_fields f;
+        bdl_fields_stamp stamp;
+        if (bdl_fields_sums_load(&f, &stamp, path, why[k], sizeof why[k]) != BDL_OK)
+            continue;
+        char differs[1200];
+        if (!bdl_fields_stamp_matches(&f, &stamp, w, differs, sizeof differs)) {
+            snprintf(why[k], sizeof why[k], "the sums in %s %s", path, differs);
+            bdl_fields_free(&f);
+            continue;
+        }
+        o->fields = f;
+        o->fields_cell = stamp.cell;
+        path_join(mine, sizeof mine, o->out, "checkpoint/fields.sums");
+        o->sums_at_good = k == 0 && same_file(path, mine);
+        return 1;
+    }
+    bdl_warn("fields.vti averages from t = %g s only, the sums before it are not found: %s; %s",
+             w->time, why[0], why[1]);
+    return 0;
+}
+
+/// The time-averaged fields ([output] fields_interval): a resumed run's sums so far, else an
+/// empty grid of fields_cell, or of three mean diameters of the particles as they stand.
+static bdl_result open_fields(bdl_run_outputs *o, int resume)
+{
+    const bdl_world *w = o->world;
+    const bdl_output_def *out = &w->scene.output;
+    if (!(out->fields_interval > 0.0))
+        return BDL_OK;
+    o->fields_on = 1;
+    const int resumed = resume && resume_sums(o);
+    char why[512];
+    bdl_result r = BDL_OK;
+    if (!resumed) {
+        o->fields_cell = out->fields_cell > 0.0 ? out->fields_cell : bdl_fields_world_cell(w);
+        r = bdl_fields_create_world(&o->fields, w, o->fields_cell, why, sizeof why);
+    }
+    if (r == BDL_ERR_SCENE && out->fields_cell > 0.0)
+        bdl_error("%s: [output] fields_cell = %g: %s", w->scene.path, out->fields_cell, why);
+    else if (r == BDL_ERR_SCENE)
+        bdl_error("%s: [output] fields_cell is not given, and its default, three mean diameters "
+                  "of the particles (%g m), %s; give a larger fields_cell",
+                  w->scene.path, o->fields_cell, why);
+    else if (r != BDL_OK)
+        bdl_error("fields: %s", bdl_result_text(r));
+    else
+        bdl_info(
+            "fields: a sample every %g s from t = %g s, on %d x %d x %d cells of %.3g x %.3g x "
+            "%.3g m, into fields.vti%s",
+            out->fields_interval, out->fields_start, o->fields.n[0], o->fields.n[1], o->fields.n[2],
+            o->fields.h[0], o->fields.h[1], o->fields.h[2],
+            resumed ? " (continuing the samples before the checkpoint)" : "");
+    return r;
+}
+
 /// A resumed run's next outputs: after the last ones its first run wrote before the checkpoint
 /// (every output due at the checkpoint's step was written before the checkpoint).
 static void schedule_resumed(bdl_run_outputs *o)
 {
     const bdl_world *w = o->world;
     const bdl_output_def *out = &w->scene.output;
-    const double intervals[5] = {out->diagnostics_interval, out->contacts_interval,
+    const double intervals[6] = {out->diagnostics_interval, out->contacts_interval,
                                  out->orientation_interval, out->checkpoint_interval,
-                                 out->vtk_interval};
-    double *next[5] = {&o->next_diag, &o->next_contacts, &o->next_orientation, &o->next_checkpoint,
-                       &o->next_vtk};
-    for (int k = 0; k < 5; ++k)
+                                 out->vtk_interval,         out->fields_interval};
+    double *next[6] = {&o->next_diag,       &o->next_contacts, &o->next_orientation,
+                       &o->next_checkpoint, &o->next_vtk,      &o->next_fields};
+    for (int k = 0; k < 6; ++k)
         *next[k] =
             intervals[k] > 0.0 ? multiple(first_not_due(w, intervals[k]), intervals[k]) : INFINITY;
     o->vtk_index = out->vtk_interval > 0.0 ? first_not_due(w, out->vtk_interval) : 0;
@@ -391,7 +530,10 @@ static bdl_result schedule(bdl_run_outputs *o, bdl_diagnostics *d0, int resume)
         r = write_contacts(o);
     if (r == BDL_OK && o->orientation_csv)
         r = write_orientation(o);
+    if (r == BDL_OK && o->fields_on)
+        r = sample_fields(o);
     o->next_diag = out->diagnostics_interval;
+    o->next_fields = out->fields_interval;
     o->next_orientation = out->orientation_interval;
     o->next_vtk = out->vtk_interval;
     o->next_contacts = out->contacts_interval;
@@ -468,7 +610,7 @@ static bdl_result start_checkpoint(bdl_run_outputs *o)
 }
 
 /// Left-overs of a killed run: its temporary files (never renamed into place), and for a new
-/// run the failed state of an earlier one.
+/// run the failed state of an earlier one and the sums of its fields.
 static void clear_leftovers(const bdl_run_outputs *o, int resume)
 {
     static const char *const folders[] = {"", "/vtk", "/checkpoint", "/frames", "/contacts"};
@@ -482,9 +624,13 @@ static void clear_leftovers(const bdl_run_outputs *o, int resume)
         snprintf(folder, sizeof folder, "%s/dia/%s", o->out, s->dias[k].name);
         bdl_remove_stale_temporaries(folder);
     }
-    if (!resume) {
-        path_join(folder, sizeof folder, o->out, "checkpoint/failed.bdlckpt");
-        unlink(folder);
+    if (!resume) { // an earlier run's failed state, and its fields' sums
+        static const char *const files[3] = {"checkpoint/failed.bdlckpt", "checkpoint/fields.sums",
+                                             "checkpoint/fields.prev.sums"};
+        for (int k = 0; k < 3; ++k) {
+            path_join(folder, sizeof folder, o->out, files[k]);
+            unlink(folder);
+        }
     }
 }
 
@@ -511,6 +657,8 @@ bdl_result bdl_run_outputs_open(bdl_run_outputs *o, bdl_world *w, const char *ou
     bdl_guards_init(&o->guard, w, &d0);
     bdl_result r = open_files(o, resume);
     if (r == BDL_OK)
+        r = open_fields(o, resume);
+    if (r == BDL_OK)
         r = schedule(o, &d0, resume);
     if (r == BDL_OK && w->scene.output.frame_interval > 0.0)
         r = open_frames(o, resume, gl_backend);
@@ -526,7 +674,7 @@ bdl_result bdl_run_outputs_open(bdl_run_outputs *o, bdl_world *w, const char *ou
 
 /// What falls due at this step.
 typedef struct due_now {
-    int row, check, vtk, contacts, orientation, frame, camera, checkpoint;
+    int row, check, vtk, contacts, orientation, frame, camera, fields, checkpoint;
 } due_now;
 
 static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
@@ -539,6 +687,7 @@ static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
     d.contacts = out->contacts_interval > 0.0 && due(w, o->next_contacts);
     d.orientation = o->orientation_csv && due(w, o->next_orientation);
     d.frame = o->frames && due(w, o->next_frame);
+    d.fields = o->fields_on && due(w, o->next_fields);
     if (o->dia) {
         const bdl_particle_view view = bdl_capture_view(w);
         d.camera = bdl_dia_run_due(o->dia, &view);
@@ -552,7 +701,8 @@ static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
 /// for the progress line.
 static bdl_result diagnose(bdl_run_outputs *o, bdl_world *w, const due_now *now)
 {
-    const int writes = now->vtk || now->contacts || now->orientation || now->frame || now->camera;
+    const int writes =
+        now->vtk || now->contacts || now->orientation || now->frame || now->camera || now->fields;
     if (!now->row && !now->check && !now->checkpoint)
         return writes ? bdl_guards_check_finite(w, &o->guard, o->failure, sizeof o->failure)
                       : BDL_OK;
@@ -601,6 +751,10 @@ static bdl_result write_due(bdl_run_outputs *o, bdl_world *w, const due_now *d)
     if (r == BDL_OK && o->dia) {
         const bdl_particle_view view = bdl_capture_view(w);
         r = camera_images(o, &view);
+    }
+    if (r == BDL_OK && d->fields) {
+        r = sample_fields(o);
+        advance(w, &o->next_fields, out->fields_interval);
     }
     return r;
 }
@@ -694,6 +848,19 @@ static void close_series(bdl_run_outputs *o, bdl_result *r)
     }
 }
 
+/// What fields.vti holds at the end.
+static void log_fields(const bdl_run_outputs *o)
+{
+    const bdl_fields *f = &o->fields;
+    if (o->fields_on && f->samples > 0)
+        bdl_info("fields.vti: %ld sample%s from t = %g to %g s; solids volume on the grid %.6g "
+                 "of %.6g m^3 (the rest was outside the domain)",
+                 f->samples, f->samples == 1 ? "" : "s", f->first, f->last, f->deposited, f->total);
+    else if (o->fields_on)
+        bdl_warn("fields.vti is not written: no sample from fields_start = %g s on",
+                 o->world->scene.output.fields_start);
+}
+
 /// The end of a run that stepped: the last row after a clean end, the series on the disk, and the
 /// state as state.bdlckpt when it passes the guards, else beside it as failed.bdlckpt.
 static int close_solved(bdl_run_outputs *o, bdl_result *r)
@@ -726,6 +893,7 @@ static int close_solved(bdl_run_outputs *o, bdl_result *r)
         snprintf(line, sizeof line, "cannot write the checkpoint: %s", why);
         close_failed(o, r, cr, line);
     }
+    log_fields(o);
     return broken;
 }
 
@@ -739,5 +907,6 @@ int bdl_run_outputs_close(bdl_run_outputs *o, int solved, bdl_result *r)
     free(o->profile_row);
     bdl_pvd_destroy(o->pvd);
     bdl_pvd_destroy(o->gas_pvd);
+    bdl_fields_free(&o->fields);
     return failed;
 }

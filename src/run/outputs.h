@@ -10,14 +10,17 @@
 // written, so that a run killed at any moment and resumed from its last checkpoint has every row
 // and file up to it; on resuming, the series drop their rows after the checkpoint's time, the
 // .pvd collections keep their entries up to it with their true times, and the numbering goes on
-// after the last output written before it. No output holds a non-finite number: the state is
-// checked before every write. A checkpoint is written only of a state that passed every guard:
-// the state at a failure goes to checkpoint/failed.bdlckpt, beside the last good one.
+// after the last output written before it. The sums of the time-averaged fields go beside each
+// checkpoint (checkpoint/fields.sums; the previous ones stay, as fields.prev.sums, until the
+// checkpoint is written), and a resumed run continues them. No output holds a non-finite number:
+// the state is checked before every write. A checkpoint is written only of a state that passed
+// every guard: the state at a failure goes to checkpoint/failed.bdlckpt, beside the last good one.
 #ifndef BDL_RUN_OUTPUTS_H
 #define BDL_RUN_OUTPUTS_H
 
 #include <stdatomic.h>
 
+#include "analysis/fields.h"
 #include "dia/dia_run.h"
 #include "io/csv.h"
 #include "io/vtk.h"
@@ -47,6 +50,12 @@ typedef struct bdl_run_outputs {
     long vtk_index, frame_index;
     bdl_frames *frames; ///< NULL: no frames
     bdl_dia_run *dia;   ///< synthetic cameras ([camera NAME]); NULL without
+    // The time-averaged solids fields of fields.vti, with [output] fields_interval.
+    int fields_on;
+    bdl_fields fields;
+    double fields_cell; ///< the cell asked of their grid (the default resolved) [m]
+    double next_fields;
+    int sums_at_good;   ///< checkpoint/fields.sums holds the sums of the last good checkpoint
     char failure[1400]; ///< what stopped the run: an unstable state, or a write that failed
     int write_failed;   ///< the run stopped on a failed write (the state itself is sound)
     char also[1400];    ///< a failure of the close after the run's own, reported after it

@@ -113,12 +113,20 @@ static bdl_result open_folder(run *r)
     return BDL_OK;
 }
 
+/// The domain, to the last bit (bedlam analyze fields reads it).
+static void log_domain(const bdl_scene *s)
+{
+    bdl_info("domain: %.17g %.17g %.17g to %.17g %.17g %.17g m", s->domain_min.x, s->domain_min.y,
+             s->domain_min.z, s->domain_max.x, s->domain_max.y, s->domain_max.z);
+}
+
 /// The head of run.log for a world of parcels: what they stand for, how they fill the gas's
 /// cells, the step against their stable step (they have no contacts).
 static void log_parcels(const bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
     bdl_parcels_census c;
+    log_domain(s);
     if (bdl_world_parcels_census(w, &c) == BDL_OK)
         bdl_info("parcels: %ld standing for %.4g real particles, species: %d; parcels per filled "
                  "cell: mean %.3g, min %.0f, max %.0f (%ld of %ld gas cells); largest solids "
@@ -162,8 +170,7 @@ static void log_setup(const run *r)
         return;
     }
     bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);
-    bdl_info("domain: %.17g %.17g %.17g to %.17g %.17g %.17g m", s->domain_min.x, s->domain_min.y,
-             s->domain_min.z, s->domain_max.x, s->domain_max.y, s->domain_max.z);
+    log_domain(s);
     for (int k = 0; k < s->species_count; ++k) {
         const bdl_species_def *sp = &s->species[k];
         const bdl_contact_params *cp = &w->pair_params[k * s->species_count + k];

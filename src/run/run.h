@@ -4,6 +4,8 @@
 //   OUT/diagnostics.csv  one row per [output] diagnostics_interval
 //   OUT/vtk/particles_NNNNNN.vtp + OUT/particles.pvd   every vtk_interval (ParaView)
 //   OUT/frames/frame_NNNNNN.png  every frame_interval (render/frames.h)
+//   OUT/fields.vti       the solids fields averaged over samples every fields_interval, at every
+//                        checkpoint and the end; their sums in OUT/checkpoint/fields.sums
 //   OUT/checkpoint/state.bdlckpt  every checkpoint_interval, at the end and on a stop, of a state
 //                                 that passes the guards; the state at a failure goes beside it,
 //                                 to OUT/checkpoint/failed.bdlckpt

@@ -48,6 +48,9 @@ typedef struct bdl_sink_def {
 /// times are stepped through one interval at a time, so an interval of 1e-300 s would never
 /// advance.
 #define BDL_MAX_OUTPUTS 1e9
+/// Most cells of the grid of the time-averaged solids fields ([output] fields_cell; bedlam analyze
+/// fields --cell): 5e7 cells hold 1.6 GB of sums and write a .vti file of several GB.
+#define BDL_MAX_FIELD_CELLS 5e7
 
 typedef struct bdl_output_def {
     double diagnostics_interval;   ///< [s] between rows of diagnostics.csv
@@ -60,6 +63,9 @@ typedef struct bdl_output_def {
     double contacts_interval;      ///< [s] between contact files in contacts/; 0 = none
     bdl_vec3 mixing_cells;         ///< Lacey index grid in species.csv; 0 0 0 = the default
     double orientation_interval;   ///< [s] between rows of orientation.csv (rods); 0 = none
+    double fields_interval;        ///< [s] between samples for fields.vti; 0 = none
+    double fields_start;           ///< [s] the first sample counted in fields.vti
+    double fields_cell;            ///< [m] cell of fields.vti; < 0: three mean diameters
 } bdl_output_def;
 
 /// Preset camera orientations ([camera] view).

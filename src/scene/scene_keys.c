@@ -455,6 +455,17 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc =
          "simulated time between rows of orientation.csv (scenes with rods: histograms of the "
          "rods' angle in the x-z plane near the front and back walls and in the bulk); 0 = none"},
+    {S(OUTPUT), "fields_interval", NUM, "s", IN_SCENE(output.fields_interval), .def = {0},
+     .default_text = "0 (none)", GE(0),
+     .doc = "simulated time between samples of the particles for fields.vti (the solids fraction "
+            "and solids velocity averaged over the samples on a grid of cubic cells; written at "
+            "every checkpoint and at the end); 0 = none"},
+    {S(OUTPUT), "fields_start", NUM, "s", IN_SCENE(output.fields_start), .def = {0}, GE(0),
+     .doc = "simulated time of the first sample counted in fields.vti (earlier ones are not)"},
+    {S(OUTPUT), "fields_cell", NUM, "m", IN_SCENE(output.fields_cell), .def = {-1},
+     .default_text = "three mean diameters of the particles at the start", GT(0),
+     .doc = "side of the cells of fields.vti (each axis divided into whole cells, at least one); "
+            "at most the domain's largest side, and at most 5e7 cells over the domain"},
 
     // [camera]
     {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},
@@ -727,7 +738,7 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(GUARDS), "max_memory", NUM, "bytes", IN_SCENE(guards.max_memory), .def = {-1},
      .default_text = "80 % of the physical memory", GT(0),
      .doc = "refuse a scene whose estimated memory (particles, neighbour pairs, gas grid, image "
-            "buffers) is above this, before anything is allocated"},
+            "buffers, the fields' grid) is above this, before anything is allocated"},
     {S(GUARDS), "max_steps", NUM, "steps", IN_SCENE(guards.max_steps), .def = {1e10}, GE(1),
      .doc = "refuse a run of more time steps than this (end_time / dt), before anything is "
             "allocated"},

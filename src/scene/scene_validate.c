@@ -610,6 +610,34 @@ static void check_parcels(bdl_scene_parser *p)
                     "(the solids fraction), speed, vx, vy, vz, voidage or species");
 }
 
+/// [output] fields_cell against the domain: no larger than its largest side, and no grid of
+/// more than BDL_MAX_FIELD_CELLS cells. The count is bounded from above by the domain's extent
+/// in cells along each axis (at least one), which the grid of analysis/fields.h never exceeds;
+/// the default, from the particles, is checked when the run starts.
+static void check_fields_cell(bdl_scene_parser *p, bdl_scene_section *output)
+{
+    const double cell = p->scene->output.fields_cell;
+    const bdl_vec3 span = bdl_v3_sub(p->scene->domain_max, p->scene->domain_min);
+    double largest = 0.0, cells = 1.0;
+    for (int a = 0; a < 3; ++a) {
+        largest = fmax(largest, bdl_v3_comp(span, a));
+        cells *= fmax(1.0, bdl_v3_comp(span, a) / cell + 1e-9);
+    }
+    char what[TEXT_LEN * 2];
+    if (cell > largest) {
+        snprintf(what, sizeof what,
+                 "larger than the domain (its largest side is %g m); allowed: > 0 and <= %g (m)",
+                 largest, largest);
+        fail_at_key(p, output, "fields_cell", 0, what);
+    } else if (cells > BDL_MAX_FIELD_CELLS) {
+        snprintf(what, sizeof what,
+                 "makes about %.3g cells over the domain, more than %g; allowed: a cell of about "
+                 "%.3g m or more (m)",
+                 cells, BDL_MAX_FIELD_CELLS, cell * cbrt(cells / BDL_MAX_FIELD_CELLS));
+        fail_at_key(p, output, "fields_cell", 0, what);
+    }
+}
+
 static void check_singletons(bdl_scene_parser *p)
 {
     bdl_scene_section *domain = NULL, *guards = NULL, *gas = NULL, *coupling = NULL, *camera = NULL,
@@ -648,6 +676,8 @@ static void check_singletons(bdl_scene_parser *p)
         fail_at_key(p, camera, "gas_field", 0, "needs a [gas] section (this scene has no gas)");
     if (!p->failed)
         check_box(p, domain, "min", "max");
+    if (!p->failed && output && given(output, key_of(output, "fields_cell")))
+        check_fields_cell(p, output);
     // A pseudo-2D bed (y thinner than a fifth of x and of z) is seen from the front unless the
     // scene says otherwise: from the iso corner it would be a sliver.
     const bdl_vec3 span = bdl_v3_sub(p->scene->domain_max, p->scene->domain_min);
@@ -692,16 +722,17 @@ typedef struct output_excess {
 static int find_output_excess(const bdl_scene *scene, double end_time, output_excess *e)
 {
     const bdl_output_def *o = &scene->output;
-    static const char *const keys[] = {"diagnostics_interval", "vtk_interval",
-                                       "checkpoint_interval",  "frame_interval",
-                                       "contacts_interval",    "orientation_interval"};
-    const double intervals[] = {o->diagnostics_interval, o->vtk_interval,
-                                o->checkpoint_interval,  o->frame_interval,
-                                o->contacts_interval,    o->orientation_interval};
-    for (int k = 0; k < 6 + scene->dia_count; ++k) {
-        const double interval = k < 6 ? intervals[k] : scene->dias[k - 6].interval;
+    static const char *const keys[] = {
+        "diagnostics_interval", "vtk_interval",         "checkpoint_interval", "frame_interval",
+        "contacts_interval",    "orientation_interval", "fields_interval"};
+    const double intervals[] = {
+        o->diagnostics_interval, o->vtk_interval,         o->checkpoint_interval, o->frame_interval,
+        o->contacts_interval,    o->orientation_interval, o->fields_interval};
+    enum { OWN = sizeof intervals / sizeof intervals[0] };
+    for (int k = 0; k < OWN + scene->dia_count; ++k) {
+        const double interval = k < OWN ? intervals[k] : scene->dias[k - OWN].interval;
         if (interval > 0.0 && end_time / interval > BDL_MAX_OUTPUTS) {
-            *e = (output_excess){k < 6 ? -1 : k - 6, k < 6 ? keys[k] : "interval", interval,
+            *e = (output_excess){k < OWN ? -1 : k - OWN, k < OWN ? keys[k] : "interval", interval,
                                  end_time / interval};
             return 1;
         }

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
+#include "analysis/fields.h"
 #include "cfd/grid.h"
 #include "core/memory.h"
 #include "couple/coupling.h"
@@ -15,10 +16,11 @@ enum {
     BUDGET_COUPLING = 88, ///< per particle with a gas: its factor, forces and first point
     /// per kernel point (a sphere has one, a rod BDL_ROD_SATELLITES): offsets and weights
     BUDGET_POINT = 6 * BDL_KERNEL_MAX * (sizeof(int) + sizeof(double)) + 6 * sizeof(int),
-    BUDGET_SNAPSHOT = 192, ///< per particle with frames or cameras: snapshots on their way
-    BUDGET_PAIR = 64,      ///< per pair: partner, flag, tangential history and its stash
-    BUDGET_PAIRS = 8,      ///< pairs per particle (per unit of a rod's aspect ratio)
-    BUDGET_GAS_CELL = 344, ///< per padded gas cell: 43 doubles
+    BUDGET_SNAPSHOT = 192,   ///< per particle with frames or cameras: snapshots on their way
+    BUDGET_PAIR = 64,        ///< per pair: partner, flag, tangential history and its stash
+    BUDGET_PAIRS = 8,        ///< pairs per particle (per unit of a rod's aspect ratio)
+    BUDGET_GAS_CELL = 344,   ///< per padded gas cell: 43 doubles
+    BUDGET_FIELDS_CELL = 64, ///< per cell of the fields: 4 doubles of sums, 4 of means
 };
 
 /// Share of the physical memory a scene may use when [guards] max_memory is not given.
@@ -80,6 +82,28 @@ static double camera_bytes(const bdl_dia_scene_def *d)
     return (d->pair_dt > 0.0 ? 2.0 : 1.0) * pixels * (20.0 + 8.0 * d->samples * d->samples);
 }
 
+double bdl_budget_fields_cell(const bdl_scene *s)
+{
+    if (s->output.fields_cell > 0.0)
+        return s->output.fields_cell;
+    double sum = 0.0;
+    for (int k = 0; k < s->species_count; ++k)
+        sum += s->species[k].diameter;
+    return 3.0 * sum / s->species_count;
+}
+
+/// Cells of the fields' grid over the domain; 0 without fields.
+static double fields_cells(const bdl_scene *s)
+{
+    if (!(s->output.fields_interval > 0.0) || s->species_count == 0)
+        return 0.0;
+    const double lo[3] = {s->domain_min.x, s->domain_min.y, s->domain_min.z};
+    const double hi[3] = {s->domain_max.x, s->domain_max.y, s->domain_max.z};
+    int n[3];
+    double h[3];
+    return bdl_fields_grid(lo, hi, bdl_budget_fields_cell(s), n, h);
+}
+
 static double memory_limit(const bdl_scene *s)
 {
     if (s->guards.max_memory > 0.0)
@@ -105,7 +129,9 @@ void bdl_budget_estimate(const bdl_world *w, bdl_budget *b)
     b->image_bytes = frame_bytes(&s->output);
     for (int k = 0; k < s->dia_count; ++k)
         b->image_bytes += camera_bytes(&s->dias[k]);
-    b->bytes = b->particle_bytes + b->gas_bytes + b->image_bytes;
+    b->fields_cells = fields_cells(s);
+    b->fields_bytes = b->fields_cells * BUDGET_FIELDS_CELL;
+    b->bytes = b->particle_bytes + b->gas_bytes + b->image_bytes + b->fields_bytes;
     b->max_memory = memory_limit(s);
     // The step the world will take; with no particle yet, the reference speed is the scene's.
     b->dt = s->dt > 0.0 ? s->dt
@@ -165,6 +191,12 @@ static void find_culprit(const bdl_scene *s, const bdl_budget *b, culprit *c)
                  "%s: [output] frame_width = %d, frame_height = %d, frame_samples = %d", s->path,
                  s->output.frame_width, s->output.frame_height, s->output.frame_samples);
         snprintf(c->what, sizeof c->what, "the frame buffers");
+    }
+    if (b->fields_bytes > c->bytes) {
+        c->bytes = b->fields_bytes;
+        snprintf(c->where, sizeof c->where, "%s: [output] fields_cell = %g m%s", s->path,
+                 bdl_budget_fields_cell(s), s->output.fields_cell > 0.0 ? "" : " (the default)");
+        snprintf(c->what, sizeof c->what, "a fields grid of %.3g cells", b->fields_cells);
     }
     for (int k = 0; k < s->dia_count; ++k)
         if (camera_bytes(&s->dias[k]) > c->bytes) {

@@ -18,6 +18,9 @@
 //   images      frames: three RGB buffers and the multisampled colour and depth; a synthetic
 //               camera: its grey and truth buffers and samples^2 hits and depths per pixel (two
 //               images for PIV pairs)
+//   fields      with [output] fields_interval: BUDGET_FIELDS_CELL bytes per cell of the fields'
+//               grid (the sums, and the means written from them), of fields_cell or of three
+//               times the species' mean diameter
 //   steps       end_time / dt, dt as the world takes it (dt, or dt_fraction of the smallest contact
 //               time at the reference impact speed)
 //
@@ -37,13 +40,19 @@ typedef struct bdl_budget {
     double pairs;                             ///< neighbour-list pairs
     double gas_cells;                         ///< cells of the padded gas grid
     double particle_bytes;                    ///< particles and their pairs [bytes]
-    double gas_bytes;   ///< the gas, its solver and the coupling's grid fields [bytes]
-    double image_bytes; ///< frame and synthetic-camera buffers [bytes]
-    double bytes;       ///< all of it [bytes]
-    double max_memory;  ///< the limit: [guards] max_memory, or 80 % of physical memory [bytes]
-    double dt;          ///< the time step [s]
-    double steps;       ///< end_time / dt
+    double gas_bytes;    ///< the gas, its solver and the coupling's grid fields [bytes]
+    double image_bytes;  ///< frame and synthetic-camera buffers [bytes]
+    double fields_cells; ///< cells of the time-averaged fields' grid (0: none)
+    double fields_bytes; ///< their sums and means [bytes]
+    double bytes;        ///< all of it [bytes]
+    double max_memory;   ///< the limit: [guards] max_memory, or 80 % of physical memory [bytes]
+    double dt;           ///< the time step [s]
+    double steps;        ///< end_time / dt
 } bdl_budget;
+
+/// The cell of the fields' grid the estimate takes: [output] fields_cell, or three times the mean
+/// of the species' diameters (a run takes its particles' mean when it has particles) [m].
+double bdl_budget_fields_cell(const bdl_scene *s);
 
 /// The estimate for a world whose contacts and walls are built and which holds no particle yet.
 void bdl_budget_estimate(const struct bdl_world *w, bdl_budget *b);

@@ -11,7 +11,8 @@ number found with its file, column or array and row, and exits 1 if there is one
 NaN is accepted where a file uses it for "not defined": in the diagnostics columns a scene may
 not define (probe_pressure_drop without probes, weight_ratio and mean_height without a gas, the
 rods' columns without rods; src/output/diagnostics.c, bdl_diagnostics_may_be_undefined), and in
-species.csv and orientation.csv (a species or a histogram with no particles). Infinity never is.
+species.csv and orientation.csv (a species or a histogram with no particles), and in fields.vti's
+solids_velocity of a cell no solids passed through (its solids_fraction 0). Infinity never is.
 """
 import math
 import pathlib
@@ -67,10 +68,15 @@ def check_vtp(path):
 
 def check_vti(path):
     found = []
-    for block in re.finditer(r'Name="([^"]+)"[^>]*format="ascii">([^<]*)<', path.read_text()):
-        values = [float(v) for v in block.group(2).split()]
-        found += [f"{path}: {block.group(1)}[{i}] = {v}"
-                  for i, v in enumerate(values) if bad(v, False)]
+    arrays = {m.group(1): [float(v) for v in m.group(2).split()] for m in
+              re.finditer(r'Name="([^"]+)"[^>]*format="ascii">([^<]*)<', path.read_text())}
+    empty = [f == 0.0 for f in arrays.get("solids_fraction", [])] if path.name == "fields.vti" \
+        else []
+    for name, values in arrays.items():
+        undefined = (lambda i: name == "solids_velocity" and i // 3 < len(empty) and
+                     empty[i // 3])
+        found += [f"{path}: {name}[{i}] = {v}"
+                  for i, v in enumerate(values) if bad(v, undefined(i))]
     return found
 
 

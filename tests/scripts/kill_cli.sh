@@ -17,7 +17,8 @@
 # Then: diagnostics.csv holds the reference's rows, each once (every column but wall_seconds);
 # the final checkpoint is the same bytes; and every other file -- species.csv, profile.csv, the
 # VTK files and both .pvd collections, contact files, frames, the camera's images, truth and
-# frames.csv -- is the same bytes, with no file missing, doubled or left over.
+# frames.csv, fields.vti and the sums beside the checkpoint -- is the same bytes, with no file
+# missing, doubled or left over.
 set -u
 bedlam=$1
 scene=$2
