@@ -339,8 +339,9 @@ typedef struct bdl_verify_drum {
 } bdl_verify_drum;
 bdl_result bdl_verify_drum_repose(double friction, double omega, bdl_verify_drum *out);
 
-/// Janssen's silo (scenes/silo_janssen.ini): `count` glass beads of 3 mm settle for 1 s in a
-/// cylinder 40 mm across on a flat floor (wall friction 0.5). Averaged over the last 0.2 s: the
+/// Janssen's silo (scenes/silo_janssen.ini): `count` glass beads of 3 mm settle in a cylinder
+/// 40 mm across on a flat floor (wall friction 0.5), which creeps down at 5 mm/s from 0.6 s to
+/// the end at 1 s, so that the beads slide down the wall. Averaged over the last 0.1 s: the
 /// floor's force, the bulk density in the core, the fill height H = mass / (rho_b A), and in
 /// slabs of the bed's middle half the ratio K = sigma_h / sigma_v of the wall's normal stress to
 /// the vertical stress the column above carries (its weight less the wall's friction on it), and

@@ -313,7 +313,7 @@ bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out)
         "restitution = 0.5\nfriction = 0.5\n"
         "[wall silo]\ntype = cylinder\npoint = 0 0 0\naxis = 0 0 1\nradius = %g\n"
         "[wall floor]\ntype = plane\npoint = 0 0 0\nnormal = 0 0 1\nmotion = move\n"
-        "velocity = 0 0 -0.005\nstart = 0.6\nstop = 0.8\n"
+        "velocity = 0 0 -0.005\nstart = 0.6\nstop = 1.0\n"
         "[create bed]\ntype = random\nspecies = glass\ncount = %ld\n"
         "region_min = -0.02 -0.02 0.0015\nregion_max = 0.02 0.02 %.6g\n",
         top + 0.01, r, count, top);
