@@ -65,6 +65,13 @@ static void test_dense(void)
     // Gidaspow switches from Ergun to Wen-Yu above eps = 0.8.
     CHECK_CLOSE(K(BDL_DRAG_GIDASPOW, 0.8, 0.3), K(BDL_DRAG_ERGUN, 0.8, 0.3), 1e-12);
     CHECK_CLOSE(K(BDL_DRAG_GIDASPOW, 0.81, 0.3), K(BDL_DRAG_WEN_YU, 0.81, 0.3), 1e-12);
+    // Tsuji's (Sun eq. 7.30): Ergun to 0.8; above, Wen-Yu with eps^-2.7 for eps^-2.65, and from
+    // Re = 1000 a Cd of 0.43 for 0.44.
+    CHECK_CLOSE(K(BDL_DRAG_TSUJI, 0.8, 0.3), K(BDL_DRAG_ERGUN, 0.8, 0.3), 1e-12);
+    CHECK_CLOSE(K(BDL_DRAG_TSUJI, 0.9, 0.3), K(BDL_DRAG_WEN_YU, 0.9, 0.3) * pow(0.9, -0.05), 1e-12);
+    const double fast = 1500.0 * mu / (0.9 * rho * d); // Re = 1500
+    CHECK_CLOSE(K(BDL_DRAG_TSUJI, 0.9, fast),
+                K(BDL_DRAG_WEN_YU, 0.9, fast) * pow(0.9, -0.05) * 0.43 / 0.44, 1e-12);
 }
 
 static void test_syamlal_continuity(void)

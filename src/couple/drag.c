@@ -35,6 +35,18 @@ static double wen_yu(double eps, double d, double slip, double rho, double mu)
     return 18.0 * mu / (d * d) * schiller_naumann_factor(re) * pow(eps, -2.65);
 }
 
+/// Tsuji, Kawaguchi & Tanaka (1993), as Sun (2007) writes it, eqs. 7.30-7.31: Ergun up to
+/// eps = 0.8; above, beta = 3/4 Cd eps phi rho |u - v| eps^-2.7 / d with Cd = 24/Re (1 + 0.15
+/// Re^0.687) below Re = 1000 and 0.43 from there, Re = eps rho d |u - v| / mu.
+static double tsuji(double eps, double phi, double d, double slip, double rho, double mu)
+{
+    if (eps <= 0.8)
+        return ergun(eps, phi, d, slip, rho, mu);
+    const double re = eps * rho * d * slip / mu;
+    const double cd_re = re < 1000.0 ? 1.0 + 0.15 * pow(re, 0.687) : 0.43 * re / 24.0;
+    return 18.0 * mu / (d * d) * cd_re * pow(eps, -2.7);
+}
+
 /// Patankar & Joseph (2001), eq. 7: D_p = 3/8 Cd rho |u - v| / (rho_p R_p) with
 /// Cd = 24/Re (1 + 0.15 Re^0.687) eps^-1.8 (0.44 eps^-1.8 from Re = 1000), Re = eps rho d |u - v| /
 /// mu (the slip to the mixture taken as eps (u - v)): beta / phi = rho_p D_p, written
@@ -128,6 +140,8 @@ double bdl_drag_per_volume(bdl_drag_law law, const bdl_drag_params *p, double ep
         return ergun(eps, phi, d, slip, rho, mu);
     case BDL_DRAG_GIDASPOW:
         return eps <= 0.8 ? ergun(eps, phi, d, slip, rho, mu) : wen_yu(eps, d, slip, rho, mu);
+    case BDL_DRAG_TSUJI:
+        return tsuji(eps, phi, d, slip, rho, mu);
     case BDL_DRAG_SYAMLAL_OBRIEN:
         return syamlal_obrien(p, eps, d, slip, rho, mu);
     case BDL_DRAG_DI_FELICE:

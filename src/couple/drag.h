@@ -32,7 +32,9 @@
     X(DRAG_STE, "ste",                                                                             \
       "STE: Sanjeevi et al. (2018) AR-4 rod x Tenneti et al. (2011) ratio (Mahajan 2019)")         \
     X(DRAG_STA, "sta",                                                                             \
-      "STA: Sanjeevi et al. (2018) AR-4 rod x Tang et al. (2015) ratio (Mahajan 2019)")
+      "STA: Sanjeevi et al. (2018) AR-4 rod x Tang et al. (2015) ratio (Mahajan 2019)")            \
+    X(DRAG_TSUJI, "tsuji",                                                                         \
+      "Tsuji et al. (1993), Sun (2007) eq. 7.30: Ergun to eps 0.8, above it eps^-2.7 and Cd 0.43")
 
 typedef enum bdl_drag_law { BDL_DRAG_LAWS(BDL_ENUM_ITEM) BDL_DRAG_LAW_COUNT } bdl_drag_law;
 

@@ -660,8 +660,8 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(COUPLING), "drag", .type = BDL_KEY_ENUM, "-", IN_COUPLING(drag), .def = {4},
      .enum_names = bdl_drag_law_names, .default_text = "gidaspow",
      .doc = "drag law: stokes, schiller_naumann, wen_yu, ergun, gidaspow, syamlal_obrien, "
-            "di_felice, beetstra, tenneti (docs/verification-gas.md); for rods hdf, ste, sta "
-            "(docs/theory-rods.md)"},
+            "di_felice, beetstra, tenneti, tsuji (docs/verification-gas.md); for rods hdf, ste, "
+            "sta (docs/theory-rods.md)"},
     {S(COUPLING), "kernel_width", NUM, "m", IN_COUPLING(kernel_width), .def = {0},
      .default_text = "0 (1.5 cells)", GE(0),
      .doc = "half-width of the kernel that spreads particles over the grid; at least one cell, "
