@@ -3,12 +3,15 @@
 // quantile, Lacey's index of segregated, random and
 // perfectly ordered mixtures, force networks of a chain and a lattice (and their independence
 // from the contacts' order), the fit of the force distribution to samples drawn from it, and the
-// orientation order of aligned, isotropic and planar sets of axes.
+// orientation order of aligned, isotropic and planar sets of axes; the multi-pass spanning trees
+// of a square and a chain (which edges each pass adds), and the force correlation of three
+// contacts on a line.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "analysis/granular.h"
+#include "analysis/spanning.h"
 #include "check.h"
 #include "core/rng.h"
 
@@ -320,6 +323,56 @@ static void test_bed_surface(void)
     CHECK(bdl_bed_surface_of(lo, hi, vol, 0, area, 1e-3, &b) == BDL_ERR_ARGS);
 }
 
+/// A unit square: pass 1 takes three sides; pass 2, with those at 1.2, the fourth side; pass 3,
+/// with two sides now at 1.44 (chosen twice), a diagonal (sqrt 2 = 1.414). A chain of unit steps
+/// with its sixth point missing (a NaN centre takes no part): three passes keep the six edges
+/// (the steps, and the jump 4-6 over the gap, which stays the shortest way across up to
+/// 2 x 1.2^2 = 2.88 < 3); the fourth, with the jump at 2 x 1.2^3 = 3.46, crosses by a jump of 3.
+static void test_spanning(void)
+{
+    const bdl_vec3 sq[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    bdl_span_edge e[32];
+    long count[4] = {0};
+    for (int p = 1; p <= 3; ++p)
+        CHECK(bdl_spanning_passes(4, sq, p, 1.2, e, &count[p]) == BDL_OK);
+    printf("square: %ld, %ld, %ld edges after 1, 2, 3 passes\n", count[1], count[2], count[3]);
+    CHECK(count[1] == 3 && count[2] == 4 && count[3] == 5);
+    int diagonals = 0;
+    for (long k = 0; k < count[3]; ++k)
+        diagonals += e[k].pass == 3 && (e[k].j - e[k].i) == 2;
+    CHECK(diagonals == 1);
+    bdl_vec3 chain[8];
+    for (int k = 0; k < 8; ++k)
+        chain[k] = bdl_v3(k, 0.0, 0.0);
+    chain[5] = bdl_v3(NAN, 0.0, 0.0); // takes no part: the chain 0-4, 6-7 joined by 4-6
+    bdl_span_edge c[64];
+    long three, four;
+    CHECK(bdl_spanning_passes(8, chain, 3, 1.2, c, &three) == BDL_OK);
+    CHECK(three == 6);
+    int jump = 0;
+    for (long k = 0; k < three; ++k)
+        jump += c[k].i == 4 && c[k].j == 6;
+    CHECK(jump == 1);
+    for (long k = 0; k < three; ++k)
+        CHECK(c[k].i != 5 && c[k].j != 5);
+    CHECK(bdl_spanning_passes(8, chain, 4, 1.2, c, &four) == BDL_OK);
+    CHECK(four > three);
+}
+
+static void test_force_correlation(void)
+{
+    const bdl_vec3 at[3] = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}};
+    const double f[3] = {1.0, 2.0, 3.0};
+    double F[6];
+    long pairs[6];
+    bdl_force_correlation(3, at, f, 6, 0.5, F, pairs);
+    CHECK(isnan(F[0]) && pairs[0] == 0);
+    CHECK_CLOSE(F[2], (1.0 * 2.0 + 2.0 * 3.0) / 2.0, 1e-15);
+    CHECK(pairs[2] == 2);
+    CHECK_CLOSE(F[4], 3.0, 1e-15);
+    CHECK(pairs[4] == 1);
+}
+
 int main(void)
 {
     test_orientation();
@@ -331,5 +384,7 @@ int main(void)
     test_networks_chain();
     test_networks_lattice();
     test_force_pdf();
+    test_spanning();
+    test_force_correlation();
     return bdl_test_summary("test_granular");
 }

@@ -1,15 +1,19 @@
 // bedlam analyze networks — a contact file of a run ([output] contacts_interval): its force
 // networks, coordination and force distribution (analysis/granular.h), force_pdf.csv and
-// force_pdf.png.
+// force_pdf.png; the spatial correlation of the contact forces, force_correlation.csv; and with
+// --file PARTICLES.vtp (the particle file of the same moment) Sun's multi-pass minimum spanning
+// trees of the centres against the force networks (analysis/spanning.h; his table 6.2).
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "analysis/granular.h"
+#include "analysis/spanning.h"
 #include "app/analyze.h"
 #include "app/analyze_files.h"
 #include "core/file.h"
+#include "io/vtk.h"
 
 /// What a contacts file holds: the contacts, and the centres by particle id (NAN where a
 /// particle has no contact).
@@ -197,6 +201,138 @@ static bdl_result force_pdf(const bdl_analyze_opts *o, const double *fn, long n)
     return rc;
 }
 
+/// The contacts' force correlation F(r) (eq. 6.12): contacts at the midpoints of their centres,
+/// f = F_n / <F_n>, bins of a tenth of the mean centre distance of the contacts out to ten of it.
+static bdl_result force_correlation(const bdl_analyze_opts *o, const contact_file *cf, double mean)
+{
+    enum { BINS = 100 };
+    bdl_vec3 *at = malloc((size_t)(cf->count > 0 ? cf->count : 1) * sizeof *at);
+    double *f = malloc((size_t)(cf->count > 0 ? cf->count : 1) * sizeof *f);
+    double F[BINS], gap = 0.0;
+    long pairs[BINS], n = 0;
+    bdl_result rc = at && f ? BDL_OK : BDL_ERR_NOMEM;
+    for (long k = 0; rc == BDL_OK && k < cf->count; ++k) {
+        const bdl_contact_rec *c = &cf->c[k];
+        if (c->j < 0 || !(c->fn > 0.0))
+            continue;
+        at[n] = bdl_v3_scale(bdl_v3_add(cf->pos[c->i], cf->pos[c->j]), 0.5);
+        gap += bdl_v3_len(bdl_v3_sub(cf->pos[c->i], cf->pos[c->j]));
+        f[n++] = c->fn / mean;
+    }
+    if (rc == BDL_OK && n > 1) {
+        const double d = gap / (double)n, dr = 0.1 * d;
+        bdl_force_correlation(n, at, f, BINS, dr, F, pairs);
+        char path[1300];
+        snprintf(path, sizeof path, "%s/force_correlation.csv", o->out);
+        bdl_atomic_file af;
+        rc = bdl_atomic_open_csv(&af, path, "r,r_over_d,F,pairs");
+        for (int k = 0; rc == BDL_OK && k < BINS; ++k)
+            fprintf(af.file, "%.6g,%.4g,%.6g,%ld\n", (k + 0.5) * dr, (k + 0.5) * 0.1, F[k],
+                    pairs[k]);
+        rc = rc == BDL_OK ? bdl_atomic_commit(&af) : BDL_ERR_OUTPUT_DIR;
+        printf("force correlation F(r) of %ld contacts (r in mean contact distances d = %.6g m):",
+               n, d);
+        for (int r = 1; r <= 5; ++r) // the bins centred on r d: the 10 r - 1 and 10 r ones
+            printf(" %d d: %.3f", r, 0.5 * (F[10 * r - 1] + F[10 * r]));
+        printf("\n");
+    }
+    free(at), free(f);
+    return rc;
+}
+
+/// Particle centres by id from the particle file of the same moment (NaN for ids it lacks).
+static bdl_result centres_by_id(const char *path, long *n, bdl_vec3 **pos)
+{
+    bdl_vtp_file vf;
+    char why[300];
+    double *x = NULL, *id = NULL;
+    bdl_result rc = bdl_vtp_open(path, &vf, why, sizeof why);
+    if (rc == BDL_OK)
+        rc = bdl_vtp_array(&vf, "Points", 3, &x, why, sizeof why);
+    if (rc == BDL_OK)
+        rc = bdl_vtp_array(&vf, "id", 1, &id, why, sizeof why);
+    long top = 0;
+    for (long k = 0; rc == BDL_OK && k < vf.points; ++k)
+        top = id[k] >= 0 && id[k] < 1e8 && id[k] + 1 > top ? (long)id[k] + 1 : top;
+    *pos = rc == BDL_OK ? malloc((size_t)(top > 0 ? top : 1) * sizeof **pos) : NULL;
+    if (rc == BDL_OK && !*pos)
+        rc = BDL_ERR_NOMEM;
+    for (long k = 0; rc == BDL_OK && k < top; ++k)
+        (*pos)[k] = (bdl_vec3){NAN, NAN, NAN};
+    for (long k = 0; rc == BDL_OK && k < vf.points; ++k)
+        if (id[k] >= 0 && id[k] < (double)top)
+            (*pos)[(long)id[k]] = (bdl_vec3){x[3 * k], x[3 * k + 1], x[3 * k + 2]};
+    if (rc != BDL_OK)
+        fprintf(stderr, "error: %s %s\n", path, why);
+    *n = top;
+    free(x), free(id);
+    if (vf.data)
+        bdl_vtp_close(&vf);
+    return rc;
+}
+
+static int compare_key(const void *a, const void *b)
+{
+    const int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/// The key of the pair (i, j) whichever way round, among n particles.
+static int64_t pair_key(int32_t i, int32_t j, long n)
+{
+    return i < j ? (int64_t)i * n + j : (int64_t)j * n + i;
+}
+
+/// Sun's table 6.2: the union of 1 to 5 spanning trees of all the centres (edges already chosen
+/// lengthened by 1.2 each pass), kept where the two particles touch with a normal force: its
+/// largest tree of contacting particles and the others, against the force networks.
+static bdl_result spanning_table(const bdl_analyze_opts *o, const contact_file *cf,
+                                 const networks *nw)
+{
+    enum { PASSES = 5 };
+    long n = 0, count = 0;
+    bdl_vec3 *pos = NULL;
+    bdl_result rc = centres_by_id(o->file, &n, &pos);
+    bdl_span_edge *e = rc == BDL_OK ? malloc((size_t)(PASSES * n + 1) * sizeof *e) : NULL;
+    bdl_contact_rec *kept = rc == BDL_OK ? malloc((size_t)(PASSES * n + 1) * sizeof *kept) : NULL;
+    if (rc == BDL_OK && (!e || !kept))
+        rc = BDL_ERR_NOMEM;
+    if (rc == BDL_OK)
+        rc = bdl_spanning_passes(n, pos, PASSES, 1.2, e, &count);
+    // The pairs that touch with a normal force, sorted by their key, to look the edges up in.
+    const long top = n > cf->particles ? n : cf->particles;
+    int64_t *touch = rc == BDL_OK ? malloc((size_t)(cf->count + 1) * sizeof *touch) : NULL;
+    long nt = 0;
+    if (rc == BDL_OK && !touch)
+        rc = BDL_ERR_NOMEM;
+    for (long c = 0; rc == BDL_OK && c < cf->count; ++c)
+        if (cf->c[c].j >= 0 && cf->c[c].fn > 0.0)
+            touch[nt++] = pair_key(cf->c[c].i, cf->c[c].j, top);
+    if (rc == BDL_OK)
+        qsort(touch, (size_t)nt, sizeof *touch, compare_key);
+    printf("| spanning-tree passes | largest tree N_P | its edges | other trees | their edges "
+           "|\n|---|---|---|---|---|\n");
+    for (int p = 1; rc == BDL_OK && p <= PASSES; ++p) {
+        long m = 0;
+        for (long k = 0; k < count && e[k].pass <= p; ++k) {
+            const int64_t key = pair_key(e[k].i, e[k].j, top);
+            if (bsearch(&key, touch, (size_t)nt, sizeof *touch, compare_key))
+                kept[m++] = (bdl_contact_rec){e[k].i, e[k].j, 1.0};
+        }
+        bdl_network_stats s;
+        rc = bdl_force_networks(top, kept, m, 0.0, NULL, NULL, &s);
+        if (rc == BDL_OK)
+            printf("| %d | %ld | %ld | %ld | %ld |\n", p, s.largest, s.largest_edges,
+                   s.networks > 0 ? s.networks - 1 : 0, s.other_edges);
+    }
+    if (rc == BDL_OK)
+        printf("| force networks | %ld | %ld | %ld | %ld |\n", nw->all.largest,
+               nw->all.largest_edges, nw->all.networks > 0 ? nw->all.networks - 1 : 0,
+               nw->all.other_edges);
+    free(pos), free(e), free(kept), free(touch);
+    return rc;
+}
+
 bdl_result bdl_analyze_networks(const bdl_analyze_opts *o)
 {
     contact_file cf;
@@ -210,6 +346,10 @@ bdl_result bdl_analyze_networks(const bdl_analyze_opts *o)
         print_networks(o->run, &cf, &nw);
         rc = force_pdf(o, fn, nw.forces.pairs);
     }
+    if (rc == BDL_OK)
+        rc = force_correlation(o, &cf, nw.forces.mean);
+    if (rc == BDL_OK && o->file)
+        rc = spanning_table(o, &cf, &nw);
     if (rc == BDL_ERR_NOMEM)
         fprintf(stderr, "error: %s\n", bdl_result_text(rc));
     free_contacts(&cf), free(fn);

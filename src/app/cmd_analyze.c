@@ -21,7 +21,8 @@ static const char usage_first[] =
     "                            [--to-cycle B] [--bins N] [--below X] [--out DIR] [--no-plots]\n"
     "       bedlam analyze profile RUN [--from T] [--to T] [--out DIR] [--no-plots]\n"
     "       bedlam analyze fields RUN [--from T] [--to T] [--cell H] [--out DIR]\n"
-    "       bedlam analyze networks CONTACTS.csv [--bins N] [--fmax F] [--out DIR] [--no-plots]\n"
+    "       bedlam analyze networks CONTACTS.csv [--file PARTICLES.vtp] [--bins N] [--fmax F]\n"
+    "                               [--out DIR] [--no-plots]\n"
     "       bedlam analyze dia RUN/dia/NAME [--fit FIT.json --density RHO [--height H]]\n"
     "                          [--out DIR]\n"
     "       bedlam analyze orientation RUN [--from T] [--to T] [--by-velocity] [--out DIR]\n"
@@ -67,7 +68,11 @@ static const char usage_first[] =
     "(connected sets of particles touching with a normal force: their number, the largest one's\n"
     "particles, contacts, mean coordination and length), those of the forces above the mean, and\n"
     "the distribution of f = F_n/<F_n> in N bins (default 40) up to F (default 5), fitted with\n"
-    "P(f) = a (1 - b exp(-f^2)) exp(-beta f). Writes force_pdf.csv and force_pdf.png.\n"
+    "P(f) = a (1 - b exp(-f^2)) exp(-beta f), and the force correlation F(r) (Sun's eq. 6.12).\n"
+    "Writes force_pdf.csv, force_pdf.png and force_correlation.csv. With --file, the run's\n"
+    "particle file of the same moment: the union of 1 to 5 minimum spanning trees of all the\n"
+    "centres (edges already chosen lengthened by 1.2 each pass), kept where particles touch,\n"
+    "against the force networks (Sun's table 6.2).\n"
     "\n";
 static const char usage_second[] =
     "dia: a synthetic camera's images (an orthographic [camera NAME] kind = dia) through the\n"
@@ -203,6 +208,8 @@ static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int 
 static bdl_result check_options(bdl_analyze_opts *o)
 {
     const int networks = strcmp(o->what, "networks") == 0;
+    if (networks && strcmp(o->file, "diagnostics.csv") == 0)
+        o->file = NULL; // no particle file: no spanning trees
     if (isnan(o->fmax))
         o->fmax = networks ? 5.0 : 20.0;
     if (o->bins < 0)

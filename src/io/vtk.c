@@ -443,12 +443,15 @@ bdl_result bdl_vtp_array(const bdl_vtp_file *f, const char *name, int components
     if (!e || !xml_attribute(e, "type", type, sizeof type) ||
         !xml_attribute(e, "NumberOfComponents", comps, sizeof comps) ||
         !xml_attribute(e, "offset", offset_text, sizeof offset_text) ||
-        strcmp(type, "Float64") != 0 || atoi(comps) != components) {
-        snprintf(why, why_len, "has no Float64 array '%s' of %d components", name, components);
+        (strcmp(type, "Float64") != 0 && strcmp(type, "Int32") != 0) || atoi(comps) != components) {
+        snprintf(why, why_len, "has no Float64 or Int32 array '%s' of %d components", name,
+                 components);
         return BDL_ERR_IO;
     }
+    const int int32 = strcmp(type, "Int32") == 0;
     const unsigned long long offset = strtoull(offset_text, NULL, 10);
-    const size_t bytes = (size_t)f->points * (size_t)components * sizeof(double);
+    const size_t values = (size_t)f->points * (size_t)components;
+    const size_t bytes = values * (int32 ? sizeof(int32_t) : sizeof(double));
     uint64_t header = 0;
     if (offset > f->size || f->size - f->appended < offset + 8 + bytes) {
         snprintf(why, why_len, "is truncated: array '%s' runs past the end", name);
@@ -460,12 +463,21 @@ bdl_result bdl_vtp_array(const bdl_vtp_file *f, const char *name, int components
                  (unsigned long long)header, bytes);
         return BDL_ERR_IO;
     }
-    *out = malloc(bytes > 0 ? bytes : 1);
+    *out = malloc(values > 0 ? values * sizeof(double) : 1);
     if (!*out) {
         snprintf(why, why_len, "out of memory");
         return BDL_ERR_NOMEM;
     }
-    memcpy(*out, f->data + f->appended + offset + 8, bytes);
+    const char *at = f->data + f->appended + offset + 8;
+    if (!int32) {
+        memcpy(*out, at, bytes);
+        return BDL_OK;
+    }
+    for (size_t k = 0; k < values; ++k) { // Int32 values, as doubles
+        int32_t v;
+        memcpy(&v, at + k * sizeof v, sizeof v);
+        (*out)[k] = v;
+    }
     return BDL_OK;
 }
 

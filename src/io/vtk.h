@@ -78,9 +78,10 @@ typedef struct bdl_vtp_file {
 
 /// Loads and checks the header; BDL_ERR_IO with the reason in `why` otherwise.
 bdl_result bdl_vtp_open(const char *path, bdl_vtp_file *f, char *why, size_t why_len);
-/// Copies the Float64 array `name` ("Points" for the positions) of `components` components into
-/// out (points * components values, malloc'ed). BDL_ERR_IO with the reason when it is missing,
-/// of another type or shape, or runs past the end of the file.
+/// Copies the Float64 or Int32 array `name` ("Points" for the positions, "id" for the particle
+/// ids) of `components` components into out (points * components values, as doubles, malloc'ed).
+/// BDL_ERR_IO with the reason when it is missing, of another type or shape, or runs past the end of
+/// the file.
 bdl_result bdl_vtp_array(const bdl_vtp_file *f, const char *name, int components, double **out,
                          char *why, size_t why_len);
 void bdl_vtp_close(bdl_vtp_file *f);

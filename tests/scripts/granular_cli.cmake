@@ -40,6 +40,28 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "force networks: [1-5]; the largest has (2[
    OR NOT EXISTS ${WORK}/contacts/force_pdf.csv)
   message(FATAL_ERROR "analyze networks failed (${rc})")
 endif()
+# With the particle file of the same moment: Sun's spanning trees of all the centres, kept where
+# the particles touch, against the force networks (table 6.2): the first pass is a tree (its
+# edges one fewer than its particles), and the union of five passes holds the largest network's
+# particles; the force correlation is written.
+execute_process(COMMAND ${BEDLAM} analyze networks ${WORK}/contacts/contacts_000003.csv
+  --file ${WORK}/vtk/particles_000003.vtp --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+string(REGEX MATCH "\\| 1 \\| ([0-9]+) \\| ([0-9]+) \\|" first "${out}")
+set(np ${CMAKE_MATCH_1})
+set(ne ${CMAKE_MATCH_2})
+string(REGEX MATCH "\\| 5 \\| ([0-9]+) \\|" fifth "${out}")
+set(np5 ${CMAKE_MATCH_1})
+string(REGEX MATCH "\\| force networks \\| ([0-9]+) \\|" net "${out}")
+set(nf ${CMAKE_MATCH_1})
+if(NOT rc EQUAL 0 OR NOT first OR NOT np5 OR NOT nf OR NOT EXISTS ${WORK}/contacts/force_correlation.csv)
+  message(FATAL_ERROR "analyze networks --file failed (${rc})")
+endif()
+math(EXPR tree "${np} - 1")
+if(NOT ne EQUAL tree OR NOT np5 EQUAL nf)
+  message(FATAL_ERROR "spanning trees: first pass ${np} particles, ${ne} edges; five passes ${np5} particles, networks ${nf}")
+endif()
 execute_process(COMMAND ${BEDLAM} analyze networks ${WORK}/species.csv --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 2)
