@@ -545,16 +545,20 @@ static void mesh_region(void)
     }
 }
 
+/// A box with a floor and soft glass beads, for the pours below.
+#define POUR_BOX                                                                                   \
+    "[run]\nend_time = 1\n[domain]\nmin = -0.03 -0.03 0\nmax = 0.03 0.03 0.1\n"                    \
+    "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\ndensity = 2500\n"                 \
+    "stiffness = 2000\nrestitution = 0.5\n[wall floor]\ntype = plane\npoint = 0 0 0\n"             \
+    "normal = 0 0 1\n"
+
 /// A pour with a time window stops at stop_time, short of its count.
 static void pour_window(void)
 {
     bdl_world *w = bdl_test_world(
-        "[run]\nend_time = 1\n[domain]\nmin = -0.03 -0.03 0\nmax = 0.03 0.03 0.1\n"
-        "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\ndensity = 2500\n"
-        "stiffness = 2000\nrestitution = 0.5\n[wall floor]\ntype = plane\npoint = 0 0 0\n"
-        "normal = 0 0 1\n[create rain]\ntype = pour\nspecies = glass\ncount = 1000\n"
-        "rate = 10000\nstart_time = 0.005\nstop_time = 0.02\nregion_shape = cylinder\n"
-        "region_min = -0.025 -0.025 0.05\nregion_max = 0.025 0.025 0.09\n");
+        POUR_BOX "[create rain]\ntype = pour\nspecies = glass\ncount = 1000\n"
+                 "rate = 10000\nstart_time = 0.005\nstop_time = 0.02\nregion_shape = cylinder\n"
+                 "region_min = -0.025 -0.025 0.05\nregion_max = 0.025 0.025 0.09\n");
     while (w->time < 0.04)
         CHECK(bdl_world_step(w) == BDL_OK);
     printf("\nPour of 1000 at 10 000/s from 0.005 to 0.02 s: %ld particles at 0.04 s\n",
@@ -562,10 +566,8 @@ static void pour_window(void)
     CHECK(w->particles.count > 100 && w->particles.count <= 151);
     bdl_world_destroy(w);
     // The same pour onto a sink in the middle of the box: what falls in is removed and counted.
-    w = bdl_test_world("[run]\nend_time = 1\n[domain]\nmin = -0.03 -0.03 0\nmax = 0.03 0.03 0.1\n"
-                       "[contact]\nlaw = linear\n[species glass]\ndiameter = 0.003\n"
-                       "density = 2500\nstiffness = 2000\nrestitution = 0.5\n[wall floor]\n"
-                       "type = plane\npoint = 0 0 0\nnormal = 0 0 1\n[create rain]\ntype = pour\n"
+    w = bdl_test_world(POUR_BOX
+                       "[create rain]\ntype = pour\n"
                        "species = glass\ncount = 300\nrate = 20000\nregion_min = -0.025 -0.025 "
                        "0.05\nregion_max = 0.025 0.025 0.09\n[sink hole]\nmin = -0.01 -0.01 0\n"
                        "max = 0.01 0.01 0.02\n");

@@ -27,7 +27,8 @@
 // Versions 2-5 grew the state (the gas, outflow, force and torque records); 6 made the file
 // untrusted input: header with sizes and checksums, the scene record, range checks; 7 holds the
 // work in the Hertz-Mindlin springs (held, and left by ended contacts) and, with a gas, whether
-// the live inflow rose since the last gas step (the next gas step starts short).
+// the live inflow rose since the last gas step (the next gas step starts short); 8 the walls'
+// turned angles (now and at the last list build).
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
 enum { VERSION = 8, HEADER_BYTES = 32 };
 

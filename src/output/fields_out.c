@@ -10,6 +10,7 @@
 #include "core/crc32.h"
 #include "core/file.h"
 #include "io/vtk.h"
+#include "output/checkpoint_parts.h"
 #include "world/budget.h"
 
 _Static_assert(sizeof(bdl_vec3) == 3 * sizeof(double), "a bdl_vec3 array is x y z after x y z");
@@ -94,21 +95,8 @@ bdl_fields_stamp bdl_fields_stamp_of(const bdl_world *w, double cell)
 // ---------------------------------------------------------------------------------------------
 // The sums file.
 
-/// A writer that keeps the CRC-32 of what it wrote; `ok` falls to 0 at the first failure.
-typedef struct sums_writer {
-    FILE *file;
-    uint32_t crc;
-    int ok;
-} sums_writer;
-
-static void put(sums_writer *out, const void *data, size_t size)
-{
-    if (out->ok && size > 0 && fwrite(data, 1, size, out->file) != size)
-        out->ok = 0;
-    out->crc = bdl_crc32(out->crc, data, size);
-}
-
-static void put_i64(sums_writer *out, int64_t v) { put(out, &v, sizeof v); }
+// Written with the checkpoint's writer, which keeps the CRC-32 of what it wrote.
+static void put_i64(bdl_ckpt_writer *out, int64_t v) { bdl_ckpt_put(out, &v, sizeof v); }
 
 bdl_result bdl_fields_sums_save(const bdl_fields *f, const bdl_fields_stamp *stamp,
                                 const char *path)
@@ -117,27 +105,27 @@ bdl_result bdl_fields_sums_save(const bdl_fields *f, const bdl_fields_stamp *sta
     bdl_result r = bdl_atomic_open(&af, path);
     if (r != BDL_OK)
         return r;
-    sums_writer out = {af.file, 0, 1};
+    bdl_ckpt_writer out = {.f = af.file, .ok = 1};
     const uint32_t version = VERSION;
     const int32_t n[4] = {f->n[0], f->n[1], f->n[2], 0};
     const size_t cells = (size_t)bdl_fields_cells(f);
-    put(&out, magic, sizeof magic);
-    put(&out, &version, sizeof version);
+    bdl_ckpt_put(&out, magic, sizeof magic);
+    bdl_ckpt_put(&out, &version, sizeof version);
     put_i64(&out, stamp->step);
     const double header[] = {stamp->time, stamp->interval, stamp->start, stamp->setting,
                              stamp->cell};
-    put(&out, header, sizeof header);
-    put(&out, n, sizeof n);
-    put(&out, f->lo, sizeof f->lo);
-    put(&out, f->h, sizeof f->h);
+    bdl_ckpt_put(&out, header, sizeof header);
+    bdl_ckpt_put(&out, n, sizeof n);
+    bdl_ckpt_put(&out, f->lo, sizeof f->lo);
+    bdl_ckpt_put(&out, f->h, sizeof f->h);
     put_i64(&out, f->samples);
     put_i64(&out, f->particles);
     const double totals[] = {f->deposited, f->total, f->first, f->last};
-    put(&out, totals, sizeof totals);
-    put(&out, f->volume, cells * sizeof(double));
-    put(&out, f->momentum, 3 * cells * sizeof(double));
+    bdl_ckpt_put(&out, totals, sizeof totals);
+    bdl_ckpt_put(&out, f->volume, cells * sizeof(double));
+    bdl_ckpt_put(&out, f->momentum, 3 * cells * sizeof(double));
     const uint32_t crc = out.crc;
-    put(&out, &crc, sizeof crc);
+    bdl_ckpt_put(&out, &crc, sizeof crc);
     if (!out.ok) {
         const int error = errno;
         bdl_atomic_abort(&af);
