@@ -5,6 +5,9 @@
 
 #include "core/error.h"
 
+/// Most run folders `bedlam analyze rheology` takes at once.
+#define BDL_ANALYZE_RUNS_MAX 256
+
 typedef struct bdl_analyze_opts {
     const char *what;   ///< the analysis: sweep, spectrum, mean, phase, profile, networks or
                         ///< orientation
@@ -26,6 +29,11 @@ typedef struct bdl_analyze_opts {
     double density;  ///< dia: the particles' density with --fit [kg/m^3] (NAN: not given)
     double height;   ///< dia: height of the mass-flux profile [m]
     double cell;     ///< fields: cell size [m] (0: three mean diameters)
+    /// rheology: the run folders (runs[0] is `run`), and the spheres' restitution for Lun et al.
+    /// (NAN: none)
+    const char *runs[BDL_ANALYZE_RUNS_MAX];
+    int run_count;
+    double restitution;
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);
@@ -41,5 +49,7 @@ bdl_result bdl_analyze_dia(const bdl_analyze_opts *o);
 bdl_result bdl_analyze_orientation(const bdl_analyze_opts *o);
 /// A high-speed synthetic camera's folder: PTV tracks and coordination numbers against the truth.
 bdl_result bdl_analyze_ptv(const bdl_analyze_opts *o);
+/// Shear cells' rheology.csv averaged over their steady part, one row per run.
+bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o);
 
 #endif

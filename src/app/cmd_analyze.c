@@ -10,7 +10,7 @@
 #include "app/options.h"
 #include "core/file.h"
 
-// The usage in two literals (C11 promises string literals of 4095 characters only), joined on
+// The usage in four literals (C11 promises string literals of 4095 characters only), joined on
 // first use.
 static const char usage_first[] =
     "usage: bedlam analyze sweep RUN [--out DIR] [--no-plots]\n"
@@ -28,6 +28,8 @@ static const char usage_first[] =
     "       bedlam analyze orientation RUN [--from T] [--to T] [--by-velocity] [--out DIR]\n"
     "                                  [--no-plots]\n"
     "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
+    "       bedlam analyze rheology RUN [RUN...] [--from T] [--to T] [--restitution E]\n"
+    "                               [--out DIR] [--no-plots]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
     "the run with --file NAME, e.g. --file species.csv).\n"
@@ -63,7 +65,8 @@ static const char usage_first[] =
     "profile: the solids fraction of each gas cell layer (RUN/profile.csv, runs with a gas)\n"
     "averaged between --from and --to: the solids fraction against height. Writes profile.csv\n"
     "and profile.png.\n"
-    "\n"
+    "\n";
+static const char usage_networks[] =
     "networks: a contact file of a run ([output] contacts_interval): the force networks\n"
     "(connected sets of particles touching with a normal force: their number, the largest one's\n"
     "particles, contacts, mean coordination and length), those of the forces above the mean, and\n"
@@ -115,11 +118,22 @@ static const char usage_second[] =
     "number of the tracked rods (neighbours within one rod length, corrected for the part of\n"
     "that disc outside the image) against that of the true rods along the wall, in the thesis's\n"
     "classes with each class's mean vertical velocity. Writes ptv_tracks.csv.\n"
+    "\n";
+static const char usage_third[] =
+    "rheology: shear cells ([output] rheology_interval; scenes/shear_cell.ini): each RUN's\n"
+    "rheology.csv averaged between --from (default: a shear strain of 10) and --to, with the\n"
+    "standard error from 10 blocks: solids fraction, shear rate, granular temperature, pressure,\n"
+    "shear stress, mu = tau/p, inertial number, normal-stress differences, rods' alignment, and\n"
+    "the stresses over rho d^2 (shear rate)^2. With --restitution E (smooth spheres) the kinetic\n"
+    "theory of Lun et al. (1984) at each run's solids fraction and shear rate, and its pressure\n"
+    "and shear stress at the run's own temperature. Writes rheology.csv (one row per run) and\n"
+    "rheology.png into --out (default the first RUN's analysis folder).\n"
     "\n"
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
     "codes: 0 done, 1 the analysis\n"
     "found nothing (no sweep, too few samples), 2 bad options or unreadable input.\n";
-static char analyze_usage[sizeof usage_first + sizeof usage_second];
+static char analyze_usage[sizeof usage_first + sizeof usage_networks + sizeof usage_second +
+                          sizeof usage_third];
 
 static const bdl_option options[] = {
     {"--column", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, column)},
@@ -142,6 +156,7 @@ static const bdl_option options[] = {
     {"--density", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, density)},
     {"--height", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, height)},
     {"--cell", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, cell)},
+    {"--restitution", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, restitution)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.
@@ -150,11 +165,14 @@ static int take_run(void *opts, int argc, char **argv, int i)
     (void)argc;
     bdl_analyze_opts *o = opts;
     const char *a = argv[i];
-    if (a[0] == '-' || o->run) {
+    const int many = strcmp(o->what, "rheology") == 0 && o->run_count < BDL_ANALYZE_RUNS_MAX;
+    if (a[0] == '-' || (o->run && !many)) {
         fprintf(stderr, "error: unexpected argument '%s'\n\n%s", a, analyze_usage);
         return 0;
     }
-    o->run = a;
+    if (!o->run)
+        o->run = a;
+    o->runs[o->run_count++] = a;
     return 1;
 }
 
@@ -194,6 +212,7 @@ static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int 
                             .period = NAN,
                             .below = NAN,
                             .density = NAN,
+                            .restitution = NAN,
                             .height = 0.0991,
                             .to_cycle = 1L << 40,
                             .bins = -1,
@@ -258,12 +277,14 @@ static const analysis analyses[] = {
     {"networks", bdl_analyze_networks}, {"profile", bdl_analyze_profile},
     {"dia", bdl_analyze_dia},           {"orientation", bdl_analyze_orientation},
     {"ptv", bdl_analyze_ptv},           {"fields", bdl_analyze_fields},
+    {"rheology", bdl_analyze_rheology},
 };
 
 bdl_result bdl_cmd_analyze(int argc, char **argv)
 {
     if (!analyze_usage[0])
-        snprintf(analyze_usage, sizeof analyze_usage, "%s%s", usage_first, usage_second);
+        snprintf(analyze_usage, sizeof analyze_usage, "%s%s%s%s", usage_first, usage_networks,
+                 usage_second, usage_third);
     if (argc < 2 || strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
         fputs(analyze_usage, argc < 2 ? stderr : stdout);
         return argc < 2 ? BDL_ERR_ARGS : BDL_OK;
@@ -280,8 +301,8 @@ bdl_result bdl_cmd_analyze(int argc, char **argv)
     if (!o.run || !a) {
         fprintf(stderr,
                 "error: expected 'sweep RUN', 'spectrum RUN', 'mean RUN', 'phase RUN', "
-                "'profile RUN', 'fields RUN', 'orientation RUN', 'networks CONTACTS.csv', "
-                "'dia RUN/dia/NAME' or 'ptv RUN/dia/NAME'\n\n%s",
+                "'profile RUN', 'fields RUN', 'orientation RUN', 'rheology RUN...', "
+                "'networks CONTACTS.csv', 'dia RUN/dia/NAME' or 'ptv RUN/dia/NAME'\n\n%s",
                 analyze_usage);
         return BDL_ERR_ARGS;
     }

@@ -88,6 +88,7 @@ typedef struct gather_view {
     double *spring_work;     ///< Hertz-Mindlin springs only
     bdl_exact_sum *released; ///< this thread's: what springs held when their contacts ended
     double len[3], half[3];  ///< per axis; a closed axis has len 0 and half infinite
+    double shift, jump;      ///< Lees–Edwards: the image above's x offset and x velocity
     int ns;
     double cut; ///< r_i + r_j when uniform
 } gather_view;
@@ -112,6 +113,8 @@ static gather_view make_view(const bdl_particles *p, bdl_neighbor *nb, const bdl
         v.len[a] = nb->periodic[a] ? bdl_v3_comp(nb->length, a) : 0.0;
         v.half[a] = nb->periodic[a] ? 0.5 * v.len[a] : INFINITY;
     }
+    v.shift = nb->shear_shift;
+    v.jump = nb->shear_velocity;
     v.ns = def->species_count;
     v.cut = fw->radius + fw->radius;
     return v;
@@ -146,9 +149,11 @@ static BDL_FORCE_INLINE int gather_pair(pair_batch *restrict b, int m, const gat
 {
     int32_t j = v->partner[k];
     bdl_vec3 xj = v->pos[j];
-    double d_x = wrap(pi->x.x - xj.x, v->len[0], v->half[0]);
+    double d_z = pi->x.z - xj.z;
+    double side = (double)((d_z > v->half[2]) - (d_z < -v->half[2])); // Lees–Edwards image
+    double d_x = wrap(pi->x.x - xj.x - side * v->shift, v->len[0], v->half[0]);
     double d_y = wrap(pi->x.y - xj.y, v->len[1], v->half[1]);
-    double d_z = wrap(pi->x.z - xj.z, v->len[2], v->half[2]);
+    d_z = wrap(d_z, v->len[2], v->half[2]);
     double cut;
     if (uniform) {
         cut = v->cut;
@@ -200,6 +205,11 @@ static void gather_motion(pair_batch *restrict b, int m, const gather_view *v)
         b->wjy[q] = wj.y;
         b->wjz[q] = wj.z;
     }
+    if (v->jump != 0.0) // Lees–Edwards: a partner across the z faces is met as its image
+        for (int q = 0; q < m; ++q) {
+            double d_z = v->pos[b->i[q]].z - v->pos[b->j[q]].z;
+            b->dvx[q] -= (double)((d_z > v->half[2]) - (d_z < -v->half[2])) * v->jump;
+        }
     if (history) {
         for (int q = 0; q < m; ++q) {
             bdl_vec3 u = history[b->k[q]];

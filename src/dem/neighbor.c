@@ -167,7 +167,8 @@ static inline int listed(const bdl_neighbor *nb, const bdl_particles *p, long i,
     return d2 < cut * cut;
 }
 
-/// Visits every j > i listed with i (see `listed`); `out` NULL counts only.
+/// Visits every j > i listed with i (see `listed`); `out` NULL counts only. Across the z faces of
+/// a sheared box the images have slid along x: the whole x row is searched there.
 static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i, int32_t *out)
 {
     int c[3];
@@ -178,12 +179,14 @@ static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i
         int z = step_cell(nb, 2, c[2] + dz);
         if (z < 0)
             continue;
+        const int row = nb->shear_velocity != 0.0 && z != c[2] + dz;
+        const int x_first = row ? 0 : -1, x_last = row ? nb->dims[0] - 1 : 1;
         for (int dy = -1; dy <= 1; ++dy) {
             int y = step_cell(nb, 1, c[1] + dy);
             if (y < 0)
                 continue;
-            for (int dx = -1; dx <= 1; ++dx) {
-                int x = step_cell(nb, 0, c[0] + dx);
+            for (int dx = x_first; dx <= x_last; ++dx) {
+                int x = row ? dx : step_cell(nb, 0, c[0] + dx);
                 if (x < 0)
                     continue;
                 long cell = x + (long)nb->dims[0] * (y + (long)nb->dims[1] * z);
@@ -323,8 +326,33 @@ static void sort_particles(bdl_neighbor *nb, bdl_particles *p, const uint8_t *dr
     bdl_particles_permute(p, nb->perm, nb->scratch);
 }
 
+void bdl_neighbor_set_shear(bdl_neighbor *nb, double rate, double time)
+{
+    const double lx = nb->length.x;
+    nb->shear_velocity = rate * nb->length.z;
+    nb->shear_travel = nb->shear_velocity * time;
+    nb->shear_shift = nb->shear_travel - lx * floor(nb->shear_travel / lx + 0.5);
+}
+
+/// Lees–Edwards: particles beyond a z face come back through the other at their image's place and
+/// velocity (x wrapped after).
+static void wrap_sheared(const bdl_neighbor *nb, bdl_particles *p)
+{
+    const double lo = nb->origin.z, len = nb->length.z;
+    for (long i = 0; i < p->count; ++i) {
+        const double z = p->pos[i].z;
+        if (z >= lo && z < lo + len)
+            continue;
+        const double images = floor((z - lo) / len); // the image (above: > 0) it is in
+        p->pos[i].x -= images * nb->shear_shift;
+        p->vel[i].x -= images * nb->shear_velocity;
+    }
+}
+
 static void wrap_periodic(const bdl_neighbor *nb, bdl_particles *p)
 {
+    if (nb->shear_velocity != 0.0)
+        wrap_sheared(nb, p);
     for (int a = 0; a < 3; ++a) {
         if (!nb->periodic[a])
             continue;
@@ -516,6 +544,7 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
     if (r != BDL_OK)
         return r;
     nb->count = n;
+    nb->shear_travel_at_build = nb->shear_travel;
     nb->builds++;
     nb->version++;
     return BDL_OK;
@@ -545,7 +574,8 @@ int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, con
     double move = sqrt(max2);
     double wall_move =
         bdl_walls_max_shift(walls, nb->wall_offset_at_build, nb->wall_angle_at_build);
-    return 2.0 * move > nb->skin || move + wall_move > nb->skin;
+    double slide = fabs(nb->shear_travel - nb->shear_travel_at_build);
+    return 2.0 * move + slide > nb->skin || move + wall_move > nb->skin;
 }
 
 long bdl_neighbor_bytes(const bdl_neighbor *nb)
@@ -659,6 +689,10 @@ int bdl_neighbor_check(const bdl_neighbor *nb, long n, long prims, char *why, si
                      k, (int)nb->wall_touching[k]);
             return 0;
         }
+    }
+    if (!isfinite(nb->shear_travel_at_build)) {
+        snprintf(why, len, "the images' slide at the last list build is not finite");
+        return 0;
     }
     for (int w = 0; w < BDL_MAX_WALLS; ++w)
         if (!bdl_v3_isfinite(nb->wall_offset_at_build[w]) ||

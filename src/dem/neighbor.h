@@ -14,6 +14,14 @@
 //
 // Tangential history follows each pair across rebuilds and re-sorts (looked up by the particles'
 // previous indices). How forces are summed deterministically is described in contact_force.c.
+//
+// Lees–Edwards boundaries (a box under simple shear u_x = shear rate x z, periodic in x and z):
+// the image of the box above sits shifted along x by shear_shift and moves at +shear_velocity
+// (shear rate x L_z), the one below the opposite way. A pair whose separation is taken across the
+// z faces sees its partner's image there; a particle leaving through a z face comes back in
+// through the other at its image's place and velocity. The cells next to a z face search the
+// whole x row across it, and the lists are rebuilt once the images have slid far enough that a
+// pair across the faces may have come within reach (2 max|x - x_build| + |shift since| > skin).
 #ifndef BDL_NEIGHBOR_H
 #define BDL_NEIGHBOR_H
 
@@ -82,6 +90,12 @@ typedef struct bdl_neighbor {
     int rods;          ///< the particles are rods (bdl_particles.rods)
     long parallel_min; ///< fewer particles than this: builds on one thread (core/parallel.h)
     long builds;       ///< rebuilds so far
+
+    // Lees–Edwards (bdl_neighbor_set_shear); all 0 without
+    double shear_velocity;        ///< velocity of the image above: shear rate x L_z [m/s]
+    double shear_shift;           ///< x offset of the image above, in [-L_x/2, L_x/2) [m]
+    double shear_travel;          ///< shear_velocity x time, not wrapped [m]
+    double shear_travel_at_build; ///< shear_travel at the last rebuild [m]
 } bdl_neighbor;
 
 /// Sets up the grid for the domain; `cutoff` = the largest particle extent (a diameter, or a
@@ -109,10 +123,31 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
 int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,
                              double max_move2);
 
-/// Minimum-image separation x_i - x_j.
+/// Lees–Edwards: the images slid by `rate` x L_z x `time` (rate [1/s], the shear rate du_x/dz; the
+/// x and z axes must be periodic). Called with the time of the positions before the lists are
+/// built or forces evaluated.
+void bdl_neighbor_set_shear(bdl_neighbor *nb, double rate, double time);
+
+/// Lees–Edwards: +1 when the separation z_i - z_j (not wrapped) is taken to the partner's image
+/// above, -1 below, 0 inside the box (always 0 without shear).
+static inline double bdl_neighbor_image_side(const bdl_neighbor *nb, double dz)
+{
+    const double half = 0.5 * nb->length.z;
+    return nb->shear_velocity == 0.0 ? 0.0 : (double)((dz > half) - (dz < -half));
+}
+
+/// The velocity of particle j's image that particle i meets, less j's own: (side x shear_velocity,
+/// 0, 0) across the z faces of a sheared box, else zero.
+static inline bdl_vec3 bdl_neighbor_image_velocity(const bdl_neighbor *nb, bdl_vec3 xi, bdl_vec3 xj)
+{
+    return bdl_v3(bdl_neighbor_image_side(nb, xi.z - xj.z) * nb->shear_velocity, 0.0, 0.0);
+}
+
+/// Minimum-image separation x_i - x_j (with Lees–Edwards, to j's image across the z faces).
 static inline bdl_vec3 bdl_neighbor_delta(const bdl_neighbor *nb, bdl_vec3 xi, bdl_vec3 xj)
 {
     bdl_vec3 d = bdl_v3_sub(xi, xj);
+    d.x -= bdl_neighbor_image_side(nb, d.z) * nb->shear_shift;
     if (nb->periodic[0]) {
         if (d.x > 0.5 * nb->length.x)
             d.x -= nb->length.x;

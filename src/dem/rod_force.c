@@ -299,7 +299,9 @@ static void gather_motion(rod_batch *restrict b, int c, const bdl_particles *p,
 {
     for (int q = 0; q < c; ++q) {
         const int32_t i = b->i[q], j = b->j[q];
-        const bdl_vec3 vi = p->vel[i], vj = p->vel[j], wi = p->omega[i], wj = p->omega[j];
+        const bdl_vec3 vi = p->vel[i], wi = p->omega[i], wj = p->omega[j];
+        const bdl_vec3 vj =
+            bdl_v3_add(p->vel[j], bdl_neighbor_image_velocity(nb, p->pos[i], p->pos[j]));
         const bdl_vec3 ii = p->inv_inertia[i], ij = p->inv_inertia[j];
         b->vix[q] = vi.x, b->viy[q] = vi.y, b->viz[q] = vi.z;
         b->vjx[q] = vj.x, b->vjy[q] = vj.y, b->vjz[q] = vj.z;

@@ -316,7 +316,8 @@ bdl_result bdl_walls_build(const bdl_wall_def *defs, int count, double reach, bd
         const bdl_wall_def *d = &defs[w];
         switch (d->kind) {
         case BDL_WALL_PLANE:
-            add_plane(walls, w, d->point, bdl_v3_normalize(d->normal));
+            walls->plane_normal[w] = bdl_v3_normalize(d->normal);
+            add_plane(walls, w, d->point, walls->plane_normal[w]);
             break;
         case BDL_WALL_BOX:
             for (int axis = 0; axis < 3; ++axis) {
@@ -433,8 +434,12 @@ double bdl_walls_max_shift(const bdl_walls *walls, const bdl_vec3 *ref, const do
 {
     double m = 0.0;
     for (int w = 0; w < walls->wall_count; ++w) {
-        double d = bdl_v3_len(bdl_v3_sub(walls->offset[w], ref[w])) +
-                   walls->radius[w] * fabs(walls->angle[w] - ref_angle[w]) * walls->turns[w];
+        const bdl_vec3 shift = bdl_v3_sub(walls->offset[w], ref[w]);
+        const bdl_vec3 n = walls->plane_normal[w];
+        const double along =
+            n.x == 0.0 && n.y == 0.0 && n.z == 0.0 ? bdl_v3_len(shift) : fabs(bdl_v3_dot(shift, n));
+        double d =
+            along + walls->radius[w] * fabs(walls->angle[w] - ref_angle[w]) * walls->turns[w];
         if (d > m)
             m = d;
     }

@@ -93,6 +93,7 @@ typedef struct bdl_wall_def {
     double start;          ///< simulated time the vibration starts; still before [s]
     bdl_wall_frame frame;  ///< lab, or container (every wall and the gas grid move with this one)
     bdl_material material; ///< wall material; fields < 0 fall back to the particle species'
+    int periodic[3];       ///< triangle walls: repeats along these periodic axes of the domain
 } bdl_wall_def;
 
 typedef enum bdl_prim_kind { BDL_PRIM_PLANE, BDL_PRIM_CYLINDER } bdl_prim_kind;
@@ -148,6 +149,14 @@ typedef struct bdl_walls {
     bdl_vec3 drive[BDL_MAX_WALLS];   ///< move: velocity [m/s]
     double stop[BDL_MAX_WALLS];      ///< move: time the motion ends [s]
     uint8_t gone[BDL_MAX_WALLS];     ///< taken away (open_time passed): touches nothing
+    /// A plane wall's unit normal (zero for the other shapes): moving along itself, an infinite
+    /// plane stays where it is for the neighbour lists (a shear cell's driving walls).
+    bdl_vec3 plane_normal[BDL_MAX_WALLS];
+    /// A triangle wall that repeats along periodic axes of the domain (wrap_length > 0 on them):
+    /// a particle meets it at its rest-frame position taken modulo the length into
+    /// [wrap_origin, wrap_origin + wrap_length), so that the wall may move along the axis for
+    /// ever (the corrugated floor of a shear cell). Its triangles must repeat with that period.
+    bdl_vec3 wrap_origin[BDL_MAX_WALLS], wrap_length[BDL_MAX_WALLS];
     // Live values, refreshed by bdl_walls_update; scaled by the live amplitude factor of commands.
     bdl_vec3 offset[BDL_MAX_WALLS];   ///< displacement from rest [m]
     bdl_vec3 velocity[BDL_MAX_WALLS]; ///< [m/s]
@@ -203,7 +212,14 @@ void bdl_walls_turn(bdl_walls *walls, double dt);
 /// turned angle about its axis (triangle walls only).
 static inline bdl_vec3 bdl_wall_to_rest(const bdl_walls *walls, int wall, bdl_vec3 x)
 {
-    const bdl_vec3 p = bdl_v3_sub(x, walls->offset[wall]);
+    bdl_vec3 p = bdl_v3_sub(x, walls->offset[wall]);
+    const bdl_vec3 len = walls->wrap_length[wall], o = walls->wrap_origin[wall];
+    if (len.x > 0.0)
+        p.x -= len.x * floor((p.x - o.x) / len.x);
+    if (len.y > 0.0)
+        p.y -= len.y * floor((p.y - o.y) / len.y);
+    if (len.z > 0.0)
+        p.z -= len.z * floor((p.z - o.z) / len.z);
     if (!walls->turns[wall])
         return p;
     const bdl_vec3 c = walls->center[wall];

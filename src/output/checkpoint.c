@@ -28,9 +28,10 @@
 // untrusted input: header with sizes and checksums, the scene record, range checks; 7 holds the
 // work in the Hertz-Mindlin springs (held, and left by ended contacts) and, with a gas, whether
 // the live inflow rose since the last gas step (the next gas step starts short); 8 the walls'
-// turned angles (now and at the last list build).
+// turned angles (now and at the last list build); 9 how far the Lees–Edwards images had slid at
+// the last list build.
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
-enum { VERSION = 8, HEADER_BYTES = 32 };
+enum { VERSION = 9, HEADER_BYTES = 32 };
 
 void bdl_ckpt_put(bdl_ckpt_writer *out, const void *data, size_t size)
 {
@@ -90,6 +91,7 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
     f[k++] = (field){nb->wall_offset_at_build, sizeof nb->wall_offset_at_build};
     f[k++] = (field){nb->wall_angle_at_build, sizeof nb->wall_angle_at_build};
     f[k++] = (field){w->walls.angle, sizeof w->walls.angle};
+    f[k++] = (field){&nb->shear_travel_at_build, sizeof nb->shear_travel_at_build};
     f[k++] = (field){nb->start, (n + 1) * i32};
     f[k++] = (field){nb->partner, np * i32};
     f[k++] = (field){nb->touching, np};

@@ -19,6 +19,7 @@
 #include "output/checkpoint.h"
 #include "output/fields_out.h"
 #include "output/granular_out.h"
+#include "output/rheology_out.h"
 #include "output/rod_angles_out.h"
 #include "output/world_vtk.h"
 
@@ -231,6 +232,21 @@ static bdl_result write_orientation(bdl_run_outputs *o)
     return r;
 }
 
+static bdl_result write_rheology(bdl_run_outputs *o)
+{
+    double row[BDL_RHEOLOGY_COLUMNS];
+    char path[1200];
+    path_join(path, sizeof path, o->out, "rheology.csv");
+    bdl_result r = bdl_rheology_row(o->world, row);
+    if (r != BDL_OK) {
+        snprintf(o->failure, sizeof o->failure, "out of memory for the contacts of %s", path);
+        return r;
+    }
+    if (bdl_csv_row(o->rheology_csv, row) != BDL_OK)
+        r = failed_write(o, BDL_ERR_IO, path);
+    return r;
+}
+
 static bdl_result write_contacts(bdl_run_outputs *o)
 {
     char rel[64], path[1200];
@@ -282,8 +298,9 @@ static bdl_result sync_outputs(bdl_run_outputs *o)
     } series[] = {{o->csv, "diagnostics.csv"},
                   {o->species_csv, "species.csv"},
                   {o->profile_csv, "profile.csv"},
-                  {o->orientation_csv, "orientation.csv"}};
-    for (int k = 0; k < 4; ++k)
+                  {o->orientation_csv, "orientation.csv"},
+                  {o->rheology_csv, "rheology.csv"}};
+    for (int k = 0; k < 5; ++k)
         if (bdl_csv_sync(series[k].csv) != BDL_OK) {
             char path[1200];
             path_join(path, sizeof path, o->out, series[k].file);
@@ -370,6 +387,15 @@ static bdl_result open_orientation(bdl_run_outputs *o, int resume)
     return open_csv(o, "orientation.csv", pointers, count, resume, &o->orientation_csv);
 }
 
+/// rheology.csv, when [output] rheology_interval is set.
+static bdl_result open_rheology(bdl_run_outputs *o, int resume)
+{
+    if (!(o->world->scene.output.rheology_interval > 0.0))
+        return BDL_OK;
+    return open_csv(o, "rheology.csv", bdl_rheology_columns, BDL_RHEOLOGY_COLUMNS, resume,
+                    &o->rheology_csv);
+}
+
 /// A VTK collection: a new one, or a resumed run's with the entries up to its checkpoint (and
 /// their true times). NULL after an error message.
 static bdl_pvd *open_pvd(const bdl_run_outputs *o, const char *file, int resume)
@@ -398,6 +424,8 @@ static bdl_result open_files(bdl_run_outputs *o, int resume)
         r = open_series(o, resume);
     if (r == BDL_OK)
         r = open_orientation(o, resume);
+    if (r == BDL_OK)
+        r = open_rheology(o, resume);
     char sub[1200];
     if (r == BDL_OK && out->contacts_interval > 0.0) {
         path_join(sub, sizeof sub, o->out, "contacts");
@@ -500,12 +528,13 @@ static void schedule_resumed(bdl_run_outputs *o)
 {
     const bdl_world *w = o->world;
     const bdl_output_def *out = &w->scene.output;
-    const double intervals[6] = {out->diagnostics_interval, out->contacts_interval,
+    const double intervals[7] = {out->diagnostics_interval, out->contacts_interval,
                                  out->orientation_interval, out->checkpoint_interval,
-                                 out->vtk_interval,         out->fields_interval};
-    double *next[6] = {&o->next_diag,       &o->next_contacts, &o->next_orientation,
-                       &o->next_checkpoint, &o->next_vtk,      &o->next_fields};
-    for (int k = 0; k < 6; ++k)
+                                 out->vtk_interval,         out->fields_interval,
+                                 out->rheology_interval};
+    double *next[7] = {&o->next_diag, &o->next_contacts, &o->next_orientation, &o->next_checkpoint,
+                       &o->next_vtk,  &o->next_fields,   &o->next_rheology};
+    for (int k = 0; k < 7; ++k)
         *next[k] =
             intervals[k] > 0.0 ? multiple(first_not_due(w, intervals[k]), intervals[k]) : INFINITY;
     o->vtk_index = out->vtk_interval > 0.0 ? first_not_due(w, out->vtk_interval) : 0;
@@ -530,11 +559,14 @@ static bdl_result schedule(bdl_run_outputs *o, bdl_diagnostics *d0, int resume)
         r = write_contacts(o);
     if (r == BDL_OK && o->orientation_csv)
         r = write_orientation(o);
+    if (r == BDL_OK && o->rheology_csv)
+        r = write_rheology(o);
     if (r == BDL_OK && o->fields_on)
         r = sample_fields(o);
     o->next_diag = out->diagnostics_interval;
     o->next_fields = out->fields_interval;
     o->next_orientation = out->orientation_interval;
+    o->next_rheology = out->rheology_interval;
     o->next_vtk = out->vtk_interval;
     o->next_contacts = out->contacts_interval;
     if (r != BDL_OK)
@@ -674,7 +706,7 @@ bdl_result bdl_run_outputs_open(bdl_run_outputs *o, bdl_world *w, const char *ou
 
 /// What falls due at this step.
 typedef struct due_now {
-    int row, check, vtk, contacts, orientation, frame, camera, fields, checkpoint;
+    int row, check, vtk, contacts, orientation, rheology, frame, camera, fields, checkpoint;
 } due_now;
 
 static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
@@ -686,6 +718,7 @@ static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
     d.vtk = out->vtk_interval > 0.0 && due(w, o->next_vtk);
     d.contacts = out->contacts_interval > 0.0 && due(w, o->next_contacts);
     d.orientation = o->orientation_csv && due(w, o->next_orientation);
+    d.rheology = o->rheology_csv && due(w, o->next_rheology);
     d.frame = o->frames && due(w, o->next_frame);
     d.fields = o->fields_on && due(w, o->next_fields);
     if (o->dia) {
@@ -701,8 +734,8 @@ static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
 /// for the progress line.
 static bdl_result diagnose(bdl_run_outputs *o, bdl_world *w, const due_now *now)
 {
-    const int writes =
-        now->vtk || now->contacts || now->orientation || now->frame || now->camera || now->fields;
+    const int writes = now->vtk || now->contacts || now->orientation || now->rheology ||
+                       now->frame || now->camera || now->fields;
     if (!now->row && !now->check && !now->checkpoint)
         return writes ? bdl_guards_check_finite(w, &o->guard, o->failure, sizeof o->failure)
                       : BDL_OK;
@@ -743,6 +776,10 @@ static bdl_result write_due(bdl_run_outputs *o, bdl_world *w, const due_now *d)
     if (r == BDL_OK && d->orientation) {
         r = write_orientation(o);
         advance(w, &o->next_orientation, out->orientation_interval);
+    }
+    if (r == BDL_OK && d->rheology) {
+        r = write_rheology(o);
+        advance(w, &o->next_rheology, out->rheology_interval);
     }
     if (r == BDL_OK && d->frame) {
         r = write_frame(o);
@@ -830,10 +867,11 @@ static void close_images(bdl_run_outputs *o, bdl_result *r)
 /// The series closed: their last rows reach the disk, or the failure names the file.
 static void close_series(bdl_run_outputs *o, bdl_result *r)
 {
-    bdl_csv **csvs[4] = {&o->csv, &o->species_csv, &o->profile_csv, &o->orientation_csv};
-    static const char *const files[4] = {"diagnostics.csv", "species.csv", "profile.csv",
-                                         "orientation.csv"};
-    for (int k = 0; k < 4; ++k) {
+    bdl_csv **csvs[5] = {&o->csv, &o->species_csv, &o->profile_csv, &o->orientation_csv,
+                         &o->rheology_csv};
+    static const char *const files[5] = {"diagnostics.csv", "species.csv", "profile.csv",
+                                         "orientation.csv", "rheology.csv"};
+    for (int k = 0; k < 5; ++k) {
         if (!*csvs[k])
             continue;
         bdl_result cr = bdl_csv_sync(*csvs[k]);

@@ -41,6 +41,8 @@ typedef struct bdl_run_outputs {
     double *profile_row;
     int profile_columns;
     bdl_csv *orientation_csv; ///< orientation.csv, with rods and [output] orientation_interval
+    bdl_csv *rheology_csv;    ///< rheology.csv, with [output] rheology_interval
+    double next_rheology;
     bdl_pvd *pvd;
     bdl_pvd *gas_pvd; ///< gas fields, with [gas] only
     bdl_guard_state guard;

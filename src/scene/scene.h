@@ -66,6 +66,9 @@ typedef struct bdl_output_def {
     double fields_interval;        ///< [s] between samples for fields.vti; 0 = none
     double fields_start;           ///< [s] the first sample counted in fields.vti
     double fields_cell;            ///< [m] cell of fields.vti; < 0: three mean diameters
+    double rheology_interval;      ///< [s] between rows of rheology.csv; 0 = none
+    double rheology_margin;        ///< [m] left out of the bulk region at each z face
+    int rheology_bins;             ///< slabs of the mean velocity across the bulk region
 } bdl_output_def;
 
 /// Preset camera orientations ([camera] view).
@@ -280,6 +283,7 @@ typedef struct bdl_scene {
     bdl_vec3 domain_min, domain_max; ///< [m]
     int periodic[3];                 ///< periodic flags per axis
     bdl_outside outside;             ///< a particle crossing a non-periodic face
+    double shear_rate;               ///< Lees–Edwards shear rate du_x/dz [1/s]; 0 = none
 
     // [contact]
     bdl_normal_law law;

@@ -142,6 +142,11 @@ const bdl_scene_key bdl_scene_keys[] = {
      .def = {BDL_OUTSIDE_REMOVE}, .enum_names = bdl_outside_names,
      .doc = "a particle whose centre crosses a face that is not periodic: remove (removed and "
             "counted as particles_out and mass_out) or stop (the run stops and names it)"},
+    {S(DOMAIN), "shear_rate", NUM, "1/s", IN_SCENE(shear_rate), .def = {0},
+     .default_text = "0 (none)", GE(-1e6), LE(1e6),
+     .doc = "Lees-Edwards boundaries: simple shear u_x = shear_rate (z - middle) of a box periodic "
+            "in x and z, whose images above and below slide along x at +/- shear_rate x height; "
+            "the particles start on that profile; 0 = none"},
 
     // [contact]
     {S(CONTACT), "law", .type = BDL_KEY_ENUM, "-", IN_SCENE(law), .def = {BDL_LAW_HERTZ},
@@ -280,6 +285,12 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "mesh: rotation after scaling, about x, then y, then z (right hand, degrees)"},
     {S(WALL), "translate", VEC, "m", IN_WALL(translate), WHEN("type", BIT(BDL_WALL_MESH)),
      .def = {0, 0, 0}, .doc = "mesh: shift after scaling and rotating"},
+    {S(WALL), "periodic", .type = BDL_KEY_AXES, "-", IN_WALL(periodic),
+     WHEN("type", BIT(BDL_WALL_MESH) | BIT(BDL_WALL_DISK) | BIT(BDL_WALL_CONE)),
+     .doc = "the wall repeats along these periodic axes of the domain: a particle meets it at its "
+            "position modulo the domain's length, so it may move along them for ever (a "
+            "corrugated floor driving a shear cell); its triangles must repeat with that period "
+            "and reach a particle diameter beyond the domain's faces on those axes"},
     {S(WALL), "open_time", NUM, "s", IN_WALL(open_time), .def = {INFINITY}, .default_text = "never",
      GE(0), .doc = "simulated time the wall is taken away (a gate, or the plug of an orifice)"},
     {S(WALL), "motion", .type = BDL_KEY_ENUM, "-", IN_WALL(motion), .def = {BDL_MOTION_NONE},
@@ -466,6 +477,19 @@ const bdl_scene_key bdl_scene_keys[] = {
      .default_text = "three mean diameters of the particles at the start", GT(0),
      .doc = "side of the cells of fields.vti (each axis divided into whole cells, at least one); "
             "at most the domain's largest side, and at most 5e7 cells over the domain"},
+    {S(OUTPUT), "rheology_interval", NUM, "s", IN_SCENE(output.rheology_interval), .def = {0},
+     .default_text = "0 (none)", GE(0),
+     .doc = "simulated time between rows of rheology.csv: the stress tensor of the bulk "
+            "(streaming and contact parts), granular temperature, shear rate, solids fraction, "
+            "mu = tau/p, inertial number, normal-stress differences (shear along x, gradient "
+            "along z); 0 = none"},
+    {S(OUTPUT), "rheology_margin", NUM, "m", IN_SCENE(output.rheology_margin), .def = {0}, GE(0),
+     .doc = "rheology.csv: the bulk region leaves out this much at the domain's lower and upper "
+            "z faces (the layers next to driving walls)"},
+    {S(OUTPUT), "rheology_bins", .type = BDL_KEY_INT, "-", IN_SCENE(output.rheology_bins),
+     .def = {16}, GE(2), LE(4096),
+     .doc = "rheology.csv: slabs across z over which the mean velocity is taken (the velocity "
+            "fluctuation is the velocity less its slab's mean)"},
 
     // [camera]
     {S(CAMERA), "view", .type = BDL_KEY_ENUM, "-", IN_CAMERA(view), .def = {BDL_VIEW_ISO},

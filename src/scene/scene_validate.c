@@ -275,6 +275,12 @@ static void check_wall(bdl_scene_parser *p, bdl_scene_section *s)
         check_rotation(p, s, wall);
     if (wall->motion == BDL_MOTION_MOVE && !p->failed && !(wall->stop > wall->start))
         fail_at_key(p, s, "stop", 0, "must be later than start");
+    for (int a = 0; a < 3 && !p->failed; ++a) {
+        if (wall->periodic[a] && !p->scene->periodic[a])
+            fail_at_key(p, s, "periodic", 0, "names an axis that is not periodic in [domain]");
+        else if (wall->periodic[a] && wall->motion == BDL_MOTION_ROTATE)
+            fail_at_key(p, s, "periodic", 0, "a repeating wall cannot turn (motion = rotate)");
+    }
     if (p->failed || wall->motion != BDL_MOTION_VIBRATE)
         return;
     if (wall->frame == BDL_FRAME_CONTAINER)
@@ -724,10 +730,11 @@ static int find_output_excess(const bdl_scene *scene, double end_time, output_ex
     const bdl_output_def *o = &scene->output;
     static const char *const keys[] = {
         "diagnostics_interval", "vtk_interval",         "checkpoint_interval", "frame_interval",
-        "contacts_interval",    "orientation_interval", "fields_interval"};
-    const double intervals[] = {
-        o->diagnostics_interval, o->vtk_interval,         o->checkpoint_interval, o->frame_interval,
-        o->contacts_interval,    o->orientation_interval, o->fields_interval};
+        "contacts_interval",    "orientation_interval", "fields_interval",     "rheology_interval"};
+    const double intervals[] = {o->diagnostics_interval, o->vtk_interval,
+                                o->checkpoint_interval,  o->frame_interval,
+                                o->contacts_interval,    o->orientation_interval,
+                                o->fields_interval,      o->rheology_interval};
     enum { OWN = sizeof intervals / sizeof intervals[0] };
     for (int k = 0; k < OWN + scene->dia_count; ++k) {
         const double interval = k < OWN ? intervals[k] : scene->dias[k - OWN].interval;
@@ -788,6 +795,37 @@ bdl_result bdl_scene_set_end_time(bdl_scene *scene, double end_time, bdl_scene_e
     return BDL_OK;
 }
 
+static bdl_scene_section *singleton(bdl_scene_parser *p, bdl_section_kind kind)
+{
+    for (int i = 0; i < p->section_count; ++i)
+        if (p->sections[i].kind == kind)
+            return &p->sections[i];
+    return NULL;
+}
+
+/// Lees–Edwards boundaries need a box periodic in x and z of particles alone; the bulk region of
+/// rheology.csv must be left by its margins.
+static void check_shear(bdl_scene_parser *p)
+{
+    const bdl_scene *sc = p->scene;
+    bdl_scene_section *domain = singleton(p, BDL_SECTION_DOMAIN);
+    if (domain && sc->shear_rate != 0.0) {
+        if (!sc->periodic[0] || !sc->periodic[2])
+            fail_at_key(
+                p, domain, "shear_rate", 0,
+                "Lees-Edwards boundaries need periodic = x z (or x y z): the shear is along "
+                "x, its gradient along z");
+        else if (sc->gas.enabled || sc->parcels.enabled)
+            fail_at_key(p, domain, "shear_rate", 0,
+                        "Lees-Edwards boundaries hold particles alone: remove the [gas] section");
+    }
+    bdl_scene_section *output = singleton(p, BDL_SECTION_OUTPUT);
+    const double height = sc->domain_max.z - sc->domain_min.z;
+    if (!p->failed && output && !(2.0 * sc->output.rheology_margin < height))
+        fail_at_key(p, output, "rheology_margin", 0,
+                    "twice the margin must be less than the domain's height along z");
+}
+
 int bdl_scene_validate(bdl_scene_parser *p)
 {
     check_singletons(p);
@@ -822,6 +860,8 @@ int bdl_scene_validate(bdl_scene_parser *p)
     }
     if (!p->failed)
         check_parcels(p);
+    if (!p->failed)
+        check_shear(p);
     if (!p->failed)
         check_output_counts(p);
     return !p->failed;

@@ -31,7 +31,8 @@ static int sphere_pair(const bdl_world *w, long i, long j, bdl_world_contact *c)
     c->n = bdl_v3_scale(d, 1.0 / dist);
     c->r_eff = p->radius[i] * p->radius[j] / cut;
     c->point = bdl_v3_madd(p->pos[i], c->n, -(p->radius[i] - 0.5 * c->overlap));
-    c->v_c = bdl_v3_sub(p->vel[i], p->vel[j]);
+    c->v_c = bdl_v3_sub(bdl_v3_sub(p->vel[i], p->vel[j]),
+                        bdl_neighbor_image_velocity(&w->neighbor, p->pos[i], p->pos[j]));
     return 1;
 }
 
@@ -47,10 +48,30 @@ static int rod_pair(const bdl_world *w, long i, long j, bdl_world_contact *c)
     c->n = rc.n;
     c->r_eff = p->radius[i] * p->radius[j] / (p->radius[i] + p->radius[j]);
     c->point = bdl_v3_add(p->pos[i], rc.arm_i);
+    const bdl_vec3 vj =
+        bdl_v3_add(p->vel[j], bdl_neighbor_image_velocity(&w->neighbor, p->pos[i], p->pos[j]));
     c->v_c = bdl_v3_sub(bdl_v3_add(p->vel[i], bdl_v3_cross(p->omega[i], rc.arm_i)),
-                        bdl_v3_add(p->vel[j], bdl_v3_cross(p->omega[j], rc.arm_j)));
+                        bdl_v3_add(vj, bdl_v3_cross(p->omega[j], rc.arm_j)));
     c->arm_j = rc.arm_j;
     return 1;
+}
+
+/// The contact law's input for the touching pair (i, j) of contact c.
+static bdl_contact_geom pair_geom(const bdl_world *w, long i, long j, const bdl_world_contact *c)
+{
+    const bdl_particles *p = &w->particles;
+    const double inv_m = p->rods
+                             ? bdl_rod_inv_mass_at(p, i, bdl_v3_sub(c->point, p->pos[i]), c->n) +
+                                   bdl_rod_inv_mass_at(p, j, c->arm_j, c->n)
+                             : p->inv_mass[i] + p->inv_mass[j];
+    return (bdl_contact_geom){
+        .n = c->n, .overlap = c->overlap, .v_c = c->v_c, .m_eff = 1.0 / inv_m, .r_eff = c->r_eff};
+}
+
+static const bdl_contact_params *pair_params(const bdl_world *w, long i, long j)
+{
+    const int32_t *species = w->particles.species;
+    return &w->pair_params[species[i] * w->scene.species_count + species[j]];
 }
 
 int bdl_world_pair_contact(const bdl_world *w, long i, long j, bdl_world_contact *c)
@@ -58,16 +79,30 @@ int bdl_world_pair_contact(const bdl_world *w, long i, long j, bdl_world_contact
     const bdl_particles *p = &w->particles;
     if (!(p->rods ? rod_pair(w, i, j, c) : sphere_pair(w, i, j, c)))
         return 0;
-    const double inv_m = p->rods
-                             ? bdl_rod_inv_mass_at(p, i, bdl_v3_sub(c->point, p->pos[i]), c->n) +
-                                   bdl_rod_inv_mass_at(p, j, c->arm_j, c->n)
-                             : p->inv_mass[i] + p->inv_mass[j];
-    const bdl_contact_geom g = {
-        .n = c->n, .overlap = c->overlap, .v_c = c->v_c, .m_eff = 1.0 / inv_m, .r_eff = c->r_eff};
-    const int ns = w->scene.species_count;
-    c->normal = normal_force(w, &w->pair_params[p->species[i] * ns + p->species[j]], g);
+    c->normal = normal_force(w, pair_params(w, i, j), pair_geom(w, i, j, c));
     c->prim = -1;
     return 1;
+}
+
+bdl_vec3 bdl_world_pair_force(const bdl_world *w, long i, int32_t k)
+{
+    const bdl_particles *p = &w->particles;
+    const bdl_neighbor *nb = &w->neighbor;
+    const long j = nb->partner[k];
+    bdl_world_contact c;
+    if (!bdl_world_pair_contact(w, i, j, &c))
+        return bdl_v3_zero();
+    if (!w->friction)
+        return bdl_v3_scale(c.n, c.normal);
+    bdl_contact_geom g = pair_geom(w, i, j, &c);
+    if (!p->rods) { // the spins' share of the contact point's velocity (rods have it already)
+        const bdl_vec3 arm_i = bdl_v3_sub(c.point, p->pos[i]);
+        const bdl_vec3 arm_j = bdl_v3_add(arm_i, bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
+        g.v_c = bdl_v3_add(
+            g.v_c, bdl_v3_sub(bdl_v3_cross(p->omega[i], arm_i), bdl_v3_cross(p->omega[j], arm_j)));
+    }
+    const bdl_spring spring = {nb->history[k], nb->spring_work ? nb->spring_work[k] : 0.0};
+    return bdl_contact_eval(pair_params(w, i, j), w->hertz, 1, g, spring, w->dt).force;
 }
 
 /// Spheres: the wall's gap at the centre; the relative velocity of the centre.

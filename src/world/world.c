@@ -171,6 +171,8 @@ void bdl_world_apply_live(bdl_world *w)
         w->walls.omega[k] = 2.0 * PI * d->frequency * w->live.frequency_scale[k];
     }
     bdl_walls_update(&w->walls, w->time);
+    if (w->scene.shear_rate != 0.0)
+        bdl_neighbor_set_shear(&w->neighbor, w->scene.shear_rate, w->time);
 }
 
 int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
@@ -361,6 +363,8 @@ bdl_result bdl_world_step(bdl_world *w)
     w->time += w->dt;
     bdl_walls_turn(&w->walls, w->dt);
     bdl_walls_update(&w->walls, w->time);
+    if (w->scene.shear_rate != 0.0)
+        bdl_neighbor_set_shear(&w->neighbor, w->scene.shear_rate, w->time);
     const int outflow = w->outflow[0] | w->outflow[1] | w->outflow[2] | w->outflow[3] |
                         w->outflow[4] | w->outflow[5] | (w->scene.sink_count > 0);
     bdl_result r = outflow ? remove_outflow(w, &max_move2) : BDL_OK;
@@ -564,6 +568,44 @@ static double contact_reach(const bdl_scene *scene, double *skin)
     return extent + *skin;
 }
 
+/// Triangle walls that repeat along periodic axes: their period is the domain's length there, and
+/// their triangles must reach `reach` beyond its faces (else a particle near a face would miss the
+/// triangles across it).
+static bdl_result wrap_walls(bdl_world *w, double reach, bdl_scene_error *err)
+{
+    const bdl_scene *s = &w->scene;
+    bdl_walls *walls = &w->walls;
+    for (int k = 0; k < s->wall_count; ++k)
+        for (int a = 0; a < 3; ++a) {
+            if (!s->walls[k].periodic[a])
+                continue;
+            const double lo = bdl_v3_comp(s->domain_min, a), hi = bdl_v3_comp(s->domain_max, a);
+            double min = INFINITY, max = -INFINITY;
+            for (long t = 0; t < walls->tri_count; ++t) {
+                const bdl_wall_tri *tri = &walls->tri[t];
+                if (tri->wall != k)
+                    continue;
+                const double c[3] = {bdl_v3_comp(tri->a, a), bdl_v3_comp(tri->b, a),
+                                     bdl_v3_comp(tri->c, a)};
+                for (int v = 0; v < 3; ++v) {
+                    min = fmin(min, c[v]);
+                    max = fmax(max, c[v]);
+                }
+            }
+            if (!(min <= lo - reach && max >= hi + reach)) {
+                snprintf(err->message, sizeof err->message,
+                         "%s:%d: [wall %s] periodic: its triangles span [%g, %g] m along %c; a "
+                         "repeating wall must reach %g m beyond the domain's faces there: [%g, %g]",
+                         s->path, s->line.walls[k], s->walls[k].name, min, max, "xyz"[a], reach,
+                         lo - reach, hi + reach);
+                return BDL_ERR_SCENE;
+            }
+            bdl_v3_set_comp(&walls->wrap_origin[k], a, lo);
+            bdl_v3_set_comp(&walls->wrap_length[k], a, hi - lo);
+        }
+    return BDL_OK;
+}
+
 /// The walls at rest, with live scales of one, and the container whose frame the run is in.
 static bdl_result build_walls(bdl_world *w, bdl_scene_error *err)
 {
@@ -577,6 +619,8 @@ static bdl_result build_walls(bdl_world *w, bdl_scene_error *err)
                                    &w->walls, why, sizeof why);
     if (r != BDL_OK)
         snprintf(err->message, sizeof err->message, "%s: [wall] %s", scene->path, why);
+    else
+        r = wrap_walls(w, contact_reach(scene, &skin), err);
     w->container = -1;
     for (int k = 0; k < scene->wall_count; ++k)
         if (scene->walls[k].motion == BDL_MOTION_VIBRATE &&
@@ -656,9 +700,25 @@ static bdl_result choose_time_step(bdl_world *w, bdl_scene_error *err)
 
 /// The particles' contact solver (lists, the time step from the contact time), the gas, and the
 /// forces of the initial state.
+/// Lees–Edwards: the particles start on the shear profile u_x = shear_rate (z - middle) on top
+/// of their own velocities, and the images in place for time 0.
+static void start_shear(bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
+    if (s->shear_rate == 0.0)
+        return;
+    const double middle = 0.5 * (s->domain_min.z + s->domain_max.z);
+    bdl_particles *p = &w->particles;
+    for (long i = 0; i < p->count; ++i)
+        p->vel[i].x += s->shear_rate * (p->pos[i].z - middle);
+    bdl_neighbor_set_shear(&w->neighbor, s->shear_rate, w->time);
+}
+
 static bdl_result build_contact_solver(bdl_world *w, long expected, bdl_scene_error *err)
 {
     bdl_result r = build_neighbor(w, expected, err);
+    if (r == BDL_OK)
+        start_shear(w);
     if (r == BDL_OK)
         r = choose_time_step(w, err);
     if (r == BDL_OK) // the particles' own speeds may have shortened the step

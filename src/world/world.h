@@ -238,6 +238,10 @@ typedef struct bdl_world_contact {
 /// the shafts' closest points, as the force pass has them).
 int bdl_world_pair_contact(const bdl_world *world, long i, long j, bdl_world_contact *c);
 
+/// The force on particle i of pair k of its list, as the law gives it now (with friction, from
+/// the spring as stored: the force the next step starts from); zero when the pair does not touch.
+bdl_vec3 bdl_world_pair_force(const bdl_world *world, long i, int32_t k);
+
 /// Entry k of particle i's wall list: 0 when it does not touch, else the contact.
 int bdl_world_wall_contact(const bdl_world *world, long i, int32_t k, bdl_world_contact *c);
 

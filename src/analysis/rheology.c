@@ -1,0 +1,175 @@
+#include "analysis/rheology.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const double pi = 3.14159265358979323846;
+
+static void set_nan(bdl_rheology_sample *s)
+{
+    const double nan = NAN;
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+            s->stress[a][b] = s->streaming[a][b] = s->contact[a][b] = nan;
+    s->solids_fraction = s->shear_rate = s->temperature = nan;
+    s->pressure = s->shear_stress = s->n1 = s->n2 = s->friction = s->inertial_number = nan;
+    s->pressure_streaming = s->pressure_contact = s->shear_streaming = s->shear_contact = nan;
+    s->alignment = s->diameter = s->density = nan;
+}
+
+/// The slab of height z in the region, or -1 outside it.
+static int slab_of(const bdl_rheology_input *in, double z)
+{
+    if (!(z >= in->z_lo && z < in->z_hi))
+        return -1;
+    int b = (int)((z - in->z_lo) / (in->z_hi - in->z_lo) * in->bins);
+    return b < in->bins ? b : in->bins - 1;
+}
+
+/// The mass-weighted mean velocity of each slab (mass[b] 0: none there); returns the least-squares
+/// slope of the slabs' mean u_x against their centres, or NAN with fewer than two slabs in use.
+static double slab_means(const bdl_rheology_input *in, double *mass, bdl_vec3 *mean)
+{
+    for (int b = 0; b < in->bins; ++b) {
+        mass[b] = 0.0;
+        mean[b] = bdl_v3_zero();
+    }
+    for (long i = 0; i < in->count; ++i) {
+        const int b = slab_of(in, in->pos[i].z);
+        if (b < 0)
+            continue;
+        mass[b] += in->mass[i];
+        mean[b] = bdl_v3_madd(mean[b], in->vel[i], in->mass[i]);
+    }
+    double n = 0.0, sz = 0.0, su = 0.0, szz = 0.0, szu = 0.0;
+    const double h = (in->z_hi - in->z_lo) / in->bins;
+    for (int b = 0; b < in->bins; ++b) {
+        if (!(mass[b] > 0.0))
+            continue;
+        mean[b] = bdl_v3_scale(mean[b], 1.0 / mass[b]);
+        const double z = in->z_lo + (b + 0.5) * h;
+        n += 1.0;
+        sz += z;
+        su += mean[b].x;
+        szz += z * z;
+        szu += z * mean[b].x;
+    }
+    const double det = n * szz - sz * sz;
+    return n >= 2.0 && det > 0.0 ? (n * szu - sz * su) / det : NAN;
+}
+
+static void add_outer(double m[3][3], bdl_vec3 a, bdl_vec3 b, double w)
+{
+    const double av[3] = {a.x, a.y, a.z}, bv[3] = {b.x, b.y, b.z};
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            m[r][c] += w * av[r] * bv[c];
+}
+
+/// Streaming sums over the region's particles: sum m v'v', the mass, volume, volume-weighted
+/// diameter and density, and with rods the order tensor.
+typedef struct bulk_sums {
+    long particles;
+    double mass, volume, d_volume, v2, order[3][3];
+} bulk_sums;
+
+static void streaming_sums(const bdl_rheology_input *in, const bdl_vec3 *mean, double kin[3][3],
+                           bulk_sums *s)
+{
+    memset(s, 0, sizeof *s);
+    for (long i = 0; i < in->count; ++i) {
+        const int b = slab_of(in, in->pos[i].z);
+        if (b < 0)
+            continue;
+        const bdl_vec3 v = bdl_v3_sub(in->vel[i], mean[b]);
+        add_outer(kin, v, v, in->mass[i]);
+        s->particles++;
+        s->mass += in->mass[i];
+        s->volume += in->volume[i];
+        s->d_volume += in->diameter[i] * in->volume[i];
+        s->v2 += in->mass[i] * bdl_v3_len2(v);
+        if (in->axis)
+            add_outer(s->order, in->axis[i], in->axis[i], 1.0);
+    }
+}
+
+/// tau from a stress tensor, signed by the shear rate's sense.
+static double shear_of(double m[3][3], double sense) { return -0.5 * (m[0][2] + m[2][0]) * sense; }
+
+static double trace3(double m[3][3]) { return (m[0][0] + m[1][1] + m[2][2]) / 3.0; }
+
+int bdl_rheology_measure(const bdl_rheology_input *in, bdl_rheology_sample *out)
+{
+    memset(out, 0, sizeof *out);
+    set_nan(out);
+    out->particles = 0;
+    if (in->bins < 2 || !(in->z_hi > in->z_lo))
+        return 0;
+    double *mass = malloc((size_t)in->bins * sizeof *mass);
+    bdl_vec3 *mean = malloc((size_t)in->bins * sizeof *mean);
+    if (!mass || !mean) {
+        free(mass);
+        free(mean);
+        return 0;
+    }
+    const double rate = slab_means(in, mass, mean);
+    double kin[3][3] = {{0}}, con[3][3] = {{0}};
+    bulk_sums s;
+    streaming_sums(in, mean, kin, &s);
+    free(mass);
+    free(mean);
+    out->particles = s.particles;
+    if (s.particles < 2 || !isfinite(rate))
+        return 0;
+    for (long c = 0; c < in->contacts; ++c) {
+        const double w = 0.5 * ((slab_of(in, in->pos[in->ci[c]].z) >= 0) +
+                                (slab_of(in, in->pos[in->cj[c]].z) >= 0));
+        if (w > 0.0)
+            add_outer(con, in->branch[c], in->force[c], w);
+    }
+    const double volume = in->x_length * in->y_length * (in->z_hi - in->z_lo);
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+            out->streaming[a][b] = kin[a][b] / volume;
+            out->contact[a][b] = con[a][b] / volume;
+            out->stress[a][b] = out->streaming[a][b] + out->contact[a][b];
+        }
+    const double sense = rate < 0.0 ? -1.0 : 1.0;
+    out->solids_fraction = s.volume / volume;
+    out->shear_rate = rate;
+    out->temperature = s.v2 / (3.0 * s.mass);
+    out->pressure = trace3(out->stress);
+    out->pressure_streaming = trace3(out->streaming);
+    out->pressure_contact = trace3(out->contact);
+    out->shear_stress = shear_of(out->stress, sense);
+    out->shear_streaming = shear_of(out->streaming, sense);
+    out->shear_contact = shear_of(out->contact, sense);
+    out->n1 = out->stress[0][0] - out->stress[2][2];
+    out->n2 = out->stress[2][2] - out->stress[1][1];
+    out->friction = out->shear_stress / out->pressure;
+    const double d = s.d_volume / s.volume, rho = s.mass / s.volume;
+    out->diameter = d;
+    out->density = rho;
+    out->inertial_number = fabs(rate) * d * sqrt(rho / out->pressure);
+    if (in->axis)
+        out->alignment =
+            0.5 * atan2(2.0 * s.order[0][2], s.order[0][0] - s.order[2][2]) * 180.0 / pi;
+    return 1;
+}
+
+bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, double g)
+{
+    bdl_lun_state s;
+    const double eta = 0.5 * (1.0 + e);
+    s.g0 = (1.0 - 0.5 * nu) / ((1.0 - nu) * (1.0 - nu) * (1.0 - nu));
+    const double a = 1.6 * eta * nu * s.g0;
+    const double f = (1.0 + a) * (1.0 + a * (3.0 * eta - 2.0)) / (eta * (2.0 - eta) * s.g0) +
+                     768.0 / (25.0 * pi) * eta * nu * nu * s.g0;
+    // Production tau g = mu g^2 balances the dissipation (48/sqrt(pi)) eta (1 - eta) rho nu^2 g0
+    // T^(3/2) / d, with mu = (5/96) rho d sqrt(pi T) F.
+    s.temperature = 5.0 * pi / 4608.0 * f * d * d * g * g / (eta * (1.0 - eta) * nu * nu * s.g0);
+    s.pressure = rho * nu * s.temperature * (1.0 + 4.0 * eta * nu * s.g0);
+    s.shear_stress = 5.0 / 96.0 * rho * d * sqrt(pi * s.temperature) * f * fabs(g);
+    return s;
+}

@@ -1,0 +1,70 @@
+// bedlam — the stress of a sheared granular bulk from its particles (Mahajan 2019, §5.2; the
+// standard micro-mechanical average, e.g. Campbell 1989):
+//
+//     sigma = (1/V) [ sum_i m_i v'_i v'_i  +  sum_contacts w_c r_ij F_ij ]
+//
+// streaming plus contact part, positive in compression. V is the bulk region: the box's x and y
+// extent between z_lo and z_hi (away from driving walls). v' = v - <v>(bin) is the velocity less
+// the mass-weighted mean of its slab among `bins` equal slabs of z across the region; r_ij the
+// separation x_i - x_j of the centres (to the partner's periodic image), F_ij the force on i from
+// j. A contact counts 1/2 for each of its particles whose centre lies in the region.
+//
+// From it, with shear along x and the gradient along z (u_x = shear_rate z):
+//   shear_rate   the least-squares slope of the slabs' mean u_x against their centres' z;
+//   temperature  T = <|v'|^2>/3 (mass-weighted);
+//   pressure     p = tr(sigma)/3; shear stress tau = -(sigma_xz + sigma_zx)/2, signed so that it
+//                is positive when it resists the shear rate's sense (tau sign(shear_rate));
+//   N1 = sigma_xx - sigma_zz, N2 = sigma_zz - sigma_yy; mu = tau / p;
+//   inertial number I = |shear_rate| d sqrt(rho_p / p) (d, rho_p: volume-weighted means);
+//   with rods the flow-alignment angle 0.5 atan2(2 S_xz, S_xx - S_zz) of the order tensor
+//   S = <u u> [deg] (Mahajan 2019, §5.2).
+// Sums run in index order, so the result does not depend on the thread count.
+#ifndef BDL_RHEOLOGY_H
+#define BDL_RHEOLOGY_H
+
+#include "core/vec3.h"
+
+/// One instant of a bulk: its particles and the forces of its contacts, borrowed.
+typedef struct bdl_rheology_input {
+    long count;
+    const bdl_vec3 *pos, *vel; ///< [m], [m/s]
+    const double *mass;        ///< [kg]
+    const double *volume;      ///< [m^3]
+    const double *diameter;    ///< sphere, or volume-equivalent sphere, diameter [m]
+    const bdl_vec3 *axis;      ///< rods: unit axes (NULL for spheres)
+    long contacts;
+    const long *ci, *cj;       ///< the two particles of each contact
+    const bdl_vec3 *branch;    ///< x_i - x_j [m]
+    const bdl_vec3 *force;     ///< on i from j [N]
+    double x_length, y_length; ///< the box's extent across the flow [m]
+    double z_lo, z_hi;         ///< the bulk region [m]
+    int bins;                  ///< slabs of the mean velocity (>= 2)
+} bdl_rheology_input;
+
+typedef struct bdl_rheology_sample {
+    long particles;                        ///< centres in the region
+    double solids_fraction;                ///< their volume over V
+    double shear_rate;                     ///< [1/s]
+    double temperature;                    ///< [m^2/s^2]
+    double stress[3][3];                   ///< total [Pa]
+    double streaming[3][3], contact[3][3]; ///< its parts [Pa]
+    double pressure, shear_stress, n1, n2, friction, inertial_number;
+    double pressure_streaming, pressure_contact, shear_streaming, shear_contact;
+    double alignment;         ///< rods [deg]; NAN for spheres
+    double diameter, density; ///< volume-weighted means of the region's particles [m], [kg/m^3]
+} bdl_rheology_sample;
+
+/// The sample of one instant (above). Returns 0, with the sample's values NAN, when the region
+/// holds fewer than two particles or its slabs fewer than two with particles.
+int bdl_rheology_measure(const bdl_rheology_input *in, bdl_rheology_sample *out);
+
+/// Kinetic theory of Lun et al. (1984) for steady simple shear of smooth inelastic spheres
+/// (diameter d, density rho, restitution e, solids fraction nu, shear rate g): the granular
+/// temperature T, pressure p and shear stress tau from the balance of production and
+/// dissipation (Carnahan–Starling g0; eta = (1 + e)/2).
+typedef struct bdl_lun_state {
+    double g0, temperature, pressure, shear_stress;
+} bdl_lun_state;
+bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, double g);
+
+#endif

@@ -1,0 +1,185 @@
+// bedlam analyze rheology — the shear cell's rheology over a sweep of runs: each run's
+// rheology.csv averaged over its steady part (analysis/series.h), with the standard error of the
+// average from block means, and with --restitution the kinetic theory of Lun et al. (1984) for
+// smooth spheres beside it (analysis/rheology.h).
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis/rheology.h"
+#include "analysis/series.h"
+#include "app/analyze.h"
+#include "app/analyze_files.h"
+#include "core/file.h"
+
+/// The columns of rheology.csv averaged.
+enum { C_NU, C_RATE, C_T, C_P, C_TAU, C_MU, C_I, C_N1, C_N2, C_ALIGN, C_D, C_RHO, C_COUNT };
+static const char *const column_names[C_COUNT] = {
+    "solids_fraction", "shear_rate", "temperature", "pressure",  "shear_stress", "friction",
+    "inertial_number", "n1",         "n2",          "alignment", "diameter",     "density"};
+
+/// One run averaged: the mean and standard error of each column, the window and the rows.
+typedef struct run_mean {
+    double mean[C_COUNT], se[C_COUNT];
+    double from, to;
+    long rows;
+} run_mean;
+
+/// The start of the steady part when --from is not given: a shear strain of 10 (the mean shear
+/// rate of the second half of the series), but no later than three quarters of the series.
+static double steady_from(const double *t, const double *rate, long n)
+{
+    if (n < 2)
+        return t[0];
+    const bdl_sample_stats s = bdl_sample_stats_in(t, rate, n, 0.5 * (t[0] + t[n - 1]), t[n - 1]);
+    const double t10 = fabs(s.mean) > 0.0 ? t[0] + 10.0 / fabs(s.mean) : t[0];
+    return fmin(t10, t[0] + 0.75 * (t[n - 1] - t[0]));
+}
+
+/// Reads and averages RUN/rheology.csv; 0 after an error message.
+static int average_run(const char *run, const bdl_analyze_opts *o, run_mean *m)
+{
+    double *t = NULL, *x[C_COUNT] = {NULL};
+    long n = 0, rows = 0;
+    int ok = 1;
+    for (int c = 0; c < C_COUNT && ok; ++c) {
+        free(t);
+        t = NULL;
+        ok = bdl_analyze_read_series(run, "rheology.csv", column_names[c], &t, &x[c], &rows);
+        ok = ok && (c == 0 || rows == n);
+        n = rows;
+    }
+    if (ok) {
+        m->from = isfinite(o->from) ? o->from : steady_from(t, x[C_RATE], n);
+        m->to = o->to;
+        for (int c = 0; c < C_COUNT; ++c) {
+            const bdl_block_mean b = bdl_block_mean_in(t, x[c], n, m->from, m->to, 10);
+            m->mean[c] = b.samples.mean;
+            m->se[c] = b.standard_error;
+            m->rows = c == C_P ? b.samples.count : m->rows;
+        }
+        m->to = fmin(m->to, t[n - 1]);
+    }
+    free(t);
+    for (int c = 0; c < C_COUNT; ++c)
+        free(x[c]);
+    if (ok && m->rows < 10) {
+        fprintf(stderr, "error: %s/rheology.csv: %ld rows from %g s; at least 10 are needed\n", run,
+                m->rows, m->from);
+        return 0;
+    }
+    return ok;
+}
+
+/// Lun et al. at the run's solids fraction and shear rate (their T from the energy balance), and
+/// their pressure and shear stress at the run's own temperature (the constitutive relations
+/// alone): p = rho nu T (1 + 4 eta nu g0), tau = (5/96) rho d sqrt(pi T) F |rate|.
+typedef struct lun_beside {
+    bdl_lun_state at_rate;
+    double p_at_t, tau_at_t;
+} lun_beside;
+
+static lun_beside lun_of(const run_mean *m, double e)
+{
+    lun_beside l;
+    const double nu = m->mean[C_NU], d = m->mean[C_D], rho = m->mean[C_RHO];
+    l.at_rate = bdl_lun_simple_shear(nu, e, d, rho, m->mean[C_RATE]);
+    // The relations scale with sqrt(T) (tau) and T (p): rescale the balance's state to the run's T.
+    const double r = m->mean[C_T] / l.at_rate.temperature;
+    l.p_at_t = l.at_rate.pressure * r;
+    l.tau_at_t = l.at_rate.shear_stress * sqrt(r);
+    return l;
+}
+
+static const char header[] =
+    "run,rows,from,to,solids_fraction,shear_rate,temperature,temperature_se,pressure,pressure_se,"
+    "shear_stress,shear_stress_se,friction,friction_se,inertial_number,n1,n2,alignment,"
+    "pressure_scaled,shear_stress_scaled,lun_temperature,lun_pressure,lun_shear_stress,"
+    "lun_pressure_at_temperature,lun_shear_stress_at_temperature";
+
+static void write_row(FILE *f, const char *run, const run_mean *m, double e)
+{
+    const double *v = m->mean, *se = m->se;
+    const double scale = v[C_RHO] * v[C_D] * v[C_D] * v[C_RATE] * v[C_RATE];
+    fprintf(
+        f,
+        "%s,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.3g,%.6g,%.3g,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g,"
+        "%.6g,%.6g",
+        run, m->rows, m->from, m->to, v[C_NU], v[C_RATE], v[C_T], se[C_T], v[C_P], se[C_P],
+        v[C_TAU], se[C_TAU], v[C_MU], se[C_MU], v[C_I], v[C_N1], v[C_N2], v[C_ALIGN],
+        v[C_P] / scale, v[C_TAU] / scale);
+    if (isnan(e)) {
+        fprintf(f, ",nan,nan,nan,nan,nan\n");
+        return;
+    }
+    const lun_beside l = lun_of(m, e);
+    fprintf(f, ",%.6g,%.6g,%.6g,%.6g,%.6g\n", l.at_rate.temperature, l.at_rate.pressure,
+            l.at_rate.shear_stress, l.p_at_t, l.tau_at_t);
+}
+
+static void print_row(const char *run, const run_mean *m, double e)
+{
+    const double *v = m->mean, *se = m->se;
+    printf("%s: %ld rows, %.3g-%.3g s: nu %.4f  rate %.4g/s  T %.4g  p %.4g +- %.2g Pa  "
+           "tau %.4g +- %.2g Pa  mu %.3f  I %.3g  N1/p %.3f  N2/p %.3f\n",
+           run, m->rows, m->from, m->to, v[C_NU], v[C_RATE], v[C_T], v[C_P], se[C_P], v[C_TAU],
+           se[C_TAU], v[C_MU], v[C_I], v[C_N1] / v[C_P], v[C_N2] / v[C_P]);
+    if (isnan(e))
+        return;
+    const lun_beside l = lun_of(m, e);
+    printf("  Lun et al. (e = %g): T %.4g  p %.4g  tau %.4g  -> T %.3f  p %.3f  tau %.3f of "
+           "theirs; at the run's T: p %.3f  tau %.3f\n",
+           e, l.at_rate.temperature, l.at_rate.pressure, l.at_rate.shear_stress,
+           v[C_T] / l.at_rate.temperature, v[C_P] / l.at_rate.pressure,
+           v[C_TAU] / l.at_rate.shear_stress, v[C_P] / l.p_at_t, v[C_TAU] / l.tau_at_t);
+}
+
+static void plot_rheology(const bdl_analyze_opts *o)
+{
+    char path[1300];
+    snprintf(path, sizeof path, "%s/rheology.gp", o->out);
+    const int lun = !isnan(o->restitution);
+    bdl_analyze_plot(
+        path,
+        "set terminal pngcairo size 900,550 font 'DejaVu Sans,11'\n"
+        "set output '%s/rheology.png'\nset datafile separator ','\n"
+        "set xlabel 'solids fraction'\nset ylabel 'stress / (rho d^2 shear rate^2)'\n"
+        "set logscale y\nset grid\nset key top left\n"
+        "plot '%s/rheology.csv' every ::1 using 5:19 with points pt 7 ps 1.4 lc rgb '#3060c0' "
+        "title 'pressure', '' every ::1 using 5:20 with points pt 5 ps 1.4 lc rgb '#c03030' "
+        "title 'shear stress'%s\n",
+        o->out, o->out,
+        lun ? ", '' every ::1 using 5:($22*$19/$9) with linespoints dt 2 pt 6 lc rgb '#3060c0' "
+              "title 'Lun et al. (1984)', '' every ::1 using 5:($23*$20/$11) with linespoints dt 2 "
+              "pt 4 lc rgb '#c03030' title 'Lun et al. (1984)'"
+            : "");
+}
+
+bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
+{
+    if (!isnan(o->restitution) && !(o->restitution > 0.0 && o->restitution <= 1.0)) {
+        fprintf(stderr, "error: --restitution %g: must lie in (0, 1]\n", o->restitution);
+        return BDL_ERR_ARGS;
+    }
+    char path[1300];
+    snprintf(path, sizeof path, "%s/rheology.csv", o->out);
+    bdl_atomic_file af;
+    if (bdl_atomic_open_csv(&af, path, header) != BDL_OK)
+        return BDL_ERR_OUTPUT_DIR;
+    for (int r = 0; r < o->run_count; ++r) {
+        run_mean m;
+        if (!average_run(o->runs[r], o, &m)) {
+            bdl_atomic_abort(&af);
+            return BDL_ERR_ARGS;
+        }
+        write_row(af.file, o->runs[r], &m, o->restitution);
+        print_row(o->runs[r], &m, o->restitution);
+    }
+    bdl_result rc = bdl_atomic_commit(&af);
+    if (rc == BDL_OK && o->plots)
+        plot_rheology(o);
+    if (rc == BDL_OK)
+        printf("wrote %s\n", path);
+    return rc;
+}
