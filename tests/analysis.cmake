@@ -4,6 +4,7 @@ bdl_add_test(test_analysis SOURCES test_analysis.c LABELS analysis)
 bdl_add_test(test_series SOURCES test_series.c LABELS analysis)
 bdl_add_test(test_rod_angles SOURCES test_rod_angles.c LABELS analysis)
 bdl_add_test(test_fields SOURCES test_fields.c LABELS analysis)
+bdl_add_test(test_rheology SOURCES test_rheology.c LABELS analysis)
 add_test(NAME cli_sweep COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/sweep.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/sweep_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sweep_cli.cmake)

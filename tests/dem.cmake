@@ -36,3 +36,6 @@ bdl_add_test(test_drum SOURCES test_drum.c LABELS "dem;slow" TIMEOUT 1800)
 # Janssen's silo: the floor's load saturates with the fill height, as Janssen's formula says
 # for the K and the wall friction the beds mobilise.
 bdl_add_test(test_janssen SOURCES test_janssen.c LABELS "dem;slow" TIMEOUT 1800)
+# The shear cell's boundaries: Lees-Edwards images (separations, velocities, lists against a brute
+# force, the shear profile through the faces, a collision across a face) and a repeating plate.
+bdl_add_test(test_shear_cell SOURCES test_shear_cell.c LABELS dem TIMEOUT 300)

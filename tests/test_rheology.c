@@ -1,0 +1,141 @@
+// The bulk stress of a shear cell (analysis/rheology.h) on constructed particles and contacts with
+// known sums, and the kinetic theory of Lun et al. (1984) against identities it must satisfy.
+#include <math.h>
+#include <stdio.h>
+
+#include "analysis/rheology.h"
+#include "check.h"
+
+static const double pi = 3.14159265358979323846;
+
+/// Eight particles, two in each of four slabs of a 0.1 x 0.05 x 0.04 m region, on the profile
+/// u_x = 50 z plus fluctuations (+-a, 0, +-c); a ninth above the region. Two contacts: one inside,
+/// one with the particle outside (counted half).
+static void test_stress(void)
+{
+    enum { N = 9 };
+    bdl_vec3 pos[N], vel[N], axis[N];
+    double mass[N], volume[N], diameter[N];
+    const double a = 0.3, c = -0.2, rate = 50.0;
+    for (int k = 0; k < 8; ++k) {
+        const int slab = k / 2, sign = k % 2 ? -1 : 1;
+        const double z = 0.005 + 0.01 * slab;
+        pos[k] = bdl_v3(0.01 * k, 0.02, z);
+        vel[k] = bdl_v3(rate * z + sign * a, 0.0, sign * c);
+        mass[k] = 0.002;
+        volume[k] = 1e-6;
+        diameter[k] = 0.0124;
+        axis[k] = bdl_v3(cos(20.0 * pi / 180.0), 0.0, sin(20.0 * pi / 180.0));
+    }
+    pos[8] = bdl_v3(0.05, 0.02, 0.045);
+    vel[8] = bdl_v3(5.0, 5.0, 5.0);
+    mass[8] = 1.0, volume[8] = 1.0, diameter[8] = 1.0, axis[8] = bdl_v3(0, 0, 1);
+    const long ci[2] = {0, 1}, cj[2] = {2, 8};
+    const bdl_vec3 branch[2] = {bdl_v3(0.001, 0.0, 0.004), bdl_v3(0.0, 0.0, -0.005)};
+    const bdl_vec3 force[2] = {bdl_v3(2.0, 0.5, 8.0), bdl_v3(0.0, 0.0, -3.0)};
+    bdl_rheology_input in = {.count = N,
+                             .pos = pos,
+                             .vel = vel,
+                             .mass = mass,
+                             .volume = volume,
+                             .diameter = diameter,
+                             .axis = axis,
+                             .contacts = 2,
+                             .ci = ci,
+                             .cj = cj,
+                             .branch = branch,
+                             .force = force,
+                             .x_length = 0.1,
+                             .y_length = 0.05,
+                             .z_lo = 0.0,
+                             .z_hi = 0.04,
+                             .bins = 4};
+    bdl_rheology_sample s;
+    CHECK(bdl_rheology_measure(&in, &s) == 1);
+    const double V = 0.1 * 0.05 * 0.04, m = 0.002;
+    CHECK(s.particles == 8);
+    CHECK_CLOSE(s.shear_rate, rate, 1e-12);
+    CHECK_CLOSE(s.solids_fraction, 8e-6 / V, 1e-12);
+    CHECK_CLOSE(s.temperature, (a * a + c * c) / 3.0, 1e-12);
+    CHECK_CLOSE(s.streaming[0][0], 8 * m * a * a / V, 1e-12);
+    CHECK_CLOSE(s.streaming[2][2], 8 * m * c * c / V, 1e-12);
+    CHECK_CLOSE(s.streaming[0][2], 8 * m * a * c / V, 1e-12);
+    CHECK(fabs(s.streaming[1][1]) < 1e-15);
+    // contact: b1 f1 + b2 f2 / 2
+    CHECK_CLOSE(s.contact[0][0], 0.001 * 2.0 / V, 1e-12);
+    CHECK_CLOSE(s.contact[0][1], 0.001 * 0.5 / V, 1e-12);
+    CHECK_CLOSE(s.contact[2][0], 0.004 * 2.0 / V, 1e-12);
+    CHECK_CLOSE(s.contact[0][2], 0.001 * 8.0 / V, 1e-12);
+    CHECK_CLOSE(s.contact[2][2], (0.004 * 8.0 + 0.5 * 0.005 * 3.0) / V, 1e-12);
+    const double p_stream = 8 * m * (a * a + c * c) / (3 * V);
+    const double p_contact = (0.001 * 2.0 + 0.004 * 8.0 + 0.5 * 0.015) / (3 * V);
+    CHECK_CLOSE(s.pressure_streaming, p_stream, 1e-12);
+    CHECK_CLOSE(s.pressure_contact, p_contact, 1e-12);
+    CHECK_CLOSE(s.pressure, p_stream + p_contact, 1e-12);
+    // tau = -(s_xz + s_zx)/2: streaming -8 m a c / V, contact -(0.008 + 0.008)/(2 V)
+    CHECK_CLOSE(s.shear_streaming, -8 * m * a * c / V, 1e-12);
+    CHECK_CLOSE(s.shear_contact, -(0.008 + 0.008) / (2 * V), 1e-12);
+    CHECK_CLOSE(s.friction, s.shear_stress / s.pressure, 1e-12);
+    CHECK_CLOSE(s.n1, s.stress[0][0] - s.stress[2][2], 1e-12);
+    CHECK_CLOSE(s.n2, s.stress[2][2] - s.stress[1][1], 1e-12);
+    CHECK_CLOSE(s.diameter, 0.0124, 1e-12);
+    CHECK_CLOSE(s.density, m / 1e-6, 1e-12);
+    CHECK_CLOSE(s.inertial_number, rate * 0.0124 * sqrt(2000.0 / s.pressure), 1e-12);
+    CHECK_CLOSE(s.alignment, 20.0, 1e-9);
+    // The same flow the other way round: the shear stress keeps its sign (it resists the shear).
+    for (int k = 0; k < 8; ++k)
+        vel[k].x = -vel[k].x;
+    bdl_rheology_sample r;
+    CHECK(bdl_rheology_measure(&in, &r) == 1);
+    CHECK_CLOSE(r.shear_rate, -rate, 1e-12);
+    CHECK_CLOSE(r.shear_streaming, s.shear_streaming, 1e-12);
+    // Too few particles in the region: no sample.
+    in.z_lo = 0.041;
+    in.z_hi = 0.044;
+    CHECK(bdl_rheology_measure(&in, &r) == 0 && isnan(r.pressure));
+    printf("stress of the constructed bulk: p %.6g Pa (streaming %.6g, contact %.6g), tau %.6g Pa, "
+           "T %.6g, alignment %.3f deg\n",
+           s.pressure, s.pressure_streaming, s.pressure_contact, s.shear_stress, s.temperature,
+           s.alignment);
+}
+
+/// Lun et al.'s simple shear: the Carnahan–Starling equation of state when elastic, production
+/// balancing dissipation, the dilute limit, and a value at nu = 0.3, e = 0.7.
+static void test_lun(void)
+{
+    const double d = 0.0053, rho = 1395.0, g = 100.0;
+    for (double nu = 0.05; nu < 0.55; nu += 0.1) {
+        const bdl_lun_state s = bdl_lun_simple_shear(nu, 0.9, d, rho, g);
+        // at any e, the pressure's collisional factor with e = 1 is Carnahan–Starling's
+        const double cs = (1 + nu + nu * nu - nu * nu * nu) / pow(1 - nu, 3);
+        CHECK_CLOSE(1.0 + 4.0 * nu * s.g0, cs, 1e-12);
+        // tau g = (48/sqrt(pi)) eta (1 - eta) rho nu^2 g0 T^1.5 / d, eta = 0.95
+        const double gamma = 48.0 / sqrt(pi) * 0.95 * 0.05 * rho * nu * nu * s.g0 *
+                             pow(s.temperature, 1.5) / d;
+        CHECK_CLOSE(s.shear_stress * g, gamma, 1e-12);
+    }
+    // Dilute: tau -> (5 sqrt(pi)/96) rho d sqrt(T) g / (eta (2 - eta)).
+    const bdl_lun_state dilute = bdl_lun_simple_shear(1e-7, 0.7, d, rho, g);
+    CHECK_CLOSE(dilute.shear_stress,
+                5.0 * sqrt(pi) / 96.0 * rho * d * sqrt(dilute.temperature) * g / (0.85 * 1.15),
+                1e-5);
+    // Bagnold: stresses scale with the shear rate squared.
+    const bdl_lun_state a = bdl_lun_simple_shear(0.3, 0.7, d, rho, g);
+    const bdl_lun_state b = bdl_lun_simple_shear(0.3, 0.7, d, rho, 3.0 * g);
+    CHECK_CLOSE(b.pressure, 9.0 * a.pressure, 1e-12);
+    CHECK_CLOSE(b.shear_stress, 9.0 * a.shear_stress, 1e-12);
+    // nu = 0.3, e = 0.7, d = 5.3 mm, rho = 1395, 100/s (evaluated by hand from the formulas)
+    CHECK_CLOSE(a.g0, 2.4781341107871726, 1e-12);
+    CHECK_CLOSE(a.temperature, 0.10592377661895562, 1e-10);
+    CHECK_CLOSE(a.pressure, 156.37962572358558, 1e-10);
+    CHECK_CLOSE(a.shear_stress, 69.87668990708289, 1e-10);
+    printf("Lun et al. at nu 0.3, e 0.7, 100/s: T %.6g, p %.6g Pa, tau %.6g Pa\n", a.temperature,
+           a.pressure, a.shear_stress);
+}
+
+int main(void)
+{
+    test_stress();
+    test_lun();
+    return bdl_test_summary("test_rheology");
+}
