@@ -110,8 +110,8 @@ static void test_lun(void)
         const double cs = (1 + nu + nu * nu - nu * nu * nu) / pow(1 - nu, 3);
         CHECK_CLOSE(1.0 + 4.0 * nu * s.g0, cs, 1e-12);
         // tau g = (48/sqrt(pi)) eta (1 - eta) rho nu^2 g0 T^1.5 / d, eta = 0.95
-        const double gamma = 48.0 / sqrt(pi) * 0.95 * 0.05 * rho * nu * nu * s.g0 *
-                             pow(s.temperature, 1.5) / d;
+        const double gamma =
+            48.0 / sqrt(pi) * 0.95 * 0.05 * rho * nu * nu * s.g0 * pow(s.temperature, 1.5) / d;
         CHECK_CLOSE(s.shear_stress * g, gamma, 1e-12);
     }
     // Dilute: tau -> (5 sqrt(pi)/96) rho d sqrt(T) g / (eta (2 - eta)).
@@ -133,9 +133,30 @@ static void test_lun(void)
            a.pressure, a.shear_stress);
 }
 
+/// The jamming fit recovers nu_cr and A from points on the law, and from points with noise.
+static void test_jamming(void)
+{
+    const double nu[5] = {0.3, 0.4, 0.5, 0.55, 0.57};
+    double y[5], cr, a;
+    for (int k = 0; k < 5; ++k)
+        y[k] = 0.02 * pow(0.59 - nu[k], -4.0);
+    double r = bdl_rheology_fit_jamming(nu, y, 5, 4.0, &cr, &a);
+    CHECK_CLOSE(cr, 0.59, 1e-6);
+    CHECK_CLOSE(a, 0.02, 1e-4);
+    CHECK(r < 1e-6);
+    const double noise[5] = {1.05, 0.96, 1.03, 0.98, 1.02};
+    for (int k = 0; k < 5; ++k)
+        y[k] *= noise[k];
+    r = bdl_rheology_fit_jamming(nu, y, 5, 4.0, &cr, &a);
+    printf("jamming fit with 5 %% noise: nu_cr %.4f (0.59), A %.4f (0.02), rms %.3f\n", cr, a, r);
+    CHECK(fabs(cr - 0.59) < 0.005);
+    CHECK(isnan(bdl_rheology_fit_jamming(nu, y, 2, 4.0, &cr, &a))); // too few points
+}
+
 int main(void)
 {
     test_stress();
     test_lun();
+    test_jamming();
     return bdl_test_summary("test_rheology");
 }

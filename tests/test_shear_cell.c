@@ -18,8 +18,8 @@ static void test_images(void)
 {
     bdl_neighbor nb;
     const int periodic[3] = {1, 1, 1};
-    CHECK(bdl_neighbor_init(&nb, bdl_v3(0, 0, 0), bdl_v3(0.06, 0.04, 0.05), periodic, 0.005,
-                            0.0005, 100, 0, 0, 0, 0) == BDL_OK);
+    CHECK(bdl_neighbor_init(&nb, bdl_v3(0, 0, 0), bdl_v3(0.06, 0.04, 0.05), periodic, 0.005, 0.0005,
+                            100, 0, 0, 0, 0) == BDL_OK);
     bdl_neighbor_set_shear(&nb, 20.0, 0.02); // U = 1 m/s, travel 0.02 m
     CHECK_CLOSE(nb.shear_velocity, 1.0, 1e-15);
     CHECK_CLOSE(nb.shear_shift, 0.02, 1e-12);
@@ -109,8 +109,8 @@ static void test_profile(void)
         CHECK(bdl_world_step(w) == BDL_OK);
         const bdl_particles *p = &w->particles;
         for (long i = 0; i < p->count; ++i)
-            worst = fmax(worst, fabs(p->vel[i].x - rate * (p->pos[i].z - middle) +
-                                     rate * 0.3 * w->time));
+            worst = fmax(worst,
+                         fabs(p->vel[i].x - rate * (p->pos[i].z - middle) + rate * 0.3 * w->time));
     }
     crossings = w->neighbor.builds;
     printf("profile: %ld beads, %ld list builds over %.3g s, worst |v_x - profile| %.3g m/s\n",
@@ -162,15 +162,16 @@ static collision collide(int sheared)
             c.normal = bdl_v3_normalize(d);
         }
         // B (or its image) less A
-        rel = bdl_v3_sub(bdl_v3_add(p->vel[b], bdl_neighbor_image_velocity(&w->neighbor,
-                                                                           p->pos[a], p->pos[b])),
-                         p->vel[a]);
+        rel = bdl_v3_sub(
+            bdl_v3_add(p->vel[b], bdl_neighbor_image_velocity(&w->neighbor, p->pos[a], p->pos[b])),
+            p->vel[a]);
     }
     CHECK(touched);
     const bdl_vec3 v0 = bdl_v3(0.0, 0.0, -0.4), n = c.normal;
     const double vn0 = bdl_v3_dot(v0, n), vn1 = bdl_v3_dot(rel, n);
     c.normal_ratio = -vn1 / vn0;
-    c.tangential_ratio = bdl_v3_len(bdl_v3_madd(rel, n, -vn1)) / bdl_v3_len(bdl_v3_madd(v0, n, -vn0));
+    c.tangential_ratio =
+        bdl_v3_len(bdl_v3_madd(rel, n, -vn1)) / bdl_v3_len(bdl_v3_madd(v0, n, -vn0));
     const bdl_vec3 momentum = bdl_v3_scale(bdl_v3_add(p->vel[0], p->vel[1]), m);
     c.momentum_jumps = sheared ? (momentum.x - momentum0.x) / (m * u) : momentum.x - momentum0.x;
     c.momentum_z = (momentum.z - momentum0.z) / m;
@@ -191,7 +192,7 @@ static void test_collision(void)
     CHECK(bdl_v3_len(bdl_v3_sub(s.normal, r.normal)) < 1e-6);
     CHECK_CLOSE(s.normal_ratio, r.normal_ratio, 1e-6);
     CHECK_CLOSE(s.tangential_ratio, r.tangential_ratio, 1e-6);
-    CHECK_CLOSE(r.normal_ratio, 0.5, 0.15); // the law's own (its force never pulls)
+    CHECK_CLOSE(r.normal_ratio, 0.5, 0.15);     // the law's own (its force never pulls)
     CHECK_CLOSE(r.tangential_ratio, 1.0, 0.01); // frictionless
     // Lab momentum kept, unless a bead went through a face (then by m U exactly).
     CHECK(fabs(s.momentum_jumps - round(s.momentum_jumps)) < 1e-9 && fabs(s.momentum_z) < 1e-12);

@@ -173,3 +173,59 @@ bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, do
     s.shear_stress = 5.0 / 96.0 * rho * d * sqrt(pi * s.temperature) * f * fabs(g);
     return s;
 }
+
+/// The residual of log y = log A - exponent log(nu_cr - nu) for one nu_cr, with log A its best.
+static double jamming_residual(const double *nu, const double *y, int n, double exponent,
+                               double nu_cr, double *log_a)
+{
+    double mean = 0.0;
+    for (int k = 0; k < n; ++k)
+        mean += log(y[k]) + exponent * log(nu_cr - nu[k]);
+    mean /= n;
+    double r = 0.0;
+    for (int k = 0; k < n; ++k) {
+        const double e = log(y[k]) + exponent * log(nu_cr - nu[k]) - mean;
+        r += e * e;
+    }
+    *log_a = mean;
+    return sqrt(r / n);
+}
+
+double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double exponent,
+                                double *nu_cr, double *a)
+{
+    *nu_cr = *a = NAN;
+    double top = -INFINITY;
+    for (int k = 0; k < n; ++k) {
+        if (!(y[k] > 0.0) || !isfinite(nu[k]))
+            return NAN;
+        top = fmax(top, nu[k]);
+    }
+    if (n < 3)
+        return NAN;
+    // A scan of nu_cr over (top, top + 1] on a geometric grid of its distance from top, then
+    // golden-section refinement around the best.
+    double best = INFINITY, at = NAN, log_a;
+    for (int k = 0; k <= 400; ++k) {
+        const double x = top + 1e-4 * pow(1e4, k / 400.0);
+        const double r = jamming_residual(nu, y, n, exponent, x, &log_a);
+        if (r < best) {
+            best = r;
+            at = x;
+        }
+    }
+    double lo = top + (at - top) / 1.03, hi = top + (at - top) * 1.03;
+    const double g = 0.5 * (sqrt(5.0) - 1.0);
+    for (int it = 0; it < 100; ++it) {
+        const double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+        if (jamming_residual(nu, y, n, exponent, x1, &log_a) <
+            jamming_residual(nu, y, n, exponent, x2, &log_a))
+            hi = x2;
+        else
+            lo = x1;
+    }
+    *nu_cr = 0.5 * (lo + hi);
+    const double r = jamming_residual(nu, y, n, exponent, *nu_cr, &log_a);
+    *a = exp(log_a);
+    return r;
+}

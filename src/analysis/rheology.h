@@ -67,4 +67,13 @@ typedef struct bdl_lun_state {
 } bdl_lun_state;
 bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, double g);
 
+/// The distance to jamming from a sweep of solids fractions (Chialvo, Sun & Sundaresan 2012;
+/// Mahajan 2019, §6.3): in the inertial regime the contact pressure scaled by rho d^2 (shear
+/// rate)^2 grows as y = A (nu_cr - nu)^-exponent (4 for AR-4 rods, from the thesis's a1 = 2/3 and
+/// b1 = 7/3: 2 b1 - a1; 2 for spheres). Least squares on log y over the n points (nu_cr searched
+/// above the largest nu, log A solved for each); returns the root-mean-square residual of log y,
+/// or NAN with fewer than three points or a y that is not positive.
+double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double exponent,
+                                double *nu_cr, double *a);
+
 #endif

@@ -14,10 +14,27 @@
 #include "core/file.h"
 
 /// The columns of rheology.csv averaged.
-enum { C_NU, C_RATE, C_T, C_P, C_TAU, C_MU, C_I, C_N1, C_N2, C_ALIGN, C_D, C_RHO, C_COUNT };
+enum {
+    C_NU,
+    C_RATE,
+    C_T,
+    C_P,
+    C_TAU,
+    C_MU,
+    C_I,
+    C_N1,
+    C_N2,
+    C_ALIGN,
+    C_D,
+    C_RHO,
+    C_PC,
+    C_TC,
+    C_COUNT
+};
 static const char *const column_names[C_COUNT] = {
-    "solids_fraction", "shear_rate", "temperature", "pressure",  "shear_stress", "friction",
-    "inertial_number", "n1",         "n2",          "alignment", "diameter",     "density"};
+    "solids_fraction",  "shear_rate",   "temperature", "pressure",  "shear_stress", "friction",
+    "inertial_number",  "n1",           "n2",          "alignment", "diameter",     "density",
+    "pressure_contact", "shear_contact"};
 
 /// One run averaged: the mean and standard error of each column, the window and the rows.
 typedef struct run_mean {
@@ -96,7 +113,8 @@ static const char header[] =
     "run,rows,from,to,solids_fraction,shear_rate,temperature,temperature_se,pressure,pressure_se,"
     "shear_stress,shear_stress_se,friction,friction_se,inertial_number,n1,n2,alignment,"
     "pressure_scaled,shear_stress_scaled,lun_temperature,lun_pressure,lun_shear_stress,"
-    "lun_pressure_at_temperature,lun_shear_stress_at_temperature";
+    "lun_pressure_at_temperature,lun_shear_stress_at_temperature,pressure_contact,shear_contact,"
+    "contact_friction,contact_pressure_scaled";
 
 static void write_row(FILE *f, const char *run, const run_mean *m, double e)
 {
@@ -110,21 +128,25 @@ static void write_row(FILE *f, const char *run, const run_mean *m, double e)
         v[C_TAU], se[C_TAU], v[C_MU], se[C_MU], v[C_I], v[C_N1], v[C_N2], v[C_ALIGN],
         v[C_P] / scale, v[C_TAU] / scale);
     if (isnan(e)) {
-        fprintf(f, ",nan,nan,nan,nan,nan\n");
-        return;
+        fprintf(f, ",nan,nan,nan,nan,nan");
+    } else {
+        const lun_beside l = lun_of(m, e);
+        fprintf(f, ",%.6g,%.6g,%.6g,%.6g,%.6g", l.at_rate.temperature, l.at_rate.pressure,
+                l.at_rate.shear_stress, l.p_at_t, l.tau_at_t);
     }
-    const lun_beside l = lun_of(m, e);
-    fprintf(f, ",%.6g,%.6g,%.6g,%.6g,%.6g\n", l.at_rate.temperature, l.at_rate.pressure,
-            l.at_rate.shear_stress, l.p_at_t, l.tau_at_t);
+    fprintf(f, ",%.6g,%.6g,%.6g,%.6g\n", v[C_PC], v[C_TC], v[C_TC] / v[C_PC], v[C_PC] / scale);
 }
 
 static void print_row(const char *run, const run_mean *m, double e)
 {
     const double *v = m->mean, *se = m->se;
     printf("%s: %ld rows, %.3g-%.3g s: nu %.4f  rate %.4g/s  T %.4g  p %.4g +- %.2g Pa  "
-           "tau %.4g +- %.2g Pa  mu %.3f  I %.3g  N1/p %.3f  N2/p %.3f\n",
+           "tau %.4g +- %.2g Pa  mu %.3f  I %.3g  N1/p %.3f  N2/p %.3f  contact mu %.3f",
            run, m->rows, m->from, m->to, v[C_NU], v[C_RATE], v[C_T], v[C_P], se[C_P], v[C_TAU],
-           se[C_TAU], v[C_MU], v[C_I], v[C_N1] / v[C_P], v[C_N2] / v[C_P]);
+           se[C_TAU], v[C_MU], v[C_I], v[C_N1] / v[C_P], v[C_N2] / v[C_P], v[C_TC] / v[C_PC]);
+    if (isfinite(v[C_ALIGN]))
+        printf("  alignment %.1f deg", v[C_ALIGN]);
+    printf("\n");
     if (isnan(e))
         return;
     const lun_beside l = lun_of(m, e);
@@ -156,6 +178,26 @@ static void plot_rheology(const bdl_analyze_opts *o)
             : "");
 }
 
+/// With --jamming: the contact pressure scaled by rho d^2 (shear rate)^2 against the solids
+/// fraction, fitted with A (nu_cr - nu)^-exponent over the runs.
+static void fit_jamming(const bdl_analyze_opts *o, const double *nu, const double *y, int n,
+                        FILE *f)
+{
+    double cr, a;
+    const double r = bdl_rheology_fit_jamming(nu, y, n, o->jamming, &cr, &a);
+    if (isnan(r)) {
+        printf("jamming fit: needs three runs or more with a contact pressure\n");
+        return;
+    }
+    printf("jamming fit over %d runs: p_contact / (rho d^2 rate^2) = %.4g (%.4f - nu)^-%g, rms "
+           "residual of the log %.3f\n",
+           n, a, cr, o->jamming, r);
+    fprintf(f,
+            "# jamming fit over %d runs: p_contact / (rho d^2 rate^2) = %.6g (%.6f - nu)^-%g, "
+            "rms residual of the log %.4f\n",
+            n, a, cr, o->jamming, r);
+}
+
 bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
 {
     if (!isnan(o->restitution) && !(o->restitution > 0.0 && o->restitution <= 1.0)) {
@@ -167,6 +209,7 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
     bdl_atomic_file af;
     if (bdl_atomic_open_csv(&af, path, header) != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
+    double nu[BDL_ANALYZE_RUNS_MAX], y[BDL_ANALYZE_RUNS_MAX];
     for (int r = 0; r < o->run_count; ++r) {
         run_mean m;
         if (!average_run(o->runs[r], o, &m)) {
@@ -175,7 +218,12 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
         }
         write_row(af.file, o->runs[r], &m, o->restitution);
         print_row(o->runs[r], &m, o->restitution);
+        const double *v = m.mean;
+        nu[r] = v[C_NU];
+        y[r] = v[C_PC] / (v[C_RHO] * v[C_D] * v[C_D] * v[C_RATE] * v[C_RATE]);
     }
+    if (o->jamming > 0.0)
+        fit_jamming(o, nu, y, o->run_count, af.file);
     bdl_result rc = bdl_atomic_commit(&af);
     if (rc == BDL_OK && o->plots)
         plot_rheology(o);

@@ -29,7 +29,7 @@ static const char usage_first[] =
     "                                  [--no-plots]\n"
     "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
     "       bedlam analyze rheology RUN [RUN...] [--from T] [--to T] [--restitution E]\n"
-    "                               [--out DIR] [--no-plots]\n"
+    "                               [--jamming X] [--out DIR] [--no-plots]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
     "the run with --file NAME, e.g. --file species.csv).\n"
@@ -126,8 +126,12 @@ static const char usage_third[] =
     "shear stress, mu = tau/p, inertial number, normal-stress differences, rods' alignment, and\n"
     "the stresses over rho d^2 (shear rate)^2. With --restitution E (smooth spheres) the kinetic\n"
     "theory of Lun et al. (1984) at each run's solids fraction and shear rate, and its pressure\n"
-    "and shear stress at the run's own temperature. Writes rheology.csv (one row per run) and\n"
-    "rheology.png into --out (default the first RUN's analysis folder).\n"
+    "and shear stress at the run's own temperature. With --jamming X (3 runs or more): the "
+    "contact\n"
+    "pressure over rho d^2 (shear rate)^2 fitted with A (nu_cr - nu)^-X over the runs, the\n"
+    "distance to jamming (X = 4 for AR-4 rods, 2 for spheres: Chialvo et al. 2012, Mahajan\n"
+    "2019 ch. 6). Writes rheology.csv (one row per run) and rheology.png into --out (default\n"
+    "the first RUN's analysis folder).\n"
     "\n"
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
     "codes: 0 done, 1 the analysis\n"
@@ -157,6 +161,7 @@ static const bdl_option options[] = {
     {"--height", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, height)},
     {"--cell", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, cell)},
     {"--restitution", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, restitution)},
+    {"--jamming", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, jamming)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.

@@ -96,23 +96,32 @@ static void print_shear(const char *what, const bdl_verify_shear *s)
     printf("  %s: nu %.4f, %.4g/s, %ld samples: T %.4g (Lun %.4g), p %.4g Pa (Lun %.4g; at the "
            "run's T %.4g), tau %.4g Pa (Lun %.4g; at the run's T %.4g)\n",
            what, s->solids_fraction, s->shear_rate, s->samples, s->temperature, s->lun_temperature,
-           s->pressure, s->lun_pressure, s->lun_pressure_at_t, s->shear_stress,
-           s->lun_shear_stress, s->lun_shear_stress_at_t);
+           s->pressure, s->lun_pressure, s->lun_pressure_at_t, s->shear_stress, s->lun_shear_stress,
+           s->lun_shear_stress_at_t);
+}
+
+/// A shear cell (e = 0.7, 1 s) scored against Lun et al.: at its solids fraction and shear rate,
+/// or with `at_t` at its own temperature too; the larger of the pressure's and shear stress's
+/// relative errors.
+static bdl_result shear_case(double nu, int walls, int at_t, bdl_verify_result *out)
+{
+    bdl_verify_shear s;
+    const bdl_result r = bdl_verify_shear_cell(nu, 0.7, walls, 1.0, &s);
+    print_shear(walls ? "wall-driven bulk" : "Lees-Edwards", &s);
+    const double p = at_t ? s.lun_pressure_at_t : s.lun_pressure;
+    const double tau = at_t ? s.lun_shear_stress_at_t : s.lun_shear_stress;
+    out->value = s.pressure;
+    out->exact = p;
+    out->error = finite_or_inf(fmax(fabs(s.pressure / p - 1.0), fabs(s.shear_stress / tau - 1.0)));
+    out->steps = s.steps;
+    return r;
 }
 
 // Lees–Edwards shear of frictionless spheres (e = 0.7) at solids fractions 0.2, 0.3, 0.4.
 static bdl_result run_shear_lun(int series, double n, bdl_verify_result *out)
 {
     (void)n;
-    bdl_verify_shear s;
-    const bdl_result r = bdl_verify_shear_cell(0.2 + 0.1 * series, 0.7, 0, 1.0, &s);
-    print_shear("Lees-Edwards", &s);
-    out->value = s.pressure;
-    out->exact = s.lun_pressure;
-    out->error = finite_or_inf(fmax(fabs(s.pressure / s.lun_pressure - 1.0),
-                                    fabs(s.shear_stress / s.lun_shear_stress - 1.0)));
-    out->steps = s.steps;
-    return r;
+    return shear_case(0.2 + 0.1 * series, 0, 0, out);
 }
 
 // The bulk of a wall-driven cell and a Lees–Edwards box at solids fraction 0.2: the constitutive
@@ -120,15 +129,7 @@ static bdl_result run_shear_lun(int series, double n, bdl_verify_result *out)
 static bdl_result run_shear_walls(int series, double n, bdl_verify_result *out)
 {
     (void)n;
-    bdl_verify_shear s;
-    const bdl_result r = bdl_verify_shear_cell(0.2, 0.7, series, 1.0, &s);
-    print_shear(series ? "wall-driven bulk" : "Lees-Edwards", &s);
-    out->value = s.pressure;
-    out->exact = s.lun_pressure_at_t;
-    out->error = finite_or_inf(fmax(fabs(s.pressure / s.lun_pressure_at_t - 1.0),
-                                    fabs(s.shear_stress / s.lun_shear_stress_at_t - 1.0)));
-    out->steps = s.steps;
-    return r;
+    return shear_case(0.2, series, 1, out);
 }
 
 static bdl_result run_column(int series, double n, bdl_verify_result *out)

@@ -80,8 +80,8 @@ bdl_result bdl_verify_shear_cell(double nu, double e, int walls, double t_end,
     if (walls && !mkdtemp(folder))
         return BDL_ERR_IO;
     snprintf(plate, sizeof plate, "%s/plate.obj", folder);
-    bdl_world *w = !walls || write_plate(plate) ? shear_world(nu, e, walls ? plate : NULL, t_end)
-                                                : NULL;
+    bdl_world *w =
+        !walls || write_plate(plate) ? shear_world(nu, e, walls ? plate : NULL, t_end) : NULL;
     if (walls) {
         unlink(plate);
         rmdir(folder);
