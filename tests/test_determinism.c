@@ -149,9 +149,9 @@ static const char *const vessel_text =
     "[create bed]\ntype = random\nspecies = glass\ncount = 400\n"
     "region_min = -0.024 -0.024 0.0015\nregion_max = 0.024 0.024 0.035\n";
 
-// Shear cells: frictional spheres between Lees-Edwards images (springs carried across the z
-// faces, particles passing through them), and between two corrugated plates repeating through
-// the periodic x and y faces as they move.
+// Shear cells: frictional spheres and rods between Lees-Edwards images (springs carried across
+// the z faces, particles passing through them), and spheres between two corrugated plates
+// repeating through the periodic x and y faces as they move.
 static const char *const sheared_text =
     "[run]\nend_time = 1\ngravity = 0 0 0\nseed = 3\n"
     "[domain]\nmin = 0 0 0\nmax = 0.03 0.02 0.025\nperiodic = x y z\nshear_rate = 60\n"
@@ -159,6 +159,13 @@ static const char *const sheared_text =
     "restitution = 0.7\nfriction = 0.4\n"
     "[create bed]\ntype = random\nspecies = s\ncount = 900\nregion_min = 0 0 0\n"
     "region_max = 0.03 0.02 0.025\n";
+static const char *const sheared_rods_text =
+    "[run]\nend_time = 1\ngravity = 0 0 0\nseed = 4\n"
+    "[domain]\nmin = 0 0 0\nmax = 0.036 0.024 0.03\nperiodic = x y z\nshear_rate = 60\n"
+    "[contact]\nlaw = linear\n[species rod]\nshape = rod\ndiameter = 0.0015\nlength = 0.006\n"
+    "density = 1395\nstiffness = 2000\nrestitution = 0.5\nfriction = 0.4\n"
+    "[create bed]\ntype = random\nspecies = rod\ncount = 400\nregion_min = 0 0 0\n"
+    "region_max = 0.036 0.024 0.03\n";
 static const char *const plates_text =
     "[run]\nend_time = 1\ngravity = 0 0 0\nseed = 5\n"
     "[domain]\nmin = 0 0 0\nmax = 0.072 0.048 0.048\nperiodic = x y\n"
@@ -192,6 +199,7 @@ int main(void)
     test_coupled();
     CHECK(same_bits("vessel", vessel_text, 6000) > 0); // beads left through the bottom
     same_bits("sheared", sheared_text, 4000);
+    same_bits("sheared rods", sheared_rods_text, 3000);
     same_bits("plates", plates_text, 4000);
 
     // Resume: checkpoint half-way, continue in a new world, compare with the uninterrupted run.

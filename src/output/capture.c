@@ -135,9 +135,12 @@ int bdl_capture(bdl_snapshot *s, const bdl_world *w)
     s->step = w->step;
     s->wall_count = w->walls.wall_count;
     for (int k = 0; k < w->walls.wall_count; ++k) {
-        s->wall_offset[k][0] = (float)w->walls.offset[k].x;
-        s->wall_offset[k][1] = (float)w->walls.offset[k].y;
-        s->wall_offset[k][2] = (float)w->walls.offset[k].z;
+        // A repeating wall is drawn where it looks the same: its offset modulo the period.
+        for (int a = 0; a < 3; ++a) {
+            const double len = bdl_v3_comp(w->walls.wrap_length[k], a);
+            const double o = bdl_v3_comp(w->walls.offset[k], a);
+            s->wall_offset[k][a] = (float)(len > 0.0 ? o - len * round(o / len) : o);
+        }
         s->wall_angle[k] = (float)w->walls.angle[k];
     }
     return capture_slice(s, w) && capture_voidage(s, w);
