@@ -545,6 +545,11 @@ static const bad_scene bad_scenes[] = {
     {MINIMAL "[camera c]\nkind = dia\nposition = 0 -1 0\ntarget = 0 0 0\npixel_size = 1e-4\n",
      "bad.ini:11:", "interval", "missing required key", NULL},
     {MINIMAL "[camera c]\nkind = camera\n", "bad.ini:12:", "kind", "dia", NULL},
+    {MINIMAL, "--set:", "shear_rate", "need periodic = x z", "domain.shear_rate=10"},
+    {MINIMAL "[output]\nrheology_margin = 0.5\n", "bad.ini:12:", "rheology_margin",
+     "less than the domain's height", NULL},
+    {MINIMAL "[wall d]\ntype = disk\npoint = 0 0 0\nnormal = 0 0 1\nradius = 0.1\nperiodic = x\n",
+     "bad.ini:16:", "periodic", "not periodic in [domain]", NULL},
 };
 
 static void test_bad_scenes(void)
