@@ -152,7 +152,8 @@ static layout layout_of(const blob *b, long gas_cells)
     const size_t n = (size_t)c[0], np = (size_t)c[2], nw = (size_t)c[3];
     L.n = c[0], L.pairs = c[2], L.wall_pairs = c[3];
     L.species = off + n * 160;
-    off += n * 168 + n + 16 * 24 + 16 * 8 + 16 * 8; // wall offsets and angles at the build, angles
+    // wall offsets and angles at the build, angles, the Lees-Edwards slide at the build
+    off += n * 168 + n + 16 * 24 + 16 * 8 + 16 * 8 + 8;
     L.start = off, off += (n + 1) * 4;
     L.partner = off, off += np * 4;
     L.touching = off, off += np;
