@@ -33,3 +33,7 @@ add_test(NAME cli_fields_run COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bed
   -DSOURCE=${CMAKE_SOURCE_DIR} -DWORK=${CMAKE_CURRENT_BINARY_DIR}/fields_run_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/fields_run_cli.cmake)
 set_tests_properties(cli_fields_run PROPERTIES LABELS "analysis;cli" TIMEOUT 300)
+add_test(NAME cli_rheology COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_SOURCE_DIR}/scenes/shear_cell.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/rheology_cli
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rheology_cli.cmake)
+set_tests_properties(cli_rheology PROPERTIES LABELS "analysis;cli" TIMEOUT 300)

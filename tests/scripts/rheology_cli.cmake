@@ -1,0 +1,34 @@
+# bedlam run of the Lees-Edwards shear cell (a short one), then bedlam analyze rheology on it: the
+# row per run beside Lun et al., the jamming fit refused with one run, and bad options refused
+# with exit 2. -DBEDLAM -DSCENE -DWORK
+file(REMOVE_RECURSE ${WORK})
+execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK} --set run.end_time=0.15
+  --set create.bed.count=213 --set output.checkpoint_interval=0
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/rheology.csv)
+  message(FATAL_ERROR "run failed (${rc}):\n${out}\n${err}")
+endif()
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 0.7 --jamming 4 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/analysis/rheology.csv)
+  message(FATAL_ERROR "analyze rheology failed (${rc})")
+endif()
+# 213 spheres in the 72 x 48 x 48 mm box: solids fraction 0.100; the imposed 100/s measured
+# from the profile within a few per cent; Lun et al. beside it.
+if(NOT out MATCHES "nu 0\\.100[0-9]  rate (9[0-9]|10[0-9])\\.[0-9]+/s" OR NOT out MATCHES "Lun et al\\. \\(e = 0\\.7\\)")
+  message(FATAL_ERROR "unexpected summary")
+endif()
+if(NOT out MATCHES "jamming fit: needs three runs or more")
+  message(FATAL_ERROR "the jamming fit did not say it needs three runs")
+endif()
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 1.5 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "--restitution 1.5: must lie in \\(0, 1\\]")
+  message(FATAL_ERROR "a restitution of 1.5 was not refused (${rc}): ${err}")
+endif()
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK}/missing --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "a run folder without rheology.csv was not refused (${rc}): ${err}")
+endif()
