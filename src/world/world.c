@@ -54,7 +54,8 @@ double bdl_world_reference_speed(const bdl_world *w)
     double g = bdl_v3_len(s->gravity);
     bdl_vec3 span = bdl_v3_sub(s->domain_max, s->domain_min);
     double h = fmax(span.x, fmax(span.y, span.z));
-    double v = sqrt(2.0 * g * h) + bdl_walls_max_speed(&w->walls);
+    // Lees–Edwards: a pair across the z faces meets at the images' speed on top of its own.
+    double v = sqrt(2.0 * g * h) + bdl_walls_max_speed(&w->walls) + fabs(s->shear_rate) * span.z;
     if (w->container >= 0) { // the container's walls stand still, but hit as hard as moving ones
         const bdl_wall_def *d = &s->walls[w->container];
         v += d->amplitude * 2.0 * PI * d->frequency;
