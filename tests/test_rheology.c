@@ -49,7 +49,8 @@ static void test_stress(void)
                              .y_length = 0.05,
                              .z_lo = 0.0,
                              .z_hi = 0.04,
-                             .bins = 4};
+                             .bins = 4,
+                             .rate = NAN};
     bdl_rheology_sample s;
     CHECK(bdl_rheology_measure(&in, &s) == 1);
     const double V = 0.1 * 0.05 * 0.04, m = 0.002;
@@ -89,6 +90,12 @@ static void test_stress(void)
     CHECK(bdl_rheology_measure(&in, &r) == 1);
     CHECK_CLOSE(r.shear_rate, -rate, 1e-12);
     CHECK_CLOSE(r.shear_streaming, s.shear_streaming, 1e-12);
+    // An imposed rate replaces the slope (and only it).
+    in.rate = -40.0;
+    CHECK(bdl_rheology_measure(&in, &r) == 1);
+    CHECK_CLOSE(r.shear_rate, -40.0, 1e-15);
+    CHECK_CLOSE(r.temperature, s.temperature, 1e-12);
+    in.rate = NAN;
     // Too few particles in the region: no sample.
     in.z_lo = 0.041;
     in.z_hi = 0.044;

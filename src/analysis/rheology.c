@@ -113,7 +113,8 @@ int bdl_rheology_measure(const bdl_rheology_input *in, bdl_rheology_sample *out)
         free(mean);
         return 0;
     }
-    const double rate = slab_means(in, mass, mean);
+    const double slope = slab_means(in, mass, mean);
+    const double rate = isnan(in->rate) ? slope : in->rate;
     double kin[3][3] = {{0}}, con[3][3] = {{0}};
     bulk_sums s;
     streaming_sums(in, mean, kin, &s);

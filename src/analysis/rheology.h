@@ -10,7 +10,9 @@
 // j. A contact counts 1/2 for each of its particles whose centre lies in the region.
 //
 // From it, with shear along x and the gradient along z (u_x = shear_rate z):
-//   shear_rate   the least-squares slope of the slabs' mean u_x against their centres' z;
+//   shear_rate   the least-squares slope of the slabs' mean u_x against their centres' z, or the
+//                rate the boundaries impose when given (Lees–Edwards: the box's mean rate
+//                exactly, where a fitted slope is biased by a shear band in a dense flow);
 //   temperature  T = <|v'|^2>/3 (mass-weighted);
 //   pressure     p = tr(sigma)/3; shear stress tau = -(sigma_xz + sigma_zx)/2, signed so that it
 //                is positive when it resists the shear rate's sense (tau sign(shear_rate));
@@ -39,6 +41,7 @@ typedef struct bdl_rheology_input {
     double x_length, y_length; ///< the box's extent across the flow [m]
     double z_lo, z_hi;         ///< the bulk region [m]
     int bins;                  ///< slabs of the mean velocity (>= 2)
+    double rate;               ///< the imposed shear rate [1/s], or NAN: the slabs' slope
 } bdl_rheology_input;
 
 typedef struct bdl_rheology_sample {

@@ -92,7 +92,8 @@ bdl_result bdl_rheology_of_world(const bdl_world *w, bdl_rheology_sample *s)
                                        .y_length = sc->domain_max.y - sc->domain_min.y,
                                        .z_lo = sc->domain_min.z + sc->output.rheology_margin,
                                        .z_hi = sc->domain_max.z - sc->output.rheology_margin,
-                                       .bins = sc->output.rheology_bins};
+                                       .bins = sc->output.rheology_bins,
+                                       .rate = sc->shear_rate != 0.0 ? sc->shear_rate : NAN};
         bdl_rheology_measure(&in, s);
     }
     free(mass);
