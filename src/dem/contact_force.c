@@ -149,9 +149,10 @@ static BDL_FORCE_INLINE int gather_pair(pair_batch *restrict b, int m, const gat
 {
     int32_t j = v->partner[k];
     bdl_vec3 xj = v->pos[j];
-    double d_z = pi->x.z - xj.z;
-    double side = (double)((d_z > v->half[2]) - (d_z < -v->half[2])); // Lees–Edwards image
-    double d_x = wrap(pi->x.x - xj.x - side * v->shift, v->len[0], v->half[0]);
+    double d_x = pi->x.x - xj.x, d_z = pi->x.z - xj.z;
+    if (v->shift != 0.0) // Lees–Edwards: a partner across the z faces is met as its image
+        d_x -= (double)((d_z > v->half[2]) - (d_z < -v->half[2])) * v->shift;
+    d_x = wrap(d_x, v->len[0], v->half[0]);
     double d_y = wrap(pi->x.y - xj.y, v->len[1], v->half[1]);
     d_z = wrap(d_z, v->len[2], v->half[2]);
     double cut;
