@@ -14,9 +14,9 @@ message("${out}${err}")
 if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/analysis/rheology.csv)
   message(FATAL_ERROR "analyze rheology failed (${rc})")
 endif()
-# 213 spheres in the 72 x 48 x 48 mm box: solids fraction 0.100; the imposed 100/s measured
-# from the profile within a few per cent; Lun et al. beside it.
-if(NOT out MATCHES "nu 0\\.100[0-9]  rate (9[0-9]|10[0-9])\\.[0-9]+/s" OR NOT out MATCHES "Lun et al\\. \\(e = 0\\.7\\)")
+# 213 spheres in the 72 x 48 x 48 mm box: solids fraction 0.100; the shear rate the imposed
+# 100/s of the Lees-Edwards images; Lun et al. beside it.
+if(NOT out MATCHES "nu 0\\.100[0-9]  rate 100/s" OR NOT out MATCHES "Lun et al\\. \\(e = 0\\.7\\)")
   message(FATAL_ERROR "unexpected summary")
 endif()
 if(NOT out MATCHES "jamming fit: needs three runs or more")
