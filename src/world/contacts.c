@@ -90,19 +90,20 @@ bdl_vec3 bdl_world_pair_force(const bdl_world *w, long i, int32_t k)
     const bdl_neighbor *nb = &w->neighbor;
     const long j = nb->partner[k];
     bdl_world_contact c;
-    if (!bdl_world_pair_contact(w, i, j, &c))
+    if (!(p->rods ? rod_pair(w, i, j, &c) : sphere_pair(w, i, j, &c)))
         return bdl_v3_zero();
-    if (!w->friction)
-        return bdl_v3_scale(c.n, c.normal);
     bdl_contact_geom g = pair_geom(w, i, j, &c);
-    if (!p->rods) { // the spins' share of the contact point's velocity (rods have it already)
-        const bdl_vec3 arm_i = bdl_v3_sub(c.point, p->pos[i]);
-        const bdl_vec3 arm_j = bdl_v3_add(arm_i, bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
-        g.v_c = bdl_v3_add(
-            g.v_c, bdl_v3_sub(bdl_v3_cross(p->omega[i], arm_i), bdl_v3_cross(p->omega[j], arm_j)));
+    bdl_spring spring = {bdl_v3_zero(), 0.0};
+    if (w->friction) {
+        if (!p->rods) { // the spins' share of the contact point's velocity (rods have it already)
+            const bdl_vec3 arm_i = bdl_v3_sub(c.point, p->pos[i]);
+            const bdl_vec3 arm_j = bdl_v3_add(arm_i, bdl_neighbor_delta(nb, p->pos[i], p->pos[j]));
+            g.v_c = bdl_v3_add(g.v_c, bdl_v3_sub(bdl_v3_cross(p->omega[i], arm_i),
+                                                 bdl_v3_cross(p->omega[j], arm_j)));
+        }
+        spring = (bdl_spring){nb->history[k], nb->spring_work ? nb->spring_work[k] : 0.0};
     }
-    const bdl_spring spring = {nb->history[k], nb->spring_work ? nb->spring_work[k] : 0.0};
-    return bdl_contact_eval(pair_params(w, i, j), w->hertz, 1, g, spring, w->dt).force;
+    return bdl_contact_eval(pair_params(w, i, j), w->hertz, w->friction, g, spring, w->dt).force;
 }
 
 /// Spheres: the wall's gap at the centre; the relative velocity of the centre.
