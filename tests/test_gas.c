@@ -1,6 +1,6 @@
 // Gas solver verification: plane Poiseuille flow (second-order convergence under refinement),
-// hydrostatic rest, plug flow from an inlet to an outlet, and gas volume conservation while the
-// voidage changes.
+// hydrostatic rest, plug flow from an inlet to an outlet, gas volume conservation while the
+// voidage changes, and a porous distributor plate sharing its flow among columns of unequal drag.
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -135,8 +135,72 @@ static void test_volume_conservation(void)
     bdl_gas_destroy(g);
 }
 
+/// A porous distributor plate under four columns of different drag, kept apart by a drag across
+/// them 10^9 times larger: each column's superficial velocity is P / (R + beta_i L) with
+/// L the distance from its first cell's centre to the outlet, and the plenum pressure P makes
+/// them average the set inflow U; with equal drag every column takes U. Also: the plate's flux
+/// follows the pressure as it builds (the volume balance holds every step).
+static void test_distributor(void)
+{
+    const double R = 150.0, U = 0.8, beta[4] = {1e3, 2e3, 4e3, 8e3};
+    bdl_gas_def d = bdl_default_gas_def();
+    d.n[0] = 4, d.n[1] = 1, d.n[2] = 10;
+    d.hi[0] = 0.04, d.hi[1] = 0.01, d.hi[2] = 0.1;
+    d.viscosity = 1e-12; // no shear between the columns
+    d.side[0].type = d.side[1].type = d.side[2].type = d.side[3].type = BDL_SIDE_SLIP;
+    d.side[4].type = BDL_SIDE_INLET;
+    d.side[4].inflow = U;
+    d.side[4].resistance = R;
+    d.side[5].type = BDL_SIDE_OUTLET;
+    d.tolerance = 1e-13;
+    d.max_iterations = 1000;
+    for (int uniform = 0; uniform < 2; ++uniform) {
+        bdl_gas *g = NULL;
+        CHECK(bdl_gas_create(&d, &g) == BDL_OK);
+        for (long idx = 0; idx < g->grid.size; ++idx)
+            g->beta[0][idx] = 1e13;
+        for (int k = 0; k <= 10; ++k)
+            for (int i = 0; i < 4; ++i)
+                g->beta[2][bdl_grid_index(&g->grid, i, 0, k)] = uniform ? 3e3 : beta[i];
+        double worst_balance = 0.0;
+        for (int step = 0; step < 3000; ++step) {
+            CHECK(bdl_gas_step(g, 1e-3) == BDL_OK);
+            worst_balance = fmax(worst_balance, g->mass_imbalance);
+        }
+        const double L = 0.1 - 0.005;
+        double sum_inv = 0.0, mean = 0.0, worst = 0.0;
+        for (int i = 0; i < 4; ++i)
+            sum_inv += 1.0 / (R + (uniform ? 3e3 : beta[i]) * L);
+        const double P = 4.0 * U / sum_inv;
+        for (int i = 0; i < 4; ++i) {
+            const double u = g->u[2][bdl_grid_index(&g->grid, i, 0, 0)];
+            const double want = P / (R + (uniform ? 3e3 : beta[i]) * L);
+            mean += u / 4.0;
+            worst = fmax(worst, fabs(u - want) / want);
+            if (!uniform)
+                printf("distributor: column %d  u %.6f m/s  analytic %.6f m/s\n", i, u, want);
+        }
+        printf("distributor (%s drag): plenum %.4f Pa (analytic %.4f), mean inflow %.9f m/s, "
+               "worst column error %.2e, volume balance %.1e\n",
+               uniform ? "equal" : "unequal", g->plenum[4], P, mean, worst, worst_balance);
+        CHECK_MSG(worst < 1e-6, "column velocity off by %g of the analytic", worst);
+        CHECK_MSG(fabs(mean - U) < 1e-9 * U, "mean inflow %.12g m/s, set %g", mean, U);
+        CHECK_MSG(fabs(g->plenum[4] - P) < 1e-6 * P, "plenum %g Pa, analytic %g", g->plenum[4], P);
+        CHECK(worst_balance < 1e-9);
+        bdl_gas_destroy(g);
+    }
+    bdl_gas_def bad = d;
+    bad.side[4].jet = 1;
+    bdl_gas *g = NULL;
+    CHECK(bdl_gas_create(&bad, &g) == BDL_ERR_ARGS); // a plate has no jet
+    bad = d;
+    bad.side[4].resistance = -1.0;
+    CHECK(bdl_gas_create(&bad, &g) == BDL_ERR_ARGS);
+}
+
 int main(void)
 {
+    test_distributor();
     test_hydrostatic();
     test_plug_flow();
     test_volume_conservation();

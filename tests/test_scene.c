@@ -452,6 +452,14 @@ static const bad_scene bad_scenes[] = {
     {MINIMAL "[camera]\ngas_field = voidage\n", "bad.ini:12:", "gas_field", "needs a [gas]", NULL},
     {MINIMAL "[gas]\ncells = 2 2 2\nprobe_low = 0.1\nprobe_high = 2\n", "bad.ini:14:", "probe_high",
      "inside the domain", NULL},
+    {MINIMAL "[gas]\ncells = 2 2 2\ndistributor_resistance = 100\n",
+     "bad.ini:13:", "distributor_resistance", "needs an inlet side", NULL},
+    {MINIMAL "[gas]\ncells = 2 2 2\nzmin = inlet\nzmax = outlet\ninlet_velocity = 1\n"
+             "jet_velocity = 2\njet_min = 0 0 0\njet_max = 0.5 0.5 0\n"
+             "distributor_resistance = 100\n",
+     "bad.ini:19:", "distributor_resistance", "no jet", NULL},
+    {MINIMAL "[gas]\ncells = 2 2 2\ndistributor_resistance = -5\n",
+     "bad.ini:13:", "distributor_resistance", ">= 0 (Pa s/m)", NULL},
     {MINIMAL "[gas]\ncells = 2 2 2\nprobe_low = 0.1\n", "bad.ini:13:", "probe_low", "come in pairs",
      NULL},
     {MINIMAL, "--set:", "densty", "did you mean 'density'?", "species.glass.densty=3"},

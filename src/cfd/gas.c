@@ -33,6 +33,13 @@ bdl_gas_def bdl_default_gas_def(void)
     return d; // every side a no-slip wall, no gravity
 }
 
+/// An inlet through a porous plate: a fixed pressure (the plenum's) behind a resistance, which
+/// the pressure solver sees as a Dirichlet side whose face coefficient is h / (2 R) (gas.h).
+static int distributor(const bdl_gas_side *sd)
+{
+    return sd->type == BDL_SIDE_INLET && sd->resistance > 0.0;
+}
+
 bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
 {
     *out = NULL;
@@ -47,6 +54,9 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
             return BDL_ERR_ARGS;
         periodic[a] = lo;
     }
+    for (int s = 0; s < 6; ++s)
+        if (!(def->side[s].resistance >= 0.0) || (distributor(&def->side[s]) && def->side[s].jet))
+            return BDL_ERR_ARGS;
     bdl_gas *g = calloc(1, sizeof *g);
     if (!g)
         return BDL_ERR_NOMEM;
@@ -57,7 +67,7 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
     }
     int dirichlet[6];
     for (int s = 0; s < 6; ++s)
-        dirichlet[s] = def->side[s].type == BDL_SIDE_OUTLET;
+        dirichlet[s] = def->side[s].type == BDL_SIDE_OUTLET || distributor(&def->side[s]);
     g->poisson = bdl_poisson_create(&g->grid, dirichlet);
     int ok = g->poisson != NULL;
     for (int a = 0; a < 3; ++a) {
@@ -219,7 +229,7 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
                 FOR_PLANE(gr, b, side == 0 ? 0 : n, {
                     if (sd->type == BDL_SIDE_WALL || sd->type == BDL_SIDE_SLIP)
                         u[idx] = 0.0;
-                    else if (sd->type == BDL_SIDE_INLET)
+                    else if (sd->type == BDL_SIDE_INLET && !distributor(sd))
                         u[idx] = dir * inflow_at(g, 2 * b + side, idx) / face_eps(g, eps, b, idx);
                     for (int l = 1; l <= G; ++l) {
                         long ghost = idx - (long)dir * l * s, mirror = idx + (long)dir * l * s;
@@ -417,6 +427,7 @@ static void boundary_faces(bdl_gas *g, double dt)
     for (int a = 0; a < 3; ++a) {
         const long s = gr->stride[a];
         const int n = gr->n[a];
+        const double h = gr->h[a];
         if (periodic_axis(g, a)) {
             FOR_PLANE(gr, a, 0, {
                 g->ustar[a][idx + n * s] = g->ustar[a][idx];
@@ -435,6 +446,9 @@ static void boundary_faces(bdl_gas *g, double dt)
             FOR_PLANE(gr, a, side == 0 ? 0 : n, {
                 if (sd->type == BDL_SIDE_OUTLET)
                     us[idx] = us[idx + (side == 0 ? s : -s)];
+                else if (distributor(sd)) // all of the flux through the plate's resistance
+                    us[idx] = 0.0,
+                    d[idx] = 0.5 * h / (sd->resistance * face_eps(g, g->eps, a, idx));
                 else if (sd->type == BDL_SIDE_INLET)
                     us[idx] = (side == 0 ? 1.0 : -1.0) * inflow_at(g, 2 * a + side, idx) /
                               face_eps(g, g->eps, a, idx);
@@ -486,6 +500,10 @@ static void correct(bdl_gas *g, const double p_side[6])
     for (int a = 0; a < 3; ++a) {
         int flo, fhi;
         unknown_faces(g, a, &flo, &fhi);
+        if (!periodic_axis(g, a)) { // a plate's faces follow from the pressure as an outlet's do
+            flo = distributor(&g->def.side[2 * a]) ? 0 : flo;
+            fhi = distributor(&g->def.side[2 * a + 1]) ? gr->n[a] : fhi;
+        }
         const long s = gr->stride[a];
         const int n = gr->n[a];
         const double h = gr->h[a], p_lo = p_side[2 * a], p_hi = p_side[2 * a + 1];
@@ -534,6 +552,26 @@ static int check_balance(bdl_gas *g, double dt)
     return finite;
 }
 
+/// The plenum pressure under distributor side `side` that makes the plate's inflow average the
+/// side's superficial velocity U with the pressures p of the cells above it: P = mean(p) + U R
+/// (a uniform grid: every face has the same area). Stored in g->plenum.
+static double plenum_pressure(bdl_gas *g, int side)
+{
+    const bdl_grid *gr = &g->grid;
+    const int a = side / 2, layer = side % 2 ? gr->n[a] - 1 : 0;
+    const int b = (a + 1) % 3, c = (a + 2) % 3;
+    double sum = 0.0;
+    for (int m = 0; m < gr->n[c]; ++m)
+        for (int l = 0; l < gr->n[b]; ++l) {
+            int ix[3];
+            ix[a] = layer, ix[b] = l, ix[c] = m;
+            sum += g->p[bdl_grid_index(gr, ix[0], ix[1], ix[2])];
+        }
+    const bdl_gas_side *sd = &g->def.side[side];
+    g->plenum[side] = sum / ((double)gr->n[b] * gr->n[c]) + sd->inflow * sd->resistance;
+    return g->plenum[side];
+}
+
 bdl_result bdl_gas_step(bdl_gas *g, double dt)
 {
     cell_ghosts(g, g->eps);
@@ -546,7 +584,7 @@ bdl_result bdl_gas_step(bdl_gas *g, double dt)
     boundary_faces(g, dt);
     double p_side[6];
     for (int s = 0; s < 6; ++s)
-        p_side[s] = g->def.side[s].pressure;
+        p_side[s] = distributor(&g->def.side[s]) ? plenum_pressure(g, s) : g->def.side[s].pressure;
     const int converged = solve_pressure(g, dt, p_side);
     correct(g, p_side);
     const int finite = check_balance(g, dt);

@@ -57,6 +57,12 @@ typedef struct bdl_gas_side {
     double jet_lo[3], jet_hi[3]; ///< the rectangle (the normal coordinate is ignored) [m]
     double jet_inflow;           ///< superficial velocity through the rectangle [m/s]
     double pressure;             ///< outlet pressure [Pa]
+    /// inlet: 0 for a uniform inflow; > 0 for a porous distributor plate over a plenum [Pa s/m]:
+    /// the superficial velocity through each face is (P - p)/resistance, p the pressure of the
+    /// cell above it, and the plenum pressure P holds the mean at `inflow` (set from the
+    /// pressures of the last step, so the inflow's sum follows `inflow` within their change).
+    /// No jet.
+    double resistance;
 } bdl_gas_side;
 
 typedef struct bdl_gas_def {
@@ -105,6 +111,7 @@ typedef struct bdl_gas {
     long steps;
     bdl_poisson_stats last_solve;
     double mass_imbalance; ///< max over cells of |d eps/dt + div(eps u)| dt after the last step
+    double plenum[6];      ///< distributor sides: the plenum pressure of the last step [Pa]
 } bdl_gas;
 
 /// The defaults: one cell over the unit cube, air (1.2 kg/m^3, 1.8e-5 Pa s), no-slip walls on

@@ -228,12 +228,13 @@ typedef struct bdl_gas_scene {
     double viscosity; ///< dynamic [Pa s]
     bdl_vec3 cells;   ///< cells per axis (whole numbers)
     bdl_convection convection;
-    double tolerance;          ///< relative residual of the pressure solver
-    bdl_gas_side_type side[6]; ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
-    double inlet_velocity;     ///< superficial velocity into the domain through inlets [m/s]
-    double outlet_pressure;    ///< [Pa]
-    double jet_velocity;       ///< superficial velocity through the jet rectangle [m/s]
-    bdl_vec3 jet_min, jet_max; ///< jet rectangle on the inlet sides [m]
+    double tolerance;              ///< relative residual of the pressure solver
+    bdl_gas_side_type side[6];     ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
+    double inlet_velocity;         ///< superficial velocity into the domain through inlets [m/s]
+    double outlet_pressure;        ///< [Pa]
+    double distributor_resistance; ///< inlets as porous plates [Pa s/m]; 0: uniform inflow
+    double jet_velocity;           ///< superficial velocity through the jet rectangle [m/s]
+    bdl_vec3 jet_min, jet_max;     ///< jet rectangle on the inlet sides [m]
     int has_jet_min, has_jet_max;
     double dt;                    ///< gas time step [s]; 0: automatic
     double probe_low, probe_high; ///< heights of the two pressure probes above the floor [m]

@@ -644,6 +644,12 @@ const bdl_scene_key bdl_scene_keys[] = {
     GAS_SIDE("zmax", 5),
     {S(GAS), "inlet_velocity", NUM, "m/s", IN_GAS(inlet_velocity), .def = {0}, GE(0),
      .doc = "superficial gas velocity through the inlet sides"},
+    {S(GAS), "distributor_resistance", NUM, "Pa s/m", IN_GAS(distributor_resistance), .def = {0},
+     .default_text = "0 (uniform inflow)", GE(0),
+     .doc = "> 0: the inlets are porous plates over a plenum; the gas crosses each inlet face at "
+            "(plenum pressure - pressure above it) / resistance, the plenum pressure keeping the "
+            "mean at inlet_velocity (a plate dropping 30 % of a bed's weight per area W at "
+            "velocity U: 0.3 W / U); no jet"},
     {S(GAS), "outlet_pressure", NUM, "Pa", IN_GAS(outlet_pressure), .def = {0},
      .doc = "pressure at the outlet sides (gauge)"},
     {S(GAS), "jet_velocity", NUM, "m/s", IN_GAS(jet_velocity), .def = {0}, GE(0),

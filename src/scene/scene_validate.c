@@ -533,6 +533,12 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
         fail_at_key(p, gas, "jet_velocity", 0, "a jet needs jet_min and jet_max");
         return;
     }
+    if (g->distributor_resistance > 0.0 && (inlets == 0 || g->jet_velocity > 0.0)) {
+        fail_at_key(p, gas, "distributor_resistance", 0,
+                    inlets == 0 ? "a distributor needs an inlet side"
+                                : "a distributor plate has no jet: leave out jet_velocity");
+        return;
+    }
     if (g->has_jet_min && g->has_jet_max)
         check_jet(p, gas);
     if (p->failed)

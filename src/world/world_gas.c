@@ -39,6 +39,7 @@ static bdl_gas_def gas_def(bdl_world *w)
             w->outflow[2 * a + side] = sd->type == BDL_SIDE_OUTLET;
             sd->inflow = gs->inlet_velocity;
             sd->pressure = gs->outlet_pressure;
+            sd->resistance = sd->type == BDL_SIDE_INLET ? gs->distributor_resistance : 0.0;
             if (gs->jet_velocity > 0.0 && gs->has_jet_min && gs->has_jet_max) {
                 sd->jet = 1;
                 sd->jet_inflow = gs->jet_velocity;
