@@ -1,4 +1,5 @@
-// bedlam — power spectrum (Hamming window, radix-2 FFT) and its dominant frequency.
+// bedlam — power spectrum (Hamming window, radix-2 FFT), Welch's average of it over pieces,
+// and its dominant frequency.
 #include "analysis/signal.h"
 
 #include <math.h>
@@ -64,6 +65,43 @@ bdl_result bdl_power_spectrum(const double *x, long n, double dt, double **freq,
     }
     free(re), free(im);
     *freq = f, *power = p, *count = bins;
+    return BDL_OK;
+}
+
+bdl_result bdl_welch_spectrum(const double *x, long n, double dt, int segments, double fmin,
+                              double fmax, double *peaks, double **freq, double **power,
+                              long *count)
+{
+    *freq = *power = NULL;
+    *count = 0;
+    if (segments < 1 || n < 1)
+        return BDL_ERR_ARGS;
+    const long len = segments == 1 ? n : 2 * n / (segments + 1), step = len / 2;
+    if (len < 4)
+        return BDL_ERR_ARGS;
+    double *sum = NULL, *f = NULL;
+    long bins = 0;
+    for (int k = 0; k < segments; ++k) {
+        double *fk, *pk;
+        long bk;
+        const bdl_result rc = bdl_power_spectrum(x + k * step, len, dt, &fk, &pk, &bk);
+        if (rc != BDL_OK) {
+            free(sum), free(f);
+            return rc;
+        }
+        if (peaks)
+            peaks[k] = bdl_dominant_frequency(fk, pk, bk, fmin, fmax);
+        if (!sum) { // the first piece's arrays hold the sum; every piece has the same bins
+            sum = pk, f = fk, bins = bk;
+            continue;
+        }
+        for (long b = 0; b < bins; ++b)
+            sum[b] += pk[b];
+        free(fk), free(pk);
+    }
+    for (long b = 0; b < bins; ++b)
+        sum[b] /= segments;
+    *freq = f, *power = sum, *count = bins;
     return BDL_OK;
 }
 

@@ -10,6 +10,14 @@
 bdl_result bdl_power_spectrum(const double *x, long n, double dt, double **freq, double **power,
                               long *count);
 
+/// Welch's estimate: the mean of the power spectra (as bdl_power_spectrum) of `segments` equal
+/// pieces of the n samples, each half overlapping the next (1: the whole series). When `peaks` is
+/// not NULL, peaks[k] is piece k's dominant frequency between fmin and fmax (its spread says
+/// whether the peak has converged). BDL_ERR_ARGS for segments < 1 or pieces under 4 samples.
+bdl_result bdl_welch_spectrum(const double *x, long n, double dt, int segments, double fmin,
+                              double fmax, double *peaks, double **freq, double **power,
+                              long *count);
+
 /// The frequency of the largest power between fmin and fmax, refined by a parabola through the
 /// peak bin and its neighbours; NAN when no bin lies in the band.
 double bdl_dominant_frequency(const double *freq, const double *power, long count, double fmin,

@@ -22,6 +22,7 @@ typedef struct bdl_analyze_opts {
     double below;       ///< phase: threshold of the intervals reported (NAN: none)
     long from_cycle, to_cycle;
     int bins;        ///< phase bins, or force bins of networks
+    int segments;    ///< spectrum: Welch's pieces, half overlapping (1: one periodogram)
     int plots;       ///< run gnuplot
     int by_velocity; ///< orientation: one PDF per stage of the inlet velocity
     double max_step; ///< ptv: longest link [px] (0: half a rod length)

@@ -50,6 +50,21 @@ static void plot_spectrum(const bdl_analyze_opts *o, const spectrum *s)
         s->peak);
 }
 
+/// The dominant frequency of each of Welch's pieces: their mean, standard error and range.
+static void print_pieces(const double *peaks, int n, double span)
+{
+    double sum = 0.0, sum2 = 0.0, lo = INFINITY, hi = -INFINITY;
+    for (int k = 0; k < n; ++k) {
+        sum += peaks[k], sum2 += peaks[k] * peaks[k];
+        lo = fmin(lo, peaks[k]), hi = fmax(hi, peaks[k]);
+    }
+    const double mean = sum / n, var = fmax(sum2 / n - mean * mean, 0.0) * n / (n - 1);
+    printf("Welch's average over %d half-overlapping pieces of %.3g s; the pieces' dominant "
+           "frequencies: mean %.3f Hz, standard error %.3f Hz (pieces overlap: not independent), "
+           "range %.3f to %.3f Hz\n",
+           n, 2.0 * span / (n + 1), mean, sqrt(var / n), lo, hi);
+}
+
 bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o)
 {
     double *t = NULL, *x = NULL;
@@ -63,10 +78,20 @@ bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o)
         return BDL_ERR_NO_RESULT;
     }
     spectrum s = {.t0 = t[w.first], .t1 = t[w.first + w.count - 1]};
-    bdl_result rc = bdl_power_spectrum(x + w.first, w.count, w.dt, &s.freq, &s.power, &s.bins);
+    double *peaks = calloc((size_t)o->segments, sizeof(double));
+    bdl_result rc = peaks ? bdl_welch_spectrum(x + w.first, w.count, w.dt, o->segments, o->fmin,
+                                               o->fmax, peaks, &s.freq, &s.power, &s.bins)
+                          : BDL_ERR_NOMEM;
     free(t), free(x);
+    if (rc == BDL_ERR_ARGS && o->segments > 1) {
+        fprintf(stderr, "error: %ld samples make pieces too short for %d segments\n", w.count,
+                o->segments);
+        free(peaks);
+        return BDL_ERR_NO_RESULT;
+    }
     if (rc == BDL_ERR_NOMEM) { // otherwise equal times: no bins, no peak, no result
         fprintf(stderr, "error: %s\n", bdl_result_text(rc));
+        free(peaks);
         return rc;
     }
     s.peak = bdl_dominant_frequency(s.freq, s.power, s.bins, o->fmin, o->fmax);
@@ -74,6 +99,9 @@ bdl_result bdl_analyze_spectrum(const bdl_analyze_opts *o)
            "Hz); dominant frequency in [%g, %g] Hz: %.3f Hz\n",
            o->column, s.t0, s.t1, w.count, w.dt, 0.5 / w.dt, s.bins > 1 ? s.freq[1] : NAN, o->fmin,
            o->fmax, s.peak);
+    if (o->segments > 1 && rc == BDL_OK)
+        print_pieces(peaks, o->segments, s.t1 - s.t0);
+    free(peaks);
     rc = write_spectrum(o, &s);
     if (rc == BDL_OK && o->plots)
         plot_spectrum(o, &s);

@@ -15,6 +15,7 @@
 static const char usage_first[] =
     "usage: bedlam analyze sweep RUN [--out DIR] [--no-plots]\n"
     "       bedlam analyze spectrum RUN [--column NAME] [--from T] [--to T] [--fmin F] [--fmax F]\n"
+    "                               [--segments N]\n"
     "                               [--out DIR] [--no-plots]\n"
     "       bedlam analyze mean RUN --column NAME [--from T] [--to T]\n"
     "       bedlam analyze phase RUN --column NAME --period P [--start T] [--from-cycle A]\n"
@@ -44,7 +45,9 @@ static const char usage_first[] =
     "\n"
     "spectrum: the power spectrum of a column (default pressure_drop) between --from and --to\n"
     "(default: the whole run), with a Hamming window, and its dominant frequency between --fmin\n"
-    "and --fmax (default 0.2 and 20 Hz). Writes spectrum_COLUMN.csv and spectrum_COLUMN.png.\n"
+    "and --fmax (default 0.2 and 20 Hz). --segments N: Welch's average over N half-overlapping\n"
+    "pieces, and each piece's dominant frequency (their spread shows whether the peak has\n"
+    "converged). Writes spectrum_COLUMN.csv and spectrum_COLUMN.png.\n"
     "\n"
     "mean: the time average of a column between --from and --to, its standard deviation, and the\n"
     "standard error of the average from 10 consecutive blocks (which allows for correlation in\n"
@@ -152,6 +155,7 @@ static const bdl_option options[] = {
     {"--from-cycle", BDL_OPTION_LONG, offsetof(bdl_analyze_opts, from_cycle)},
     {"--to-cycle", BDL_OPTION_LONG, offsetof(bdl_analyze_opts, to_cycle)},
     {"--bins", BDL_OPTION_INT, offsetof(bdl_analyze_opts, bins)},
+    {"--segments", BDL_OPTION_INT, offsetof(bdl_analyze_opts, segments)},
     {"--out", BDL_OPTION_TEXT, offsetof(bdl_analyze_opts, out)},
     {"--no-plots", BDL_OPTION_CLEAR, offsetof(bdl_analyze_opts, plots)},
     {"--by-velocity", BDL_OPTION_SET, offsetof(bdl_analyze_opts, by_velocity)},
@@ -221,6 +225,7 @@ static bdl_result parse_options(int argc, char **argv, bdl_analyze_opts *o, int 
                             .height = 0.0991,
                             .to_cycle = 1L << 40,
                             .bins = -1,
+                            .segments = 1,
                             .plots = 1};
     *help = 0;
     const bdl_result rc = check_numbers(argc, argv);
@@ -240,6 +245,10 @@ static bdl_result check_options(bdl_analyze_opts *o)
         o->bins = networks ? 40 : 50;
     if (!(o->fmax > o->fmin) || o->bins < 3 || o->bins > 100000) {
         fprintf(stderr, "error: --fmax must be above --fmin, --bins from 3 to 100000\n");
+        return BDL_ERR_ARGS;
+    }
+    if (o->segments < 1 || o->segments > 1000) {
+        fprintf(stderr, "error: --segments from 1 to 1000\n");
         return BDL_ERR_ARGS;
     }
     if (!(o->from < o->to)) {

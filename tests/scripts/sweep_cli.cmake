@@ -22,6 +22,17 @@ message("${out}${err}")
 if(NOT rc EQUAL 0 OR NOT EXISTS ${WORK}/analysis/spectrum_pressure_drop.csv)
   message(FATAL_ERROR "analyze spectrum failed (${rc})")
 endif()
+execute_process(COMMAND ${BEDLAM} analyze spectrum ${WORK} --from 0.5 --segments 3 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message("${out}${err}")
+if(NOT rc EQUAL 0 OR NOT out MATCHES "Welch's average over 3 half-overlapping pieces")
+  message(FATAL_ERROR "analyze spectrum --segments 3 failed (${rc})")
+endif()
+execute_process(COMMAND ${BEDLAM} analyze spectrum ${WORK} --from 0.5 --segments 0 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "--segments from 1 to 1000")
+  message(FATAL_ERROR "analyze spectrum --segments 0: exit ${rc}, ${err}")
+endif()
 execute_process(COMMAND ${BEDLAM} analyze mean ${WORK} --column mean_height --from 0.5
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
