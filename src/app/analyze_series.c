@@ -35,7 +35,9 @@ static bdl_result write_spectrum(const bdl_analyze_opts *o, const spectrum *s)
 
 static void plot_spectrum(const bdl_analyze_opts *o, const spectrum *s)
 {
-    char path[1300];
+    char path[1300], pieces[64] = "";
+    if (o->segments > 1)
+        snprintf(pieces, sizeof pieces, " (Welch, %d pieces)", o->segments);
     snprintf(path, sizeof path, "%s/spectrum_%s.gp", o->out, o->column);
     bdl_analyze_plot(
         path,
@@ -45,9 +47,9 @@ static void plot_spectrum(const bdl_analyze_opts *o, const spectrum *s)
         "set xrange [0:%g]\nset grid\nset key top right\n"
         "set arrow from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb '#c03030'\n"
         "plot '%s/spectrum_%s.csv' every ::1 using 1:2 with lines lw 2 lc rgb '#3060c0' "
-        "title '%s, %.1f-%.1f s; peak %.2f Hz' noenhanced\n",
+        "title '%s, %.1f-%.1f s%s; peak %.2f Hz' noenhanced\n",
         o->out, o->column, o->fmax, s->peak, s->peak, o->out, o->column, o->column, s->t0, s->t1,
-        s->peak);
+        pieces, s->peak);
 }
 
 /// The dominant frequency of each of Welch's pieces: their mean, standard error and range.
