@@ -124,7 +124,7 @@ static void print_modules(const bdl_world *w)
         printf("  frame: the vibrating container [wall %s]; its walls stand still and particles "
                "and gas feel gravity plus the inertial acceleration\n",
                s->walls[w->container].name);
-    char gas[256];
+    char gas[384];
     bdl_world_gas_describe(w, gas, sizeof gas);
     printf("  gas: %s\n", gas);
     if (s->sink_count > 0)

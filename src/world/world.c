@@ -139,7 +139,7 @@ double bdl_world_min_contact_time(const bdl_world *w, double v_ref, char *which,
 void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
 {
     const bdl_scene *s = &w->scene;
-    char gas[256];
+    char gas[384];
     bdl_world_gas_describe(w, gas, sizeof gas);
     if (w->parcels) {
         char parcels[384];

@@ -245,21 +245,26 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
         return;
     }
     const bdl_grid *g = &w->gas->grid;
+    char plate[80] = "";
+    if (w->scene.gas.distributor_resistance > 0.0)
+        snprintf(plate, sizeof plate, "; inlets through a porous plate of %.4g Pa s/m",
+                 w->scene.gas.distributor_resistance);
     if (w->parcels) {
         snprintf(buf, size,
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
-                 "half-width %.3g mm; one gas step per step of the parcels, %.3g s",
+                 "half-width %.3g mm; one gas step per step of the parcels, %.3g s%s",
                  g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
                  bdl_convection_labels[w->gas->def.convection],
-                 bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt);
+                 bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt,
+                 plate);
         return;
     }
     snprintf(buf, size,
              "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
-             "half-width %.3g mm; gas step %.3g s = %ld particle steps%s",
+             "half-width %.3g mm; gas step %.3g s = %ld particle steps%s%s",
              g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
              bdl_convection_labels[w->gas->def.convection],
              bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0],
              (double)w->gas_every * w->dt, w->gas_every,
-             w->gas_fixed ? " (fixed)" : " at first, then CFL 1/2 for the gas as it flows");
+             w->gas_fixed ? " (fixed)" : " at first, then CFL 1/2 for the gas as it flows", plate);
 }
