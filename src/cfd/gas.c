@@ -557,18 +557,9 @@ static int check_balance(bdl_gas *g, double dt)
 /// (a uniform grid: every face has the same area). Stored in g->plenum.
 static double plenum_pressure(bdl_gas *g, int side)
 {
-    const bdl_grid *gr = &g->grid;
-    const int a = side / 2, layer = side % 2 ? gr->n[a] - 1 : 0;
-    const int b = (a + 1) % 3, c = (a + 2) % 3;
-    double sum = 0.0;
-    for (int m = 0; m < gr->n[c]; ++m)
-        for (int l = 0; l < gr->n[b]; ++l) {
-            int ix[3];
-            ix[a] = layer, ix[b] = l, ix[c] = m;
-            sum += g->p[bdl_grid_index(gr, ix[0], ix[1], ix[2])];
-        }
+    const int a = side / 2, layer = side % 2 ? g->grid.n[a] - 1 : 0;
     const bdl_gas_side *sd = &g->def.side[side];
-    g->plenum[side] = sum / ((double)gr->n[b] * gr->n[c]) + sd->inflow * sd->resistance;
+    g->plenum[side] = bdl_grid_layer_mean(&g->grid, g->p, a, layer) + sd->inflow * sd->resistance;
     return g->plenum[side];
 }
 
