@@ -158,6 +158,16 @@ static void test_jamming(void)
     printf("jamming fit with 5 %% noise: nu_cr %.4f (0.59), A %.4f (0.02), rms %.3f\n", cr, a, r);
     CHECK(fabs(cr - 0.59) < 0.005);
     CHECK(isnan(bdl_rheology_fit_jamming(nu, y, 2, 4.0, &cr, &a))); // too few points
+    // With A known each point gives nu_cr alone: exact on the law, and a 5 % error in y moves it
+    // by (0.59 - nu) / 4 * 5 %.
+    for (int k = 0; k < 5; ++k) {
+        const double exact = 0.02 * pow(0.59 - nu[k], -4.0);
+        CHECK_CLOSE(bdl_rheology_jamming_point(nu[k], exact, 4.0, 0.02), 0.59, 1e-12);
+        const double moved = bdl_rheology_jamming_point(nu[k], y[k], 4.0, 0.02) - 0.59;
+        CHECK_CLOSE(moved, (0.59 - nu[k]) * (pow(noise[k], -0.25) - 1.0), 1e-12);
+    }
+    CHECK(isnan(bdl_rheology_jamming_point(0.5, 0.0, 4.0, 0.02)));
+    CHECK(isnan(bdl_rheology_jamming_point(0.5, 1.0, 4.0, -1.0)));
 }
 
 int main(void)

@@ -192,6 +192,13 @@ static double jamming_residual(const double *nu, const double *y, int n, double 
     return sqrt(r / n);
 }
 
+double bdl_rheology_jamming_point(double nu, double y, double exponent, double a)
+{
+    if (!(y > 0.0 && a > 0.0 && exponent > 0.0) || !isfinite(nu))
+        return NAN;
+    return nu + pow(a / y, 1.0 / exponent);
+}
+
 double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double exponent,
                                 double *nu_cr, double *a)
 {

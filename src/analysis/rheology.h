@@ -78,5 +78,8 @@ bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, do
 /// or NAN with fewer than three points or a y that is not positive.
 double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double exponent,
                                 double *nu_cr, double *a);
+/// The same law with A known: the nu_cr that puts one point (nu, y) on it, nu + (A/y)^(1/exponent);
+/// NAN unless y, A and the exponent are positive.
+double bdl_rheology_jamming_point(double nu, double y, double exponent, double a);
 
 #endif

@@ -35,7 +35,8 @@ typedef struct bdl_analyze_opts {
     const char *runs[BDL_ANALYZE_RUNS_MAX];
     int run_count;
     double restitution;
-    double jamming; ///< rheology: the exponent of the fit to the distance to jamming (0: none)
+    double jamming;   ///< rheology: the exponent of the fit to the distance to jamming (0: none)
+    double amplitude; ///< rheology: the jamming law's A held fixed (0: fitted with nu_cr)
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);

@@ -178,15 +178,31 @@ static void plot_rheology(const bdl_analyze_opts *o)
             : "");
 }
 
+/// With --amplitude: the nu_cr of each run on the law with A held.
+static void jamming_points(const bdl_analyze_opts *o, const double *nu, const double *y, int n,
+                           FILE *f)
+{
+    for (int k = 0; k < n; ++k) {
+        const double cr = bdl_rheology_jamming_point(nu[k], y[k], o->jamming, o->amplitude);
+        printf("jamming with A = %.4g held: %s (nu %.4f) gives nu_cr %.4f\n", o->amplitude,
+               o->runs[k], nu[k], cr);
+        fprintf(f, "# jamming with A = %.6g held: %s (nu %.6f) gives nu_cr %.6f\n", o->amplitude,
+                o->runs[k], nu[k], cr);
+    }
+}
+
 /// With --jamming: the contact pressure scaled by rho d^2 (shear rate)^2 against the solids
 /// fraction, fitted with A (nu_cr - nu)^-exponent over the runs.
 static void fit_jamming(const bdl_analyze_opts *o, const double *nu, const double *y, int n,
                         FILE *f)
 {
+    if (o->amplitude > 0.0)
+        jamming_points(o, nu, y, n, f);
     double cr, a;
     const double r = bdl_rheology_fit_jamming(nu, y, n, o->jamming, &cr, &a);
     if (isnan(r)) {
-        printf("jamming fit: needs three runs or more with a contact pressure\n");
+        if (!(o->amplitude > 0.0))
+            printf("jamming fit: needs three runs or more with a contact pressure\n");
         return;
     }
     printf("jamming fit over %d runs: p_contact / (rho d^2 rate^2) = %.4g (%.4f - nu)^-%g, rms "
@@ -202,6 +218,11 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
 {
     if (!isnan(o->restitution) && !(o->restitution > 0.0 && o->restitution <= 1.0)) {
         fprintf(stderr, "error: --restitution %g: must lie in (0, 1]\n", o->restitution);
+        return BDL_ERR_ARGS;
+    }
+    if (!(o->amplitude >= 0.0) || (o->amplitude > 0.0 && !(o->jamming > 0.0))) {
+        fprintf(stderr, "error: --amplitude %g: must be positive, and comes with --jamming X\n",
+                o->amplitude);
         return BDL_ERR_ARGS;
     }
     char path[1300];

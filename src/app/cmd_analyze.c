@@ -30,7 +30,7 @@ static const char usage_first[] =
     "                                  [--no-plots]\n"
     "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
     "       bedlam analyze rheology RUN [RUN...] [--from T] [--to T] [--restitution E]\n"
-    "                               [--jamming X] [--out DIR] [--no-plots]\n"
+    "                               [--jamming X [--amplitude A]] [--out DIR] [--no-plots]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
     "the run with --file NAME, e.g. --file species.csv).\n"
@@ -133,7 +133,9 @@ static const char usage_third[] =
     "contact\n"
     "pressure over rho d^2 (shear rate)^2 fitted with A (nu_cr - nu)^-X over the runs, the\n"
     "distance to jamming (X = 4 for AR-4 rods, 2 for spheres: Chialvo et al. 2012, Mahajan\n"
-    "2019 ch. 6). Writes rheology.csv (one row per run) and rheology.png into --out (default\n"
+    "2019 ch. 6). With --amplitude A as well, A is held (the thesis's collapse, its eq. 6.3:\n"
+    "1/b2^2 = 1.464e-4 for AR-4 rods) and each run gives its own nu_cr = nu + (A/y)^(1/X), one\n"
+    "run or more. Writes rheology.csv (one row per run) and rheology.png into --out (default\n"
     "the first RUN's analysis folder).\n"
     "\n"
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
@@ -166,6 +168,7 @@ static const bdl_option options[] = {
     {"--cell", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, cell)},
     {"--restitution", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, restitution)},
     {"--jamming", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, jamming)},
+    {"--amplitude", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, amplitude)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.

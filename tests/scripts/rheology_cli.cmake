@@ -1,6 +1,6 @@
 # bedlam run of the Lees-Edwards shear cell (a short one), then bedlam analyze rheology on it: the
-# row per run beside Lun et al., the jamming fit refused with one run, and bad options refused
-# with exit 2. -DBEDLAM -DSCENE -DWORK
+# row per run beside Lun et al., the jamming fit refused with one run but a run's own nu_cr given
+# with the amplitude held, and bad options refused with exit 2. -DBEDLAM -DSCENE -DWORK
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK} --set run.end_time=0.15
   --set create.bed.count=213 --set output.checkpoint_interval=0
@@ -21,6 +21,18 @@ if(NOT out MATCHES "nu 0\\.100[0-9]  rate 100/s" OR NOT out MATCHES "Lun et al\\
 endif()
 if(NOT out MATCHES "jamming fit: needs three runs or more")
   message(FATAL_ERROR "the jamming fit did not say it needs three runs")
+endif()
+# With A held the one run gives nu_cr = nu + (A / y)^(1/4) > nu.
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --jamming 4 --amplitude 1e-4 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "A = 0\\.0001 held: [^\n]* \\(nu 0\\.100[0-9]\\) gives nu_cr 0\\.[1-9]"
+   OR out MATCHES "needs three runs")
+  message(FATAL_ERROR "no nu_cr with the amplitude held (${rc}):\n${out}${err}")
+endif()
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --amplitude 1e-4 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "comes with --jamming")
+  message(FATAL_ERROR "--amplitude without --jamming was not refused (${rc}): ${err}")
 endif()
 execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 1.5 --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
