@@ -1,14 +1,15 @@
 #!/usr/bin/env python3
 """Writes a denser start for the rod shear cell from a sheared state: the rods of a particle VTK
 file (bedlam's `vtk_interval` output) with their centres scaled by s about the origin, inside a
-box scaled by the same s, so that the solids fraction grows by 1/s^3 while the disorder of the
+box scaled by the same s, so that the solids fraction grows by 1/s^3 while the structure of the
 sheared bed is kept (a lattice start denser than about 0.6 slides in layers for tens of strains
-before it breaks up). Velocities and axes are kept. Prints the scaled box and the --set options
-that run it; the overlaps the scaling makes (about (1 - s) times the centre distance) are
-relaxed by the first strains of the run, which the averages leave out. The file's snapshot must
-be taken when the Lees-Edwards images are back in register (shear rate x box height x time a
-multiple of the box length: with the default box at 100/s, every 0.015 s); the velocities are
-written less the shear profile, which the new run adds back.
+before it breaks up). Axes are kept, and velocities less the shear profile, which the new run
+adds back. Prints the --set options that run it: the file, the smaller box, and a guard on
+initial overlaps wide enough for those of a sheared bed. The overlaps the scaling adds, about
+(1 - s) times the centre distance, relax in the first strains of the run, which the averages
+leave out. The snapshot must be taken when the Lees-Edwards images are in register (shear rate
+x box height x time a multiple of the box length: in the default box at 100/s every 0.015 s, so
+a run to be squeezed further ends at 0.405 s rather than 0.4).
 
 usage: tools/rod_compress.py PARTICLES.vtp OUT.csv SOLIDS_FRACTION [BOX_X BOX_Y BOX_Z]
   (the box of the file's run; default 0.072 0.048 0.048 m, scenes/shear_cell_rods.ini's;
@@ -67,7 +68,8 @@ def main():
                     % (p[0], p[1], p[2], vx, vel[3 * i + 1], vel[3 * i + 2],
                        axis[3 * i], axis[3 * i + 1], axis[3 * i + 2]))
     print("%d rods: solids fraction %.4f -> %.4f, scale %.5f" % (n, now, target, s))
-    print("--set 'domain.max=%.7f %.7f %.7f'" % tuple(new_box))
+    print("--set create.bed.file=%s --set 'domain.max=%.7f %.7f %.7f' "
+          "--set guards.initial_overlap=0.2" % ((os.path.abspath(sys.argv[2]),) + tuple(new_box)))
 
 
 if __name__ == "__main__":
