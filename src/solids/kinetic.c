@@ -1,0 +1,72 @@
+// bedlam — closures of a solids phase on the grid (solids/kinetic.h).
+#include "solids/kinetic.h"
+
+#include <math.h>
+
+static const double pi = 3.14159265358979323846;
+
+double bdl_g0_carnahan_starling(double eps)
+{
+    const double g = 1.0 - eps;
+    return (1.0 - 0.5 * eps) / (g * g * g);
+}
+
+double bdl_g0_lebowitz(const double *eps, const double *d, int count, int l, int m)
+{
+    double solids = 0.0, s = 0.0;
+    for (int k = 0; k < count; ++k) {
+        solids += eps[k];
+        s += eps[k] / d[k];
+    }
+    const double gas = 1.0 - solids;
+    return 1.0 / gas + 3.0 * d[l] * d[m] * s / (gas * gas * (d[l] + d[m]));
+}
+
+bdl_ktgf_coefficients bdl_ktgf_syamlal(double eps, double d, double rho, double e)
+{
+    bdl_ktgf_coefficients c;
+    c.g0 = bdl_g0_carnahan_starling(eps);
+    const double eg = eps * c.g0, sqrt_pi = sqrt(pi);
+    c.k1 = 2.0 * (1.0 + e) * rho * c.g0;
+    c.k3 = 0.5 * d * rho *
+           (sqrt_pi / (3.0 * (3.0 - e)) * (1.0 + 0.4 * (1.0 + e) * (3.0 * e - 1.0) * eg) +
+            8.0 * eg * (1.0 + e) / (5.0 * sqrt_pi));
+    c.k2 = 4.0 * d * rho * (1.0 + e) * eg / (3.0 * sqrt_pi) - 2.0 / 3.0 * c.k3;
+    c.k4 = 12.0 * (1.0 - e * e) * rho * c.g0 / (sqrt_pi * d);
+    return c;
+}
+
+double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, double shear_rate)
+{
+    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d, rho, e);
+    return c.k3 * shear_rate * shear_rate / (c.k4 * eps);
+}
+
+double bdl_schaeffer_pressure(double eps_s, double eps_g, double eps_g_star, double a, double n)
+{
+    return eps_g < eps_g_star ? eps_s * a * pow(eps_g_star - eps_g, n) : 0.0;
+}
+
+double bdl_schaeffer_viscosity(double pressure, double phi, double i2d, double mu_max)
+{
+    if (!(i2d > 0.0))
+        return pressure > 0.0 ? mu_max : 0.0;
+    return fmin(pressure * sin(phi) / (2.0 * sqrt(i2d)), mu_max);
+}
+
+bdl_jenkins_zhang bdl_jenkins_zhang_effective(double e, double mu, double beta0)
+{
+    bdl_jenkins_zhang j = {.e_eff = e};
+    if (!(mu > 0.0))
+        return j; // smooth spheres: no rotational dissipation, e unchanged
+    const double m0 = 3.5 * mu * (1.0 + e) / (1.0 + beta0), r = mu / m0, m2 = m0 * m0;
+    const double slide = m0 * (1.0 - 2.0 / pi * atan(m0)); // mu0 (1 - (2/pi) atan mu0)
+    j.mu0 = m0;
+    j.a1 = r * (pi * slide + 2.0 * m2 / (1.0 + m2) * (1.0 - 2.0 * r));
+    j.a2 = 5.0 * r * (0.5 * pi * slide - m2 * m2 / ((1.0 + m2) * (1.0 + m2)));
+    j.b1 = r * r * m2 / (1.0 + m2);
+    j.b2 = 0.5 * r * (0.5 * pi * slide + m2 / (1.0 + m2));
+    j.temperature_ratio = j.b1 / j.b2;
+    j.e_eff = e - 0.5 * j.a1 + 0.5 * j.a2 * j.temperature_ratio;
+    return j;
+}

@@ -1,0 +1,57 @@
+// bedlam — closures of a solids phase on the grid: the kinetic theory of granular flow as the
+// segregation thesis uses it (J. Sun, PhD thesis, Iowa State 2007, ch. 3, 5 and 7;
+// docs/theory-tfm.md).
+//
+// Each function is the closure at one point: solids fraction eps (of the phase), granular
+// temperature theta (translational, theta = <C^2>/3, m^2/s^2), diameter d, material density rho,
+// normal restitution e. SI units throughout.
+//
+//   radial distribution at contact   Carnahan & Starling (one phase); Lebowitz (a mixture, the
+//                                    form MFIX takes for more than one phase)
+//   viscous regime (Syamlal 1987)    P = K1 eps^2 theta, mu = K3 eps sqrt(theta),
+//                                    lambda = K2 eps sqrt(theta) (Sun eqs. 3.21-3.25)
+//   collisional dissipation          gamma = K4 eps^2 theta^(3/2), K4 = 12 (1 - e^2) rho g0 /
+//                                    (sqrt(pi) d) (Sun eq. 5.7)
+//   plastic regime (Schaeffer 1987)  P = eps_s A (eps_g* - eps_g)^n, mu = P sin(phi) / (2
+//   sqrt(I2D)) particle rotation                Jenkins & Zhang (2002): the effective restitution
+//   of slightly
+//                                    frictional spheres (Sun eqs. 5.12-5.19)
+#ifndef BDL_SOLIDS_KINETIC_H
+#define BDL_SOLIDS_KINETIC_H
+
+/// g0 = (1 - eps/2) / (1 - eps)^3 for one phase of solids fraction eps in [0, 1).
+double bdl_g0_carnahan_starling(double eps);
+
+/// Lebowitz's g0 between phases l and m of a mixture: 1/eps_g + 3 d_l d_m S / (eps_g^2 (d_l +
+/// d_m)), S = sum_k eps_k / d_k over the `count` phases (eps_g = 1 - sum_k eps_k).
+double bdl_g0_lebowitz(const double *eps, const double *d, int count, int l, int m);
+
+/// The viscous-regime coefficients of Syamlal (1987) for one phase: P = k1 eps^2 theta,
+/// lambda = k2 eps sqrt(theta), mu = k3 eps sqrt(theta), dissipation k4 eps^2 theta^(3/2).
+typedef struct bdl_ktgf_coefficients {
+    double g0, k1, k2, k3, k4;
+} bdl_ktgf_coefficients;
+bdl_ktgf_coefficients bdl_ktgf_syamlal(double eps, double d, double rho, double e);
+
+/// The granular temperature of homogeneous simple shear at `shear_rate` in the viscous regime:
+/// production mu shear_rate^2 equal to the dissipation, theta = k3 shear_rate^2 / (k4 eps)
+/// (e in [0, 1): elastic particles have no balance).
+double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, double shear_rate);
+
+/// Schaeffer's plastic regime: the solids pressure eps_s A (eps_g_star - eps_g)^n when the gas
+/// fraction eps_g is below eps_g_star (else 0), and the frictional viscosity P sin(phi) /
+/// (2 sqrt(i2d)) for the second invariant i2d of the rate-of-strain deviator (capped at mu_max
+/// where i2d vanishes).
+double bdl_schaeffer_pressure(double eps_s, double eps_g, double eps_g_star, double a, double n);
+double bdl_schaeffer_viscosity(double pressure, double phi, double i2d, double mu_max);
+
+/// Jenkins & Zhang (2002) for slightly frictional spheres (friction mu, tangential restitution
+/// beta0): the rotational to translational temperature ratio b1/b2 where the rotational energy
+/// is in balance, and the effective restitution e - a1/2 + a2 b1 / (2 b2) that carries the
+/// friction's dissipation in a smooth-sphere theory.
+typedef struct bdl_jenkins_zhang {
+    double mu0, a1, a2, b1, b2, temperature_ratio, e_eff;
+} bdl_jenkins_zhang;
+bdl_jenkins_zhang bdl_jenkins_zhang_effective(double e, double mu, double beta0);
+
+#endif

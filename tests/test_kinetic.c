@@ -1,0 +1,115 @@
+// The closures of a solids phase (solids/kinetic.h): Jenkins & Zhang's effective restitution
+// against the segregation thesis's table 5.1, the radial distribution functions against the
+// exact second virial coefficient of hard spheres and against each other, Syamlal's collisional
+// pressure against Lun et al.'s, the simple-shear temperature's balance and scaling, and
+// Schaeffer's plastic regime.
+#include <math.h>
+#include <stdio.h>
+
+#include "analysis/rheology.h"
+#include "check.h"
+#include "solids/kinetic.h"
+
+/// Sun (2007) table 5.1: e = 0.97, beta0 = 0.33; particles with friction 0.15 (small) and 0.10
+/// (large), walls 0.10 and 0.09: e_eff 0.83, 0.86, 0.86, 0.87 to the two digits printed. The
+/// intermediate terms of the small particles' case as evaluated from eqs. 5.12-5.18.
+static void test_jenkins_zhang(void)
+{
+    const double mu[4] = {0.15, 0.10, 0.10, 0.09}, table[4] = {0.83, 0.86, 0.86, 0.87};
+    for (int k = 0; k < 4; ++k) {
+        const bdl_jenkins_zhang j = bdl_jenkins_zhang_effective(0.97, mu[k], 0.33);
+        printf("friction %.2f: mu0 %.4f, e_eff %.4f (table 5.1: %.2f)\n", mu[k], j.mu0, j.e_eff,
+               table[k]);
+        CHECK(fabs(j.e_eff - table[k]) < 0.005);
+    }
+    const bdl_jenkins_zhang s = bdl_jenkins_zhang_effective(0.97, 0.15, 0.33);
+    CHECK(fabs(s.mu0 - 0.7776) < 1e-4);
+    CHECK(fabs(s.a1 - 0.3622) < 1e-4);
+    CHECK(fabs(s.a2 - 0.5454) < 1e-4);
+    CHECK(fabs(s.b1 - 0.0140) < 1e-4);
+    CHECK(fabs(s.b2 - 0.1046) < 1e-4);
+    CHECK(fabs(s.temperature_ratio - 0.134) < 1e-3);
+    CHECK(fabs(bdl_jenkins_zhang_effective(0.97, 0.10, 0.33).mu0 - 0.5184) < 1e-4);
+    // Smooth spheres keep their restitution; more friction dissipates more.
+    CHECK(bdl_jenkins_zhang_effective(0.9, 0.0, 0.33).e_eff == 0.9);
+    CHECK(bdl_jenkins_zhang_effective(0.97, 0.15, 0.33).e_eff <
+          bdl_jenkins_zhang_effective(0.97, 0.05, 0.33).e_eff);
+}
+
+/// Both radial distributions start as 1 + 2.5 eps, the exact second virial coefficient of hard
+/// spheres; Lebowitz's mixture of two phases of one diameter is its one-phase value at the total
+/// solids fraction, for any split, and grows for the pair of the larger particles.
+static void test_g0(void)
+{
+    CHECK(bdl_g0_carnahan_starling(0.0) == 1.0);
+    const double eps = 1e-5, one_d = 0.002;
+    CHECK_CLOSE((bdl_g0_carnahan_starling(eps) - 1.0) / eps, 2.5, 1e-4);
+    CHECK_CLOSE((bdl_g0_lebowitz(&eps, &one_d, 1, 0, 0) - 1.0) / eps, 2.5, 1e-4);
+    CHECK_CLOSE(bdl_g0_carnahan_starling(0.3), 0.85 / (0.7 * 0.7 * 0.7), 1e-14);
+    const double split[2] = {0.1, 0.35}, same_d[2] = {0.002, 0.002}, total = 0.45;
+    const double one = bdl_g0_lebowitz(&total, same_d, 1, 0, 0);
+    CHECK_CLOSE(bdl_g0_lebowitz(split, same_d, 2, 0, 1), one, 1e-14);
+    CHECK_CLOSE(bdl_g0_lebowitz(split, same_d, 2, 1, 1), one, 1e-14);
+    const double d[2] = {0.00152, 0.00249};
+    CHECK(bdl_g0_lebowitz(split, d, 2, 1, 1) > bdl_g0_lebowitz(split, d, 2, 0, 1));
+    CHECK(bdl_g0_lebowitz(split, d, 2, 0, 1) > bdl_g0_lebowitz(split, d, 2, 0, 0));
+}
+
+/// Syamlal's pressure K1 eps^2 theta is the collisional part of Lun et al.'s, p - rho eps T, at
+/// any state (analysis/rheology.h has Lun's simple shear).
+static void test_pressure_against_lun(void)
+{
+    const double eps[3] = {0.1, 0.3, 0.5}, e[3] = {0.7, 0.9, 0.97};
+    const double d = 0.0025, rho = 2526.0;
+    for (int k = 0; k < 3; ++k) {
+        const bdl_lun_state lun = bdl_lun_simple_shear(eps[k], e[k], d, rho, 40.0);
+        const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps[k], d, rho, e[k]);
+        CHECK_CLOSE(c.g0, lun.g0, 1e-14);
+        CHECK_CLOSE(c.k1 * eps[k] * eps[k] * lun.temperature,
+                    lun.pressure - rho * eps[k] * lun.temperature, 1e-12);
+    }
+}
+
+/// The simple-shear temperature balances production and dissipation, scales as (rate d)^2
+/// (Bagnold), and grows without bound as the collisions become elastic.
+static void test_shear_temperature(void)
+{
+    const double eps = 0.4, d = 0.0025, rho = 2526.0, e = 0.9, rate = 20.0;
+    const double t = bdl_ktgf_shear_temperature(eps, d, rho, e, rate);
+    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d, rho, e);
+    CHECK_CLOSE(c.k3 * eps * sqrt(t) * rate * rate, c.k4 * eps * eps * pow(t, 1.5), 1e-12);
+    CHECK_CLOSE(bdl_ktgf_shear_temperature(eps, 2.0 * d, rho, e, 3.0 * rate), 36.0 * t, 1e-12);
+    CHECK_CLOSE(bdl_ktgf_shear_temperature(eps, d, 2.0 * rho, e, rate), t, 1e-12);
+    CHECK(bdl_ktgf_shear_temperature(eps, d, rho, 0.99, rate) >
+          5.0 * bdl_ktgf_shear_temperature(eps, d, rho, 0.9, rate));
+    // The bulk viscosity coefficient of a dense phase is positive; the shear viscosity too.
+    CHECK(c.k2 > 0.0 && c.k3 > 0.0 && c.k1 > 0.0 && c.k4 > 0.0);
+}
+
+/// Schaeffer: no plastic pressure at or above the critical gas fraction, growing as the bed is
+/// squeezed; the viscosity carries P sin(phi) over 2 sqrt(I2D), capped.
+static void test_schaeffer(void)
+{
+    const double a = 1e24, n = 10.0, star = 0.42;
+    CHECK(bdl_schaeffer_pressure(0.58, 0.42, star, a, n) == 0.0);
+    CHECK(bdl_schaeffer_pressure(0.50, 0.50, star, a, n) == 0.0);
+    const double p1 = bdl_schaeffer_pressure(0.59, 0.41, star, a, n);
+    const double p2 = bdl_schaeffer_pressure(0.60, 0.40, star, a, n);
+    CHECK_CLOSE(p1, 0.59 * a * pow(0.01, n), 1e-12);
+    CHECK(p2 > p1 * 1000.0);
+    const double phi = 30.0 * 3.14159265358979323846 / 180.0;
+    CHECK_CLOSE(bdl_schaeffer_viscosity(p1, phi, 4.0, 1e9) * 2.0 * 2.0, p1 * 0.5, 1e-12);
+    CHECK(bdl_schaeffer_viscosity(p1, phi, 0.0, 100.0) == 100.0);
+    CHECK(bdl_schaeffer_viscosity(p1, phi, 1e-30, 100.0) == 100.0);
+    CHECK(bdl_schaeffer_viscosity(0.0, phi, 0.0, 100.0) == 0.0);
+}
+
+int main(void)
+{
+    test_jenkins_zhang();
+    test_g0();
+    test_pressure_against_lun();
+    test_shear_temperature();
+    test_schaeffer();
+    return bdl_test_summary("test_kinetic");
+}
