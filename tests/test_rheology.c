@@ -170,10 +170,43 @@ static void test_jamming(void)
     CHECK(isnan(bdl_rheology_jamming_point(0.5, 1.0, 4.0, -1.0)));
 }
 
+/// The soft dense branch of eq. 6.3: its inertial limit is the law A D^-4 (slow shear, or a2 = 0),
+/// a pressure taken from the branch gives its nu_cr back, and one above the branch's peak at
+/// that rate is past jamming.
+static void test_jamming_soft(void)
+{
+    const double d = 5.295e-3, rho = 1395.0, a = 1.0 / (82.64 * 82.64);
+    bdl_jamming_branch b = {4.0, a, 39.56, 6e5};
+    const double slow = bdl_rheology_branch_pressure(&b, 0.1, 0.01, d, rho);
+    CHECK_CLOSE(slow, a * rho * d * d * 1e-4 * pow(0.1, -4.0), 1e-3);
+    int beyond = 1;
+    for (int k = 0; k < 3; ++k) {
+        const double distance = 0.06 + 0.03 * k;
+        const double p = bdl_rheology_branch_pressure(&b, distance, 100.0, d, rho);
+        const double cr = bdl_rheology_jamming_soft(&b, 0.5, p, 100.0, d, rho, &beyond);
+        CHECK_CLOSE(cr, 0.5 + distance, 1e-9);
+        CHECK(beyond == 0);
+        // The inertial limit alone overstates the pressure, so it puts nu_cr farther away.
+        CHECK(bdl_rheology_jamming_point(0.5, p / (rho * d * d * 1e4), 4.0, a) > cr);
+    }
+    double top = 0.0;
+    for (int k = 1; k <= 1000; ++k)
+        top = fmax(top, bdl_rheology_branch_pressure(&b, 1e-3 * k, 100.0, d, rho));
+    printf("soft branch at 100/s: the largest contact pressure below jamming %.0f Pa\n", top);
+    CHECK(bdl_rheology_jamming_soft(&b, 0.55, 1.5 * top, 100.0, d, rho, &beyond) == 0.55);
+    CHECK(beyond == 1);
+    b.a2 = 0.0; // no springs' limit: the law A D^-4 exactly
+    const double p = 800.0, y = p / (rho * d * d * 1e4);
+    CHECK_CLOSE(bdl_rheology_jamming_soft(&b, 0.5, p, 100.0, d, rho, &beyond),
+                bdl_rheology_jamming_point(0.5, y, 4.0, a), 1e-9);
+    CHECK(isnan(bdl_rheology_jamming_soft(&b, 0.5, -1.0, 100.0, d, rho, &beyond)));
+}
+
 int main(void)
 {
     test_stress();
     test_lun();
     test_jamming();
+    test_jamming_soft();
     return bdl_test_summary("test_rheology");
 }

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The rod figure of docs/validation/rheology.md: the contact pressure over rho d_v^2 (shear
-# rate)^2 against the solids fraction for the three frictions, beside the inertial branch of the
-# thesis's collapse (Mahajan 2019, eq. 6.3: A (nu_cr - nu)^-4 with A = 1/b2^2, b2 = 82.64, and its
-# nu_cr of 0.65, 0.63, 0.59), and the contact friction against the inertial number beside its
-# eq. 6.4 (0.57 I^0.22 + 0.36, fitted for friction 0.46).
+# rate)^2 against the solids fraction for the three frictions, beside the dense branch of the
+# thesis's collapse at 100/s (Mahajan 2019, eq. 6.3, a2 = 39.56, b2 = 82.64, k_n = 6e5 N/m, with
+# its nu_cr of 0.65, 0.63, 0.59; dotted, the branch's inertial limit), and the contact friction
+# against the inertial number beside its eq. 6.4 (0.57 I^0.22 + 0.36, fitted for friction 0.46).
 # Each CSV is the rheology.csv that `bedlam analyze rheology RUN... --out DIR` writes for one
 # friction's runs.
 # usage: tools/rod_jamming_figure.sh MU0.csv MU0.1.csv MU0.46.csv OUT_DIR
@@ -18,7 +18,10 @@ set datafile separator ','
 set datafile columnheaders
 set multiplot layout 1,2
 a = 1.0 / 82.64**2
+rho = 1395.0; dv = 5.295e-3; kn = 6e5; rate = 100.0
 law(nu, cr) = nu < cr ? a * (cr - nu)**-4 : 1/0
+gss(D) = rate * dv * D**(-7.0/3) / sqrt(kn / (rho * dv))
+soft(nu, cr) = nu < cr ? kn / dv * (cr - nu)**(2.0/3) * (gss(cr - nu) / (39.56 * gss(cr - nu) + 82.64))**2 / (rho * dv**2 * rate**2) : 1/0
 set logscale y
 set grid
 set key bottom right
@@ -30,9 +33,12 @@ set samples 400
 plot '$m0' using (column('solids_fraction')):(column('contact_pressure_scaled')) with points pt 7 ps 1.3 lc rgb '#3060c0' title 'friction 0', \
      '$m1' using (column('solids_fraction')):(column('contact_pressure_scaled')) with points pt 5 ps 1.3 lc rgb '#30a050' title 'friction 0.1', \
      '$m4' using (column('solids_fraction')):(column('contact_pressure_scaled')) with points pt 9 ps 1.5 lc rgb '#c03030' title 'friction 0.46', \
-     law(x, 0.65) with lines dt 2 lw 1.5 lc rgb '#3060c0' title 'thesis: A (0.65 - nu)^{-4}', \
-     law(x, 0.63) with lines dt 2 lw 1.5 lc rgb '#30a050' title 'thesis: A (0.63 - nu)^{-4}', \
-     law(x, 0.59) with lines dt 2 lw 1.5 lc rgb '#c03030' title 'thesis: A (0.59 - nu)^{-4}'
+     soft(x, 0.65) with lines dt 2 lw 1.5 lc rgb '#3060c0' title 'thesis eq. 6.3, nu_{cr} 0.65', \
+     soft(x, 0.63) with lines dt 2 lw 1.5 lc rgb '#30a050' title 'thesis eq. 6.3, nu_{cr} 0.63', \
+     soft(x, 0.59) with lines dt 2 lw 1.5 lc rgb '#c03030' title 'thesis eq. 6.3, nu_{cr} 0.59', \
+     law(x, 0.65) with lines dt 3 lw 1 lc rgb '#3060c0' notitle, \
+     law(x, 0.63) with lines dt 3 lw 1 lc rgb '#30a050' notitle, \
+     law(x, 0.59) with lines dt 3 lw 1 lc rgb '#c03030' notitle
 unset logscale y
 set logscale x
 set xrange [0.02:5]

@@ -199,6 +199,49 @@ double bdl_rheology_jamming_point(double nu, double y, double exponent, double a
     return nu + pow(a / y, 1.0 / exponent);
 }
 
+double bdl_rheology_branch_pressure(const bdl_jamming_branch *b, double distance, double rate,
+                                    double d, double rho)
+{
+    const double a1 = 2.0 / 3.0, b1 = 0.5 * (b->exponent + a1);
+    const double g = fabs(rate) * d * pow(distance, -b1) / sqrt(b->stiffness / (rho * d));
+    const double r = g / (b->a2 * g + 1.0 / sqrt(b->a));
+    return b->stiffness / d * pow(distance, a1) * r * r;
+}
+
+double bdl_rheology_jamming_soft(const bdl_jamming_branch *b, double nu, double pc, double rate,
+                                 double d, double rho, int *beyond)
+{
+    *beyond = 0;
+    if (!(pc > 0.0 && b->a > 0.0 && b->a2 >= 0.0 && b->stiffness > 0.0 && b->exponent > 0.0 &&
+          d > 0.0 && rho > 0.0 && rate != 0.0) ||
+        !isfinite(nu))
+        return NAN;
+    // The peak on a geometric scan of D over [1e-6, 1], then bisection on the inertial side,
+    // where the pressure falls as D grows.
+    double peak = 1e-6, top = 0.0;
+    for (int k = 0; k <= 600; ++k) {
+        const double x = 1e-6 * pow(1e6, k / 600.0);
+        const double p = bdl_rheology_branch_pressure(b, x, rate, d, rho);
+        if (p > top)
+            top = p, peak = x;
+    }
+    if (pc >= top) {
+        *beyond = 1;
+        return nu;
+    }
+    double lo = peak, hi = 1.0;
+    if (bdl_rheology_branch_pressure(b, hi, rate, d, rho) > pc)
+        return NAN; // farther than a distance of 1 from jamming: not a dense state
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (bdl_rheology_branch_pressure(b, mid, rate, d, rho) > pc)
+            lo = mid;
+        else
+            hi = mid;
+    }
+    return nu + 0.5 * (lo + hi);
+}
+
 double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double exponent,
                                 double *nu_cr, double *a)
 {

@@ -82,4 +82,21 @@ double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double
 /// NAN unless y, A and the exponent are positive.
 double bdl_rheology_jamming_point(double nu, double y, double exponent, double a);
 
+/// The whole dense branch of the thesis's collapse with soft contacts (Mahajan 2019, eq. 6.3):
+/// with D = nu_cr - nu, P* = P_c / D^a1 and g* = shear rate / D^b1 (a1 = 2/3, b1 = (exponent +
+/// a1)/2: 7/3 for rods, 4/3 for spheres), P** = P* d / k_n and g** = g* d / sqrt(k_n / (rho d)),
+/// P** = (g** / (a2 g** + b2))^2, b2 = 1/sqrt(A). Its inertial limit (g** small) is the law
+/// above; as D -> 0 the springs take over and P_c falls again, so at one shear rate the branch
+/// has a largest pressure. The contact pressure at distance D:
+typedef struct bdl_jamming_branch {
+    double exponent, a, a2, stiffness; ///< 2 b1 - a1; A; a2; k_n [N/m]
+} bdl_jamming_branch;
+double bdl_rheology_branch_pressure(const bdl_jamming_branch *b, double distance, double rate,
+                                    double d, double rho);
+/// The nu_cr that puts a run's contact pressure p_c on the branch, on its inertial side (D above
+/// the peak's). A p_c above the branch's peak at this rate lies past jamming: *beyond = 1 and nu
+/// itself is returned (nu_cr <= nu). NAN for non-positive inputs.
+double bdl_rheology_jamming_soft(const bdl_jamming_branch *b, double nu, double pc, double rate,
+                                 double d, double rho, int *beyond);
+
 #endif

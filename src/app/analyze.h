@@ -37,6 +37,8 @@ typedef struct bdl_analyze_opts {
     double restitution;
     double jamming;   ///< rheology: the exponent of the fit to the distance to jamming (0: none)
     double amplitude; ///< rheology: the jamming law's A held fixed (0: fitted with nu_cr)
+    double stiffness; ///< rheology: k_n of the soft dense branch (0: its inertial limit only)
+    double a2;        ///< rheology: the soft dense branch's a2 (Mahajan 2019, eq. 6.3)
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);

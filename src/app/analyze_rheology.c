@@ -178,26 +178,41 @@ static void plot_rheology(const bdl_analyze_opts *o)
             : "");
 }
 
-/// With --amplitude: the nu_cr of each run on the law with A held.
-static void jamming_points(const bdl_analyze_opts *o, const double *nu, const double *y, int n,
-                           FILE *f)
+/// With --amplitude: the nu_cr of each run on the law with A held; with --stiffness and --a2 as
+/// well, on the whole dense branch, or past jamming when its pressure is above the branch's peak.
+static void jamming_points(const bdl_analyze_opts *o, const double (*v)[C_COUNT], const double *y,
+                           int n, FILE *f)
 {
+    const bdl_jamming_branch b = {o->jamming, o->amplitude, o->a2, o->stiffness};
     for (int k = 0; k < n; ++k) {
-        const double cr = bdl_rheology_jamming_point(nu[k], y[k], o->jamming, o->amplitude);
-        printf("jamming with A = %.4g held: %s (nu %.4f) gives nu_cr %.4f\n", o->amplitude,
-               o->runs[k], nu[k], cr);
-        fprintf(f, "# jamming with A = %.6g held: %s (nu %.6f) gives nu_cr %.6f\n", o->amplitude,
-                o->runs[k], nu[k], cr);
+        const double *m = v[k];
+        int beyond = 0;
+        const double cr = o->stiffness > 0.0
+                              ? bdl_rheology_jamming_soft(&b, m[C_NU], m[C_PC], m[C_RATE], m[C_D],
+                                                          m[C_RHO], &beyond)
+                              : bdl_rheology_jamming_point(m[C_NU], y[k], o->jamming, o->amplitude);
+        char text[600];
+        snprintf(text, sizeof text, "jamming with A = %.6g held%s: %s (nu %.4f) %s %.4f",
+                 o->amplitude, o->stiffness > 0.0 ? " on the soft branch" : "", o->runs[k], m[C_NU],
+                 beyond ? "lies past jamming: its contact pressure is above the branch's "
+                          "peak at this rate, nu_cr <="
+                        : "gives nu_cr",
+                 cr);
+        printf("%s\n", text);
+        fprintf(f, "# %s\n", text);
     }
 }
 
 /// With --jamming: the contact pressure scaled by rho d^2 (shear rate)^2 against the solids
 /// fraction, fitted with A (nu_cr - nu)^-exponent over the runs.
-static void fit_jamming(const bdl_analyze_opts *o, const double *nu, const double *y, int n,
-                        FILE *f)
+static void fit_jamming(const bdl_analyze_opts *o, const double (*v)[C_COUNT], const double *y,
+                        int n, FILE *f)
 {
+    double nu[BDL_ANALYZE_RUNS_MAX];
+    for (int k = 0; k < n; ++k)
+        nu[k] = v[k][C_NU];
     if (o->amplitude > 0.0)
-        jamming_points(o, nu, y, n, f);
+        jamming_points(o, v, y, n, f);
     double cr, a;
     const double r = bdl_rheology_fit_jamming(nu, y, n, o->jamming, &cr, &a);
     if (isnan(r)) {
@@ -225,12 +240,22 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
                 o->amplitude);
         return BDL_ERR_ARGS;
     }
+    if (!(o->stiffness >= 0.0 && o->a2 >= 0.0) ||
+        ((o->stiffness > 0.0 || o->a2 > 0.0) &&
+         !(o->stiffness > 0.0 && o->a2 > 0.0 && o->amplitude > 0.0))) {
+        fprintf(stderr,
+                "error: --stiffness %g, --a2 %g: both positive, and they come with "
+                "--jamming X --amplitude A\n",
+                o->stiffness, o->a2);
+        return BDL_ERR_ARGS;
+    }
     char path[1300];
     snprintf(path, sizeof path, "%s/rheology.csv", o->out);
     bdl_atomic_file af;
     if (bdl_atomic_open_csv(&af, path, header) != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
-    double nu[BDL_ANALYZE_RUNS_MAX], y[BDL_ANALYZE_RUNS_MAX];
+    double v[BDL_ANALYZE_RUNS_MAX][C_COUNT];
+    double y[BDL_ANALYZE_RUNS_MAX];
     for (int r = 0; r < o->run_count; ++r) {
         run_mean m;
         if (!average_run(o->runs[r], o, &m)) {
@@ -239,12 +264,12 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
         }
         write_row(af.file, o->runs[r], &m, o->restitution);
         print_row(o->runs[r], &m, o->restitution);
-        const double *v = m.mean;
-        nu[r] = v[C_NU];
-        y[r] = v[C_PC] / (v[C_RHO] * v[C_D] * v[C_D] * v[C_RATE] * v[C_RATE]);
+        for (int c = 0; c < C_COUNT; ++c)
+            v[r][c] = m.mean[c];
+        y[r] = v[r][C_PC] / (v[r][C_RHO] * v[r][C_D] * v[r][C_D] * v[r][C_RATE] * v[r][C_RATE]);
     }
     if (o->jamming > 0.0)
-        fit_jamming(o, nu, y, o->run_count, af.file);
+        fit_jamming(o, (const double(*)[C_COUNT])v, y, o->run_count, af.file);
     bdl_result rc = bdl_atomic_commit(&af);
     if (rc == BDL_OK && o->plots)
         plot_rheology(o);

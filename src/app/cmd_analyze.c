@@ -30,7 +30,8 @@ static const char usage_first[] =
     "                                  [--no-plots]\n"
     "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
     "       bedlam analyze rheology RUN [RUN...] [--from T] [--to T] [--restitution E]\n"
-    "                               [--jamming X [--amplitude A]] [--out DIR] [--no-plots]\n"
+    "                               [--jamming X [--amplitude A [--stiffness K --a2 C]]]\n"
+    "                               [--out DIR] [--no-plots]\n"
     "\n"
     "Reads RUN/diagnostics.csv of a finished run (spectrum, mean and phase read another CSV of\n"
     "the run with --file NAME, e.g. --file species.csv).\n"
@@ -135,7 +136,10 @@ static const char usage_third[] =
     "distance to jamming (X = 4 for AR-4 rods, 2 for spheres: Chialvo et al. 2012, Mahajan\n"
     "2019 ch. 6). With --amplitude A as well, A is held (the thesis's collapse, its eq. 6.3:\n"
     "1/b2^2 = 1.464e-4 for AR-4 rods) and each run gives its own nu_cr = nu + (A/y)^(1/X), one\n"
-    "run or more. Writes rheology.csv (one row per run) and rheology.png into --out (default\n"
+    "run or more. With --stiffness K (k_n, N/m) and --a2 C too (the thesis: 6e5 and 39.56), on\n"
+    "the whole soft branch of eq. 6.3 instead of its inertial limit; a contact pressure above\n"
+    "that branch's peak at the run's shear rate lies past jamming (nu_cr <= nu). Writes "
+    "rheology.csv (one row per run) and rheology.png into --out (default\n"
     "the first RUN's analysis folder).\n"
     "\n"
     "--out DIR: where the files go (default RUN/analysis, or the contact file's folder). Exit "
@@ -169,6 +173,8 @@ static const bdl_option options[] = {
     {"--restitution", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, restitution)},
     {"--jamming", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, jamming)},
     {"--amplitude", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, amplitude)},
+    {"--stiffness", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, stiffness)},
+    {"--a2", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, a2)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.

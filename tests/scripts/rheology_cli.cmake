@@ -29,6 +29,17 @@ if(NOT rc EQUAL 0 OR NOT out MATCHES "A = 0\\.0001 held: [^\n]* \\(nu 0\\.100[0-
    OR out MATCHES "needs three runs")
   message(FATAL_ERROR "no nu_cr with the amplitude held (${rc}):\n${out}${err}")
 endif()
+# On the soft branch too (the dilute run lies on its inertial side), and --stiffness alone refused.
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --jamming 4 --amplitude 1e-4
+  --stiffness 6e5 --a2 39.56 --no-plots RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "held on the soft branch: [^\n]* gives nu_cr 0\\.[1-9]")
+  message(FATAL_ERROR "no nu_cr on the soft branch (${rc}):\n${out}${err}")
+endif()
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --jamming 4 --amplitude 1e-4
+  --stiffness 6e5 --no-plots RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 2 OR NOT err MATCHES "both positive")
+  message(FATAL_ERROR "--stiffness without --a2 was not refused (${rc}): ${err}")
+endif()
 execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --amplitude 1e-4 --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 2 OR NOT err MATCHES "comes with --jamming")
