@@ -191,13 +191,16 @@ static void jamming_points(const bdl_analyze_opts *o, const double (*v)[C_COUNT]
                               ? bdl_rheology_jamming_soft(&b, m[C_NU], m[C_PC], m[C_RATE], m[C_D],
                                                           m[C_RHO], &beyond)
                               : bdl_rheology_jamming_point(m[C_NU], y[k], o->jamming, o->amplitude);
-        char text[600];
-        snprintf(text, sizeof text, "jamming with A = %.6g held%s: %s (nu %.4f) %s %.4f",
-                 o->amplitude, o->stiffness > 0.0 ? " on the soft branch" : "", o->runs[k], m[C_NU],
-                 beyond ? "lies past jamming: its contact pressure is above the branch's "
-                          "peak at this rate, nu_cr <="
-                        : "gives nu_cr",
-                 cr);
+        const char *says = beyond      ? "lies past jamming: its contact pressure is above the "
+                                         "branch's peak at this rate, nu_cr <="
+                           : isnan(cr) ? "has no nu_cr: no contact pressure, or more than 1 from "
+                                         "jamming"
+                                       : "gives nu_cr";
+        char text[600], value[32] = "";
+        if (!isnan(cr))
+            snprintf(value, sizeof value, " %.4f", cr);
+        snprintf(text, sizeof text, "jamming with A = %.6g held%s: %s (nu %.4f) %s%s", o->amplitude,
+                 o->stiffness > 0.0 ? " on the soft branch" : "", o->runs[k], m[C_NU], says, value);
         printf("%s\n", text);
         fprintf(f, "# %s\n", text);
     }
