@@ -1,8 +1,8 @@
 // The closures of a solids phase (solids/kinetic.h): Jenkins & Zhang's effective restitution
 // against the segregation thesis's table 5.1, the radial distribution functions against the
-// exact second virial coefficient of hard spheres and against each other, Syamlal's collisional
-// pressure against Lun et al.'s, the simple-shear temperature's balance and scaling, and
-// Schaeffer's plastic regime.
+// exact first-order term of hard spheres (from their third virial coefficient) and each other,
+// Syamlal's collisional pressure against Lun et al.'s, the simple-shear temperature's balance and
+// scaling, and Schaeffer's plastic regime.
 #include <math.h>
 #include <stdio.h>
 
@@ -36,9 +36,10 @@ static void test_jenkins_zhang(void)
           bdl_jenkins_zhang_effective(0.97, 0.05, 0.33).e_eff);
 }
 
-/// Both radial distributions start as 1 + 2.5 eps, the exact second virial coefficient of hard
-/// spheres; Lebowitz's mixture of two phases of one diameter is its one-phase value at the total
-/// solids fraction, for any split, and grows for the pair of the larger particles.
+/// Both radial distributions start as 1 + 2.5 eps, exact for hard spheres (Z = 1 + 4 eps + 10 eps^2
+/// + ..., g0 = (Z - 1) / (4 eps)); values at 0.4 and 0.45 by hand; Lebowitz's mixture of two phases
+/// of one diameter is its one-phase value at the total solids fraction, for any split, and grows
+/// for the pair of the larger particles.
 static void test_g0(void)
 {
     CHECK(bdl_g0_carnahan_starling(0.0) == 1.0);
@@ -46,6 +47,9 @@ static void test_g0(void)
     CHECK_CLOSE((bdl_g0_carnahan_starling(eps) - 1.0) / eps, 2.5, 1e-4);
     CHECK_CLOSE((bdl_g0_lebowitz(&eps, &one_d, 1, 0, 0) - 1.0) / eps, 2.5, 1e-4);
     CHECK_CLOSE(bdl_g0_carnahan_starling(0.3), 0.85 / (0.7 * 0.7 * 0.7), 1e-14);
+    CHECK_CLOSE(bdl_g0_carnahan_starling(0.4), 3.7037037, 1e-7);
+    const double at = 0.45;
+    CHECK_CLOSE(bdl_g0_lebowitz(&at, &one_d, 1, 0, 0), 4.0495868, 1e-7); // 1/0.55 + 0.675/0.55^2
     const double split[2] = {0.1, 0.35}, same_d[2] = {0.002, 0.002}, total = 0.45;
     const double one = bdl_g0_lebowitz(&total, same_d, 1, 0, 0);
     CHECK_CLOSE(bdl_g0_lebowitz(split, same_d, 2, 0, 1), one, 1e-14);
@@ -82,8 +86,12 @@ static void test_shear_temperature(void)
     CHECK_CLOSE(bdl_ktgf_shear_temperature(eps, d, 2.0 * rho, e, rate), t, 1e-12);
     CHECK(bdl_ktgf_shear_temperature(eps, d, rho, 0.99, rate) >
           5.0 * bdl_ktgf_shear_temperature(eps, d, rho, 0.9, rate));
-    // The bulk viscosity coefficient of a dense phase is positive; the shear viscosity too.
-    CHECK(c.k2 > 0.0 && c.k3 > 0.0 && c.k1 > 0.0 && c.k4 > 0.0);
+    // K2 and K3 at eps 0.4, e 0.9, 2.5 mm, 2526 kg/m^3, evaluated by hand from eqs. 3.23-3.25.
+    CHECK_CLOSE(c.k3, 10.611706, 1e-6);
+    CHECK_CLOSE(c.k2, 6.297240, 1e-6);
+    CHECK(c.k1 > 0.0 && c.k4 > 0.0);
+    // The second viscosity lambda = K2 eps sqrt(theta) turns negative in a dilute phase.
+    CHECK(bdl_ktgf_syamlal(0.05, d, rho, e).k2 < 0.0);
 }
 
 /// Schaeffer: no plastic pressure at or above the critical gas fraction, growing as the bed is

@@ -170,36 +170,62 @@ static void test_jamming(void)
     CHECK(isnan(bdl_rheology_jamming_point(0.5, 1.0, 4.0, -1.0)));
 }
 
-/// The soft dense branch of eq. 6.3: its inertial limit is the law A D^-4 (slow shear, or a2 = 0),
-/// a pressure taken from the branch gives its nu_cr back, and one above the branch's peak at
-/// that rate is past jamming.
+/// The soft dense branch of eq. 6.3: its inertial limit is the law A D^-4 (slow shear, or a2 = 0);
+/// an independent evaluation of the thesis's closure (friction 0.46, nu 0.5, nu_cr 0.59, 10/s:
+/// P_c = 8.331 Pa); its peak where g** = b2 X / (a1 a2), of P** = (X / (2 b1 a2))^2; a pressure
+/// taken from either side of the peak gives its nu_cr back; one above the peak is past jamming.
 static void test_jamming_soft(void)
 {
-    const double d = 5.295e-3, rho = 1395.0, a = 1.0 / (82.64 * 82.64);
-    bdl_jamming_branch b = {4.0, a, 39.56, 6e5};
+    const double d = 5.295e-3, rho = 1395.0, b2 = 82.64, a = 1.0 / (b2 * b2), a2 = 39.56;
+    bdl_jamming_branch b = {4.0, a, a2, 6e5};
     const double slow = bdl_rheology_branch_pressure(&b, 0.1, 0.01, d, rho);
     CHECK_CLOSE(slow, a * rho * d * d * 1e-4 * pow(0.1, -4.0), 1e-3);
-    int beyond = 1;
-    for (int k = 0; k < 3; ++k) {
-        const double distance = 0.06 + 0.03 * k;
-        const double p = bdl_rheology_branch_pressure(&b, distance, 100.0, d, rho);
-        const double cr = bdl_rheology_jamming_soft(&b, 0.5, p, 100.0, d, rho, &beyond);
-        CHECK_CLOSE(cr, 0.5 + distance, 1e-9);
-        CHECK(beyond == 0);
-        // The inertial limit alone overstates the pressure, so it puts nu_cr farther away.
-        CHECK(bdl_rheology_jamming_point(0.5, p / (rho * d * d * 1e4), 4.0, a) > cr);
+    CHECK_CLOSE(bdl_rheology_branch_pressure(&b, 0.09, 10.0, 5.3e-3, rho), 8.331, 1e-3);
+    // The peak: a scan of the distance against the closed form.
+    const double a1 = 2.0 / 3.0, b1 = 7.0 / 3.0, k = 6e5, rate = 100.0;
+    const double g_peak = b2 * 4.0 / (a1 * a2);
+    const double d_peak = pow(rate * d / (g_peak * sqrt(k / (rho * d))), 1.0 / b1);
+    const double p_peak = k / d * pow(d_peak, a1) * pow(4.0 / (2.0 * b1 * a2), 2.0);
+    double top = 0.0, at = 0.0;
+    for (int i = 1; i <= 100000; ++i) {
+        const double p = bdl_rheology_branch_pressure(&b, 1e-5 * i, rate, d, rho);
+        if (p > top)
+            top = p, at = 1e-5 * i;
     }
-    double top = 0.0;
-    for (int k = 1; k <= 1000; ++k)
-        top = fmax(top, bdl_rheology_branch_pressure(&b, 1e-3 * k, 100.0, d, rho));
-    printf("soft branch at 100/s: the largest contact pressure below jamming %.0f Pa\n", top);
-    CHECK(bdl_rheology_jamming_soft(&b, 0.55, 1.5 * top, 100.0, d, rho, &beyond) == 0.55);
+    printf("soft branch at 100/s: the largest contact pressure below jamming %.0f Pa at a "
+           "distance %.4f (closed form %.0f Pa at %.4f)\n",
+           top, at, p_peak, d_peak);
+    CHECK_CLOSE(top, p_peak, 1e-6);
+    CHECK(fabs(at - d_peak) < 2e-5);
+    int beyond = 1;
+    double near = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        const double far_side = 0.06 + 0.03 * i, near_side = d_peak * (0.2 + 0.3 * i);
+        const double p = bdl_rheology_branch_pressure(&b, far_side, rate, d, rho);
+        const double cr = bdl_rheology_jamming_soft(&b, 0.5, p, rate, d, rho, &beyond, &near);
+        CHECK_CLOSE(cr, 0.5 + far_side, 1e-9);
+        CHECK(beyond == 0 && near > 0.5 && near < 0.5 + d_peak);
+        const double q = bdl_rheology_branch_pressure(&b, near_side, rate, d, rho);
+        bdl_rheology_jamming_soft(&b, 0.5, q, rate, d, rho, &beyond, &near);
+        CHECK_CLOSE(near, 0.5 + near_side, 1e-9);
+        // The inertial limit alone overstates the pressure, so it puts nu_cr farther away.
+        CHECK(bdl_rheology_jamming_point(0.5, p / (rho * d * d * rate * rate), 4.0, a) > cr);
+    }
+    CHECK(bdl_rheology_jamming_soft(&b, 0.55, 1.01 * p_peak, rate, d, rho, &beyond, &near) == 0.55);
     CHECK(beyond == 1);
-    b.a2 = 0.0; // no springs' limit: the law A D^-4 exactly
-    const double p = 800.0, y = p / (rho * d * d * 1e4);
-    CHECK_CLOSE(bdl_rheology_jamming_soft(&b, 0.5, p, 100.0, d, rho, &beyond),
+    bdl_rheology_jamming_soft(&b, 0.55, 0.99 * p_peak, rate, d, rho, &beyond, &near);
+    CHECK(beyond == 0);
+    // Inputs that are not finite and positive give no answer, not a place past jamming.
+    CHECK(isnan(bdl_rheology_jamming_soft(&b, 0.5, -1.0, rate, d, rho, &beyond, &near)));
+    CHECK(isnan(bdl_rheology_jamming_soft(&b, 0.5, 100.0, NAN, d, rho, &beyond, &near)));
+    CHECK(isnan(bdl_rheology_jamming_soft(&b, 0.5, 100.0, INFINITY, d, rho, &beyond, &near)));
+    CHECK(beyond == 0);
+    CHECK(isnan(bdl_rheology_jamming_point(0.5, INFINITY, 4.0, a)));
+    b.a2 = 0.0; // no springs' limit: the law A D^-4 exactly, crossed once
+    const double p = 800.0, y = p / (rho * d * d * rate * rate);
+    CHECK_CLOSE(bdl_rheology_jamming_soft(&b, 0.5, p, rate, d, rho, &beyond, &near),
                 bdl_rheology_jamming_point(0.5, y, 4.0, a), 1e-9);
-    CHECK(isnan(bdl_rheology_jamming_soft(&b, 0.5, -1.0, 100.0, d, rho, &beyond)));
+    CHECK(isnan(near));
 }
 
 int main(void)

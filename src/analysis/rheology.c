@@ -194,7 +194,7 @@ static double jamming_residual(const double *nu, const double *y, int n, double 
 
 double bdl_rheology_jamming_point(double nu, double y, double exponent, double a)
 {
-    if (!(y > 0.0 && a > 0.0 && exponent > 0.0) || !isfinite(nu))
+    if (!(y > 0.0 && a > 0.0 && exponent > 0.0) || !isfinite(nu) || !isfinite(y) || !isfinite(a))
         return NAN;
     return nu + pow(a / y, 1.0 / exponent);
 }
@@ -208,38 +208,54 @@ double bdl_rheology_branch_pressure(const bdl_jamming_branch *b, double distance
     return b->stiffness / d * pow(distance, a1) * r * r;
 }
 
+/// The distance from jamming at which the branch's pressure peaks at this rate: where
+/// a2 g** + b2 = 2 b1 b2 / a1, i.e. g** = b2 exponent / (a1 a2); 0 when a2 = 0 (no peak).
+static double branch_peak(const bdl_jamming_branch *b, double rate, double d, double rho)
+{
+    if (b->a2 == 0.0)
+        return 0.0;
+    const double a1 = 2.0 / 3.0, b1 = 0.5 * (b->exponent + a1);
+    const double g = b->exponent / (sqrt(b->a) * a1 * b->a2);
+    return pow(fabs(rate) * d / (g * sqrt(b->stiffness / (rho * d))), 1.0 / b1);
+}
+
+/// Bisection for the distance in [lo, hi] where the branch gives pc, the pressure rising with the
+/// distance on that interval when `rising`, falling otherwise.
+static double branch_root(const bdl_jamming_branch *b, double lo, double hi, double pc, double rate,
+                          double d, double rho, int rising)
+{
+    for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if ((bdl_rheology_branch_pressure(b, mid, rate, d, rho) > pc) == rising)
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 double bdl_rheology_jamming_soft(const bdl_jamming_branch *b, double nu, double pc, double rate,
-                                 double d, double rho, int *beyond)
+                                 double d, double rho, int *beyond, double *near)
 {
     *beyond = 0;
+    *near = NAN;
+    const double in[8] = {nu, pc, rate, d, rho, b->a, b->a2, b->stiffness};
+    for (int k = 0; k < 8; ++k)
+        if (!isfinite(in[k]))
+            return NAN;
     if (!(pc > 0.0 && b->a > 0.0 && b->a2 >= 0.0 && b->stiffness > 0.0 && b->exponent > 0.0 &&
-          d > 0.0 && rho > 0.0 && rate != 0.0) ||
-        !isfinite(nu))
+          d > 0.0 && rho > 0.0 && rate != 0.0))
         return NAN;
-    // The peak on a geometric scan of D over [1e-6, 1], then bisection on the inertial side,
-    // where the pressure falls as D grows.
-    double peak = 1e-6, top = 0.0;
-    for (int k = 0; k <= 600; ++k) {
-        const double x = 1e-6 * pow(1e6, k / 600.0);
-        const double p = bdl_rheology_branch_pressure(b, x, rate, d, rho);
-        if (p > top)
-            top = p, peak = x;
-    }
-    if (pc >= top) {
+    const double peak = branch_peak(b, rate, d, rho);
+    if (peak > 0.0 && pc >= bdl_rheology_branch_pressure(b, peak, rate, d, rho)) {
         *beyond = 1;
         return nu;
     }
-    double lo = peak, hi = 1.0;
-    if (bdl_rheology_branch_pressure(b, hi, rate, d, rho) > pc)
+    if (bdl_rheology_branch_pressure(b, 1.0, rate, d, rho) > pc)
         return NAN; // farther than a distance of 1 from jamming: not a dense state
-    for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        if (bdl_rheology_branch_pressure(b, mid, rate, d, rho) > pc)
-            lo = mid;
-        else
-            hi = mid;
-    }
-    return nu + 0.5 * (lo + hi);
+    if (peak > 0.0)
+        *near = nu + branch_root(b, 0.0, peak, pc, rate, d, rho, 1);
+    return nu + branch_root(b, peak, 1.0, pc, rate, d, rho, 0);
 }
 
 double bdl_rheology_fit_jamming(const double *nu, const double *y, int n, double exponent,

@@ -94,9 +94,11 @@ typedef struct bdl_jamming_branch {
 double bdl_rheology_branch_pressure(const bdl_jamming_branch *b, double distance, double rate,
                                     double d, double rho);
 /// The nu_cr that puts a run's contact pressure p_c on the branch, on its inertial side (D above
-/// the peak's). A p_c above the branch's peak at this rate lies past jamming: *beyond = 1 and nu
-/// itself is returned (nu_cr <= nu). NAN for non-positive inputs.
+/// the peak's, where the pressure does not depend on k_n); below the peak the branch gives p_c a
+/// second time, on the springs' side nearer jamming: that nu_cr goes to *near (NAN without a
+/// peak, a2 = 0). A p_c above the branch's peak at this rate lies past jamming: *beyond = 1 and
+/// nu itself is returned (nu_cr <= nu). NAN for inputs not finite and positive.
 double bdl_rheology_jamming_soft(const bdl_jamming_branch *b, double nu, double pc, double rate,
-                                 double d, double rho, int *beyond);
+                                 double d, double rho, int *beyond, double *near);
 
 #endif

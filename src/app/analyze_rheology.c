@@ -187,17 +187,23 @@ static void jamming_points(const bdl_analyze_opts *o, const double (*v)[C_COUNT]
     for (int k = 0; k < n; ++k) {
         const double *m = v[k];
         int beyond = 0;
+        double near = NAN;
         const double cr = o->stiffness > 0.0
                               ? bdl_rheology_jamming_soft(&b, m[C_NU], m[C_PC], m[C_RATE], m[C_D],
-                                                          m[C_RHO], &beyond)
+                                                          m[C_RHO], &beyond, &near)
                               : bdl_rheology_jamming_point(m[C_NU], y[k], o->jamming, o->amplitude);
         const char *says = beyond      ? "lies past jamming: its contact pressure is above the "
                                          "branch's peak at this rate, nu_cr <="
                            : isnan(cr) ? "has no nu_cr: no contact pressure, or more than 1 from "
                                          "jamming"
                                        : "gives nu_cr";
-        char text[600], value[32] = "";
-        if (!isnan(cr))
+        char text[700], value[120] = "";
+        if (!isnan(cr) && !isnan(near))
+            snprintf(value, sizeof value,
+                     " %.4f (the branch's other crossing, on the springs' "
+                     "side: %.4f)",
+                     cr, near);
+        else if (!isnan(cr))
             snprintf(value, sizeof value, " %.4f", cr);
         snprintf(text, sizeof text, "jamming with A = %.6g held%s: %s (nu %.4f) %s%s", o->amplitude,
                  o->stiffness > 0.0 ? " on the soft branch" : "", o->runs[k], m[C_NU], says, value);
@@ -238,12 +244,17 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
         fprintf(stderr, "error: --restitution %g: must lie in (0, 1]\n", o->restitution);
         return BDL_ERR_ARGS;
     }
-    if (!(o->amplitude >= 0.0) || (o->amplitude > 0.0 && !(o->jamming > 0.0))) {
+    if (!(o->jamming >= 0.0 && isfinite(o->jamming))) {
+        fprintf(stderr, "error: --jamming %g: must be a positive exponent\n", o->jamming);
+        return BDL_ERR_ARGS;
+    }
+    if (!(o->amplitude >= 0.0 && isfinite(o->amplitude)) ||
+        (o->amplitude > 0.0 && !(o->jamming > 0.0 && isfinite(o->jamming)))) {
         fprintf(stderr, "error: --amplitude %g: must be positive, and comes with --jamming X\n",
                 o->amplitude);
         return BDL_ERR_ARGS;
     }
-    if (!(o->stiffness >= 0.0 && o->a2 >= 0.0) ||
+    if (!(o->stiffness >= 0.0 && o->a2 >= 0.0 && isfinite(o->stiffness) && isfinite(o->a2)) ||
         ((o->stiffness > 0.0 || o->a2 > 0.0) &&
          !(o->stiffness > 0.0 && o->a2 > 0.0 && o->amplitude > 0.0))) {
         fprintf(stderr,

@@ -12,10 +12,10 @@
 //                                    lambda = K2 eps sqrt(theta) (Sun eqs. 3.21-3.25)
 //   collisional dissipation          gamma = K4 eps^2 theta^(3/2), K4 = 12 (1 - e^2) rho g0 /
 //                                    (sqrt(pi) d) (Sun eq. 5.7)
-//   plastic regime (Schaeffer 1987)  P = eps_s A (eps_g* - eps_g)^n, mu = P sin(phi) / (2
-//   sqrt(I2D)) particle rotation                Jenkins & Zhang (2002): the effective restitution
-//   of slightly
-//                                    frictional spheres (Sun eqs. 5.12-5.19)
+//   plastic regime (Schaeffer 1987)  P = eps_s A (eps_g* - eps_g)^n,
+//                                    mu = P sin(phi) / (2 sqrt(I2D))
+//   particle rotation                Jenkins & Zhang (2002): the effective restitution of
+//                                    slightly frictional spheres (Sun eqs. 5.12-5.19)
 #ifndef BDL_SOLIDS_KINETIC_H
 #define BDL_SOLIDS_KINETIC_H
 
@@ -40,8 +40,8 @@ double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, do
 
 /// Schaeffer's plastic regime: the solids pressure eps_s A (eps_g_star - eps_g)^n when the gas
 /// fraction eps_g is below eps_g_star (else 0), and the frictional viscosity P sin(phi) /
-/// (2 sqrt(i2d)) for the second invariant i2d of the rate-of-strain deviator (capped at mu_max
-/// where i2d vanishes).
+/// (2 sqrt(i2d)) for the second invariant i2d of the rate-of-strain deviator, never above mu_max
+/// (MFIX's cap; it is mu_max where i2d vanishes and a pressure acts).
 double bdl_schaeffer_pressure(double eps_s, double eps_g, double eps_g_star, double a, double n);
 double bdl_schaeffer_viscosity(double pressure, double phi, double i2d, double mu_max);
 
