@@ -9,7 +9,9 @@ initial overlaps wide enough for those of a sheared bed. The overlaps the scalin
 (1 - s) times the centre distance, relax in the first strains of the run, which the averages
 leave out. The snapshot must be taken when the Lees-Edwards images are in register (shear rate
 x box height x time a multiple of the box length: in the default box at 100/s every 0.015 s, so
-a run to be squeezed further ends at 0.405 s rather than 0.4).
+a run to be squeezed further ends at 0.405 s rather than 0.4). The box is taken to start at the
+origin (the scene's domain.min = 0 0 0); the rods' spins are not carried over (the first strains
+give them back), and the register is not checked: the snapshot's time is the user's to choose.
 
 usage: tools/rod_compress.py PARTICLES.vtp OUT.csv SOLIDS_FRACTION [BOX_X BOX_Y BOX_Z]
   (the box of the file's run; default 0.072 0.048 0.048 m, scenes/shear_cell_rods.ini's;
