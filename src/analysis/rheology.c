@@ -199,10 +199,15 @@ double bdl_rheology_jamming_point(double nu, double y, double exponent, double a
     return nu + pow(a / y, 1.0 / exponent);
 }
 
+/// The collapse's exponents: P* = P_c / D^a1 with a1 = 2/3 for rods and spheres alike, and
+/// g* = rate / D^b1 with 2 b1 - a1 the inertial law's exponent.
+static const double branch_a1 = 2.0 / 3.0;
+static double branch_b1(const bdl_jamming_branch *b) { return 0.5 * (b->exponent + branch_a1); }
+
 double bdl_rheology_branch_pressure(const bdl_jamming_branch *b, double distance, double rate,
                                     double d, double rho)
 {
-    const double a1 = 2.0 / 3.0, b1 = 0.5 * (b->exponent + a1);
+    const double a1 = branch_a1, b1 = branch_b1(b);
     const double g = fabs(rate) * d * pow(distance, -b1) / sqrt(b->stiffness / (rho * d));
     const double r = g / (b->a2 * g + 1.0 / sqrt(b->a));
     return b->stiffness / d * pow(distance, a1) * r * r;
@@ -214,9 +219,8 @@ static double branch_peak(const bdl_jamming_branch *b, double rate, double d, do
 {
     if (b->a2 == 0.0)
         return 0.0;
-    const double a1 = 2.0 / 3.0, b1 = 0.5 * (b->exponent + a1);
-    const double g = b->exponent / (sqrt(b->a) * a1 * b->a2);
-    return pow(fabs(rate) * d / (g * sqrt(b->stiffness / (rho * d))), 1.0 / b1);
+    const double g = b->exponent / (sqrt(b->a) * branch_a1 * b->a2);
+    return pow(fabs(rate) * d / (g * sqrt(b->stiffness / (rho * d))), 1.0 / branch_b1(b));
 }
 
 /// Bisection for the distance in [lo, hi] where the branch gives pc, the pressure rising with the

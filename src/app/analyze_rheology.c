@@ -116,10 +116,16 @@ static const char header[] =
     "lun_pressure_at_temperature,lun_shear_stress_at_temperature,pressure_contact,shear_contact,"
     "contact_friction,contact_pressure_scaled";
 
+/// rho d^2 (shear rate)^2 of a run's means: the scale of its stresses.
+static double stress_scale(const double *v)
+{
+    return v[C_RHO] * v[C_D] * v[C_D] * v[C_RATE] * v[C_RATE];
+}
+
 static void write_row(FILE *f, const char *run, const run_mean *m, double e)
 {
     const double *v = m->mean, *se = m->se;
-    const double scale = v[C_RHO] * v[C_D] * v[C_D] * v[C_RATE] * v[C_RATE];
+    const double scale = stress_scale(v);
     fprintf(
         f,
         "%s,%ld,%.6g,%.6g,%.6g,%.6g,%.6g,%.3g,%.6g,%.3g,%.6g,%.3g,%.6g,%.3g,%.6g,%.6g,%.6g,%.6g,"
@@ -214,12 +220,13 @@ static void jamming_points(const bdl_analyze_opts *o, const double (*v)[C_COUNT]
 
 /// With --jamming: the contact pressure scaled by rho d^2 (shear rate)^2 against the solids
 /// fraction, fitted with A (nu_cr - nu)^-exponent over the runs.
-static void fit_jamming(const bdl_analyze_opts *o, const double (*v)[C_COUNT], const double *y,
-                        int n, FILE *f)
+static void fit_jamming(const bdl_analyze_opts *o, const double (*v)[C_COUNT], int n, FILE *f)
 {
-    double nu[BDL_ANALYZE_RUNS_MAX];
-    for (int k = 0; k < n; ++k)
+    double nu[BDL_ANALYZE_RUNS_MAX], y[BDL_ANALYZE_RUNS_MAX];
+    for (int k = 0; k < n; ++k) {
         nu[k] = v[k][C_NU];
+        y[k] = v[k][C_PC] / stress_scale(v[k]);
+    }
     if (o->amplitude > 0.0)
         jamming_points(o, v, y, n, f);
     double cr, a;
@@ -249,7 +256,7 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
         return BDL_ERR_ARGS;
     }
     if (!(o->amplitude >= 0.0 && isfinite(o->amplitude)) ||
-        (o->amplitude > 0.0 && !(o->jamming > 0.0 && isfinite(o->jamming)))) {
+        (o->amplitude > 0.0 && !(o->jamming > 0.0))) {
         fprintf(stderr, "error: --amplitude %g: must be positive, and comes with --jamming X\n",
                 o->amplitude);
         return BDL_ERR_ARGS;
@@ -269,7 +276,6 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
     if (bdl_atomic_open_csv(&af, path, header) != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
     double v[BDL_ANALYZE_RUNS_MAX][C_COUNT];
-    double y[BDL_ANALYZE_RUNS_MAX];
     for (int r = 0; r < o->run_count; ++r) {
         run_mean m;
         if (!average_run(o->runs[r], o, &m)) {
@@ -280,10 +286,9 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
         print_row(o->runs[r], &m, o->restitution);
         for (int c = 0; c < C_COUNT; ++c)
             v[r][c] = m.mean[c];
-        y[r] = v[r][C_PC] / (v[r][C_RHO] * v[r][C_D] * v[r][C_D] * v[r][C_RATE] * v[r][C_RATE]);
     }
     if (o->jamming > 0.0)
-        fit_jamming(o, (const double(*)[C_COUNT])v, y, o->run_count, af.file);
+        fit_jamming(o, (const double(*)[C_COUNT])v, o->run_count, af.file);
     bdl_result rc = bdl_atomic_commit(&af);
     if (rc == BDL_OK && o->plots)
         plot_rheology(o);
