@@ -1,3 +1,8 @@
 # Closures of solids phases on the grid (solids/): the kinetic theory against published values
 # and the identities it must satisfy.
 bdl_add_test(test_kinetic SOURCES test_kinetic.c LABELS solids)
+# The two-fluid model: dilute slip, Ergun, U_mf, a fluidised column's momentum, a bubbling bed.
+bdl_add_test(test_tfm SOURCES test_tfm.c LABELS solids)
+# Goldschmidt's bubbling bed for 10 s at two velocities, with and without rotation, and on three
+# grids (~20 min).
+bdl_add_test(test_tfm_goldschmidt SOURCES test_tfm_goldschmidt.c LABELS "solids;slow" TIMEOUT 3600)

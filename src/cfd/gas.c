@@ -131,40 +131,6 @@ void bdl_gas_destroy(bdl_gas *g)
 // ---------------------------------------------------------------------------------------------
 // Ghost values.
 
-/// Calls fn(index) for every padded position whose coordinate along `axis` is `at`.
-#define FOR_PLANE(gr, axis, at, ...)                                                               \
-    do {                                                                                           \
-        const int b_ = ((axis) + 1) % 3, c_ = ((axis) + 2) % 3;                                    \
-        for (int jc_ = -G; jc_ <= (gr)->n[c_] + G; ++jc_)                                          \
-            for (int jb_ = -G; jb_ <= (gr)->n[b_] + G; ++jb_) {                                    \
-                int ix_[3];                                                                        \
-                ix_[axis] = (at);                                                                  \
-                ix_[b_] = jb_;                                                                     \
-                ix_[c_] = jc_;                                                                     \
-                const long idx = bdl_grid_index(gr, ix_[0], ix_[1], ix_[2]);                       \
-                __VA_ARGS__;                                                                       \
-            }                                                                                      \
-    } while (0)
-
-/// Cell fields (voidage): periodic images, zero gradient elsewhere.
-static void cell_ghosts(const bdl_gas *g, double *f)
-{
-    const bdl_grid *gr = &g->grid;
-    for (int a = 0; a < 3; ++a) {
-        const long s = gr->stride[a];
-        const int n = gr->n[a];
-        if (gr->periodic[a])
-            continue;
-        FOR_PLANE(gr, a, 0, {
-            for (int l = 1; l <= G; ++l) {
-                f[idx - l * s] = f[idx];
-                f[idx + (n - 1 + l) * s] = f[idx + (n - 1) * s];
-            }
-        });
-    }
-    bdl_grid_wrap_cells(gr, f);
-}
-
 /// Superficial inflow through the boundary face at padded index `idx` of side `side`.
 static double inflow_at(const bdl_gas *g, int side, long idx)
 {
@@ -204,7 +170,7 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
         const int n = gr->n[b];
         if (gr->periodic[b]) {
             if (b == a) {
-                FOR_PLANE(gr, b, 0, {
+                BDL_GRID_FOR_PLANE(gr, b, 0, {
                     u[idx + n * s] = u[idx];
                     for (int l = 1; l <= G; ++l) {
                         u[idx - l * s] = u[idx + (n - l) * s];
@@ -212,7 +178,7 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
                     }
                 });
             } else {
-                FOR_PLANE(gr, b, 0, {
+                BDL_GRID_FOR_PLANE(gr, b, 0, {
                     for (int l = 1; l <= G; ++l) {
                         u[idx - l * s] = u[idx + (n - l) * s];
                         u[idx + (n - 1 + l) * s] = u[idx + (l - 1) * s];
@@ -226,7 +192,7 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
             const double dir = side == 0 ? 1.0 : -1.0; // into the domain
             if (b == a) {
                 // Normal faces: the boundary face at 0 or n, ghosts beyond it.
-                FOR_PLANE(gr, b, side == 0 ? 0 : n, {
+                BDL_GRID_FOR_PLANE(gr, b, side == 0 ? 0 : n, {
                     if (sd->type == BDL_SIDE_WALL || sd->type == BDL_SIDE_SLIP)
                         u[idx] = 0.0;
                     else if (sd->type == BDL_SIDE_INLET && !distributor(sd))
@@ -240,7 +206,7 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
             } else {
                 // Tangential rows: ghost cells beyond the side.
                 const double w = sd->type == BDL_SIDE_WALL ? sd->wall_velocity[a] : 0.0;
-                FOR_PLANE(gr, b, side == 0 ? 0 : n - 1, {
+                BDL_GRID_FOR_PLANE(gr, b, side == 0 ? 0 : n - 1, {
                     for (int l = 1; l <= G; ++l) {
                         long ghost = idx - (long)dir * l * s;
                         long mirror = idx + (long)dir * (l - 1) * s;
@@ -429,7 +395,7 @@ static void boundary_faces(bdl_gas *g, double dt)
         const int n = gr->n[a];
         const double h = gr->h[a];
         if (periodic_axis(g, a)) {
-            FOR_PLANE(gr, a, 0, {
+            BDL_GRID_FOR_PLANE(gr, a, 0, {
                 g->ustar[a][idx + n * s] = g->ustar[a][idx];
                 g->d[a][idx + n * s] = g->d[a][idx];
                 if (g->flux_u[a]) {
@@ -443,7 +409,7 @@ static void boundary_faces(bdl_gas *g, double dt)
         for (int side = 0; side < 2; ++side) {
             const bdl_gas_side *sd = &g->def.side[2 * a + side];
             double *us = g->ustar[a], *d = g->d[a];
-            FOR_PLANE(gr, a, side == 0 ? 0 : n, {
+            BDL_GRID_FOR_PLANE(gr, a, side == 0 ? 0 : n, {
                 if (sd->type == BDL_SIDE_OUTLET)
                     us[idx] = us[idx + (side == 0 ? s : -s)];
                 else if (distributor(sd)) // all of the flux through the plate's resistance
@@ -525,7 +491,7 @@ static void correct(bdl_gas *g, const double p_side[6])
                 g->grad_p[a][idx] = grad;
         });
         if (periodic)
-            FOR_PLANE(gr, a, 0, {
+            BDL_GRID_FOR_PLANE(gr, a, 0, {
                 u[idx + n * s] = u[idx];
                 if (g->grad_p[a])
                     g->grad_p[a][idx + n * s] = g->grad_p[a][idx];
@@ -565,8 +531,8 @@ static double plenum_pressure(bdl_gas *g, int side)
 
 bdl_result bdl_gas_step(bdl_gas *g, double dt)
 {
-    cell_ghosts(g, g->eps);
-    cell_ghosts(g, g->eps_old);
+    bdl_grid_extend_cells(&g->grid, g->eps);
+    bdl_grid_extend_cells(&g->grid, g->eps_old);
     for (int a = 0; a < 3; ++a)
         velocity_ghosts(g, a, g->u[a], g->eps_old);
     double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};

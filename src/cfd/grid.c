@@ -69,3 +69,20 @@ double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m)
         }
     return sum / ((double)g->n[b] * g->n[c]);
 }
+
+void bdl_grid_extend_cells(const bdl_grid *gr, double *f)
+{
+    for (int a = 0; a < 3; ++a) {
+        const long s = gr->stride[a];
+        const int n = gr->n[a];
+        if (gr->periodic[a])
+            continue;
+        BDL_GRID_FOR_PLANE(gr, a, 0, {
+            for (int l = 1; l <= BDL_GRID_GHOST; ++l) {
+                f[idx - l * s] = f[idx];
+                f[idx + (n - 1 + l) * s] = f[idx + (n - 1) * s];
+            }
+        });
+    }
+    bdl_grid_wrap_cells(gr, f);
+}

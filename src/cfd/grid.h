@@ -37,11 +37,31 @@ static inline long bdl_grid_index(const bdl_grid *g, int i, int j, int k)
            (i + BDL_GRID_GHOST);
 }
 
+/// Runs the statements given for every padded position (index `idx`) whose coordinate along
+/// `axis` is `at`: a plane of cells or faces, ghosts included.
+#define BDL_GRID_FOR_PLANE(gr, axis, at, ...)                                                      \
+    do {                                                                                           \
+        const int b_ = ((axis) + 1) % 3, c_ = ((axis) + 2) % 3;                                    \
+        for (int jc_ = -BDL_GRID_GHOST; jc_ <= (gr)->n[c_] + BDL_GRID_GHOST; ++jc_)                \
+            for (int jb_ = -BDL_GRID_GHOST; jb_ <= (gr)->n[b_] + BDL_GRID_GHOST; ++jb_) {          \
+                int ix_[3];                                                                        \
+                ix_[axis] = (at);                                                                  \
+                ix_[b_] = jb_;                                                                     \
+                ix_[c_] = jc_;                                                                     \
+                const long idx = bdl_grid_index(gr, ix_[0], ix_[1], ix_[2]);                       \
+                __VA_ARGS__;                                                                       \
+            }                                                                                      \
+    } while (0)
+
 /// A zeroed padded array; NULL when out of memory.
 double *bdl_grid_alloc(const bdl_grid *g);
 
 /// Copies periodic images into the ghost layers of a cell-centred field on every periodic axis.
 void bdl_grid_wrap_cells(const bdl_grid *g, double *f);
+
+/// Fills the ghost layers of a cell-centred field: periodic images on periodic axes, the
+/// nearest cell's value (zero gradient) on the others.
+void bdl_grid_extend_cells(const bdl_grid *g, double *f);
 
 /// Mean of a cell field over the layer of cells m normal to axis a.
 double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m);

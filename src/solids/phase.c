@@ -1,0 +1,631 @@
+// bedlam — a solids phase on the gas grid: closures in the cells, momentum on the faces with
+// the gas's elimination hooks, continuity, and the plastic regime's implicit correction.
+#include "solids/phase.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "solids/kinetic.h"
+
+#define PI 3.14159265358979323846
+
+bdl_solids_def bdl_default_solids_def(void)
+{
+    bdl_solids_def d;
+    memset(&d, 0, sizeof d);
+    d.diameter = 2.49e-3;
+    d.density = 2526.0;
+    d.restitution = 0.97;
+    d.drag = BDL_DRAG_SYAMLAL_OBRIEN;
+    d.drag_params = bdl_drag_default_params();
+    d.eps_star = 0.58;
+    d.schaeffer_a = 1e24;
+    d.schaeffer_n = 10.0;
+    d.friction_angle = 30.0;
+    d.mu_max = 100.0;
+    d.dilute = 1e-6;
+    d.tolerance = 1e-10;
+    d.max_iterations = 2000;
+    return d;
+}
+
+static int valid_def(const bdl_solids_def *d)
+{
+    return d->diameter > 0.0 && d->density > 0.0 && d->restitution > 0.0 && d->restitution <= 1.0 &&
+           d->eps_star > 0.0 && d->eps_star < 1.0 && d->schaeffer_a > 0.0 && d->schaeffer_n > 0.0 &&
+           d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
+           d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
+           (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
+}
+
+bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_solids **out)
+{
+    *out = NULL;
+    if (!valid_def(def) || !gas->share[0])
+        return BDL_ERR_ARGS;
+    bdl_solids *s = calloc(1, sizeof *s);
+    if (!s)
+        return BDL_ERR_NOMEM;
+    s->def = *def;
+    s->grid = gas->grid;
+    const bdl_grid *gr = &s->grid;
+    int ok = (s->eps = bdl_grid_alloc(gr)) && (s->theta = bdl_grid_alloc(gr)) &&
+             (s->pressure = bdl_grid_alloc(gr)) && (s->mu = bdl_grid_alloc(gr)) &&
+             (s->slip = bdl_grid_alloc(gr));
+    for (int a = 0; a < 3; ++a)
+        ok = ok && (s->v[a] = bdl_grid_alloc(gr)) && (s->a[a] = bdl_grid_alloc(gr)) &&
+             (s->b[a] = bdl_grid_alloc(gr)) && (s->k[a] = bdl_grid_alloc(gr)) &&
+             (s->up[a] = bdl_grid_alloc(gr)) && (s->c[a] = bdl_grid_alloc(gr)) &&
+             (s->flux[a] = bdl_grid_alloc(gr));
+    for (int w = 0; w < 8; ++w)
+        ok = ok && (s->work[w] = bdl_grid_alloc(gr));
+    if (!ok) {
+        bdl_solids_destroy(s);
+        return BDL_ERR_NOMEM;
+    }
+    *out = s;
+    return BDL_OK;
+}
+
+void bdl_solids_destroy(bdl_solids *s)
+{
+    if (!s)
+        return;
+    free(s->eps);
+    free(s->theta);
+    free(s->pressure);
+    free(s->mu);
+    free(s->slip);
+    for (int a = 0; a < 3; ++a) {
+        free(s->v[a]);
+        free(s->a[a]);
+        free(s->b[a]);
+        free(s->k[a]);
+        free(s->up[a]);
+        free(s->c[a]);
+        free(s->flux[a]);
+    }
+    for (int w = 0; w < 8; ++w)
+        free(s->work[w]);
+    free(s);
+}
+
+void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas)
+{
+    bdl_grid_extend_cells(&s->grid, s->eps);
+    for (long i = 0; i < s->grid.size; ++i)
+        gas->eps[i] = gas->eps_old[i] = 1.0 - s->eps[i];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Loops and ghosts.
+
+/// Runs the statements for every cell (i, j, k; index idx) of the grid.
+#define FOR_CELLS(gr, ...)                                                                         \
+    for (int k = 0; k < (gr)->n[2]; ++k)                                                           \
+        for (int j = 0; j < (gr)->n[1]; ++j)                                                       \
+            for (int i = 0; i < (gr)->n[0]; ++i) {                                                 \
+                const long idx = bdl_grid_index(gr, i, j, k);                                      \
+                __VA_ARGS__;                                                                       \
+            }
+
+/// Runs the statements for every face of axis a that lies between two cells (on a periodic
+/// axis, faces 0 to n - 1; face n is face 0's image).
+#define FOR_INNER_FACES(gr, a, ...)                                                                \
+    for (int k = 0; k < (gr)->n[2]; ++k)                                                           \
+        for (int j = 0; j < (gr)->n[1]; ++j)                                                       \
+            for (int i = 0; i < (gr)->n[0]; ++i) {                                                 \
+                const int ia_ = (a) == 0 ? i : (a) == 1 ? j : k;                                   \
+                if (ia_ == 0 && !(gr)->periodic[a])                                                \
+                    continue;                                                                      \
+                const long idx = bdl_grid_index(gr, i, j, k);                                      \
+                __VA_ARGS__;                                                                       \
+            }
+
+/// Face n of a periodic axis a as the image of face 0, for the listed face arrays.
+static void wrap_face(const bdl_grid *gr, int a, double *f)
+{
+    if (!gr->periodic[a])
+        return;
+    const long s = gr->stride[a];
+    const int n = gr->n[a];
+    BDL_GRID_FOR_PLANE(gr, a, 0, f[idx + n * s] = f[idx]);
+}
+
+/// Ghosts of the velocity component a: free-slip walls on every side that is not periodic (the
+/// normal component zero on the wall and odd beyond it, the tangential ones even).
+static void velocity_ghosts(const bdl_grid *gr, int a, double *v)
+{
+    const int G = BDL_GRID_GHOST;
+    for (int b = 0; b < 3; ++b) {
+        const long s = gr->stride[b];
+        const int n = gr->n[b];
+        if (gr->periodic[b]) {
+            const int last = b == a ? n : n - 1; // the plane holding the image of plane 0
+            BDL_GRID_FOR_PLANE(gr, b, 0, {
+                if (b == a)
+                    v[idx + n * s] = v[idx];
+                for (int l = 1; l <= G; ++l) {
+                    v[idx - l * s] = v[idx + (n - l) * s];
+                    v[idx + (last + l) * s] = v[idx + (last + l - n) * s];
+                }
+            });
+        } else if (b == a) {
+            BDL_GRID_FOR_PLANE(gr, b, 0, {
+                v[idx] = v[idx + n * s] = 0.0;
+                for (int l = 1; l <= G; ++l) {
+                    v[idx - l * s] = -v[idx + l * s];
+                    v[idx + (n + l) * s] = -v[idx + (n - l) * s];
+                }
+            });
+        } else {
+            BDL_GRID_FOR_PLANE(gr, b, 0, {
+                for (int l = 1; l <= G; ++l) {
+                    v[idx - l * s] = v[idx + (l - 1) * s];
+                    v[idx + (n - 1 + l) * s] = v[idx + (n - l) * s];
+                }
+            });
+        }
+    }
+}
+
+double bdl_solids_cell_velocity(const bdl_solids *s, int a, int i, int j, int k)
+{
+    const long idx = bdl_grid_index(&s->grid, i, j, k);
+    return 0.5 * (s->v[a][idx] + s->v[a][idx + s->grid.stride[a]]);
+}
+
+double bdl_solids_volume(const bdl_solids *s)
+{
+    const bdl_grid *gr = &s->grid;
+    double sum = 0.0;
+    FOR_CELLS(gr, sum += s->eps[idx]);
+    return sum * gr->h[0] * gr->h[1] * gr->h[2];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Closures in the cells.
+
+/// Rate of strain of v at the centre of cell idx: D (symmetric, 3 x 3).
+static void strain_rate(const bdl_solids *s, long idx, double D[3][3])
+{
+    const bdl_grid *gr = &s->grid;
+    double grad[3][3]; // grad[a][b] = d v_a / d x_b
+    for (int a = 0; a < 3; ++a) {
+        const double *v = s->v[a];
+        const long sa = gr->stride[a];
+        for (int b = 0; b < 3; ++b) {
+            const long sb = gr->stride[b];
+            if (b == a) {
+                grad[a][b] = (v[idx + sa] - v[idx]) / gr->h[a];
+            } else if (gr->n[b] == 1) {
+                grad[a][b] = 0.0;
+            } else {
+                const double hi = v[idx + sb] + v[idx + sb + sa],
+                             lo = v[idx - sb] + v[idx - sb + sa];
+                grad[a][b] = 0.25 * (hi - lo) / gr->h[b];
+            }
+        }
+    }
+    for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b)
+            D[a][b] = 0.5 * (grad[a][b] + grad[b][a]);
+}
+
+/// Syamlal's viscous regime with the temperature of the local balance: production -P tr D +
+/// 2 mu D:D + lambda (tr D)^2 equal to the dissipation k4 eps^2 theta^(3/2), a quadratic in
+/// sqrt(theta): k4 eps x^2 + k1 eps tr(D) x - (2 k3 D:D + k2 tr(D)^2) = 0.
+static void viscous_regime(const bdl_solids *s, double eps, double trace, double ddot,
+                           double *theta, double *p, double *mu)
+{
+    const bdl_solids_def *d = &s->def;
+    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d->diameter, d->density, d->restitution);
+    const double qa = c.k4 * eps, qb = c.k1 * eps * trace;
+    const double qc = -(2.0 * c.k3 * ddot + c.k2 * trace * trace);
+    const double disc = qb * qb - 4.0 * qa * qc;
+    const double x = disc > 0.0 ? fmax(0.0, (-qb + sqrt(disc)) / (2.0 * qa)) : 0.0;
+    *theta = x * x;
+    *p = c.k1 * eps * eps * *theta;
+    *mu = c.k3 * eps * x;
+}
+
+/// Temperature, pressure and viscosity in every cell, and the slip |u - v| the drag sees.
+static void closures(bdl_solids *s, const bdl_gas *gas)
+{
+    const bdl_grid *gr = &s->grid;
+    const bdl_solids_def *d = &s->def;
+    const double sin_phi = sin(d->friction_angle * PI / 180.0);
+    double pmax = 0.0;
+    FOR_CELLS(gr, {
+        const double eps = s->eps[idx];
+        double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, slip2 = 0.0;
+        strain_rate(s, idx, D);
+        const double trace = D[0][0] + D[1][1] + D[2][2];
+        double ddot = 0.0, i2d = 0.0;
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b) {
+                ddot += D[a][b] * D[a][b];
+                const double dev = D[a][b] - (a == b ? trace / 3.0 : 0.0);
+                i2d += 0.5 * dev * dev;
+            }
+        if (eps >= d->eps_star) {
+            p = bdl_schaeffer_pressure(eps, 1.0 - eps, 1.0 - d->eps_star, d->schaeffer_a,
+                                       d->schaeffer_n);
+            mu = bdl_schaeffer_viscosity(p, sin_phi, i2d, d->mu_max);
+        } else if (eps > d->dilute) {
+            viscous_regime(s, eps, trace, ddot, &theta, &p, &mu);
+        }
+        for (int a = 0; a < 3; ++a) {
+            const double r =
+                bdl_gas_cell_velocity(gas, a, i, j, k) - bdl_solids_cell_velocity(s, a, i, j, k);
+            slip2 += r * r;
+        }
+        s->theta[idx] = theta;
+        s->pressure[idx] = p;
+        s->mu[idx] = mu;
+        s->slip[idx] = sqrt(slip2);
+        pmax = fmax(pmax, p);
+    });
+    bdl_grid_extend_cells(gr, s->pressure);
+    bdl_grid_extend_cells(gr, s->mu);
+    bdl_grid_extend_cells(gr, s->slip);
+    s->stats.pressure_max = pmax;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Momentum on the faces.
+
+/// An operator at the a-face idx split as diag v_a[idx] - nb, nb the neighbours' part (both
+/// non-negative where the operator is bounded): treated point-implicitly (diag into A, nb into
+/// B), a step is a weighted mean of old and neighbouring values and stays bounded at any time
+/// step.
+typedef struct face_terms {
+    double diag, nb;
+} face_terms;
+
+/// div(F v_a) - v_a div(F) at the a-face idx, v_a upwind, F the last step's solids volume fluxes
+/// (the flux form less the face's continuity times v_a, as Patankar writes it): only what flows
+/// in counts, diag = sum of inflows / h.
+static face_terms transport(const bdl_solids *s, int a, long idx)
+{
+    const bdl_grid *gr = &s->grid;
+    const double *va = s->v[a];
+    const long sa = gr->stride[a];
+    face_terms t = {0.0, 0.0};
+    for (int b = 0; b < 3; ++b) {
+        if (gr->n[b] == 1)
+            continue;
+        const long sb = gr->stride[b];
+        const double *fb = s->flux[b];
+        double hi, lo;
+        if (b == a) {
+            hi = 0.5 * (fb[idx] + fb[idx + sb]);
+            lo = 0.5 * (fb[idx - sb] + fb[idx]);
+        } else {
+            hi = 0.5 * (fb[idx + sb] + fb[idx + sb - sa]);
+            lo = 0.5 * (fb[idx] + fb[idx - sa]);
+        }
+        const double in_hi = fmax(-hi, 0.0) / gr->h[b], in_lo = fmax(lo, 0.0) / gr->h[b];
+        t.diag += in_hi + in_lo;
+        t.nb += in_hi * va[idx + sb] + in_lo * va[idx - sb];
+    }
+    return t;
+}
+
+/// -div(mu grad v_a) at the a-face idx: mu from the cells beside a face of the same axis, the
+/// mean of the four cells around an edge otherwise.
+static face_terms viscous(const bdl_solids *s, int a, long idx)
+{
+    const bdl_grid *gr = &s->grid;
+    const double *v = s->v[a], *mu = s->mu;
+    const long sa = gr->stride[a];
+    face_terms t = {0.0, 0.0};
+    for (int b = 0; b < 3; ++b) {
+        if (gr->n[b] == 1)
+            continue;
+        const long sb = gr->stride[b];
+        double mhi, mlo;
+        if (b == a) {
+            mhi = mu[idx], mlo = mu[idx - sa];
+        } else {
+            mhi = 0.25 * (mu[idx] + mu[idx - sa] + mu[idx + sb] + mu[idx + sb - sa]);
+            mlo = 0.25 * (mu[idx] + mu[idx - sa] + mu[idx - sb] + mu[idx - sb - sa]);
+        }
+        const double h2 = gr->h[b] * gr->h[b];
+        t.diag += (mhi + mlo) / h2;
+        t.nb += (mhi * v[idx + sb] + mlo * v[idx - sb]) / h2;
+    }
+    return t;
+}
+
+/// The solids' equation on every face of axis a, per unit solids volume (A, B, k), the upwind
+/// solids fraction by the old velocity's sign, and the gas's hooks: its drag, drag source and
+/// pressure share after the elimination, and the solids' flux still to come. Faces on a side
+/// that is not periodic carry no solids.
+static void momentum(bdl_solids *s, bdl_gas *gas, int a, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    const bdl_solids_def *d = &s->def;
+    const long sa = gr->stride[a];
+    const double rho = d->density, rg = gas->def.density, mug = gas->def.viscosity;
+    for (long idx = 0; idx < gr->size; ++idx) {
+        gas->beta[a][idx] = gas->bv[a][idx] = 0.0;
+        gas->flux_u[a][idx] = gas->flux_p[a][idx] = gas->flux_0[a][idx] = 0.0;
+        gas->share[a][idx] = idx >= sa ? 1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]) : 1.0;
+        s->a[a][idx] = 1.0, s->b[a][idx] = s->k[a][idx] = s->up[a][idx] = 0.0;
+    }
+    FOR_INNER_FACES(gr, a, {
+        const double es = 0.5 * (s->eps[idx] + s->eps[idx - sa]), eg = 1.0 - es;
+        const double slip = 0.5 * (s->slip[idx] + s->slip[idx - sa]);
+        const double kd =
+            bdl_drag_per_volume(d->drag, &d->drag_params, eg, d->diameter, slip, rg, mug);
+        // rho es (v^{n+1} - v^n) / dt + rho (div(F v) - v div F) = -grad P_s + div(mu grad v) + ...
+        // with the transport and the viscous term point-implicit.
+        double A = rho / dt + kd, B = rho * s->v[a][idx] / dt + rho * gas->def.gravity[a];
+        if (es > d->dilute) {
+            const face_terms conv = transport(s, a, idx), visc = viscous(s, a, idx);
+            A += (rho * conv.diag + visc.diag) / es;
+            B += (rho * conv.nb + visc.nb - (s->pressure[idx] - s->pressure[idx - sa]) / gr->h[a]) /
+                 es;
+        }
+        const double up = s->v[a][idx] >= 0.0 ? s->eps[idx - sa] : s->eps[idx];
+        s->a[a][idx] = A, s->b[a][idx] = B, s->k[a][idx] = kd, s->up[a][idx] = up;
+        gas->beta[a][idx] = es * kd * (A - kd) / A;
+        gas->bv[a][idx] = es * kd * B / A;
+        gas->share[a][idx] = eg + es * kd / A;
+        gas->flux_u[a][idx] = up * kd / A;
+        gas->flux_p[a][idx] = up / A;
+        gas->flux_0[a][idx] = up * B / A;
+    });
+}
+
+/// v^{n+1} = (B + k u - G) / A on the inner faces (zero on the walls), and the solids' volume
+/// flux by the new velocity's upwind fraction. Where that differs from the fraction the pressure
+/// equation was given, the difference is handed to the gas with the opposite sign, so that the
+/// flux of the two together stays free of divergence.
+static void new_velocity(bdl_solids *s, bdl_gas *gas, int a)
+{
+    const bdl_grid *gr = &s->grid;
+    const long sa = gr->stride[a];
+    double *v = s->v[a], *f = s->flux[a];
+    memset(f, 0, (size_t)gr->size * sizeof *f);
+    memset(v, 0, (size_t)gr->size * sizeof *v);
+    FOR_INNER_FACES(gr, a, {
+        v[idx] =
+            (s->b[a][idx] + s->k[a][idx] * gas->u[a][idx] - gas->grad_p[a][idx]) / s->a[a][idx];
+        const double up = v[idx] >= 0.0 ? s->eps[idx - sa] : s->eps[idx];
+        f[idx] = up * v[idx];
+        if (up != s->up[a][idx]) {
+            const double eg = 1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]);
+            gas->u[a][idx] -= (up - s->up[a][idx]) * v[idx] / eg;
+        }
+    });
+    wrap_face(gr, a, v);
+    wrap_face(gr, a, f);
+    wrap_face(gr, a, gas->u[a]);
+}
+
+/// eps* = eps^n - dt div(flux), into out.
+static void continuity(const bdl_solids *s, double dt, double *out)
+{
+    const bdl_grid *gr = &s->grid;
+    FOR_CELLS(gr, {
+        double div = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const long sa = gr->stride[a];
+            div += (s->flux[a][idx + sa] - s->flux[a][idx]) / gr->h[a];
+        }
+        out[idx] = s->eps[idx] - dt * div;
+    });
+}
+
+// ---------------------------------------------------------------------------------------------
+// The plastic regime's implicit correction.
+//
+// The momentum step used the pressure P(eps^n). With the increment dP = P' (eps^{n+1} - eps^n)
+// of the cells in the plastic regime (P' > 0 there, 0 elsewhere) the solids' flux gains
+// -grad(dP) / A, so that eps^{n+1} - eps^n = r + dt div(grad(dP) / A), r = eps* - eps^n. In the
+// unknown z = dP of the plastic cells (zero in the others) this is symmetric and positive:
+//     z_i / P'_i + sum_f w_f (z_i - z_j) = r_i,   w_f = dt / (A_f h_f^2),
+// solved by conjugate gradients with a Jacobi preconditioner.
+
+/// dP/d eps of Schaeffer's pressure eps A (eps - eps_star)^n.
+static double plastic_slope(const bdl_solids_def *d, double eps)
+{
+    const double x = eps - d->eps_star;
+    if (x <= 0.0)
+        return 0.0;
+    return d->schaeffer_a * pow(x, d->schaeffer_n - 1.0) * (x + eps * d->schaeffer_n);
+}
+
+/// y = M z on the plastic cells (M the matrix above; slope the cells' P', w on the faces).
+static void plastic_apply(const bdl_solids *s, const double *slope, const double *z, double *y)
+{
+    const bdl_grid *gr = &s->grid;
+    FOR_CELLS(gr, {
+        if (slope[idx] <= 0.0)
+            continue;
+        double sum = z[idx] / slope[idx];
+        for (int a = 0; a < 3; ++a) {
+            const long sa = gr->stride[a];
+            sum +=
+                s->c[a][idx] * (z[idx] - z[idx - sa]) + s->c[a][idx + sa] * (z[idx] - z[idx + sa]);
+        }
+        y[idx] = sum;
+    });
+}
+
+static double plastic_dot(const bdl_solids *s, const double *slope, const double *x,
+                          const double *y)
+{
+    const bdl_grid *gr = &s->grid;
+    double sum = 0.0;
+    FOR_CELLS(gr, {
+        if (slope[idx] > 0.0)
+            sum += x[idx] * y[idx];
+    });
+    return sum;
+}
+
+/// Solves for z by preconditioned conjugate gradients; returns the iterations taken.
+static int plastic_solve(bdl_solids *s, const double *slope, const double *r, double *z)
+{
+    const bdl_grid *gr = &s->grid;
+    double *res = s->work[4], *pre = s->work[5], *dir = s->work[6], *q = s->work[7];
+    memset(z, 0, (size_t)gr->size * sizeof *z);
+    memset(dir, 0, (size_t)gr->size * sizeof *dir);
+    FOR_CELLS(gr, {
+        double diag = slope[idx] > 0.0 ? 1.0 / slope[idx] : 0.0;
+        for (int a = 0; a < 3; ++a)
+            diag += s->c[a][idx] + s->c[a][idx + gr->stride[a]];
+        pre[idx] = slope[idx] > 0.0 ? 1.0 / diag : 0.0;
+        res[idx] = slope[idx] > 0.0 ? r[idx] : 0.0;
+        dir[idx] = pre[idx] * res[idx];
+    });
+    const double norm0 = sqrt(plastic_dot(s, slope, res, res));
+    if (norm0 == 0.0)
+        return 0;
+    double rz = plastic_dot(s, slope, res, dir);
+    int it = 0;
+    while (it < s->def.max_iterations) {
+        bdl_grid_wrap_cells(gr, dir);
+        plastic_apply(s, slope, dir, q);
+        const double alpha = rz / plastic_dot(s, slope, dir, q);
+        FOR_CELLS(gr, {
+            if (slope[idx] > 0.0)
+                z[idx] += alpha * dir[idx], res[idx] -= alpha * q[idx];
+        });
+        ++it;
+        if (sqrt(plastic_dot(s, slope, res, res)) <= s->def.tolerance * norm0)
+            break;
+        double rz_new = 0.0;
+        FOR_CELLS(gr, {
+            if (slope[idx] > 0.0)
+                rz_new += res[idx] * pre[idx] * res[idx];
+        });
+        const double ratio = rz_new / rz;
+        rz = rz_new;
+        FOR_CELLS(gr, {
+            if (slope[idx] > 0.0)
+                dir[idx] = pre[idx] * res[idx] + ratio * dir[idx];
+        });
+    }
+    bdl_grid_wrap_cells(gr, z);
+    return it;
+}
+
+/// The correction: z, then the fluxes -grad(z) / A of solids (and the opposite of gas) on the
+/// inner faces, velocities and eps^{n+1} from them, and the fluxes added to the step's. star
+/// holds eps*.
+static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    double *slope = s->work[0], *z = s->work[1];
+    memset(slope, 0, (size_t)gr->size * sizeof *slope);
+    int any = 0;
+    FOR_CELLS(gr, {
+        slope[idx] = plastic_slope(&s->def, fmax(star[idx], s->eps[idx]));
+        if (!(star[idx] > s->def.eps_star))
+            slope[idx] = 0.0;
+        any = any || slope[idx] > 0.0;
+    });
+    s->stats.iterations = 0;
+    s->stats.correction = 0.0;
+    for (int a = 0; a < 3; ++a)
+        memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
+    if (!any) {
+        FOR_CELLS(gr, s->eps[idx] = star[idx]);
+        return;
+    }
+    double *r = s->work[2];
+    FOR_CELLS(gr, r[idx] = star[idx] - s->eps[idx]);
+    for (int a = 0; a < 3; ++a)
+        FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
+    for (int a = 0; a < 3; ++a)
+        wrap_face(gr, a, s->c[a]);
+    s->stats.iterations = plastic_solve(s, slope, r, z);
+    for (int a = 0; a < 3; ++a) {
+        const long sa = gr->stride[a];
+        FOR_INNER_FACES(gr, a, {
+            const double df = -(z[idx] - z[idx - sa]) / (gr->h[a] * s->a[a][idx]);
+            const double es = 0.5 * (s->eps[idx] + s->eps[idx - sa]);
+            s->c[a][idx] = df; // w is not needed after the solve
+            s->v[a][idx] += df / fmax(es, s->def.dilute);
+            gas->u[a][idx] -= df / (1.0 - es);
+        });
+        wrap_face(gr, a, s->c[a]);
+        wrap_face(gr, a, s->v[a]);
+        wrap_face(gr, a, gas->u[a]);
+    }
+    double worst = 0.0;
+    FOR_CELLS(gr, {
+        double div = 0.0;
+        for (int a = 0; a < 3; ++a)
+            div += (s->c[a][idx + gr->stride[a]] - s->c[a][idx]) / gr->h[a];
+        const double next = star[idx] - dt * div;
+        worst = fmax(worst, fabs(next - star[idx]));
+        s->eps[idx] = next;
+    });
+    s->stats.correction = worst;
+    for (int a = 0; a < 3; ++a)
+        for (long idx = 0; idx < gr->size; ++idx)
+            s->flux[a][idx] += s->c[a][idx];
+}
+
+// ---------------------------------------------------------------------------------------------
+// The step.
+
+bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    for (int a = 0; a < 3; ++a)
+        velocity_ghosts(gr, a, s->v[a]);
+    bdl_solids_share_voidage(s, gas);
+    closures(s, gas);
+    for (int a = 0; a < 3; ++a)
+        momentum(s, gas, a, dt);
+    const bdl_result r = bdl_gas_step(gas, dt);
+    for (int a = 0; a < 3; ++a)
+        new_velocity(s, gas, a);
+    double *star = s->work[3];
+    continuity(s, dt, star);
+    plastic_correction(s, gas, star, dt);
+    bdl_solids_share_voidage(s, gas);
+    double lo = INFINITY, hi = -INFINITY;
+    int finite = 1;
+    FOR_CELLS(gr, {
+        lo = fmin(lo, s->eps[idx]);
+        hi = fmax(hi, s->eps[idx]);
+        for (int a = 0; a < 3; ++a)
+            finite = finite && isfinite(s->v[a][idx]);
+    });
+    s->stats.eps_min = lo;
+    s->stats.eps_max = hi;
+    s->time += dt;
+    s->steps++;
+    if (r != BDL_OK)
+        return r;
+    return finite && isfinite(lo) && isfinite(hi) ? BDL_OK : BDL_ERR_UNSTABLE;
+}
+
+double bdl_solids_stable_dt(const bdl_solids *s)
+{
+    const bdl_grid *gr = &s->grid;
+    double dt = INFINITY, inv_h2 = 0.0, nu = 0.0;
+    for (int a = 0; a < 3; ++a)
+        if (gr->n[a] > 1)
+            inv_h2 += 1.0 / (gr->h[a] * gr->h[a]);
+    FOR_CELLS(gr, {
+        for (int a = 0; a < 3; ++a) {
+            const double w = fmax(fabs(s->v[a][idx]), fabs(s->v[a][idx + gr->stride[a]]));
+            if (w > 0.0)
+                dt = fmin(dt, 0.5 * gr->h[a] / w);
+        }
+        if (s->eps[idx] > s->def.dilute)
+            nu = fmax(nu, s->mu[idx] / (s->def.density * s->eps[idx]));
+    });
+    if (nu > 0.0 && inv_h2 > 0.0)
+        dt = fmin(dt, 1.0 / (2.0 * nu * inv_h2));
+    return dt;
+}

@@ -1,0 +1,111 @@
+// bedlam — a solids phase on the gas grid: the two-fluid model's continuum of spheres.
+//
+// The phase's solids fraction eps lives in the gas's cells and its velocity v on the gas's faces
+// (cfd/grid.h). One step, after the gas's voidage is set to 1 - eps:
+//
+//   per unit solids volume on every face, with k = beta / eps_s (couple/drag.h, finite as
+//   eps_s -> 0) and G the gas pressure gradient,
+//       A v^{n+1} = B + k u^{n+1} - G,
+//       A = rho_s / dt + k + (rho_s D_conv + D_visc) / eps_s,
+//       B = rho_s v^n / dt + rho_s g + (rho_s N_conv + N_visc - grad P_s) / eps_s,
+//   the transport rho_s (div(F v) - v div F) (F the last step's solids fluxes, upwind) and the
+//   viscous term div(mu_s grad v) point-implicit: their diagonal D in A, the neighbours' part N
+//   in B, so that a step is a weighted mean and stays bounded;
+//   the gas step (cfd/gas.h) then sees this equation eliminated from its own (partial
+//   elimination: its drag becomes eps_s k (A - k) / A, its drag source eps_s k B / A, its
+//   share of -grad p eps_g + eps_s k / A) and the solids' volume flux eps_up v written as
+//   flux_u u - flux_p G + flux_0, so that the pressure equation makes the flux of gas and solids
+//   together free of divergence, whatever the drag;
+//   v^{n+1} from the step's u and G, and eps* = eps^n - dt div(eps_up v), eps_up upwind;
+//   the plastic regime's pressure implicit: the increment dP = P_s' (eps^{n+1} - eps^n) of the
+//   cells above eps_star adds the flux -grad(dP) / A, solved for dP (a symmetric system, by
+//   conjugate gradients), with an equal and opposite flux of gas (the volume stays free of
+//   divergence; the gas's pressure is not corrected), so that a bed's stiff frictional pressure
+//   holds it near its packing at the time steps the gas allows.
+//
+// Stresses: below eps_star Syamlal's viscous regime (solids/kinetic.h) with the granular
+// temperature from the local balance of production and dissipation (MFIX's algebraic form),
+// above it Schaeffer's plastic regime with the temperature set to zero (Sun 2007, eq. 7.7). The
+// viscous term is div(mu_s grad v) (the transposed and bulk parts are left out). Every side of
+// the domain that is not periodic is a free-slip wall to the solids. docs/theory-tfm.md.
+#ifndef BDL_SOLIDS_PHASE_H
+#define BDL_SOLIDS_PHASE_H
+
+#include "cfd/gas.h"
+#include "core/error.h"
+#include "couple/drag.h"
+
+typedef struct bdl_solids_def {
+    double diameter; ///< [m]
+    double density;  ///< [kg/m^3]
+    double
+        restitution; ///< normal restitution of the kinetic theory (an effective one for rotation)
+    bdl_drag_law drag;
+    bdl_drag_params drag_params;
+    double eps_star;       ///< solids fraction where the plastic regime starts (Sun eq. 7.7: 0.58)
+    double schaeffer_a;    ///< Schaeffer's P* = A (eps - eps_star)^n: A [Pa]
+    double schaeffer_n;    ///< and n
+    double friction_angle; ///< angle of internal friction of the plastic regime [deg]
+    double mu_max;         ///< cap of the frictional viscosity [Pa s]
+    double dilute;         ///< below this solids fraction a face carries no stress
+    double tolerance;      ///< relative residual of the plastic correction's solver
+    int max_iterations;    ///< its iteration limit
+} bdl_solids_def;
+
+/// Glass beads of 2.49 mm (Goldschmidt's large particles, Sun 2007 table 5.1), e 0.97,
+/// Syamlal-O'Brien drag with C 0.8 and D 2.65, the plastic regime from 0.58 with A = 1e24 Pa
+/// (10^25 dyn/cm^2) and n = 10, a friction angle of 30 degrees and the viscosity capped at
+/// 100 Pa s (MFIX's 1000 poise), no stress below a solids fraction of 1e-6.
+bdl_solids_def bdl_default_solids_def(void);
+
+typedef struct bdl_solids_stats {
+    int iterations;      ///< the plastic correction's solver, last step
+    double correction;   ///< largest |eps^{n+1} - eps*| it made
+    double eps_max;      ///< largest solids fraction after the step
+    double eps_min;      ///< smallest (round-off below zero would show here)
+    double pressure_max; ///< largest solids pressure [Pa]
+} bdl_solids_stats;
+
+typedef struct bdl_solids {
+    bdl_solids_def def;
+    bdl_grid grid;
+    double *eps;      ///< solids fraction in the cells (padded, cfd/grid.h)
+    double *v[3];     ///< solids velocity on the faces [m/s]
+    double *theta;    ///< granular temperature in the cells [m^2/s^2]
+    double *pressure; ///< solids pressure in the cells [Pa]
+    double *mu;       ///< solids shear viscosity in the cells [Pa s]
+    double *slip;     ///< |u - v| in the cells [m/s]
+    /// Per face: A, B, k and eps_up of the momentum step, w of the correction, the solids' flux.
+    double *a[3], *b[3], *k[3], *up[3], *c[3], *flux[3];
+    double *work[8]; ///< cell arrays: the correction's slope, z, r, eps*, and its solver's
+    double time;
+    long steps;
+    bdl_solids_stats stats;
+} bdl_solids;
+
+/// A phase with no solids on the grid of `gas`, which must have been created with
+/// def.pressure_share (its hooks carry the elimination). BDL_ERR_ARGS for a definition out of
+/// range (a diameter, density, restitution outside (0, 1], eps_star outside (0, 1), A, n,
+/// tolerance or iteration count not positive), BDL_ERR_NOMEM.
+bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_solids **out);
+void bdl_solids_destroy(bdl_solids *s);
+
+/// Sets the gas's voidage to 1 - eps in every cell, its ghosts included (start of a run, and
+/// after eps was changed by hand).
+void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
+
+/// Advances solids and gas together by dt. BDL_ERR_UNSTABLE when the gas step fails or a value
+/// is not finite.
+bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
+
+/// The largest stable time step of the solids' explicit terms: CFL 0.5 on v and on the volume
+/// fluxes, and the limit of the explicit viscous term.
+double bdl_solids_stable_dt(const bdl_solids *s);
+
+/// Solids velocity component a at the centre of cell (i, j, k).
+double bdl_solids_cell_velocity(const bdl_solids *s, int a, int i, int j, int k);
+
+/// Total solids volume in the cells [m^3] (conserved to round-off: no side lets solids through).
+double bdl_solids_volume(const bdl_solids *s);
+
+#endif
