@@ -50,6 +50,11 @@ add_test(NAME cli_resume COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/vibrated_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
 set_tests_properties(cli_resume PROPERTIES LABELS cli TIMEOUT 600)
+# The same for a solids phase on the gas grid (its fractions, velocities and fluxes).
+add_test(NAME cli_resume_tfm COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
+set_tests_properties(cli_resume_tfm PROPERTIES LABELS cli TIMEOUT 600)
 
 add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.sh $<TARGET_FILE:bedlam>
   ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)
@@ -171,3 +176,22 @@ add_test(NAME cli_view_no_display COMMAND ${CMAKE_COMMAND} -DEXPECT=2
   "-DCMD=${CMAKE_COMMAND};-E;env;--unset=DISPLAY;--unset=WAYLAND_DISPLAY;--unset=SDL_VIDEODRIVER;$<TARGET_FILE:bedlam>;view;${CMAKE_SOURCE_DIR}/scenes/bouncing_ball.ini"
   -P ${BDL_EXPECT})
 set_tests_properties(cli_view_no_display PROPERTIES LABELS cli TIMEOUT 5)
+
+# A solids phase on the grid: bad input is refused with exit 2 and a message naming the key.
+set(TFM ${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_bed.ini)
+bdl_cli_expect(cli_tfm_check 0 "solids at start: 0.0001312 m\\^3.*cell-steps/s" check ${TFM})
+bdl_cli_expect(cli_tfm_bed_height 2
+  "\\[solids\\] bed_height = 0.6: out of range; allowed: > 0 and <= the domain's height, 0.45"
+  check ${TFM} --set solids.bed_height=0.6)
+bdl_cli_expect(cli_tfm_fraction 2 "\\[solids\\] fraction = 0.7: out of range; allowed: \\(0, 0.6\\]"
+  check ${TFM} --set solids.fraction=0.7)
+bdl_cli_expect(cli_tfm_typo 2 "unknown key in \\[solids\\]; did you mean 'density'"
+  check ${TFM} --set solids.densty=3)
+bdl_cli_expect(cli_tfm_dt 2 "\\[run\\] dt = 0.002 s is 4 times the gas's expected stable step"
+  check ${TFM} --set run.dt=0.002)
+bdl_cli_expect(cli_tfm_no_gas_dt 2 "with \\[solids\\] the gas and the solids share one step"
+  check ${TFM} --set run.dt=0)
+bdl_cli_expect(cli_tfm_species 2 "tfm_species.ini:11: \\[species\\]: a scene with \\[solids\\] holds no particles"
+  check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_species.ini)
+bdl_cli_expect(cli_tfm_no_gas 2 "tfm_no_gas.ini:10: \\[solids\\]: a solids phase lives on the gas's grid"
+  check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_no_gas.ini)

@@ -9,6 +9,7 @@
 #include "core/timer.h"
 #include "dem/create.h"
 #include "run/guards.h"
+#include "solids/phase.h"
 #include "world/world.h"
 
 static const char check_usage[] =
@@ -19,7 +20,9 @@ static const char check_usage[] =
     "contact time of every species pair and wall, the estimate, the stable time-step limit, and\n"
     "the estimated cost of the run (measured on a few steps). A scene of parcels (MP-PIC) has no\n"
     "contacts: it prints the parcels, the real particles they stand for, the parcels per filled\n"
-    "gas cell, the model A stress and the parcels' stable step instead. Exit codes: 0 valid, 2\n"
+    "gas cell, the model A stress and the parcels' stable step instead; a scene with a solids\n"
+    "phase ([solids], the two-fluid model) its bed, the gas's expected stable step and the cost\n"
+    "in cell-steps per second. Exit codes: 0 valid, 2\n"
     "invalid (the message names file, line, key, value and the allowed range or limit).\n";
 
 /// One line of the contacts table: the pair, its contact time and parameters.
@@ -61,6 +64,12 @@ static void print_solids_module(const bdl_world *w)
         char parcels[512];
         bdl_world_parcels_describe(w, parcels, sizeof parcels);
         printf("  %s; no contacts, no walls: the domain's sides bound them\n", parcels);
+        return;
+    }
+    if (w->solids) {
+        char solids[512];
+        bdl_world_solids_describe(w, solids, sizeof solids);
+        printf("  %s; no particles, no walls: the domain's sides bound it\n", solids);
         return;
     }
     printf("  dem: %s normal law%s; %s%s\n", w->hertz ? "Hertz-Mindlin" : "linear spring-dashpot",
@@ -132,8 +141,12 @@ static void print_modules(const bdl_world *w)
     printf("  periodic axes: %s%s%s%s\n", s->periodic[0] ? "x " : "", s->periodic[1] ? "y " : "",
            s->periodic[2] ? "z " : "",
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
-    printf("%s at start: %ld (species: %d)\n", w->parcels ? "parcels" : "particles",
-           w->particles.count, s->species_count);
+    if (w->solids)
+        printf("solids at start: %.4g m^3, a bed %g m tall at a solids fraction of %g\n",
+               bdl_solids_volume(w->solids), s->solids.bed_height, s->solids.fraction);
+    else
+        printf("%s at start: %ld (species: %d)\n", w->parcels ? "parcels" : "particles",
+               w->particles.count, s->species_count);
     print_warnings(w);
 }
 
@@ -187,6 +200,14 @@ static bdl_result print_time_step(const bdl_world *w)
         if (isfinite(collision))
             printf(", and dt / substeps below %.4g s for the collisions", collision);
         printf("\n");
+    } else if (w->solids) {
+        const bdl_gas_scene *gs = &w->scene.gas;
+        const double stable =
+            bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+        printf("time step: dt = %.4g s = %.3g of the gas's expected stable step %.4g s (CFL 1/2 "
+               "for the inflow through the packed bed, plus 0.5 m/s for bubbles); refused above "
+               "twice it\n",
+               w->dt, w->dt / stable, stable);
     } else {
         print_contact_step(w);
     }
@@ -202,7 +223,11 @@ static void print_resources(const bdl_world *w)
 {
     const bdl_budget *b = &w->budget;
     const bdl_guard_def *g = &w->scene.guards;
-    if (w->parcels)
+    if (w->solids)
+        printf("resources (estimated before anything was built): %.3g gas cells (ghost layers "
+               "included)\n",
+               b->gas_cells);
+    else if (w->parcels)
         printf("resources (estimated before anything was built): %.3g parcels, %.3g gas cells "
                "(ghost layers included)\n",
                b->particles, b->gas_cells);
@@ -250,6 +275,15 @@ static void print_cost(bdl_world *w)
         ++trial;
     }
     double per_step = (bdl_wall_seconds() - t0) / (double)(trial > 0 ? trial : 1);
+    if (w->solids) {
+        const bdl_grid *g = &w->gas->grid;
+        const double cells = (double)g->n[0] * g->n[1] * g->n[2], wall = per_step * steps_total;
+        printf("cost: %.0f steps to t = %g s; measured %.3g cell-steps/s on %d threads (%.0f "
+               "cells) -> about %.3g s wall time (%.3gx real time)\n",
+               steps_total, s->end_time, cells / per_step, omp_get_max_threads(), cells, wall,
+               s->end_time / wall);
+        return;
+    }
     long n = w->particles.count > 0 ? w->particles.count : 1;
     double rate = (double)n / per_step;
     // Pouring scenes grow: cost the run at the particle count the scene will reach.
@@ -284,9 +318,9 @@ bdl_result bdl_cmd_check(int argc, char **argv)
     if ((r = bdl_load_world(o.scene, o.overrides, o.override_count, &w)) != BDL_OK)
         return r;
     print_modules(w);
-    if (!w->parcels)
+    if (!w->parcels && !w->solids)
         print_contacts(w, bdl_world_reference_speed(w));
-    else if ((r = print_parcels(w)) != BDL_OK) {
+    else if (w->parcels && (r = print_parcels(w)) != BDL_OK) {
         bdl_world_destroy(w);
         return r;
     }

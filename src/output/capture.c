@@ -6,6 +6,7 @@
 
 #include "cfd/gas.h"
 #include "couple/coupling.h"
+#include "solids/phase.h"
 
 _Static_assert(BDL_SNAPSHOT_WALLS >= BDL_MAX_WALLS, "a snapshot holds every wall");
 
@@ -103,9 +104,73 @@ static void capture_parcels(bdl_snapshot *s, const bdl_world *w)
     memset(s->coordination, 0, (size_t)p->count);
 }
 
+/// Most spheres a solids phase is drawn with: above it each stands for more solids volume.
+#define SOLIDS_DISPLAY_MAX 200000
+
+/// A number in [0, 1) fixed by (cell, k): where sphere k of a cell sits, and whether it shows.
+static double cell_hash(uint64_t cell, uint64_t k, uint64_t salt)
+{
+    uint64_t x = cell * 0x9E3779B97F4A7C15u + k * 0xBF58476D1CE4E5B9u + salt;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9u;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBu;
+    x ^= x >> 31;
+    return (double)(x >> 11) * 0x1.0p-53;
+}
+
+/// A solids phase drawn as particles sampled from its field: each cell holds as many spheres of
+/// the particle diameter as its solids volume makes (the fraction left over decides one more),
+/// at places fixed for the cell, with the cell's solids velocity. Above SOLIDS_DISPLAY_MAX
+/// spheres in all, each stands for a larger volume and is drawn that large.
+static int capture_solids(bdl_snapshot *s, const bdl_world *w)
+{
+    const bdl_solids *so = w->solids;
+    const bdl_grid *g = &so->grid;
+    const double cell = g->h[0] * g->h[1] * g->h[2], d = so->def.diameter;
+    const double volume =
+        fmax(BDL_PI * d * d * d / 6.0, bdl_solids_volume(so) / SOLIDS_DISPLAY_MAX);
+    const float radius = (float)cbrt(0.75 / BDL_PI * volume);
+    long n = 0;
+    for (int pass = 0; pass < 2; ++pass) {
+        if (pass == 1 && !bdl_snapshot_reserve(s, n))
+            return 0;
+        n = 0;
+        for (int k = 0; k < g->n[2]; ++k)
+            for (int j = 0; j < g->n[1]; ++j)
+                for (int i = 0; i < g->n[0]; ++i) {
+                    const uint64_t c = (uint64_t)((k * g->n[1] + j) * g->n[0] + i);
+                    const double want = so->eps[bdl_grid_index(g, i, j, k)] * cell / volume;
+                    const long m = (long)want + (cell_hash(c, 0, 1) < want - floor(want));
+                    for (long q = 0; q < m && pass == 1; ++q) {
+                        const int ix[3] = {i, j, k};
+                        for (int a = 0; a < 3; ++a) {
+                            const double x = cell_hash(c, (uint64_t)q, (uint64_t)(2 + a));
+                            s->pos[3 * (n + q) + a] = (float)(g->origin[a] + (ix[a] + x) * g->h[a]);
+                            s->vel[3 * (n + q) + a] =
+                                (float)bdl_solids_cell_velocity(so, a, i, j, k);
+                        }
+                        s->radius[n + q] = radius;
+                        s->species[n + q] = 0;
+                        s->id[n + q] = (uint32_t)(n + q);
+                        s->coordination[n + q] = 0;
+                    }
+                    n += m;
+                }
+    }
+    s->count = n;
+    return 1;
+}
+
 int bdl_capture(bdl_snapshot *s, const bdl_world *w)
 {
     const bdl_particles *p = &w->particles;
+    if (w->solids) {
+        if (!capture_solids(s, w))
+            return 0;
+        s->time = w->time;
+        s->step = w->step;
+        s->wall_count = 0;
+        return capture_slice(s, w) && capture_voidage(s, w);
+    }
     if (!bdl_snapshot_reserve(s, p->count))
         return 0;
     for (long i = 0; i < p->count; ++i) {

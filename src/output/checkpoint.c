@@ -20,6 +20,7 @@
 #include <sys/types.h>
 
 #include "cfd/gas.h"
+#include "solids/phase.h"
 #include "core/crc32.h"
 #include "core/file.h"
 #include "output/checkpoint_parts.h"
@@ -29,9 +30,9 @@
 // work in the Hertz-Mindlin springs (held, and left by ended contacts) and, with a gas, whether
 // the live inflow rose since the last gas step (the next gas step starts short); 8 the walls'
 // turned angles (now and at the last list build); 9 how far the Lees–Edwards images had slid at
-// the last list build.
+// the last list build; 10 a solids phase's fields.
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
-enum { VERSION = 9, HEADER_BYTES = 32 };
+enum { VERSION = 10, HEADER_BYTES = 32 };
 
 void bdl_ckpt_put(bdl_ckpt_writer *out, const void *data, size_t size)
 {
@@ -137,6 +138,17 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
         f[k++] = (field){g->p, cells};
         f[k++] = (field){g->eps, cells};
         f[k++] = (field){g->eps_old, cells};
+    }
+    bdl_solids *s = w->solids;
+    if (s) { // the closures and the elimination's coefficients are made anew every step
+        const size_t cells = (size_t)s->grid.size * sizeof(double);
+        f[k++] = (field){&s->time, sizeof s->time};
+        f[k++] = (field){&s->steps, sizeof s->steps};
+        f[k++] = (field){s->eps, cells};
+        for (int a = 0; a < 3; ++a) {
+            f[k++] = (field){s->v[a], cells};
+            f[k++] = (field){s->flux[a], cells};
+        }
     }
     return k;
 }

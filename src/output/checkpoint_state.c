@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cfd/gas.h"
+#include "solids/phase.h"
 #include "output/checkpoint_parts.h"
 
 /// What a number must be besides finite.
@@ -198,6 +199,27 @@ static int check_gas(const bdl_world *w, double saved_dt, char *why, size_t len)
     return 1;
 }
 
+/// The solids phase's fields: fractions in [0, 1), velocities and fluxes finite.
+static int check_solids(const bdl_world *w, char *why, size_t len)
+{
+    const bdl_solids *s = w->solids;
+    if (!s)
+        return 1;
+    const long cells = s->grid.size;
+    for (long i = 0; i < cells; ++i)
+        if (!(s->eps[i] >= 0.0 && s->eps[i] < 1.0)) {
+            snprintf(why, len, "the solids fraction in cell %ld of %ld is %g (must be in [0, 1))",
+                     i, cells, s->eps[i]);
+            return 0;
+        }
+    for (int a = 0; a < 3; ++a)
+        if (first_bad(s->v[a], cells, ANY) >= 0 || first_bad(s->flux[a], cells, ANY) >= 0) {
+            snprintf(why, len, "a solids velocity or flux along %c is not finite", "xyz"[a]);
+            return 0;
+        }
+    return isfinite(s->time) && s->steps >= 0;
+}
+
 int bdl_ckpt_check_state(const bdl_world *w, double saved_dt, char *why, size_t why_len)
 {
     char what[384];
@@ -206,7 +228,7 @@ int bdl_ckpt_check_state(const bdl_world *w, double saved_dt, char *why, size_t 
              check_particles(w, what, sizeof what) &&
              bdl_neighbor_check(&w->neighbor, p->count, bdl_wall_surfaces(&w->walls), what,
                                 sizeof what) &&
-             check_gas(w, saved_dt, what, sizeof what);
+             check_gas(w, saved_dt, what, sizeof what) && check_solids(w, what, sizeof what);
     if (!ok)
         snprintf(why, why_len, "is not a consistent state: %s", what);
     return ok;

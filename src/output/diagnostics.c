@@ -8,6 +8,7 @@
 #include "cfd/gas.h"
 #include "core/parallel.h"
 #include "dem/contact_law.h"
+#include "solids/phase.h"
 
 const char *const bdl_diagnostics_columns[] = {
     "time",
@@ -129,6 +130,45 @@ static double pressure_at_height(const bdl_world *w, int a, double up, double he
     return (1.0 - f) * layer_pressure(w->gas, a, m0) + f * layer_pressure(w->gas, a, m1);
 }
 
+/// A solids phase on the grid (its bed along z): mean height sum(eps z) / sum(eps), the height
+/// below which 95 % of the solids lie (interpolated within the layer that crosses it), the
+/// weight less buoyancy per unit base area against the pressure drop, the kinetic energy and the
+/// largest cell speed.
+static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
+{
+    const bdl_solids *s = w->solids;
+    const bdl_grid *g = &s->grid;
+    const double cell = g->h[0] * g->h[1] * g->h[2], rho = s->def.density;
+    double total = 0.0, kinetic = 0.0, speed = 0.0;
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i) {
+                const double e = s->eps[bdl_grid_index(g, i, j, k)];
+                double v2 = 0.0;
+                for (int a = 0; a < 3; ++a)
+                    v2 += pow(bdl_solids_cell_velocity(s, a, i, j, k), 2.0);
+                total += e;
+                kinetic += 0.5 * rho * e * cell * v2;
+                speed = e > s->def.dilute ? fmax(speed, sqrt(v2)) : speed;
+            }
+    d->mean_height = bdl_world_solids_height(w);
+    d->kinetic_energy = kinetic;
+    d->max_speed = speed;
+    double below = 0.0;
+    for (int k = 0; k < g->n[2] && total > 0.0; ++k) {
+        const double layer = bdl_grid_layer_mean(g, s->eps, 2, k) * g->n[0] * g->n[1];
+        if (below + layer >= 0.95 * total) {
+            d->bed_height = (k + (0.95 * total - below) / layer) * g->h[2];
+            break;
+        }
+        below += layer;
+    }
+    const double g_len = bdl_v3_len(w->scene.gravity), area = g->n[0] * g->h[0] * g->n[1] * g->h[1];
+    const double weight = total * cell * (rho - w->gas->def.density) * g_len / area;
+    const double column = w->gas->def.density * g_len * (g->n[2] - 1) * g->h[2];
+    d->weight_ratio = weight > 0.0 ? (d->pressure_drop - column) / weight : NAN;
+}
+
 static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
 {
     const bdl_gas *gas = w->gas;
@@ -181,6 +221,8 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
         mag += pow(w->particle_drag[k], 2.0);
     }
     d->momentum_imbalance = mag > 0.0 ? sqrt(sum / mag) : 0.0;
+    if (w->solids)
+        solids_terms(w, d);
 }
 
 void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics *d)

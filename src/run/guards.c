@@ -39,12 +39,33 @@ static bdl_result check_parcel_dt(const bdl_world *w, char *message, size_t len)
     return BDL_OK;
 }
 
+/// The step of a world with a solids phase against the gas's expected stable step (CFL 1/2 for
+/// the inflow through the densest packing, with a margin for bubbles): twice it is refused.
+static bdl_result check_solids_dt(const bdl_world *w, char *message, size_t len)
+{
+    const bdl_gas_scene *gs = &w->scene.gas;
+    const double stable = bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+    if (w->dt > 2.0 * stable) {
+        snprintf(message, len,
+                 "%s: [run] dt = %g s is %.3g times the gas's expected stable step %g s (CFL 1/2 "
+                 "for the inflow through the packed bed, plus 0.5 m/s for bubbles); allowed: at "
+                 "most twice it (dt <= %g s). Likely fix: lower dt",
+                 w->scene.path, w->dt, w->dt / stable, stable, 2.0 * stable);
+        return BDL_ERR_SCENE;
+    }
+    return BDL_OK;
+}
+
 bdl_result bdl_guards_check_dt(const bdl_world *w, char *message, size_t len, char *warning,
                                size_t warning_len)
 {
     if (w->parcels) {
         warning[0] = '\0';
         return check_parcel_dt(w, message, len);
+    }
+    if (w->solids) {
+        warning[0] = '\0';
+        return check_solids_dt(w, message, len);
     }
     char which[160];
     double v_ref = bdl_world_reference_speed(w);
@@ -226,8 +247,8 @@ bdl_result bdl_guards_check(const bdl_world *w, bdl_guard_state *g, const bdl_di
     // A world of parcels books neither the gas's work on them nor the stress's (the parcel step
     // does not report it); Lees–Edwards boundaries do work on the particles that is not booked,
     // and a particle passing through a z face changes its x velocity by the images' speed: their
-    // energy has sources the balance does not see.
-    if (r != BDL_OK || w->parcels || w->scene.shear_rate != 0.0)
+    // energy has sources the balance does not see. A solids phase books none of its energy.
+    if (r != BDL_OK || w->parcels || w->solids || w->scene.shear_rate != 0.0)
         return r;
     const bdl_guard_def *gd = &w->scene.guards;
     double active = d->kinetic_energy + d->rotational_energy + d->elastic_energy;

@@ -17,6 +17,7 @@
 #include "run/guards.h"
 #include "run/loop.h"
 #include "run/outputs.h"
+#include "solids/phase.h"
 
 /// One run as it goes through its phases.
 typedef struct run {
@@ -151,6 +152,25 @@ static void log_parcels(const bdl_world *w)
              d->close_packing, bdl_parcels_stress(d, d->close_packing - d->stress_floor));
 }
 
+/// The head of run.log for a world with a solids phase: the bed, and the step against the gas's
+/// expected stable step (there are no particles, so no contact time).
+static void log_solids(const bdl_world *w)
+{
+    const bdl_scene *s = &w->scene;
+    log_domain(s);
+    bdl_info("solids: %.4g m^3 (a bed %g m tall at a solids fraction of %g), restitution %.4g",
+             bdl_solids_volume(w->solids), s->solids.bed_height, s->solids.fraction,
+             w->solids->def.restitution);
+    const double stable =
+        bdl_world_expected_gas_dt(w, fmax(s->gas.inlet_velocity, s->gas.jet_velocity));
+    bdl_info("dt = %g s, the gas's expected stable step %g s (dt = %.3g of it; refused above twice "
+             "it), end time = %g s",
+             w->dt, stable, w->dt / stable, s->end_time);
+    bdl_info("limits: the solids fraction held below packing by the plastic regime from %g; "
+             "energy_growth not checked (the solids' energy is not booked)",
+             w->solids->def.eps_star);
+}
+
 /// The head of run.log: what runs, with which models and limits.
 static void log_setup(const run *r)
 {
@@ -167,6 +187,10 @@ static void log_setup(const run *r)
     bdl_info("modules: %s", modules);
     if (w->parcels) {
         log_parcels(w);
+        return;
+    }
+    if (w->solids) {
+        log_solids(w);
         return;
     }
     bdl_info("particles: %ld, species: %d", w->particles.count, s->species_count);

@@ -23,6 +23,7 @@
 #include "dem/species.h"
 #include "dem/walls.h"
 #include "parcels/parcels.h"
+#include "solids/phase.h"
 
 #define BDL_MAX_PAIRS   64
 #define BDL_MAX_CREATES 16
@@ -268,6 +269,17 @@ typedef struct bdl_parcels_scene {
     bdl_parcel_display display; ///< how the pictures draw them
 } bdl_parcels_scene;
 
+/// [solids]: a solids phase on the gas grid (the two-fluid model, docs/theory-tfm.md); the scene
+/// has one when the section is given, and then no particles.
+typedef struct bdl_solids_scene {
+    int enabled;
+    bdl_solids_def def;
+    double friction;               ///< particle friction for Jenkins & Zhang's e_eff (0: none)
+    double tangential_restitution; ///< beta0 of Jenkins & Zhang
+    double bed_height;             ///< the cells below this height start filled [m]
+    double fraction;               ///< with this solids fraction
+} bdl_solids_scene;
+
 typedef struct bdl_scene {
     char path[BDL_PATH_LEN]; ///< file the scene was read from ("" for a string)
     char dir[BDL_PATH_LEN];  ///< folder of the scene file (for relative paths)
@@ -317,6 +329,7 @@ typedef struct bdl_scene {
     bdl_gas_scene gas;
     bdl_coupling_scene coupling;
     bdl_parcels_scene parcels;
+    bdl_solids_scene solids;
 } bdl_scene;
 
 /// A problem found while reading or validating a scene. Messages look like

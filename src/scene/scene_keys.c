@@ -45,6 +45,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_GAS] = {"gas", "gas", 0, 1},
     [BDL_SECTION_COUPLING] = {"coupling", "coupling", 0, 1},
     [BDL_SECTION_PARCELS] = {"parcels", "parcels", 0, 1},
+    [BDL_SECTION_SOLIDS] = {"solids", "solids", 0, 1},
     [BDL_SECTION_SPECIES] = {"species", "species NAME", 1, BDL_MAX_SPECIES},
     [BDL_SECTION_PAIR] = {"pair", "pair A B", 2, BDL_MAX_PAIRS},
     [BDL_SECTION_WALL] = {"wall", "wall NAME", 1, BDL_MAX_WALLS},
@@ -93,6 +94,7 @@ BDL_CHOICE_WORDS(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
     .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, coupling.field)
 #define IN_PARCELS(field)                                                                          \
     .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, parcels.def.field)
+#define IN_SOLIDS(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, solids.field)
 #define GAS_SIDE(name, index)                                                                      \
     {                                                                                              \
         S(GAS), name, .type = BDL_KEY_ENUM, "-", IN_GAS(side[index]), .def = {BDL_SIDE_WALL},      \
@@ -747,6 +749,45 @@ const bdl_scene_key bdl_scene_keys[] = {
      LE(1),
      .doc = "model B: force range rho as a fraction of a parcel sphere's diameter: spheres push "
             "from R_ep + R_ej + rho apart, and a side from R_ep + rho"},
+
+    // [solids]
+    {S(SOLIDS), "diameter", NUM, "m", IN_SOLIDS(def.diameter), .def = {2.49e-3}, GT(0), LE(1),
+     .doc = "particle diameter of the solids phase (the default: Goldschmidt's large glass beads, "
+            "Sun 2007, table 5.1)"},
+    {S(SOLIDS), "density", NUM, "kg/m^3", IN_SOLIDS(def.density), .def = {2526}, GT(0), LE(1e5),
+     .doc = "material density of the solids"},
+    {S(SOLIDS), "restitution", NUM, "-", IN_SOLIDS(def.restitution), .def = {0.97}, GT(0), LE(1),
+     .doc = "normal restitution of the kinetic theory (made effective by friction, below)"},
+    {S(SOLIDS), "friction", NUM, "-", IN_SOLIDS(friction), .def = {0}, GE(0), LE(10),
+     .doc = "particle friction: above 0 the restitution becomes Jenkins & Zhang's (2002) "
+            "effective one, e - a1/2 + a2 b1 / (2 b2) (particle rotation, Sun 2007, ch. 5)"},
+    {S(SOLIDS), "tangential_restitution", NUM, "-", IN_SOLIDS(tangential_restitution),
+     .def = {0.33}, GE(0), LE(1), .doc = "beta0 of Jenkins & Zhang's effective restitution"},
+    {S(SOLIDS), "drag", .type = BDL_KEY_ENUM, "-", IN_SOLIDS(def.drag),
+     .def = {BDL_DRAG_SYAMLAL_OBRIEN}, .enum_names = bdl_drag_law_names,
+     .default_text = "syamlal_obrien",
+     .doc = "drag law between gas and solids (as [coupling] drag)"},
+    {S(SOLIDS), "syamlal_c", NUM, "-", IN_SOLIDS(def.drag_params.syamlal_c), .def = {0.8}, GT(0),
+     .doc = "Syamlal-O'Brien C (Sun 2007, table 4.3: 0.8, 0.7, 0.64)"},
+    {S(SOLIDS), "syamlal_d", NUM, "-", IN_SOLIDS(def.drag_params.syamlal_d), .def = {2.65}, GT(0),
+     .doc = "Syamlal-O'Brien D (2.65, 3.44, 4.03 with the C above)"},
+    {S(SOLIDS), "plastic_fraction", NUM, "-", IN_SOLIDS(def.eps_star), .def = {0.58}, GT(0), LT(1),
+     .doc = "solids fraction where Schaeffer's plastic regime starts (Sun 2007, eq. 7.7)"},
+    {S(SOLIDS), "schaeffer_a", NUM, "Pa", IN_SOLIDS(def.schaeffer_a), .def = {1e24}, GT(0),
+     LE(1e30),
+     .doc = "A of the plastic pressure eps A (eps - plastic_fraction)^n (10^25 dyn/cm^2)"},
+    {S(SOLIDS), "schaeffer_n", NUM, "-", IN_SOLIDS(def.schaeffer_n), .def = {10}, GE(1), LE(20),
+     .doc = "n of the plastic pressure"},
+    {S(SOLIDS), "friction_angle", NUM, "deg", IN_SOLIDS(def.friction_angle), .def = {30}, GE(0),
+     LT(90), .doc = "angle of internal friction of the plastic regime's viscosity"},
+    {S(SOLIDS), "viscosity_max", NUM, "Pa s", IN_SOLIDS(def.mu_max), .def = {100}, GT(0), LE(1e6),
+     .doc = "cap of the plastic regime's viscosity (MFIX's 1000 poise)"},
+    {S(SOLIDS), "bed_height", NUM, "m", IN_SOLIDS(bed_height), .def = {0}, GE(0),
+     .default_text = "none: required with [solids]",
+     .doc = "the cells whose centres lie below this height above the domain's floor (along z) "
+            "start filled"},
+    {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),
+     .doc = "their solids fraction (the default: Sun's eps_mf 0.417, table 5.2)"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

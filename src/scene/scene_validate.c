@@ -622,6 +622,54 @@ static void check_parcels(bdl_scene_parser *p)
                     "(the solids fraction), speed, vx, vy, vz, voidage or species");
 }
 
+/// The [solids] section, if the scene uses it.
+static bdl_scene_section *solids_section(bdl_scene_parser *p)
+{
+    for (int i = 0; i < p->section_count; ++i)
+        if (p->sections[i].kind == BDL_SECTION_SOLIDS && section_used(&p->sections[i]))
+            return &p->sections[i];
+    return NULL;
+}
+
+/// A scene with a solids phase on the grid: a gas, no particles or walls (the domain's sides
+/// bound the phase), gravity along -z, a bed height inside the domain, and the step in [run] dt.
+static void check_solids(bdl_scene_parser *p)
+{
+    bdl_scene *scene = p->scene;
+    bdl_scene_section *s = solids_section(p);
+    scene->solids.enabled = s != NULL;
+    if (!s)
+        return;
+    const bdl_scene_where at = {.line = s->line, .title = "solids"};
+    const double height = scene->domain_max.z - scene->domain_min.z;
+    char what[160];
+    if (!scene->gas.enabled)
+        bdl_scene_fail(p, &at,
+                       "a solids phase lives on the gas's grid: the scene needs a [gas] "
+                       "section");
+    else if (scene->species_count > 0)
+        bdl_scene_fail(p, &(bdl_scene_where){.line = scene->line.species[0], .title = "species"},
+                       "a scene with [solids] holds no particles (the hybrid of a solids phase "
+                       "and particles is not built yet): remove the [species] sections");
+    else if (scene->wall_count > 0)
+        bdl_scene_fail(p, &(bdl_scene_where){.line = scene->line.walls[0], .title = "wall"},
+                       "[wall] sections bound particles; a solids phase is bounded by the "
+                       "domain's sides: remove the wall");
+    else if (!(scene->solids.bed_height > 0.0) || scene->solids.bed_height > height) {
+        snprintf(what, sizeof what, "%s; allowed: > 0 and <= the domain's height, %g (m)",
+                 given(s, key_of(s, "bed_height")) ? "out of range" : "missing required key",
+                 height);
+        fail_at_key(p, s, "bed_height", 0, what);
+    } else if (scene->gravity.x != 0.0 || scene->gravity.y != 0.0 || !(scene->gravity.z < 0.0))
+        bdl_scene_fail(p, &at,
+                       "a solids phase's bed is filled along z: [run] gravity must point "
+                       "along -z");
+    else if (!(scene->dt > 0.0))
+        bdl_scene_fail(p, &at,
+                       "with [solids] the gas and the solids share one step: give it as "
+                       "[run] dt (1e-4 s suits 1 cm cells)");
+}
+
 /// [output] fields_cell against the domain: no larger than its largest side, and no grid of
 /// more than BDL_MAX_FIELD_CELLS cells. The count is bounded from above by the domain's extent
 /// in cells along each axis (at least one), which the grid of analysis/fields.h never exceeds;
@@ -835,7 +883,7 @@ static void check_shear(bdl_scene_parser *p)
 int bdl_scene_validate(bdl_scene_parser *p)
 {
     check_singletons(p);
-    if (!p->failed && p->scene->species_count == 0)
+    if (!p->failed && p->scene->species_count == 0 && !solids_section(p))
         bdl_scene_fail(p, &(bdl_scene_where){.line = 0},
                        "no [species NAME] section: at least one species is required");
     // Species first: pairs and creators refer to them and to their diameters.
@@ -866,6 +914,8 @@ int bdl_scene_validate(bdl_scene_parser *p)
     }
     if (!p->failed)
         check_parcels(p);
+    if (!p->failed)
+        check_solids(p);
     if (!p->failed)
         check_shear(p);
     if (!p->failed)

@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "dem/capsule.h"
+#include "solids/phase.h"
 #include "dem/create.h"
 #include "dem/contact_force.h"
 #include "dem/rod_force.h"
@@ -145,6 +146,12 @@ void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
         char parcels[384];
         bdl_world_parcels_describe(w, parcels, sizeof parcels);
         snprintf(buf, size, "%s, gas: %s", parcels, gas);
+        return;
+    }
+    if (w->solids) {
+        char solids[512];
+        bdl_world_solids_describe(w, solids, sizeof solids);
+        snprintf(buf, size, "%s, gas: %s", solids, gas);
         return;
     }
     snprintf(buf, size, "dem (%s normal law%s, %s%s), walls: %d, gas: %s",
@@ -346,6 +353,8 @@ bdl_result bdl_world_step(bdl_world *w)
 {
     if (w->parcels)
         return bdl_world_parcels_step(w);
+    if (w->solids)
+        return bdl_world_solids_step(w);
     bdl_particles *p = &w->particles;
     // In a container's frame the inertial force does the work the container's walls would:
     // its acceleration at mid-step times the mean momentum along it over the step.
@@ -410,6 +419,12 @@ uint64_t bdl_world_hash(const bdl_world *w)
         for (int a = 0; a < 3; ++a)
             h = bdl_hash_bytes(h, w->gas->u[a], cells * sizeof(double));
         h = bdl_hash_bytes(h, w->gas->p, cells * sizeof(double));
+    }
+    if (w->solids) {
+        const size_t cells = (size_t)w->solids->grid.size * sizeof(double);
+        h = bdl_hash_bytes(h, w->solids->eps, cells);
+        for (int a = 0; a < 3; ++a)
+            h = bdl_hash_bytes(h, w->solids->v[a], cells);
     }
     return h;
 }
@@ -754,9 +769,11 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
         r = create_particles(w, first_id, &expected, err);
     if (r == BDL_OK && scene->parcels.enabled) // no contacts: the gas's pace
         r = bdl_world_parcels_init(w, err);
+    else if (r == BDL_OK && scene->solids.enabled) // no particles at all
+        r = bdl_world_solids_init(w, err);
     else if (r == BDL_OK)
         r = build_contact_solver(w, expected, err);
-    for (int f = 0; f < 6 && !scene->parcels.enabled; ++f) // besides the gas's outlets
+    for (int f = 0; f < 6 && !scene->parcels.enabled && !scene->solids.enabled; ++f)
         w->outflow[f] |= !scene->periodic[f / 2] && scene->outside == BDL_OUTSIDE_REMOVE;
     if (r == BDL_OK)
         r = check_initial(w, first_id, err);
@@ -773,6 +790,7 @@ void bdl_world_destroy(bdl_world *w)
     if (!w)
         return;
     bdl_world_parcels_free(w);
+    bdl_world_solids_free(w);
     bdl_world_gas_free(w);
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);

@@ -27,6 +27,7 @@
 struct bdl_gas;
 struct bdl_coupling;
 struct bdl_parcels;
+struct bdl_solids;
 
 /// Live parameters a user may change between steps (commands); logged with their step.
 typedef struct bdl_live_params {
@@ -109,6 +110,10 @@ typedef struct bdl_world {
     long parcel_walls;     ///< model B: parcel-side contacts after the last step
     double parcel_overlap; ///< model B: largest overlap / R_ep after the last step
 
+    // A solids phase on the gas grid ([solids]; NULL otherwise): it steps with the gas, one step
+    // per step of the world; there are no particles. max_solids holds its largest fraction.
+    struct bdl_solids *solids;
+
     /// Why the last bdl_world_step failed, for the caller to report (the world prints nothing).
     char failure[512];
 } bdl_world;
@@ -163,6 +168,21 @@ double bdl_world_parcels_collision_dt(const bdl_world *world);
 
 /// One step of a world of parcels (bdl_world_step calls it).
 bdl_result bdl_world_parcels_step(bdl_world *world);
+
+/// Builds the gas and the solids phase of a scene with [solids], and fills the bed (world_create
+/// calls it).
+bdl_result bdl_world_solids_init(bdl_world *world, bdl_scene_error *err);
+void bdl_world_solids_free(bdl_world *world);
+
+/// One step of a world with a solids phase (bdl_world_step calls it).
+bdl_result bdl_world_solids_step(bdl_world *world);
+
+/// One line on the solids phase and its parameters, for logs.
+void bdl_world_solids_describe(const bdl_world *world, char *buf, size_t size);
+
+/// Mean height of the solids above the domain's floor, sum(eps z) / sum(eps) [m] (Sun 2007's
+/// <h_p>).
+double bdl_world_solids_height(const bdl_world *world);
 
 /// How the parcels of a world fill the gas's cells, for check and run.log.
 typedef struct bdl_parcels_census {

@@ -54,7 +54,7 @@ static bdl_gas_def gas_def(bdl_world *w)
     d.viscosity = gs->viscosity;
     d.convection = gs->convection;
     d.tolerance = gs->tolerance;
-    d.pressure_share = s->parcels.enabled;
+    d.pressure_share = s->parcels.enabled || s->solids.enabled; // their elimination's hooks
     return d;
 }
 
@@ -249,6 +249,14 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
     if (w->scene.gas.distributor_resistance > 0.0)
         snprintf(plate, sizeof plate, "; inlets through a porous plate of %.4g Pa s/m",
                  w->scene.gas.distributor_resistance);
+    if (w->solids) {
+        snprintf(buf, size,
+                 "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; one step with the "
+                 "solids phase, %.3g s%s",
+                 g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
+                 bdl_convection_labels[w->gas->def.convection], w->dt, plate);
+        return;
+    }
     if (w->parcels) {
         snprintf(buf, size,
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
