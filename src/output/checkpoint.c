@@ -145,6 +145,7 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
         f[k++] = (field){&s->time, sizeof s->time};
         f[k++] = (field){&s->steps, sizeof s->steps};
         f[k++] = (field){s->eps, cells};
+        f[k++] = (field){s->theta, cells}; // the granular energy's balance starts from it
         for (int a = 0; a < 3; ++a) {
             f[k++] = (field){s->v[a], cells};
             f[k++] = (field){s->flux[a], cells};

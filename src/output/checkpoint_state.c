@@ -206,6 +206,10 @@ static int check_solids(const bdl_world *w, char *why, size_t len)
     if (!s)
         return 1;
     const long cells = s->grid.size;
+    if (first_bad(s->theta, cells, NON_NEGATIVE) >= 0) {
+        snprintf(why, len, "a granular temperature is negative or not finite");
+        return 0;
+    }
     for (long i = 0; i < cells; ++i)
         if (!(s->eps[i] >= 0.0 && s->eps[i] < 1.0)) {
             snprintf(why, len, "the solids fraction in cell %ld of %ld is %g (must be in [0, 1))",

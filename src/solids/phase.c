@@ -213,25 +213,54 @@ static void strain_rate(const bdl_solids *s, long idx, double D[3][3])
             D[a][b] = 0.5 * (grad[a][b] + grad[b][a]);
 }
 
-/// Syamlal's viscous regime with the temperature of the local balance: production -P tr D +
-/// 2 mu D:D + lambda (tr D)^2 equal to the dissipation k4 eps^2 theta^(3/2), a quadratic in
-/// sqrt(theta): k4 eps x^2 + k1 eps tr(D) x - (2 k3 D:D + k2 tr(D)^2) = 0.
+/// The root x = sqrt(theta) >= 0 of f(x) = a3 x^3 + a2 x^2 - a1 x - a0 with a3 > 0 and a0 >= 0
+/// (f(0) <= 0, f -> +inf): bracketed, then Newton steps kept inside the bracket.
+static double cubic_root(double a3, double a2, double a1, double a0)
+{
+    double lo = 0.0, hi = 1.0;
+    for (int k = 0; k < 200 && a3 * hi * hi * hi + a2 * hi * hi - a1 * hi - a0 <= 0.0; ++k)
+        lo = hi, hi *= 2.0;
+    double x = 0.5 * (lo + hi);
+    for (int k = 0; k < 60; ++k) {
+        const double f = ((a3 * x + a2) * x - a1) * x - a0, df = (3.0 * a3 * x + 2.0 * a2) * x - a1;
+        if (f > 0.0)
+            hi = x;
+        else
+            lo = x;
+        double next = df > 0.0 ? x - f / df : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        if (fabs(next - x) <= 1e-14 * fmax(x, 1e-300))
+            return next;
+        x = next;
+    }
+    return x;
+}
+
+/// Syamlal's viscous regime with the granular energy's balance in time but without its transport
+/// (no convection or conduction): (3/2) rho eps (theta - theta^n) / dt = -P tr D + 2 mu D:D +
+/// lambda tr(D)^2 - k4 eps^2 theta^(3/2), backward Euler, a cubic in x = sqrt(theta):
+///     k4 eps x^3 + (3 rho / (2 dt) + k1 eps tr D) x^2 - (2 k3 D:D + k2 tr(D)^2) x
+///       - 3 rho theta^n / (2 dt) = 0
+/// (divided by eps). As dt / (the collisions' relaxation time) grows it tends to the algebraic
+/// balance MFIX offers (the quadratic without the time terms); unlike that one it cannot jump
+/// from cell to cell with the local strain rate within a step, which on fine grids grew into a
+/// checkerboard of pressures that diverged.
 static void viscous_regime(const bdl_solids *s, double eps, double trace, double ddot,
-                           double *theta, double *p, double *mu)
+                           double theta_old, double dt, double *theta, double *p, double *mu)
 {
     const bdl_solids_def *d = &s->def;
     const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d->diameter, d->density, d->restitution);
-    const double qa = c.k4 * eps, qb = c.k1 * eps * trace;
-    const double qc = -(2.0 * c.k3 * ddot + c.k2 * trace * trace);
-    const double disc = qb * qb - 4.0 * qa * qc;
-    const double x = disc > 0.0 ? fmax(0.0, (-qb + sqrt(disc)) / (2.0 * qa)) : 0.0;
+    const double inertia = 1.5 * d->density / dt;
+    const double q = 2.0 * c.k3 * ddot + c.k2 * trace * trace;
+    const double x = cubic_root(c.k4 * eps, inertia + c.k1 * eps * trace, q, inertia * theta_old);
     *theta = x * x;
     *p = c.k1 * eps * eps * *theta;
     *mu = c.k3 * eps * x;
 }
 
 /// Temperature, pressure and viscosity in every cell, and the slip |u - v| the drag sees.
-static void closures(bdl_solids *s, const bdl_gas *gas)
+static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
 {
     const bdl_grid *gr = &s->grid;
     const bdl_solids_def *d = &s->def;
@@ -254,7 +283,7 @@ static void closures(bdl_solids *s, const bdl_gas *gas)
                                        d->schaeffer_n);
             mu = bdl_schaeffer_viscosity(p, sin_phi, i2d, d->mu_max);
         } else if (eps > d->dilute) {
-            viscous_regime(s, eps, trace, ddot, &theta, &p, &mu);
+            viscous_regime(s, eps, trace, ddot, s->theta[idx], dt, &theta, &p, &mu);
         }
         for (int a = 0; a < 3; ++a) {
             const double r =
@@ -424,11 +453,14 @@ static void continuity(const bdl_solids *s, double dt, double *out)
 // The plastic regime's implicit correction.
 //
 // The momentum step used the pressure P(eps^n). With the increment dP = P' (eps^{n+1} - eps^n)
-// of the cells in the plastic regime (P' > 0 there, 0 elsewhere) the solids' flux gains
-// -grad(dP) / A, so that eps^{n+1} - eps^n = r + dt div(grad(dP) / A), r = eps* - eps^n. In the
-// unknown z = dP of the plastic cells (zero in the others) this is symmetric and positive:
-//     z_i / P'_i + sum_f w_f (z_i - z_j) = r_i,   w_f = dt / (A_f h_f^2),
-// solved by conjugate gradients with a Jacobi preconditioner.
+// of the cells in the plastic regime (eps* above eps_star: P' > 0 there, at eps*, 0 elsewhere)
+// the solids' flux gains -grad(dP) / A, so that eps^{n+1} - eps^n = r + dt div(grad(dP) / A),
+// r = eps* - eps^n. In the unknown z = dP of the plastic cells (zero in the others) this is
+// symmetric and positive:
+//     z_i / P'_i + sum_f w_f (z_i - z_j) = max(r_i, 0),   w_f = dt / (A_f h_f^2),
+// solved by conjugate gradients with a Jacobi preconditioner. The fluxes -grad(z) / A then move
+// the solids (the volume is conserved whatever z is); with r_i clipped at zero the correction
+// only resists compression, and never empties a cell.
 
 /// dP/d eps of Schaeffer's pressure eps A (eps - eps_star)^n.
 static double plastic_slope(const bdl_solids_def *d, double eps)
@@ -525,9 +557,7 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
     memset(slope, 0, (size_t)gr->size * sizeof *slope);
     int any = 0;
     FOR_CELLS(gr, {
-        slope[idx] = plastic_slope(&s->def, fmax(star[idx], s->eps[idx]));
-        if (!(star[idx] > s->def.eps_star))
-            slope[idx] = 0.0;
+        slope[idx] = star[idx] > s->def.eps_star ? plastic_slope(&s->def, star[idx]) : 0.0;
         any = any || slope[idx] > 0.0;
     });
     s->stats.iterations = 0;
@@ -539,7 +569,10 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         return;
     }
     double *r = s->work[2];
-    FOR_CELLS(gr, r[idx] = star[idx] - s->eps[idx]);
+    // The right-hand side r+ = max(r, 0): with every r_i >= 0 the solution has z >= 0 (an
+    // M-matrix), so a cell gives away at most what it gained this step, no fraction goes below
+    // zero, and a plastic cell that opens up still resists what its neighbours push into it.
+    FOR_CELLS(gr, r[idx] = fmax(star[idx] - s->eps[idx], 0.0));
     for (int a = 0; a < 3; ++a)
         FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
     for (int a = 0; a < 3; ++a)
@@ -582,7 +615,7 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
     for (int a = 0; a < 3; ++a)
         velocity_ghosts(gr, a, s->v[a]);
     bdl_solids_share_voidage(s, gas);
-    closures(s, gas);
+    closures(s, gas, dt);
     for (int a = 0; a < 3; ++a)
         momentum(s, gas, a, dt);
     const bdl_result r = bdl_gas_step(gas, dt);
@@ -612,20 +645,13 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 double bdl_solids_stable_dt(const bdl_solids *s)
 {
     const bdl_grid *gr = &s->grid;
-    double dt = INFINITY, inv_h2 = 0.0, nu = 0.0;
-    for (int a = 0; a < 3; ++a)
-        if (gr->n[a] > 1)
-            inv_h2 += 1.0 / (gr->h[a] * gr->h[a]);
+    double dt = INFINITY;
     FOR_CELLS(gr, {
         for (int a = 0; a < 3; ++a) {
             const double w = fmax(fabs(s->v[a][idx]), fabs(s->v[a][idx + gr->stride[a]]));
-            if (w > 0.0)
+            if (w > 0.0 && s->eps[idx] > s->def.dilute)
                 dt = fmin(dt, 0.5 * gr->h[a] / w);
         }
-        if (s->eps[idx] > s->def.dilute)
-            nu = fmax(nu, s->mu[idx] / (s->def.density * s->eps[idx]));
     });
-    if (nu > 0.0 && inv_h2 > 0.0)
-        dt = fmin(dt, 1.0 / (2.0 * nu * inv_h2));
     return dt;
 }

@@ -18,16 +18,17 @@
 //   together free of divergence, whatever the drag;
 //   v^{n+1} from the step's u and G, and eps* = eps^n - dt div(eps_up v), eps_up upwind;
 //   the plastic regime's pressure implicit: the increment dP = P_s' (eps^{n+1} - eps^n) of the
-//   cells above eps_star adds the flux -grad(dP) / A, solved for dP (a symmetric system, by
-//   conjugate gradients), with an equal and opposite flux of gas (the volume stays free of
-//   divergence; the gas's pressure is not corrected), so that a bed's stiff frictional pressure
-//   holds it near its packing at the time steps the gas allows.
+//   cells above eps_star adds the flux -grad(dP) / A, solved for dP >= 0 (a symmetric system,
+//   by conjugate gradients, that resists compression only), with an equal and opposite flux of gas
+//   (the volume stays free of divergence; the gas's pressure is not corrected), so that a bed's
+//   stiff frictional pressure holds it near its packing at the time steps the gas allows.
 //
 // Stresses: below eps_star Syamlal's viscous regime (solids/kinetic.h) with the granular
-// temperature from the local balance of production and dissipation (MFIX's algebraic form),
-// above it Schaeffer's plastic regime with the temperature set to zero (Sun 2007, eq. 7.7). The
-// viscous term is div(mu_s grad v) (the transposed and bulk parts are left out). Every side of
-// the domain that is not periodic is a free-slip wall to the solids. docs/theory-tfm.md.
+// temperature from the balance of production and dissipation in time, cell by cell, without
+// transport (backward Euler; its limit dt -> infinity is MFIX's algebraic form), above it
+// Schaeffer's plastic regime with the temperature set to zero (Sun 2007, eq. 7.7). The viscous
+// term is div(mu_s grad v) (the transposed and bulk parts are left out). Every side of the
+// domain that is not periodic is a free-slip wall to the solids. docs/theory-tfm.md.
 #ifndef BDL_SOLIDS_PHASE_H
 #define BDL_SOLIDS_PHASE_H
 
@@ -69,9 +70,10 @@ typedef struct bdl_solids_stats {
 typedef struct bdl_solids {
     bdl_solids_def def;
     bdl_grid grid;
-    double *eps;      ///< solids fraction in the cells (padded, cfd/grid.h)
-    double *v[3];     ///< solids velocity on the faces [m/s]
-    double *theta;    ///< granular temperature in the cells [m^2/s^2]
+    double *eps;  ///< solids fraction in the cells (padded, cfd/grid.h)
+    double *v[3]; ///< solids velocity on the faces [m/s]
+    double
+        *theta; ///< granular temperature in the cells [m^2/s^2] (state: the balance starts from it)
     double *pressure; ///< solids pressure in the cells [Pa]
     double *mu;       ///< solids shear viscosity in the cells [Pa s]
     double *slip;     ///< |u - v| in the cells [m/s]
@@ -98,8 +100,9 @@ void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 /// is not finite.
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
 
-/// The largest stable time step of the solids' explicit terms: CFL 0.5 on v and on the volume
-/// fluxes, and the limit of the explicit viscous term.
+/// The largest stable time step of the solids' explicit transport: CFL 1/2 on v in the cells
+/// that hold solids (the viscous term and the transport of momentum are point-implicit, the
+/// plastic pressure implicit).
 double bdl_solids_stable_dt(const bdl_solids *s);
 
 /// Solids velocity component a at the centre of cell (i, j, k).

@@ -109,7 +109,8 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
     const bdl_solids_def *d = &w->solids->def;
     snprintf(buf, size,
              "solids phase (two-fluid model: %.4g mm, %.4g kg/m^3, restitution %.4g%s; drag %s; "
-             "Syamlal's viscous regime, algebraic temperature; Schaeffer's plastic regime from "
+             "Syamlal's viscous regime, its energy balanced in each cell; Schaeffer's plastic "
+             "regime from "
              "%.3g, A %.3g Pa, n %.3g, %.3g deg, viscosity at most %.3g Pa s; step %.3g s)",
              1e3 * d->diameter, d->density, d->restitution,
              w->scene.solids.friction > 0.0 ? " (Jenkins & Zhang's effective)" : "",
