@@ -195,3 +195,7 @@ bdl_cli_expect(cli_tfm_species 2 "tfm_species.ini:11: \\[species\\]: a scene wit
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_species.ini)
 bdl_cli_expect(cli_tfm_no_gas 2 "tfm_no_gas.ini:10: \\[solids\\]: a solids phase lives on the gas's grid"
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_no_gas.ini)
+bdl_cli_expect(cli_tfm_fields 2 "\\[output\\] fields_interval = 0.1: the field files average particles"
+  check ${TFM} --set output.fields_interval=0.1)
+bdl_cli_expect(cli_tfm_elastic 2 "\\[solids\\] restitution = 1: out of range; allowed: \\(0, 1\\)"
+  check ${TFM} --set solids.restitution=1)

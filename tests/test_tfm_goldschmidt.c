@@ -4,7 +4,7 @@
 // Zhang's effective 0.862 ("with rotation"); 10 s each, the mean particle height averaged over
 // 5-10 s against the thesis's model (0.0921 / 0.1102 m without rotation, 0.0973 / 0.1176 m with
 // it) within 10 %, and the experiment's (0.1140 / 0.1180 m) printed beside; then the thesis's
-// grid study (2, 1 and 0.5 cm cells) at 2 U_mf. Slow: not in CI.
+// grid study (3, 1.5 and 0.75 cm cells) at 2 U_mf. Slow: not in CI.
 #include <math.h>
 #include <stdio.h>
 #include <time.h>
@@ -33,11 +33,12 @@ static double run(double U, double restitution, double h, double *seconds)
     bdl_solids_def sd = bdl_default_solids_def();
     sd.restitution = restitution;
     column c;
-    const int per_cm = (int)lround(0.01 / h);
-    CHECK(column_create(&c, 15 * per_cm, 45 * per_cm, h, 0, U, &sd));
+    const int across = (int)lround(0.15 / h); // h divides 15 cm
+    CHECK(fabs(across * h - 0.15) < 1e-9);
+    CHECK(column_create(&c, across, 3 * across, h, 0, U, &sd));
     for (int side = 0; side < 2; ++side)
         c.gas->def.side[side].type = BDL_SIDE_WALL;
-    column_fill(&c, 0, 15 * per_cm, 0.583);
+    column_fill(&c, 0, across, 0.583);
     const double dt = 1e-4 * h / 0.01;
     const int steps = (int)lround(10.0 / dt), every = steps / 1000;
     double sum = 0.0, hi = 0.0;
@@ -74,8 +75,9 @@ int main(void)
             CHECK(fabs(h / model[r][m] - 1.0) < 0.10);
         }
     // The thesis's grid study (table 5.2: coarse, medium and fine grids, each halving the last),
-    // at 2 U_mf without rotation: the heights and the order their differences show.
-    const double cells[3] = {0.02, 0.01, 0.005};
+    // at 2 U_mf without rotation: the heights and the order their differences show. Its medium
+    // grid is 1 cm, but 2 cm does not divide the 15 cm width: 3, 1.5 and 0.75 cm do.
+    const double cells[3] = {0.03, 0.015, 0.0075};
     double heights[3];
     for (int g = 0; g < 3; ++g) {
         double seconds = 0.0;

@@ -10,9 +10,12 @@ typedef struct column {
     bdl_solids *solids;
 } column;
 
-/// nx x nz cells of h (one cell of h along y, periodic), gravity along -z; walls on the sides,
-/// and below and above either walls (closed) or an inlet of superficial velocity U and an outlet.
-static int column_create(column *c, int nx, int nz, double h, int closed, double U,
+enum { COLUMN_CLOSED = 1, COLUMN_PERIODIC_X = 2 };
+
+/// nx x nz cells of h (one cell of h along y, periodic), gravity along -z; walls on the sides
+/// (periodic with COLUMN_PERIODIC_X or one cell across), and below and above either walls
+/// (COLUMN_CLOSED) or an inlet of superficial velocity U and an outlet.
+static int column_create(column *c, int nx, int nz, double h, int flags, double U,
                          const bdl_solids_def *sd)
 {
     bdl_gas_def g = bdl_default_gas_def();
@@ -24,9 +27,9 @@ static int column_create(column *c, int nx, int nz, double h, int closed, double
     g.tolerance = 1e-10;
     g.max_iterations = 1000;
     g.side[2].type = g.side[3].type = BDL_SIDE_PERIODIC;
-    if (nx == 1)
+    if (nx == 1 || (flags & COLUMN_PERIODIC_X))
         g.side[0].type = g.side[1].type = BDL_SIDE_PERIODIC;
-    if (!closed) {
+    if (!(flags & COLUMN_CLOSED)) {
         g.side[4].type = BDL_SIDE_INLET;
         g.side[4].inflow = U;
         g.side[5].type = BDL_SIDE_OUTLET;

@@ -138,7 +138,8 @@ static int capture_solids(bdl_snapshot *s, const bdl_world *w)
             for (int j = 0; j < g->n[1]; ++j)
                 for (int i = 0; i < g->n[0]; ++i) {
                     const uint64_t c = (uint64_t)((k * g->n[1] + j) * g->n[0] + i);
-                    const double want = so->eps[bdl_grid_index(g, i, j, k)] * cell / volume;
+                    const double want =
+                        fmax(so->eps[bdl_grid_index(g, i, j, k)], 0.0) * cell / volume;
                     const long m = (long)want + (cell_hash(c, 0, 1) < want - floor(want));
                     for (long q = 0; q < m && pass == 1; ++q) {
                         const int ix[3] = {i, j, k};

@@ -211,9 +211,10 @@ static int check_solids(const bdl_world *w, char *why, size_t len)
         return 0;
     }
     for (long i = 0; i < cells; ++i)
-        if (!(s->eps[i] >= 0.0 && s->eps[i] < 1.0)) {
-            snprintf(why, len, "the solids fraction in cell %ld of %ld is %g (must be in [0, 1))",
-                     i, cells, s->eps[i]);
+        if (!(s->eps[i] >= -1e-9 && s->eps[i] < 1.0)) { // round-off below zero is a state
+            snprintf(why, len,
+                     "the solids fraction in cell %ld of %ld is %g (must be in [-1e-9, 1))", i,
+                     cells, s->eps[i]);
             return 0;
         }
     for (int a = 0; a < 3; ++a)

@@ -756,8 +756,9 @@ const bdl_scene_key bdl_scene_keys[] = {
             "Sun 2007, table 5.1)"},
     {S(SOLIDS), "density", NUM, "kg/m^3", IN_SOLIDS(def.density), .def = {2526}, GT(0), LE(1e5),
      .doc = "material density of the solids"},
-    {S(SOLIDS), "restitution", NUM, "-", IN_SOLIDS(def.restitution), .def = {0.97}, GT(0), LE(1),
-     .doc = "normal restitution of the kinetic theory (made effective by friction, below)"},
+    {S(SOLIDS), "restitution", NUM, "-", IN_SOLIDS(def.restitution), .def = {0.97}, GT(0), LT(1),
+     .doc = "normal restitution of the kinetic theory (made effective by friction, below; "
+            "elastic spheres have no balance of granular energy)"},
     {S(SOLIDS), "friction", NUM, "-", IN_SOLIDS(friction), .def = {0}, GE(0), LE(10),
      .doc = "particle friction: above 0 the restitution becomes Jenkins & Zhang's (2002) "
             "effective one, e - a1/2 + a2 b1 / (2 b2) (particle rotation, Sun 2007, ch. 5)"},
@@ -783,7 +784,7 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(SOLIDS), "viscosity_max", NUM, "Pa s", IN_SOLIDS(def.mu_max), .def = {100}, GT(0), LE(1e6),
      .doc = "cap of the plastic regime's viscosity (MFIX's 1000 poise)"},
     {S(SOLIDS), "bed_height", NUM, "m", IN_SOLIDS(bed_height), .def = {0}, GE(0),
-     .default_text = "none: required with [solids]",
+     .default_text = "none: required with [solids], > 0 and within the domain's height",
      .doc = "the cells whose centres lie below this height above the domain's floor (along z) "
             "start filled"},
     {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),

@@ -668,6 +668,12 @@ static void check_solids(bdl_scene_parser *p)
         bdl_scene_fail(p, &at,
                        "with [solids] the gas and the solids share one step: give it as "
                        "[run] dt (1e-4 s suits 1 cm cells)");
+    else if (scene->output.fields_interval > 0.0)
+        for (int i = 0; i < p->section_count; ++i)
+            if (p->sections[i].kind == BDL_SECTION_OUTPUT)
+                fail_at_key(p, &p->sections[i], "fields_interval", 0,
+                            "the field files average particles, and a solids phase has none (its "
+                            "voidage is in the pictures' slice): remove the key");
 }
 
 /// [output] fields_cell against the domain: no larger than its largest side, and no grid of

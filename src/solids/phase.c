@@ -32,7 +32,7 @@ bdl_solids_def bdl_default_solids_def(void)
 
 static int valid_def(const bdl_solids_def *d)
 {
-    return d->diameter > 0.0 && d->density > 0.0 && d->restitution > 0.0 && d->restitution <= 1.0 &&
+    return d->diameter > 0.0 && d->density > 0.0 && d->restitution > 0.0 && d->restitution < 1.0 &&
            d->eps_star > 0.0 && d->eps_star < 1.0 && d->schaeffer_a > 0.0 && d->schaeffer_n > 0.0 &&
            d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
@@ -264,7 +264,7 @@ static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
 {
     const bdl_grid *gr = &s->grid;
     const bdl_solids_def *d = &s->def;
-    const double sin_phi = sin(d->friction_angle * PI / 180.0);
+    const double phi = d->friction_angle * PI / 180.0; // radians
     double pmax = 0.0;
     FOR_CELLS(gr, {
         const double eps = s->eps[idx];
@@ -281,7 +281,7 @@ static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
         if (eps >= d->eps_star) {
             p = bdl_schaeffer_pressure(eps, 1.0 - eps, 1.0 - d->eps_star, d->schaeffer_a,
                                        d->schaeffer_n);
-            mu = bdl_schaeffer_viscosity(p, sin_phi, i2d, d->mu_max);
+            mu = bdl_schaeffer_viscosity(p, phi, i2d, d->mu_max);
         } else if (eps > d->dilute) {
             viscous_regime(s, eps, trace, ddot, s->theta[idx], dt, &theta, &p, &mu);
         }
@@ -612,8 +612,10 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 {
     const bdl_grid *gr = &s->grid;
-    for (int a = 0; a < 3; ++a)
+    for (int a = 0; a < 3; ++a) { // the fluxes' images too: the transport reads across a period
         velocity_ghosts(gr, a, s->v[a]);
+        velocity_ghosts(gr, a, s->flux[a]);
+    }
     bdl_solids_share_voidage(s, gas);
     closures(s, gas, dt);
     for (int a = 0; a < 3; ++a)
@@ -645,13 +647,15 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 double bdl_solids_stable_dt(const bdl_solids *s)
 {
     const bdl_grid *gr = &s->grid;
-    double dt = INFINITY;
+    double out = 0.0; // the largest rate at which a cell's faces carry its solids out [1/s]
     FOR_CELLS(gr, {
-        for (int a = 0; a < 3; ++a) {
-            const double w = fmax(fabs(s->v[a][idx]), fabs(s->v[a][idx + gr->stride[a]]));
-            if (w > 0.0 && s->eps[idx] > s->def.dilute)
-                dt = fmin(dt, 0.5 * gr->h[a] / w);
+        if (s->eps[idx] > 0.0) {
+            double rate = 0.0;
+            for (int a = 0; a < 3; ++a)
+                rate +=
+                    (fmax(s->v[a][idx + gr->stride[a]], 0.0) + fmax(-s->v[a][idx], 0.0)) / gr->h[a];
+            out = fmax(out, rate);
         }
     });
-    return dt;
+    return out > 0.0 ? 0.5 / out : INFINITY;
 }

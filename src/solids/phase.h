@@ -44,7 +44,7 @@ typedef struct bdl_solids_def {
     bdl_drag_law drag;
     bdl_drag_params drag_params;
     double eps_star;       ///< solids fraction where the plastic regime starts (Sun eq. 7.7: 0.58)
-    double schaeffer_a;    ///< Schaeffer's P* = A (eps - eps_star)^n: A [Pa]
+    double schaeffer_a;    ///< Schaeffer's P = eps A (eps - eps_star)^n: A [Pa]
     double schaeffer_n;    ///< and n
     double friction_angle; ///< angle of internal friction of the plastic regime [deg]
     double mu_max;         ///< cap of the frictional viscosity [Pa s]
@@ -87,7 +87,7 @@ typedef struct bdl_solids {
 
 /// A phase with no solids on the grid of `gas`, which must have been created with
 /// def.pressure_share (its hooks carry the elimination). BDL_ERR_ARGS for a definition out of
-/// range (a diameter, density, restitution outside (0, 1], eps_star outside (0, 1), A, n,
+/// range (a diameter, density, restitution outside (0, 1), eps_star outside (0, 1), A, n,
 /// tolerance or iteration count not positive), BDL_ERR_NOMEM.
 bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_solids **out);
 void bdl_solids_destroy(bdl_solids *s);
@@ -100,9 +100,10 @@ void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 /// is not finite.
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
 
-/// The largest stable time step of the solids' explicit transport: CFL 1/2 on v in the cells
-/// that hold solids (the viscous term and the transport of momentum are point-implicit, the
-/// plastic pressure implicit).
+/// The largest stable time step of the solids' explicit transport: half the step at which a cell
+/// holding solids would send out all it holds through the faces its velocity leaves by (the
+/// upwind update keeps eps >= 0 up to twice this; the viscous term and the transport of momentum
+/// are point-implicit, the plastic pressure implicit).
 double bdl_solids_stable_dt(const bdl_solids *s);
 
 /// Solids velocity component a at the centre of cell (i, j, k).
