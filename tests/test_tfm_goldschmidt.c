@@ -82,7 +82,7 @@ int main(void)
     for (int g = 0; g < 3; ++g) {
         double seconds = 0.0;
         heights[g] = run(2.0 * umf, e[0], cells[g], &seconds);
-        printf("grid %.1f cm: <h_p> %.4f m (%.1f s)\n", 100.0 * cells[g], heights[g], seconds);
+        printf("grid %.2f cm: <h_p> %.4f m (%.1f s)\n", 100.0 * cells[g], heights[g], seconds);
     }
     const double d1 = heights[0] - heights[1], d2 = heights[1] - heights[2];
     printf("grid study: differences %.4f and %.4f m, observed order %.2f, Richardson estimate "
