@@ -13,19 +13,6 @@
 #include "solids/kinetic.h"
 #include "tfm_column.h"
 
-/// Mean particle height sum(eps z) / sum(eps) of the bed [m].
-static double particle_height(const column *c)
-{
-    const bdl_grid *gr = &c->solids->grid;
-    double sum = 0.0, mass = 0.0;
-    for (int k = 0; k < gr->n[2]; ++k)
-        for (int i = 0; i < gr->n[0]; ++i) {
-            const double e = cell(c, c->solids->eps, i, k);
-            sum += e * (k + 0.5) * gr->h[2], mass += e;
-        }
-    return sum / mass;
-}
-
 /// The bed on cells of h (the time step 1e-4 s on 1 cm cells, in proportion to h): the mean
 /// particle height averaged over 5-10 s; the run's processor time into *seconds.
 static double run(double U, double restitution, double h, double *seconds)
@@ -48,7 +35,7 @@ static double run(double U, double restitution, double h, double *seconds)
         ok = bdl_solids_step(c.solids, c.gas, dt) == BDL_OK;
         hi = fmax(hi, c.solids->stats.eps_max);
         if (n >= steps / 2 && n % every == 0)
-            sum += particle_height(&c), ++samples;
+            sum += bdl_solids_mean_height(c.solids, 2), ++samples;
     }
     *seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
     CHECK(ok);

@@ -55,7 +55,7 @@ static void column_fill(column *c, int lo, int hi, double eps)
     bdl_solids_share_voidage(c->solids, c->gas);
 }
 
-static double cell(const column *c, const double *f, int i, int k)
+static inline double cell(const column *c, const double *f, int i, int k)
 {
     return f[bdl_grid_index(&c->solids->grid, i, 0, k)];
 }

@@ -151,7 +151,7 @@ static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
                 kinetic += 0.5 * rho * e * cell * v2;
                 speed = e > s->def.dilute ? fmax(speed, sqrt(v2)) : speed;
             }
-    d->mean_height = bdl_world_solids_height(w);
+    d->mean_height = bdl_solids_mean_height(s, 2);
     d->kinetic_energy = kinetic;
     d->max_speed = speed;
     double below = 0.0;

@@ -1054,6 +1054,7 @@ void bdl_scene_defaults(bdl_scene *scene)
 {
     memset(scene, 0, sizeof *scene);
     snprintf(scene->dir, sizeof scene->dir, ".");
+    scene->solids.def = bdl_default_solids_def(); // what no key sets (the dilute limit, solver)
     // Only the singleton sections have their fields in bdl_scene itself.
     for (int i = 0; i < bdl_scene_key_count; ++i)
         if (bdl_section_infos[bdl_scene_keys[i].section].name_count == 0)

@@ -184,6 +184,17 @@ double bdl_solids_volume(const bdl_solids *s)
     return sum * gr->h[0] * gr->h[1] * gr->h[2];
 }
 
+double bdl_solids_mean_height(const bdl_solids *s, int a)
+{
+    const bdl_grid *gr = &s->grid;
+    double sum = 0.0, mass = 0.0;
+    FOR_CELLS(gr, {
+        const int at[3] = {i, j, k};
+        sum += s->eps[idx] * (at[a] + 0.5) * gr->h[a], mass += s->eps[idx];
+    });
+    return mass > 0.0 ? sum / mass : 0.0;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Closures in the cells.
 

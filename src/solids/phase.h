@@ -112,4 +112,8 @@ double bdl_solids_cell_velocity(const bdl_solids *s, int a, int i, int j, int k)
 /// Total solids volume in the cells [m^3] (conserved to round-off: no side lets solids through).
 double bdl_solids_volume(const bdl_solids *s);
 
+/// Mean height of the solids above the grid's low side along axis a, sum(eps x_a) / sum(eps)
+/// [m] (Sun 2007's <h_p> for a = z); 0 without solids.
+double bdl_solids_mean_height(const bdl_solids *s, int a);
+
 #endif

@@ -180,10 +180,6 @@ bdl_result bdl_world_solids_step(bdl_world *world);
 /// One line on the solids phase and its parameters, for logs.
 void bdl_world_solids_describe(const bdl_world *world, char *buf, size_t size);
 
-/// Mean height of the solids above the domain's floor, sum(eps z) / sum(eps) [m] (Sun 2007's
-/// <h_p>).
-double bdl_world_solids_height(const bdl_world *world);
-
 /// How the parcels of a world fill the gas's cells, for check and run.log.
 typedef struct bdl_parcels_census {
     long parcels;

@@ -9,17 +9,10 @@
 #include "solids/phase.h"
 #include "world/world.h"
 
-/// The phase's definition: the scene's keys over the defaults of what it has no key for (the
-/// dilute limit, the plastic correction's tolerance), with the restitution made effective by
-/// friction (Jenkins & Zhang).
+/// The phase's definition with the restitution made effective by friction (Jenkins & Zhang).
 static bdl_solids_def solids_def(const bdl_scene *s)
 {
-    const bdl_solids_def *k = &s->solids.def;
-    bdl_solids_def d = bdl_default_solids_def();
-    d.diameter = k->diameter, d.density = k->density, d.restitution = k->restitution;
-    d.drag = k->drag, d.drag_params = k->drag_params;
-    d.eps_star = k->eps_star, d.schaeffer_a = k->schaeffer_a, d.schaeffer_n = k->schaeffer_n;
-    d.friction_angle = k->friction_angle, d.mu_max = k->mu_max;
+    bdl_solids_def d = s->solids.def;
     if (s->solids.friction > 0.0)
         d.restitution = bdl_jenkins_zhang_effective(d.restitution, s->solids.friction,
                                                     s->solids.tangential_restitution)
@@ -63,6 +56,7 @@ bdl_result bdl_world_solids_init(bdl_world *w, bdl_scene_error *err)
     w->gas_every = w->gas_every_max = 1;
     w->gas_next = 0;
     w->max_solids = w->solids->stats.eps_max = w->scene.solids.fraction;
+    w->gas_stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
     w->budget.dt = w->dt;
     w->budget.steps = w->scene.end_time / w->dt;
     return bdl_budget_check_steps(w, w->dt, err);
@@ -83,11 +77,10 @@ bdl_result bdl_world_solids_step(bdl_world *w)
         bdl_gas_set_inflow(w->gas, bdl_world_inlet_velocity(w, w->time),
                            w->live.inlet_scale * w->scene.gas.jet_velocity);
     w->gas_inflow_raised = 0;
-    // The stable step of the state the step starts from (CFL 1/2 for gas and solids, the
-    // viscous limits): a step above twice it is not taken.
-    const double stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
-    if (w->dt > 2.0 * stable) {
-        bdl_world_gas_failure(w, "solids step", "[run] dt", w->dt, stable);
+    // The stable step of the state the step starts from (CFL 1/2 for gas and solids; the last
+    // step's, or the start's): a step above twice it is not taken.
+    if (w->dt > 2.0 * w->gas_stable) {
+        bdl_world_gas_failure(w, "solids step", "[run] dt", w->dt, w->gas_stable);
         return BDL_ERR_UNSTABLE;
     }
     const bdl_result r = bdl_solids_step(w->solids, w->gas, w->dt);
@@ -116,17 +109,4 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
              w->scene.solids.friction > 0.0 ? " (Jenkins & Zhang's effective)" : "",
              bdl_drag_law_names[d->drag], d->eps_star, d->schaeffer_a, d->schaeffer_n,
              d->friction_angle, d->mu_max, w->dt);
-}
-
-double bdl_world_solids_height(const bdl_world *w)
-{
-    const bdl_grid *gr = &w->solids->grid;
-    double sum = 0.0, mass = 0.0;
-    for (int k = 0; k < gr->n[2]; ++k)
-        for (int j = 0; j < gr->n[1]; ++j)
-            for (int i = 0; i < gr->n[0]; ++i) {
-                const double e = w->solids->eps[bdl_grid_index(gr, i, j, k)];
-                sum += e * (k + 0.5) * gr->h[2], mass += e;
-            }
-    return mass > 0.0 ? sum / mass : 0.0;
 }
