@@ -94,6 +94,38 @@ static void test_shear_temperature(void)
     CHECK(bdl_ktgf_syamlal(0.05, d, rho, e).k2 < 0.0);
 }
 
+/// The cell's energy balance in time (the solver's, solids/phase.c): under simple shear v_x =
+/// rate z (D:D = rate^2 / 2, tr D = 0) its steady state and its dt -> infinity form are the
+/// closed-form temperature; without shear it cools by Haff's law, theta0 / (1 + t / tau)^2 with
+/// tau = 3 rho / (k4 eps sqrt(theta0)) (Haff 1983), to first order in dt.
+static void test_energy_balance(void)
+{
+    const double eps = 0.4, d = 0.0025, rho = 2526.0, e = 0.9, rate = 20.0;
+    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d, rho, e);
+    const double shear = bdl_ktgf_shear_temperature(eps, d, rho, e, rate), ddot = 0.5 * rate * rate;
+    CHECK_CLOSE(bdl_ktgf_temperature_step(&c, eps, rho, 0.0, ddot, 0.0, INFINITY), shear, 1e-12);
+    const double tau = 3.0 * rho / (c.k4 * eps * sqrt(shear));
+    double theta = 0.0;
+    for (int n = 0; n < 400; ++n)
+        theta = bdl_ktgf_temperature_step(&c, eps, rho, 0.0, ddot, theta, 0.1 * tau);
+    printf("simple shear at %g/s: steady theta %.10g m^2/s^2, closed form %.10g\n", rate, theta,
+           shear);
+    CHECK_CLOSE(theta, shear, 1e-10);
+    double err[3];
+    for (int m = 0; m < 3; ++m) {
+        const int per_tau = 10 << m;
+        theta = shear;
+        for (int n = 0; n < 3 * per_tau; ++n)
+            theta = bdl_ktgf_temperature_step(&c, eps, rho, 0.0, 0.0, theta, tau / per_tau);
+        err[m] = fabs(theta * 16.0 / shear - 1.0); // Haff at t = 3 tau: theta0 / 16
+    }
+    const double order = log2(err[1] / err[2]);
+    printf("homogeneous cooling to 3 tau: errors %.3e %.3e %.3e at 10, 20, 40 steps per tau, "
+           "order %.3f\n",
+           err[0], err[1], err[2], order);
+    CHECK(err[2] < 0.05 && order > 0.9 && order < 1.1);
+}
+
 /// Schaeffer: no plastic pressure at or above the critical gas fraction, growing as the bed is
 /// squeezed; the viscosity carries P sin(phi) over 2 sqrt(I2D), capped.
 static void test_schaeffer(void)
@@ -118,6 +150,7 @@ int main(void)
     test_g0();
     test_pressure_against_lun();
     test_shear_temperature();
+    test_energy_balance();
     test_schaeffer();
     return bdl_test_summary("test_kinetic");
 }

@@ -42,6 +42,43 @@ double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, do
     return c.k3 * shear_rate * shear_rate / (c.k4 * eps);
 }
 
+/// The root x = sqrt(theta) >= 0 of f(x) = a3 x^3 + a2 x^2 - a1 x - a0 with a3 > 0 and a0 >= 0
+/// (f(0) <= 0, f -> +inf): bracketed upwards from `guess` (the last step's root, which is near),
+/// then Newton steps from the bracket's right end, kept inside it.
+static double cubic_root(double a3, double a2, double a1, double a0, double guess)
+{
+    if (!(a0 > 0.0) && !(a1 > 0.0) && a2 >= 0.0)
+        return 0.0; // f > 0 for every x > 0
+    double lo = 0.0, hi = guess > 1e-12 ? guess : 1.0;
+    for (int k = 0; k < 200 && a3 * hi * hi * hi + a2 * hi * hi - a1 * hi - a0 <= 0.0; ++k)
+        lo = hi, hi *= 2.0;
+    double x = hi; // from the right: where f is convex Newton's steps fall monotonically
+    for (int k = 0; k < 100; ++k) {
+        const double f = ((a3 * x + a2) * x - a1) * x - a0, df = (3.0 * a3 * x + 2.0 * a2) * x - a1;
+        if (f > 0.0)
+            hi = x;
+        else
+            lo = x;
+        double next = df > 0.0 ? x - f / df : 0.5 * (lo + hi);
+        if (!(next > lo && next < hi))
+            next = 0.5 * (lo + hi);
+        if (fabs(next - x) <= 1e-14 * fmax(x, 1e-300))
+            return next;
+        x = next;
+    }
+    return x;
+}
+
+double bdl_ktgf_temperature_step(const bdl_ktgf_coefficients *c, double eps, double rho,
+                                 double trace, double ddot, double theta_old, double dt)
+{
+    const double inertia = 1.5 * rho / dt; // 0 for dt = INFINITY: the algebraic balance
+    const double q = 2.0 * c->k3 * ddot + c->k2 * trace * trace;
+    const double x = cubic_root(c->k4 * eps, inertia + c->k1 * eps * trace, q, inertia * theta_old,
+                                sqrt(theta_old));
+    return x * x;
+}
+
 double bdl_schaeffer_pressure(double eps_s, double eps_g, double eps_g_star, double a, double n)
 {
     return eps_g < eps_g_star ? eps_s * a * pow(eps_g_star - eps_g, n) : 0.0;

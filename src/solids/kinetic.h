@@ -38,6 +38,17 @@ bdl_ktgf_coefficients bdl_ktgf_syamlal(double eps, double d, double rho, double 
 /// (e in [0, 1): elastic particles have no balance).
 double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, double shear_rate);
 
+/// One backward-Euler step of the granular energy balance of a cell without its transport (no
+/// convection, no conduction), in the viscous regime of coefficients c:
+///     (3/2) rho eps (theta - theta_old) / dt = -P tr D + 2 mu D:D + lambda tr(D)^2
+///                                              - k4 eps^2 theta^(3/2),
+/// P, mu and lambda those of the new theta. `trace` is tr D and `ddot` D:D of the cell's rate of
+/// strain. Returns theta >= 0, the root of a cubic in sqrt(theta) (Newton steps inside a bracket).
+/// dt = INFINITY gives the algebraic balance (production equal to dissipation, MFIX's algebraic
+/// form); a homogeneous cooling state follows Haff's law to first order in dt.
+double bdl_ktgf_temperature_step(const bdl_ktgf_coefficients *c, double eps, double rho,
+                                 double trace, double ddot, double theta_old, double dt);
+
 /// Schaeffer's plastic regime: the solids pressure eps_s A (eps_g_star - eps_g)^n when the gas
 /// fraction eps_g is below eps_g_star (else 0), and the frictional viscosity P sin(phi) /
 /// (2 sqrt(i2d)) for the second invariant i2d of the rate-of-strain deviator, never above mu_max

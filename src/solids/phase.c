@@ -58,7 +58,7 @@ bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_
              (s->b[a] = bdl_grid_alloc(gr)) && (s->k[a] = bdl_grid_alloc(gr)) &&
              (s->up[a] = bdl_grid_alloc(gr)) && (s->c[a] = bdl_grid_alloc(gr)) &&
              (s->flux[a] = bdl_grid_alloc(gr));
-    for (int w = 0; w < 8; ++w)
+    for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         ok = ok && (s->work[w] = bdl_grid_alloc(gr));
     if (!ok) {
         bdl_solids_destroy(s);
@@ -86,7 +86,7 @@ void bdl_solids_destroy(bdl_solids *s)
         free(s->c[a]);
         free(s->flux[a]);
     }
-    for (int w = 0; w < 8; ++w)
+    for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         free(s->work[w]);
     free(s);
 }
@@ -224,30 +224,6 @@ static void strain_rate(const bdl_solids *s, long idx, double D[3][3])
             D[a][b] = 0.5 * (grad[a][b] + grad[b][a]);
 }
 
-/// The root x = sqrt(theta) >= 0 of f(x) = a3 x^3 + a2 x^2 - a1 x - a0 with a3 > 0 and a0 >= 0
-/// (f(0) <= 0, f -> +inf): bracketed, then Newton steps kept inside the bracket.
-static double cubic_root(double a3, double a2, double a1, double a0)
-{
-    double lo = 0.0, hi = 1.0;
-    for (int k = 0; k < 200 && a3 * hi * hi * hi + a2 * hi * hi - a1 * hi - a0 <= 0.0; ++k)
-        lo = hi, hi *= 2.0;
-    double x = 0.5 * (lo + hi);
-    for (int k = 0; k < 60; ++k) {
-        const double f = ((a3 * x + a2) * x - a1) * x - a0, df = (3.0 * a3 * x + 2.0 * a2) * x - a1;
-        if (f > 0.0)
-            hi = x;
-        else
-            lo = x;
-        double next = df > 0.0 ? x - f / df : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi))
-            next = 0.5 * (lo + hi);
-        if (fabs(next - x) <= 1e-14 * fmax(x, 1e-300))
-            return next;
-        x = next;
-    }
-    return x;
-}
-
 /// Syamlal's viscous regime with the granular energy's balance in time but without its transport
 /// (no convection or conduction): (3/2) rho eps (theta - theta^n) / dt = -P tr D + 2 mu D:D +
 /// lambda tr(D)^2 - k4 eps^2 theta^(3/2), backward Euler, a cubic in x = sqrt(theta):
@@ -262,12 +238,9 @@ static void viscous_regime(const bdl_solids *s, double eps, double trace, double
 {
     const bdl_solids_def *d = &s->def;
     const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d->diameter, d->density, d->restitution);
-    const double inertia = 1.5 * d->density / dt;
-    const double q = 2.0 * c.k3 * ddot + c.k2 * trace * trace;
-    const double x = cubic_root(c.k4 * eps, inertia + c.k1 * eps * trace, q, inertia * theta_old);
-    *theta = x * x;
+    *theta = bdl_ktgf_temperature_step(&c, eps, d->density, trace, ddot, theta_old, dt);
     *p = c.k1 * eps * eps * *theta;
-    *mu = c.k3 * eps * x;
+    *mu = c.k3 * eps * sqrt(*theta);
 }
 
 /// Temperature, pressure and viscosity in every cell, and the slip |u - v| the drag sees.
@@ -473,7 +446,13 @@ static void continuity(const bdl_solids *s, double dt, double *out)
 // the solids (the volume is conserved whatever z is); with r_i clipped at zero the correction
 // only resists compression, and never empties a cell.
 
-/// dP/d eps of Schaeffer's pressure eps A (eps - eps_star)^n.
+static double schaeffer(const bdl_solids_def *d, double eps)
+{
+    return bdl_schaeffer_pressure(eps, 1.0 - eps, 1.0 - d->eps_star, d->schaeffer_a,
+                                  d->schaeffer_n);
+}
+
+/// dP/d(eps) of Schaeffer's pressure eps A (eps - eps_star)^n.
 static double plastic_slope(const bdl_solids_def *d, double eps)
 {
     const double x = eps - d->eps_star;
@@ -482,12 +461,23 @@ static double plastic_slope(const bdl_solids_def *d, double eps)
     return d->schaeffer_a * pow(x, d->schaeffer_n - 1.0) * (x + eps * d->schaeffer_n);
 }
 
-/// y = M z on the plastic cells (M the matrix above; slope the cells' P', w on the faces).
+/// The slope of Schaeffer's pressure between fractions p and q: the chord (P(q) - P(p)) /
+/// (q - p), the tangent where they meet; 0 where both are below eps_star.
+static double plastic_chord(const bdl_solids_def *d, double p, double q)
+{
+    if (p <= d->eps_star && q <= d->eps_star)
+        return 0.0;
+    if (!(fabs(q - p) > 1e-9))
+        return plastic_slope(d, fmax(p, q));
+    return (schaeffer(d, q) - schaeffer(d, p)) / (q - p);
+}
+
+/// y = M z on the free cells (M the matrix above; slope the cells' chords, w on the faces).
 static void plastic_apply(const bdl_solids *s, const double *slope, const double *z, double *y)
 {
     const bdl_grid *gr = &s->grid;
     FOR_CELLS(gr, {
-        if (slope[idx] <= 0.0)
+        if (!(slope[idx] > 0.0))
             continue;
         double sum = z[idx] / slope[idx];
         for (int a = 0; a < 3; ++a) {
@@ -511,33 +501,34 @@ static double plastic_dot(const bdl_solids *s, const double *slope, const double
     return sum;
 }
 
-/// Solves for z by preconditioned conjugate gradients; returns the iterations taken.
+/// Solves M dz = r on the free cells (slope > 0; dz = 0 on the others) by preconditioned
+/// conjugate gradients and adds dz to z; returns the iterations taken.
 static int plastic_solve(bdl_solids *s, const double *slope, const double *r, double *z)
 {
     const bdl_grid *gr = &s->grid;
     double *res = s->work[4], *pre = s->work[5], *dir = s->work[6], *q = s->work[7];
-    memset(z, 0, (size_t)gr->size * sizeof *z);
+    double *dz = s->work[10];
+    memset(dz, 0, (size_t)gr->size * sizeof *dz);
     memset(dir, 0, (size_t)gr->size * sizeof *dir);
     FOR_CELLS(gr, {
-        double diag = slope[idx] > 0.0 ? 1.0 / slope[idx] : 0.0;
+        const int on = slope[idx] > 0.0;
+        double diag = on ? 1.0 / slope[idx] : 0.0;
         for (int a = 0; a < 3; ++a)
             diag += s->c[a][idx] + s->c[a][idx + gr->stride[a]];
-        pre[idx] = slope[idx] > 0.0 ? 1.0 / diag : 0.0;
-        res[idx] = slope[idx] > 0.0 ? r[idx] : 0.0;
+        pre[idx] = on ? 1.0 / diag : 0.0;
+        res[idx] = on ? r[idx] : 0.0;
         dir[idx] = pre[idx] * res[idx];
     });
     const double norm0 = sqrt(plastic_dot(s, slope, res, res));
-    if (norm0 == 0.0)
-        return 0;
-    double rz = plastic_dot(s, slope, res, dir);
     int it = 0;
-    while (it < s->def.max_iterations) {
+    double rz = plastic_dot(s, slope, res, dir);
+    while (norm0 > 0.0 && it < s->def.max_iterations) {
         bdl_grid_wrap_cells(gr, dir);
         plastic_apply(s, slope, dir, q);
         const double alpha = rz / plastic_dot(s, slope, dir, q);
         FOR_CELLS(gr, {
             if (slope[idx] > 0.0)
-                z[idx] += alpha * dir[idx], res[idx] -= alpha * q[idx];
+                dz[idx] += alpha * dir[idx], res[idx] -= alpha * q[idx];
         });
         ++it;
         if (sqrt(plastic_dot(s, slope, res, res)) <= s->def.tolerance * norm0)
@@ -554,21 +545,91 @@ static int plastic_solve(bdl_solids *s, const double *slope, const double *r, do
                 dir[idx] = pre[idx] * res[idx] + ratio * dir[idx];
         });
     }
+    FOR_CELLS(gr, z[idx] += dz[idx]);
     bdl_grid_wrap_cells(gr, z);
     return it;
 }
 
-/// The correction: z, then the fluxes -grad(z) / A of solids (and the opposite of gas) on the
-/// inner faces, velocities and eps^{n+1} from them, and the fluxes added to the step's. star
-/// holds eps*.
+/// The correction's fluxes -grad(z) / A into c, and the fractions they leave, x = eps* - dt
+/// div(c).
+static void plastic_result(bdl_solids *s, const double *star, const double *z, double dt, double *x)
+{
+    const bdl_grid *gr = &s->grid;
+    for (int a = 0; a < 3; ++a) {
+        const long sa = gr->stride[a];
+        memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
+        FOR_INNER_FACES(gr, a, s->c[a][idx] = -(z[idx] - z[idx - sa]) / (gr->h[a] * s->a[a][idx]));
+        wrap_face(gr, a, s->c[a]);
+    }
+    FOR_CELLS(gr, {
+        double div = 0.0;
+        for (int a = 0; a < 3; ++a)
+            div += (s->c[a][idx + gr->stride[a]] - s->c[a][idx]) / gr->h[a];
+        x[idx] = star[idx] - dt * div;
+    });
+}
+
+/// One pass of the correction: the residual r - M z of the free cells (those with a slope), the
+/// solve for its increment, then the free cells whose pressure fell below zero held there (z =
+/// lo: they leave the free set) and the chords of those pushed past their end point stiffened.
+/// Returns whether anything changed (another pass is needed).
+static int plastic_pass(bdl_solids *s, double *slope, const double *star, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    const bdl_solids_def *d = &s->def;
+    double *z = s->work[1], *r = s->work[2], *x = s->work[9], *end = s->work[8];
+    double *lo = s->work[11], *res = s->work[12];
+    for (int a = 0; a < 3; ++a) {
+        memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
+        FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
+        wrap_face(gr, a, s->c[a]);
+    }
+    plastic_apply(s, slope, z, res);
+    FOR_CELLS(gr, res[idx] = slope[idx] > 0.0 ? r[idx] - res[idx] : 0.0);
+    s->stats.iterations += plastic_solve(s, slope, res, z);
+    plastic_result(s, star, z, dt, x);
+    int changed = 0;
+    FOR_CELLS(gr, {
+        if (slope[idx] > 0.0 && z[idx] < lo[idx]) {
+            z[idx] = lo[idx];
+            slope[idx] = -1.0; // held: no longer free
+            changed = 1;
+        } else if (slope[idx] >= 0.0 && x[idx] > d->eps_star && x[idx] > end[idx] + 1e-9) {
+            end[idx] = x[idx];
+            slope[idx] = plastic_chord(d, s->eps[idx], x[idx]);
+            changed = 1;
+        }
+    });
+    bdl_grid_wrap_cells(gr, z);
+    return changed;
+}
+
+/// The correction: the increment z of the plastic pressure on the cells in Schaeffer's regime at
+/// the start or the end of the step, then the fluxes -grad(z) / A of solids (and the opposite of
+/// gas) on the inner faces, the velocities and eps^{n+1} from them, and the fluxes added to the
+/// step's. star holds eps*.
+///
+/// A cell's pressure is modelled by the chord of Schaeffer's P from eps^n to an end point, first
+/// eps*: exact if the cell keeps what the momentum step brought it, stiffer than P where it gives
+/// some back (P is convex). A cell that the others' correction pushes above its end point (a cell
+/// below eps_star pushed above it joins) gets the chord to where it was pushed, stiffer, and the
+/// system is solved again. A cell whose pressure would fall below zero (z < -P(eps^n)) is held
+/// there: an opening cell draws back at most what its own pressure pushed out in the momentum
+/// step. A few passes; the end points only rise and the held set only grows.
 static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, double dt)
 {
     const bdl_grid *gr = &s->grid;
-    double *slope = s->work[0], *z = s->work[1];
+    const bdl_solids_def *d = &s->def;
+    double *slope = s->work[0], *z = s->work[1], *r = s->work[2], *end = s->work[8];
+    double *x = s->work[9], *lo = s->work[11];
     memset(slope, 0, (size_t)gr->size * sizeof *slope);
+    memset(z, 0, (size_t)gr->size * sizeof *z);
     int any = 0;
     FOR_CELLS(gr, {
-        slope[idx] = star[idx] > s->def.eps_star ? plastic_slope(&s->def, star[idx]) : 0.0;
+        end[idx] = star[idx];
+        slope[idx] = plastic_chord(d, s->eps[idx], star[idx]);
+        lo[idx] = -schaeffer(d, s->eps[idx]);
+        r[idx] = star[idx] - s->eps[idx];
         any = any || slope[idx] > 0.0;
     });
     s->stats.iterations = 0;
@@ -579,37 +640,24 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         FOR_CELLS(gr, s->eps[idx] = star[idx]);
         return;
     }
-    double *r = s->work[2];
-    // The right-hand side r+ = max(r, 0): with every r_i >= 0 the solution has z >= 0 (an
-    // M-matrix), so a cell gives away at most what it gained this step, no fraction goes below
-    // zero, and a plastic cell that opens up still resists what its neighbours push into it.
-    FOR_CELLS(gr, r[idx] = fmax(star[idx] - s->eps[idx], 0.0));
-    for (int a = 0; a < 3; ++a)
-        FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
-    for (int a = 0; a < 3; ++a)
-        wrap_face(gr, a, s->c[a]);
-    s->stats.iterations = plastic_solve(s, slope, r, z);
+    for (int pass = 0; pass < 10 && plastic_pass(s, slope, star, dt); ++pass) {
+    }
+    plastic_result(s, star, z, dt, x);
     for (int a = 0; a < 3; ++a) {
         const long sa = gr->stride[a];
         FOR_INNER_FACES(gr, a, {
-            const double df = -(z[idx] - z[idx - sa]) / (gr->h[a] * s->a[a][idx]);
+            const double df = s->c[a][idx];
             const double es = 0.5 * (s->eps[idx] + s->eps[idx - sa]);
-            s->c[a][idx] = df; // w is not needed after the solve
-            s->v[a][idx] += df / fmax(es, s->def.dilute);
+            s->v[a][idx] += df / fmax(es, d->dilute);
             gas->u[a][idx] -= df / (1.0 - es);
         });
-        wrap_face(gr, a, s->c[a]);
         wrap_face(gr, a, s->v[a]);
         wrap_face(gr, a, gas->u[a]);
     }
     double worst = 0.0;
     FOR_CELLS(gr, {
-        double div = 0.0;
-        for (int a = 0; a < 3; ++a)
-            div += (s->c[a][idx + gr->stride[a]] - s->c[a][idx]) / gr->h[a];
-        const double next = star[idx] - dt * div;
-        worst = fmax(worst, fabs(next - star[idx]));
-        s->eps[idx] = next;
+        worst = fmax(worst, fabs(x[idx] - star[idx]));
+        s->eps[idx] = x[idx];
     });
     s->stats.correction = worst;
     for (int a = 0; a < 3; ++a)

@@ -67,6 +67,8 @@ typedef struct bdl_solids_stats {
     double pressure_max; ///< largest solids pressure [Pa]
 } bdl_solids_stats;
 
+#define BDL_SOLIDS_WORK 13
+
 typedef struct bdl_solids {
     bdl_solids_def def;
     bdl_grid grid;
@@ -79,7 +81,7 @@ typedef struct bdl_solids {
     double *slip;     ///< |u - v| in the cells [m/s]
     /// Per face: A, B, k and eps_up of the momentum step, w of the correction, the solids' flux.
     double *a[3], *b[3], *k[3], *up[3], *c[3], *flux[3];
-    double *work[8]; ///< cell arrays: the correction's slope, z, r, eps*, and its solver's
+    double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
     double time;
     long steps;
     bdl_solids_stats stats;
