@@ -436,15 +436,14 @@ static void continuity(const bdl_solids *s, double dt, double *out)
 // ---------------------------------------------------------------------------------------------
 // The plastic regime's implicit correction.
 //
-// The momentum step used the pressure P(eps^n). With the increment dP = P' (eps^{n+1} - eps^n)
-// of the cells in the plastic regime (eps* above eps_star: P' > 0 there, at eps*, 0 elsewhere)
-// the solids' flux gains -grad(dP) / A, so that eps^{n+1} - eps^n = r + dt div(grad(dP) / A),
-// r = eps* - eps^n. In the unknown z = dP of the plastic cells (zero in the others) this is
-// symmetric and positive:
-//     z_i / P'_i + sum_f w_f (z_i - z_j) = max(r_i, 0),   w_f = dt / (A_f h_f^2),
-// solved by conjugate gradients with a Jacobi preconditioner. The fluxes -grad(z) / A then move
-// the solids (the volume is conserved whatever z is); with r_i clipped at zero the correction
-// only resists compression, and never empties a cell.
+// The momentum step used the pressure P(eps^n). With the increment dP = P(eps^{n+1}) - P(eps^n)
+// of the cells in the plastic regime (at eps^n or eps*; dP = 0 elsewhere) the solids' flux gains
+// -grad(dP) / A, so that eps^{n+1} - eps^n = r + dt div(grad(dP) / A), r = eps* - eps^n. With dP
+// modelled as S (eps^{n+1} - eps^n), S a chord of P, the unknown z = dP of those cells solves the
+// symmetric positive system
+//     z_i / S_i + sum_f w_f (z_i - z_j) = r_i,   w_f = dt / (A_f h_f^2),
+// by conjugate gradients with a Jacobi preconditioner, z_i >= -P(eps^n_i) (no pressure below
+// zero). The fluxes -grad(z) / A then move the solids (the volume is conserved whatever z is).
 
 static double schaeffer(const bdl_solids_def *d, double eps)
 {

@@ -17,11 +17,12 @@
 //   flux_u u - flux_p G + flux_0, so that the pressure equation makes the flux of gas and solids
 //   together free of divergence, whatever the drag;
 //   v^{n+1} from the step's u and G, and eps* = eps^n - dt div(eps_up v), eps_up upwind;
-//   the plastic regime's pressure implicit: the increment dP = P_s' (eps^{n+1} - eps^n) of the
-//   cells above eps_star adds the flux -grad(dP) / A, solved for dP >= 0 (a symmetric system,
-//   by conjugate gradients, that resists compression only), with an equal and opposite flux of gas
-//   (the volume stays free of divergence; the gas's pressure is not corrected), so that a bed's
-//   stiff frictional pressure holds it near its packing at the time steps the gas allows.
+//   the plastic regime's pressure implicit: the increment dP = P_s(eps^{n+1}) - P_s(eps^n) of
+//   the cells above eps_star at either end of the step adds the flux -grad(dP) / A, solved with
+//   dP a chord of P_s times the change of eps and P_s kept >= 0 (a symmetric system, by
+//   conjugate gradients, in a few passes), with an equal and opposite flux of gas (the volume
+//   stays free of divergence; the gas's pressure is not corrected), so that a bed's stiff
+//   frictional pressure holds it at its packing at the time steps the gas allows.
 //
 // Stresses: below eps_star Syamlal's viscous regime (solids/kinetic.h) with the granular
 // temperature from the balance of production and dissipation in time, cell by cell, without
