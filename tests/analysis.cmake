@@ -10,6 +10,8 @@ add_test(NAME cli_sweep COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sweep_cli.cmake)
 set_tests_properties(cli_sweep PROPERTIES LABELS "analysis;cli" TIMEOUT 600)
 bdl_add_test(test_granular SOURCES test_granular.c LABELS analysis)
+# Bubbles in a voidage field: discs and balls found with their sizes, the freeboard left out.
+bdl_add_test(test_bubbles SOURCES test_bubbles.c LABELS analysis)
 add_test(NAME cli_granular COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
   -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/vibrated_pair.ini
   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/granular_cli

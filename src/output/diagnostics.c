@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "analysis/bubbles.h"
 #include "analysis/granular.h"
 #include "cfd/gas.h"
 #include "core/parallel.h"
@@ -38,6 +39,8 @@ const char *const bdl_diagnostics_columns[] = {
     "multi_contact_ratio",
     "wall_force",
     "spring_work_left",
+    "bubble_count",
+    "bubble_diameter",
     "rod_vertical_cos",
     "rod_order",
 };
@@ -169,6 +172,34 @@ static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
     d->weight_ratio = weight > 0.0 ? (d->pressure_drop - column) / weight : NAN;
 }
 
+/// The bubbles of the gas's voidage field (the voidage the particles leave, or 1 - eps of a solids
+/// phase), the vertical axis a pointing up along the sign of `up`.
+static void bubble_terms(const bdl_world *w, int a, double up, bdl_diagnostics *d)
+{
+    const bdl_grid *g = &w->gas->grid;
+    const long cells = (long)g->n[0] * g->n[1] * g->n[2];
+    double *f = malloc((size_t)cells * sizeof *f);
+    if (!f)
+        return;
+    long c = 0;
+    for (int k = 0; k < g->n[2]; ++k)
+        for (int j = 0; j < g->n[1]; ++j)
+            for (int i = 0; i < g->n[0]; ++i)
+                f[c++] = w->gas->eps[bdl_grid_index(g, i, j, k)];
+    bdl_bubble_grid bg = {.up = a, .up_sign = up > 0.0 ? 1 : -1};
+    for (int b = 0; b < 3; ++b) {
+        bg.n[b] = g->n[b];
+        bg.h[b] = g->h[b];
+        bg.periodic[b] = g->periodic[b];
+    }
+    bdl_bubbles s;
+    if (bdl_bubbles_find(f, &bg, w->scene.gas.bubble_voidage, &s) == BDL_OK) {
+        d->bubble_count = s.count;
+        d->bubble_diameter = s.mean_diameter;
+    }
+    free(f);
+}
+
 static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
 {
     const bdl_gas *gas = w->gas;
@@ -221,6 +252,7 @@ static void gas_terms(const bdl_world *w, bdl_diagnostics *d)
         mag += pow(w->particle_drag[k], 2.0);
     }
     d->momentum_imbalance = mag > 0.0 ? sqrt(sum / mag) : 0.0;
+    bubble_terms(w, a, up, d);
     if (w->solids)
         solids_terms(w, d);
 }
@@ -329,6 +361,8 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[24] = d->multi_contact_ratio;
     v[25] = d->wall_force;
     v[26] = d->spring_work_left;
-    v[27] = d->rod_vertical_cos;
-    v[28] = d->rod_order;
+    v[27] = d->bubble_count;
+    v[28] = d->bubble_diameter;
+    v[29] = d->rod_vertical_cos;
+    v[30] = d->rod_order;
 }

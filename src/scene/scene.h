@@ -240,11 +240,12 @@ typedef struct bdl_gas_scene {
     double dt;                    ///< gas time step [s]; 0: automatic
     double probe_low, probe_high; ///< heights of the two pressure probes above the floor [m]
     int has_probe_low, has_probe_high;
-    bdl_sweep sweep;    ///< a pressure-drop sweep of the inlet velocity
-    double sweep_to;    ///< the far end of the sweep [m/s]
-    double sweep_step;  ///< velocity change per stage [m/s]
-    double sweep_dwell; ///< time per stage [s]
-    double sweep_start; ///< time the sweep starts [s]
+    double bubble_voidage; ///< diagnostics' bubbles: cells above this voidage (analysis/bubbles.h)
+    bdl_sweep sweep;       ///< a pressure-drop sweep of the inlet velocity
+    double sweep_to;       ///< the far end of the sweep [m/s]
+    double sweep_step;     ///< velocity change per stage [m/s]
+    double sweep_dwell;    ///< time per stage [s]
+    double sweep_start;    ///< time the sweep starts [s]
 } bdl_gas_scene;
 
 /// [coupling]: how particles and gas exchange momentum.

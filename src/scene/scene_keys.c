@@ -687,6 +687,10 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(GAS), "probe_high", NUM, "m", IN_GAS(probe_high), .has_flag = 1,
      .flag_offset = offsetof(bdl_scene, gas.has_probe_high), .default_text = "no probes", GT(0),
      .doc = "height of the upper pressure probe, above probe_low and inside the domain"},
+    {S(GAS), "bubble_voidage", NUM, "-", IN_GAS(bubble_voidage), .def = {0.85}, GT(0), LE(1),
+     .doc = "diagnostics.csv's bubbles are the regions of cells above this voidage that do not "
+            "reach the top layer (Kuipers et al. 1992: 0.85); bubble_count and bubble_diameter "
+            "(the mean equivalent diameter: of a circle in a bed one cell deep, else a sphere)"},
 
     // [coupling]
     {S(COUPLING), "drag", .type = BDL_KEY_ENUM, "-", IN_COUPLING(drag), .def = {4},
