@@ -39,3 +39,5 @@ add_test(NAME cli_rheology COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedla
   -DSCENE=${CMAKE_SOURCE_DIR}/scenes/shear_cell.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/rheology_cli
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/rheology_cli.cmake)
 set_tests_properties(cli_rheology PROPERTIES LABELS "analysis;cli" TIMEOUT 300)
+# Sun's segregation percentage in diagnostics.csv: layered, interleaved and upside-down beds.
+bdl_add_test(test_segregation SOURCES test_segregation.c LABELS analysis)

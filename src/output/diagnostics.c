@@ -41,6 +41,7 @@ const char *const bdl_diagnostics_columns[] = {
     "spring_work_left",
     "bubble_count",
     "bubble_diameter",
+    "segregation",
     "rod_vertical_cos",
     "rod_order",
 };
@@ -109,6 +110,40 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
         s->elastic += bdl_contact_elastic_energy(cp, w->hertz, c.overlap, c.r_eff, u);
         s->wall_force += c.normal;
     }
+}
+
+/// Sun's (2007) segregation percentage of a bed of two species (eqs. 5.22-5.25): S_p = <h_small>
+/// / <h_large>, the species' volume-weighted mean heights above the floor, against its value
+/// when fully segregated, S_p,max = (2 - x) / (1 - x) with x the small species' share of the
+/// solids volume (the large below, the small above, both at one packing): s_p = (S_p - 1) /
+/// (S_p,max - 1), 0 mixed, 1 segregated. NAN unless the scene has exactly two species, both
+/// present, of different sizes.
+static double segregation(const bdl_world *w)
+{
+    const bdl_particles *p = &w->particles;
+    if (w->scene.species_count != 2 || p->count == 0)
+        return NAN;
+    const bdl_vec3 up = up_of(w);
+    double base = INFINITY, volume[2] = {0.0, 0.0}, height[2] = {0.0, 0.0}, radius[2] = {0, 0};
+    for (int c = 0; c < 8; ++c) { // the lowest corner of the domain along up
+        const bdl_vec3 x = {c & 1 ? w->scene.domain_max.x : w->scene.domain_min.x,
+                            c & 2 ? w->scene.domain_max.y : w->scene.domain_min.y,
+                            c & 4 ? w->scene.domain_max.z : w->scene.domain_min.z};
+        base = fmin(base, bdl_v3_dot(up, x));
+    }
+    for (long i = 0; i < p->count; ++i) {
+        const int s = p->species[i];
+        const double v = bdl_particle_solids_volume(p, i);
+        volume[s] += v;
+        height[s] += v * (bdl_v3_dot(up, p->pos[i]) - base);
+        radius[s] += v * p->radius[i];
+    }
+    if (!(volume[0] > 0.0 && volume[1] > 0.0) || radius[0] / volume[0] == radius[1] / volume[1])
+        return NAN;
+    const int small = radius[0] / volume[0] < radius[1] / volume[1] ? 0 : 1, large = 1 - small;
+    const double x = volume[small] / (volume[0] + volume[1]);
+    const double ratio = (height[small] / volume[small]) / (height[large] / volume[large]);
+    return (ratio - 1.0) / ((2.0 - x) / (1.0 - x) - 1.0);
 }
 
 static double layer_pressure(const bdl_gas *gas, int a, int m)
@@ -305,6 +340,7 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
     d->wall_work = w->wall_work;
     d->rod_vertical_cos = bdl_orientation_vertical(&s.axes);
     d->rod_order = bdl_orientation_order(&s.axes);
+    d->segregation = segregation(w);
     if (w->gas)
         gas_terms(w, d);
     d->inlet_velocity = w->gas ? bdl_world_inlet_velocity(w, w->time) : 0.0;
@@ -318,7 +354,7 @@ int bdl_diagnostics_may_be_undefined(int column)
 {
     // By name, so that a column added to bdl_diagnostics_columns cannot shift the set.
     static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio", "mean_height",
-                                            "rod_vertical_cos", "rod_order"};
+                                            "segregation", "rod_vertical_cos", "rod_order"};
     if (column < 0 || column >= bdl_diagnostics_column_count)
         return 0;
     for (size_t k = 0; k < sizeof undefined / sizeof undefined[0]; ++k)
@@ -363,6 +399,7 @@ void bdl_diagnostics_row(const bdl_diagnostics *d, double *v)
     v[26] = d->spring_work_left;
     v[27] = d->bubble_count;
     v[28] = d->bubble_diameter;
-    v[29] = d->rod_vertical_cos;
-    v[30] = d->rod_order;
+    v[29] = d->segregation;
+    v[30] = d->rod_vertical_cos;
+    v[31] = d->rod_order;
 }

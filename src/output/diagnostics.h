@@ -48,6 +48,7 @@ typedef struct bdl_diagnostics {
                                 ///< fell with the overlap gives back less than it took: > 0)
     double bubble_count;        ///< with a gas: bubbles in its voidage field (analysis/bubbles.h)
     double bubble_diameter;     ///< their mean equivalent diameter [m] (0 without bubbles)
+    double segregation; ///< Sun's s_p of two species of spheres (NAN with one or more than two)
     // Of the rods (NAN without; the columns are written only in scenes with rods):
     double rod_vertical_cos; ///< mean |cos| of the angle of the axes to the vertical
     double rod_order;        ///< nematic order parameter S of the axes (analysis/granular.h)

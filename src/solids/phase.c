@@ -568,10 +568,24 @@ static void plastic_result(bdl_solids *s, const double *star, const double *z, d
     });
 }
 
+/// The cell next to cell idx (at index `at` along axis a) on the side `side` (-1 or +1): across a
+/// periodic side the cell at the other end; -1 beyond a wall.
+static long cell_neighbour(const bdl_grid *gr, int a, int at, int side, long idx)
+{
+    const long sa = gr->stride[a];
+    if (at + side >= 0 && at + side < gr->n[a])
+        return idx + side * sa;
+    if (!gr->periodic[a] || gr->n[a] < 2)
+        return -1;
+    return idx - side * (long)(gr->n[a] - 1) * sa;
+}
+
 /// One pass of the correction: the residual r - M z of the free cells (those with a slope), the
-/// solve for its increment, then the free cells whose pressure fell below zero held there (z =
-/// lo: they leave the free set) and the chords of those pushed past their end point stiffened.
-/// Returns whether anything changed (another pass is needed).
+/// solve for its increment, then: the neighbours of a cell that would go below zero no longer
+/// allowed a pressure below zero themselves; the free cells whose pressure fell below its bound
+/// held there (z = lo: they leave the free set); the cells pushed past their end point given the
+/// chord to where they were pushed (stiffer; a held cell or one outside the regime joins again
+/// if that is above eps_star). Returns whether anything changed (another pass is needed).
 static int plastic_pass(bdl_solids *s, double *slope, const double *star, double dt)
 {
     const bdl_grid *gr = &s->grid;
@@ -588,13 +602,26 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
     s->stats.iterations += plastic_solve(s, slope, res, z);
     plastic_result(s, star, z, dt, x);
     int changed = 0;
+    FOR_CELLS(gr, { // a cell emptied below zero: its neighbours with z < 0 draw nothing more
+        if (x[idx] < 0.0) {
+            const int at[3] = {i, j, k};
+            for (int a = 0; a < 3; ++a)
+                for (int side = -1; side <= 1; side += 2) {
+                    const long n = cell_neighbour(gr, a, at[a], side, idx);
+                    if (n >= 0 && z[n] < 0.0 && lo[n] < 0.0) {
+                        lo[n] = 0.0;
+                        changed = 1;
+                    }
+                }
+        }
+    });
     FOR_CELLS(gr, {
-        if (slope[idx] > 0.0 && z[idx] < lo[idx]) {
+        if (slope[idx] > 0.0 && z[idx] < lo[idx] - 1e-9 * fmax(-lo[idx], 1.0)) {
             z[idx] = lo[idx];
-            slope[idx] = -1.0; // held: no longer free
+            slope[idx] = lo[idx] < 0.0 ? -1.0 : 0.0; // held (at zero pressure: as outside)
             changed = 1;
-        } else if (slope[idx] >= 0.0 && x[idx] > d->eps_star && x[idx] > end[idx] + 1e-9) {
-            end[idx] = x[idx];
+        } else if (x[idx] > end[idx] + 1e-9 && (slope[idx] > 0.0 || x[idx] > d->eps_star)) {
+            end[idx] = x[idx]; // pushed past its end point: a stiffer chord (or it joins again)
             slope[idx] = plastic_chord(d, s->eps[idx], x[idx]);
             changed = 1;
         }
@@ -631,7 +658,7 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         r[idx] = star[idx] - s->eps[idx];
         any = any || slope[idx] > 0.0;
     });
-    s->stats.iterations = 0;
+    s->stats.iterations = s->stats.passes = s->stats.unsettled = 0;
     s->stats.correction = 0.0;
     for (int a = 0; a < 3; ++a)
         memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
@@ -639,8 +666,10 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         FOR_CELLS(gr, s->eps[idx] = star[idx]);
         return;
     }
-    for (int pass = 0; pass < 10 && plastic_pass(s, slope, star, dt); ++pass) {
-    }
+    int changed = 1;
+    for (s->stats.passes = 0; changed && s->stats.passes < 10; ++s->stats.passes)
+        changed = plastic_pass(s, slope, star, dt);
+    s->stats.unsettled = changed;
     plastic_result(s, star, z, dt, x);
     for (int a = 0; a < 3; ++a) {
         const long sa = gr->stride[a];

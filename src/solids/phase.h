@@ -61,7 +61,9 @@ typedef struct bdl_solids_def {
 bdl_solids_def bdl_default_solids_def(void);
 
 typedef struct bdl_solids_stats {
-    int iterations;      ///< the plastic correction's solver, last step
+    int iterations;      ///< the plastic correction's solver, last step (summed over its passes)
+    int passes;          ///< the correction's passes, last step (at most 10)
+    int unsettled;       ///< 1 if its last pass still changed its set: a step not converged
     double correction;   ///< largest |eps^{n+1} - eps*| it made
     double eps_max;      ///< largest solids fraction after the step
     double eps_min;      ///< smallest (round-off below zero would show here)

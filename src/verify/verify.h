@@ -18,35 +18,6 @@
 #define BDL_PRINTF(a, b) __attribute__((format(printf, a, b)))
 #else
 #define BDL_PRINTF(a, b)
-// ---- the two-fluid model (verify_tfm.c) ----
-
-struct bdl_solids_def;
-/// Haff's time scale of a homogeneous cooling state at solids fraction eps from theta0: theta =
-/// theta0 / (1 + t / tau)^2 with tau = 3 rho eps / (gamma / theta^(3/2)) / sqrt(theta0), gamma
-/// Lun et al.'s (1984) collisional dissipation [s].
-double bdl_verify_tfm_cooling_time(double eps, double theta0, const struct bdl_solids_def *sd);
-/// Goldschmidt's beads at rest at solids fraction 0.3 from theta0 = 0.01 m^2/s^2, per_tau full
-/// steps of solids and gas per tau, to t = 3 tau: `error` |theta / theta_Haff - 1| (Haff: theta0
-/// / 16).
-bdl_result bdl_verify_tfm_cooling(int per_tau, double *error, long *steps);
-
-/// A settling column: 100 um glass (Stokes drag) at solids fraction 0.3 in the lower half of a
-/// closed column 0.2 m tall of `cells` cells, from rest, to 0.5 s, dt a quarter of the cell
-/// crossing time at the fall speed.
-typedef struct bdl_verify_tfm_settling {
-    double interface;  ///< the suspension's top at 0.08 s: 0.05 m + solids volume above / 0.3 [m]
-    double expected;   ///< Kynch: 0.1 m less the fall of a uniform suspension from rest
-    double fall_speed; ///< the suspension's terminal fall speed [m/s]
-    double eps_peak;   ///< largest solids fraction after any step
-    double eps_low;    ///< smallest
-    double eps_bed;    ///< the bottom cell's at 0.5 s
-    double eps_bed_expected; ///< Schaeffer's fraction that carries the bed's buoyant weight there
-    double volume_drift;     ///< relative change of the solids volume
-    double speed_end;        ///< largest solids speed at 0.5 s [m/s]
-    long steps;
-} bdl_verify_sediment;
-bdl_result bdl_verify_tfm_settling(int cells, bdl_verify_sediment *out);
-
 #endif
 
 /// One run of a case at one refinement.
@@ -420,8 +391,8 @@ bdl_result bdl_verify_tfm_cooling(int per_tau, double *error, long *steps);
 
 /// A settling column: 100 um glass (Stokes drag) at solids fraction 0.3 in the lower half of a
 /// closed column 0.2 m tall of `cells` cells, from rest, to 0.5 s, dt a quarter of the cell
-/// crossing time at the fall speed.
-typedef struct bdl_verify_tfm_settling {
+/// crossing time at the fall speed on 20 cells, times (20 / cells)^2.
+typedef struct bdl_verify_sediment {
     double interface;  ///< the suspension's top at 0.08 s: 0.05 m + solids volume above / 0.3 [m]
     double expected;   ///< Kynch: 0.1 m less the fall of a uniform suspension from rest
     double fall_speed; ///< the suspension's terminal fall speed [m/s]
