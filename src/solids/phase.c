@@ -608,10 +608,12 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
             for (int a = 0; a < 3; ++a)
                 for (int side = -1; side <= 1; side += 2) {
                     const long n = cell_neighbour(gr, a, at[a], side, idx);
-                    if (n >= 0 && z[n] < 0.0 && lo[n] < 0.0) {
-                        lo[n] = 0.0;
-                        changed = 1;
-                    }
+                    if (n < 0 || !(z[n] < 0.0))
+                        continue;
+                    lo[n] = 0.0; // a free one is held by the loop below; a held one here
+                    if (!(slope[n] > 0.0))
+                        z[n] = slope[n] = 0.0;
+                    changed = 1;
                 }
         }
     });
