@@ -17,6 +17,7 @@
 
 static const char verify_usage[] =
     "usage: bedlam verify [CASE...] [--quick] [--out DIR] [--threads N] [--no-plots] [--list]\n"
+    "                     [--from DIR]\n"
     "\n"
     "Runs each verification case (all of them when none is named) at three or more refinements\n"
     "(time step, grid, averaging time, ...) and records, per run, the error against the case's\n"
@@ -29,6 +30,8 @@ static const char verify_usage[] =
     "  --out DIR    output folder (created if missing)\n"
     "  --threads N  OpenMP threads (default 1: these are small problems; timings compare)\n"
     "  --no-plots   skip gnuplot\n"
+    "  --from DIR   run nothing: read the cases' CSV files from an earlier run in DIR and write\n"
+    "               the plots and README.md again (after a gnuplot failure, or a changed text)\n"
     "  --list       list the cases and exit\n"
     "\n"
     "Exit codes: 0 every case within its tolerance (and its order, where one applies), 1 a case\n"
@@ -50,6 +53,7 @@ typedef struct case_run {
     point p[MAX_POINTS];
     double wall;
     int pass;
+    int plotted; ///< its plot was drawn
     char why[512];
 } case_run;
 
@@ -175,9 +179,28 @@ static bdl_result write_csv(const char *dir, const case_run *cr, int threads)
     return bdl_atomic_commit(&af);
 }
 
-/// gnuplot script for one case: error against N (left) and against wall time (right).
+/// `src` as the inside of a gnuplot single-quoted string (a quote doubled).
+static const char *gnuplot_text(const char *src, char *dst, size_t size)
+{
+    size_t k = 0;
+    for (; *src && k + 2 < size; ++src) {
+        if (*src == '\'')
+            dst[k++] = '\'';
+        dst[k++] = *src;
+    }
+    dst[k] = '\0';
+    return dst;
+}
+
+/// gnuplot script for one case: error against N (left) and against wall time (right). Returns 1
+/// when drawn, 0 when gnuplot failed, -1 when no run has a finite error (nothing to draw).
 static int plot_case(const char *dir, const case_run *cr)
 {
+    int finite = 0;
+    for (int k = 0; k < cr->count; ++k)
+        finite |= cr->p[k].r.error > 0.0 && isfinite(cr->p[k].r.error);
+    if (!finite)
+        return -1;
     char script[1100], data[1100];
     snprintf(script, sizeof script, "%s/%s.gp", dir, cr->c->name);
     snprintf(data, sizeof data, "%s/%s.dat", dir, cr->c->name);
@@ -198,21 +221,23 @@ static int plot_case(const char *dir, const case_run *cr)
     f = fopen(script, "w");
     if (!f)
         return 0;
+    char title[512], param[512], series[256];
     fprintf(f,
-            "set terminal pngcairo size 1100,420 font 'DejaVu Sans,10'\n"
+            "set terminal pngcairo noenhanced size 1100,420 font 'DejaVu Sans,10'\n"
             "set output '%s/%s.png'\n"
             "set logscale xy\nset grid\nset key top right\nset format y '%%.0e'\n"
             "set multiplot layout 1,2 title '%s: %s'\n"
             "set xlabel '%s'\nset ylabel 'error'\n",
-            dir, cr->c->name, cr->c->name, cr->c->title, cr->c->param);
+            dir, cr->c->name, cr->c->name, gnuplot_text(cr->c->title, title, sizeof title),
+            gnuplot_text(cr->c->param, param, sizeof param));
     fprintf(f, "plot ");
     for (int s = 0; s < cr->c->series_count; ++s)
         fprintf(f, "%s'%s' index %d using 1:2 with linespoints lw 2 pt 7 title '%s'", s ? ", " : "",
-                data, s, cr->c->series[s]);
+                data, s, gnuplot_text(cr->c->series[s], series, sizeof series));
     fprintf(f, "\nset xlabel 'wall time [s]'\nplot ");
     for (int s = 0; s < cr->c->series_count; ++s)
         fprintf(f, "%s'%s' index %d using 3:2 with linespoints lw 2 pt 7 title '%s'", s ? ", " : "",
-                data, s, cr->c->series[s]);
+                data, s, gnuplot_text(cr->c->series[s], series, sizeof series));
     fprintf(f, "\nunset multiplot\n");
     fclose(f);
     char cmd[2400];
@@ -295,7 +320,7 @@ static void write_point_row(FILE *f, const case_run *cr, int s, int l)
 }
 
 /// The section of one case: what it checks, its acceptance, its runs and its result.
-static void write_case(FILE *f, const case_run *cr, int plots)
+static void write_case(FILE *f, const case_run *cr)
 {
     const bdl_verify_case *c = cr->c;
     fprintf(f, "\n## %s\n\n**%s.** Model: %s. Reference: %s. Error: %s. Refinement: %s.\n\n",
@@ -314,12 +339,12 @@ static void write_case(FILE *f, const case_run *cr, int plots)
             write_point_row(f, cr, s, l);
     fprintf(f, "\nResult: %s%s%s. Where it breaks: %s\n", cr->pass ? "pass" : "**FAIL**",
             cr->pass ? "" : " — ", cr->why, c->breaks);
-    if (plots)
+    if (cr->plotted)
         fprintf(f, "\n![%s: error against N and against run time](%s.png)\n", c->name, c->name);
 }
 
 static bdl_result write_readme(const char *dir, const case_run *runs, int n, int quick, int threads,
-                               double total, int plots)
+                               double total, const char *from)
 {
     char path[1024];
     snprintf(path, sizeof path, "%s/README.md", dir);
@@ -332,18 +357,20 @@ static bdl_result write_readme(const char *dir, const case_run *runs, int n, int
     strftime(date, sizeof date, "%Y-%m-%d", gmtime(&now));
     fprintf(af.file, "# Verification: error against run time\n\n%s", readme_intro);
     fprintf(af.file,
-            "Run: `bedlam verify%s`, bedlam %s, %s, %d thread%s, %.0f s in all (%.1f min).\n\n",
+            "Run: `bedlam verify%s`, bedlam %s, %s, %d thread%s, %.0f s in all (%.1f min)%s.\n\n",
             quick ? " --quick" : "", BDL_VERSION, date, threads, threads == 1 ? "" : "s", total,
-            total / 60.0);
+            total / 60.0,
+            from ? "; the tables and plots drawn again from its CSV files (`--from`)" : "");
     write_summary(af.file, runs, n);
     for (int k = 0; k < n; ++k)
-        write_case(af.file, &runs[k], plots);
+        write_case(af.file, &runs[k]);
     return bdl_atomic_commit(&af);
 }
 
 typedef struct verify_opts {
     int quick, threads, plots, list;
     const char *out;
+    const char *from; ///< read the runs from this folder's CSV files instead of running them
     const char *names[64];
     int named;
     int help; ///< --help was printed: nothing else to do
@@ -354,6 +381,7 @@ static const bdl_option verify_options[] = {
     {"--no-plots", BDL_OPTION_CLEAR, offsetof(verify_opts, plots)},
     {"--list", BDL_OPTION_SET, offsetof(verify_opts, list)},
     {"--out", BDL_OPTION_TEXT, offsetof(verify_opts, out)},
+    {"--from", BDL_OPTION_TEXT, offsetof(verify_opts, from)},
 };
 
 /// --threads N (checked), or the name of a case.
@@ -402,19 +430,74 @@ static int wanted(const verify_opts *o, const bdl_verify_case *c)
     return want;
 }
 
+/// Reads a case's runs back from DIR/CASE.csv (as write_csv wrote them); *threads gets theirs.
+static bdl_result read_case(const char *dir, case_run *cr, int *threads)
+{
+    const bdl_verify_case *c = cr->c;
+    char path[1024], line[1024];
+    snprintf(path, sizeof path, "%s/%s.csv", dir, c->name);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return BDL_ERR_IO;
+    cr->count = cr->levels = 0;
+    cr->wall = 0.0;
+    while (fgets(line, sizeof line, f) && cr->count < MAX_POINTS) {
+        char *field[10];
+        int nf = 0;
+        for (char *t = strtok(line, ",\n"); t && nf < 10; t = strtok(NULL, ",\n"))
+            field[nf++] = t;
+        if (nf != 10 || strcmp(field[0], c->name) != 0)
+            continue; // the header, or not this case's
+        point *p = &cr->p[cr->count];
+        memset(p, 0, sizeof *p);
+        p->series = -1;
+        for (int s = 0; s < c->series_count; ++s)
+            p->series = strcmp(field[1], c->series[s]) == 0 ? s : p->series;
+        p->n = strtod(field[2], NULL);
+        p->r.error = strtod(field[3], NULL);
+        p->r.value = strtod(field[4], NULL);
+        p->r.exact = strtod(field[5], NULL);
+        p->wall = strtod(field[6], NULL);
+        p->r.steps = strtol(field[7], NULL, 10);
+        *threads = (int)strtol(field[8], NULL, 10);
+        p->status = strcmp(field[9], bdl_result_text(BDL_OK)) == 0 ? BDL_OK : BDL_ERR_UNSTABLE;
+        for (int k = 0; k < c->level_count; ++k)
+            cr->levels = c->level[k] == p->n && k + 1 > cr->levels ? k + 1 : cr->levels;
+        if (p->series < 0)
+            continue;
+        cr->wall += p->wall;
+        cr->count++;
+    }
+    fclose(f);
+    if (cr->count == 0)
+        return BDL_ERR_IO;
+    judge(cr);
+    printf("%s — %s: %d runs read, %s\n", c->name, c->title, cr->count, cr->pass ? "pass" : "FAIL");
+    return BDL_OK;
+}
+
 /// Runs the cases asked for into runs[] (*n of them), each written to its CSV as it ends.
 static bdl_result run_cases(const verify_opts *o, const bdl_verify_case *cases, int count,
-                            case_run *runs, int *n, int *failed)
+                            case_run *runs, int *n, int *failed, int *threads)
 {
     *n = *failed = 0;
+    *threads = o->threads;
     for (int k = 0; k < count; ++k) {
         if (!wanted(o, &cases[k]))
             continue;
         case_run *cr = &runs[(*n)++];
         cr->c = &cases[k];
-        run_case(cr, o->quick && cases[k].quick_levels > 0);
+        if (o->from) {
+            if (read_case(o->from, cr, threads) != BDL_OK) {
+                fprintf(stderr, "error: --from %s: no runs of %s in %s/%s.csv\n", o->from,
+                        cr->c->name, o->from, cr->c->name);
+                return BDL_ERR_ARGS;
+            }
+        } else {
+            run_case(cr, o->quick && cases[k].quick_levels > 0);
+        }
         *failed += !cr->pass;
-        if (write_csv(o->out, cr, o->threads) != BDL_OK) {
+        if (write_csv(o->out, cr, *threads) != BDL_OK) {
             fprintf(stderr, "error: cannot write %s/%s.csv: %s\n", o->out, cr->c->name,
                     strerror(errno));
             return BDL_ERR_IO;
@@ -423,15 +506,18 @@ static bdl_result run_cases(const verify_opts *o, const bdl_verify_case *cases, 
     return BDL_OK;
 }
 
-/// The plots of the cases; none after the first gnuplot fails. Returns whether all were drawn.
-static int plot_cases(const char *out, const case_run *runs, int n)
+/// The plots of the cases (not of one without a finite error); none after the first gnuplot
+/// fails.
+static void plot_cases(const char *out, case_run *runs, int n)
 {
-    for (int k = 0; k < n; ++k)
-        if (!plot_case(out, &runs[k])) {
-            fprintf(stderr, "warning: gnuplot failed or is missing: no plots written\n");
-            return 0;
+    for (int k = 0; k < n; ++k) {
+        const int drawn = plot_case(out, &runs[k]);
+        if (drawn == 0) {
+            fprintf(stderr, "warning: gnuplot failed or is missing: no more plots written\n");
+            return;
         }
-    return 1;
+        runs[k].plotted = drawn > 0;
+    }
 }
 
 bdl_result bdl_cmd_verify(int argc, char **argv)
@@ -459,10 +545,17 @@ bdl_result bdl_cmd_verify(int argc, char **argv)
         return BDL_ERR_NOMEM;
     int n, failed;
     double t0 = bdl_wall_seconds();
-    r = run_cases(&o, cases, count, runs, &n, &failed);
+    int threads;
+    r = run_cases(&o, cases, count, runs, &n, &failed, &threads);
     double total = bdl_wall_seconds() - t0;
-    int plotted = r == BDL_OK && o.plots && plot_cases(o.out, runs, n);
-    if (r == BDL_OK && write_readme(o.out, runs, n, o.quick, o.threads, total, plotted) != BDL_OK) {
+    if (o.from) { // the runs' own time, less what lay between them
+        total = 0.0;
+        for (int k = 0; k < n; ++k)
+            total += runs[k].wall;
+    }
+    if (r == BDL_OK && o.plots)
+        plot_cases(o.out, runs, n);
+    if (r == BDL_OK && write_readme(o.out, runs, n, o.quick, threads, total, o.from) != BDL_OK) {
         fprintf(stderr, "error: cannot write %s/README.md: %s\n", o.out, strerror(errno));
         r = BDL_ERR_IO;
     }
