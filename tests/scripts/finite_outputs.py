@@ -9,8 +9,8 @@ each Float64 array decoded) and the VTK ImageData files (.vti, ASCII). Prints ea
 number found with its file, column or array and row, and exits 1 if there is one.
 
 NaN is accepted where a file uses it for "not defined": in the diagnostics columns a scene may
-not define (probe_pressure_drop without probes, weight_ratio and mean_height without a gas, the
-rods' columns without rods; src/output/diagnostics.c, bdl_diagnostics_may_be_undefined), and in
+not define (probe_pressure_drop without probes, weight_ratio and mean_height without a gas,
+segregation without two species, the rods' columns without rods; src/output/diagnostics.c, bdl_diagnostics_may_be_undefined), and in
 species.csv and orientation.csv (a species or a histogram with no particles), and in fields.vti's
 solids_velocity of a cell no solids passed through (its solids_fraction 0). Infinity never is.
 """
@@ -20,7 +20,7 @@ import re
 import struct
 import sys
 
-DIAGNOSTICS_UNDEFINED = {"probe_pressure_drop", "weight_ratio", "mean_height",
+DIAGNOSTICS_UNDEFINED = {"probe_pressure_drop", "weight_ratio", "mean_height", "segregation",
                          "rod_vertical_cos", "rod_order"}
 NAN_ANYWHERE = {"species.csv", "orientation.csv"}
 
