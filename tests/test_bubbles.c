@@ -60,7 +60,7 @@ static void test_discs(void)
     CHECK_CLOSE(s.volume, (a + b) * 1e-6, 1e-12);
     CHECK(fabs(da - 0.10) < 0.005 && fabs(db - 0.06) < 0.005); // the discs' own diameters
     CHECK_CLOSE(s.mean_height, (a * 0.15 + b * 0.30) / (a + b), 1e-3);
-    // Upside down (the top at layer 0): the old freeboard is a bubble now, the others stay.
+    // Upside down (the top at layer 0): the freeboard touches layer 0 and is left out again.
     double *flip = malloc(NX * NZ * sizeof *flip);
     for (int k = 0; k < NZ; ++k)
         for (int i = 0; i < NX; ++i)

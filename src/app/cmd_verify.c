@@ -442,12 +442,24 @@ static bdl_result read_case(const char *dir, case_run *cr, int *threads)
     cr->count = cr->levels = 0;
     cr->wall = 0.0;
     while (fgets(line, sizeof line, f) && cr->count < MAX_POINTS) {
-        char *field[10];
-        int nf = 0;
-        for (char *t = strtok(line, ",\n"); t && nf < 10; t = strtok(NULL, ",\n"))
-            field[nf++] = t;
-        if (nf != 10 || strcmp(field[0], c->name) != 0)
+        // case, then the series (which may hold commas: write_csv does not quote), then eight
+        // fields: taken from both ends.
+        line[strcspn(line, "\n")] = '\0';
+        char *field[10], *comma = strchr(line, ',');
+        if (!comma || strncmp(line, c->name, (size_t)(comma - line)) != 0 ||
+            strlen(c->name) != (size_t)(comma - line))
             continue; // the header, or not this case's
+        field[1] = comma + 1;
+        int nf = 10;
+        while (nf > 2) {
+            char *last = strrchr(field[1], ',');
+            if (!last)
+                break;
+            *last = '\0';
+            field[--nf] = last + 1;
+        }
+        if (nf != 2)
+            continue;
         point *p = &cr->p[cr->count];
         memset(p, 0, sizeof *p);
         p->series = -1;
@@ -460,7 +472,10 @@ static bdl_result read_case(const char *dir, case_run *cr, int *threads)
         p->wall = strtod(field[6], NULL);
         p->r.steps = strtol(field[7], NULL, 10);
         *threads = (int)strtol(field[8], NULL, 10);
-        p->status = strcmp(field[9], bdl_result_text(BDL_OK)) == 0 ? BDL_OK : BDL_ERR_UNSTABLE;
+        p->status = BDL_ERR_UNSTABLE;
+        for (int k = 0; k < BDL_RESULT_COUNT; ++k)
+            p->status =
+                strcmp(field[9], bdl_result_text((bdl_result)k)) == 0 ? (bdl_result)k : p->status;
         for (int k = 0; k < c->level_count; ++k)
             cr->levels = c->level[k] == p->n && k + 1 > cr->levels ? k + 1 : cr->levels;
         if (p->series < 0)

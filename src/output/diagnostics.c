@@ -142,6 +142,8 @@ static double segregation(const bdl_world *w)
         return NAN;
     const int small = radius[0] / volume[0] < radius[1] / volume[1] ? 0 : 1, large = 1 - small;
     const double x = volume[small] / (volume[0] + volume[1]);
+    if (!(height[large] > 0.0))
+        return NAN; // the large species' centres on the floor's plane (no floor there)
     const double ratio = (height[small] / volume[small]) / (height[large] / volume[large]);
     return (ratio - 1.0) / ((2.0 - x) / (1.0 - x) - 1.0);
 }
@@ -353,8 +355,9 @@ void bdl_diagnostics_compute(const bdl_world *w, double energy0, bdl_diagnostics
 int bdl_diagnostics_may_be_undefined(int column)
 {
     // By name, so that a column added to bdl_diagnostics_columns cannot shift the set.
-    static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio", "mean_height",
-                                            "segregation", "rod_vertical_cos", "rod_order"};
+    static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio",
+                                            "mean_height",         "segregation",
+                                            "rod_vertical_cos",    "rod_order"};
     if (column < 0 || column >= bdl_diagnostics_column_count)
         return 0;
     for (size_t k = 0; k < sizeof undefined / sizeof undefined[0]; ++k)

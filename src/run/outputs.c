@@ -181,7 +181,9 @@ static int any_column(int column)
 static bdl_result write_diagnostics(bdl_run_outputs *o, bdl_diagnostics *d)
 {
     const bdl_world *w = o->world;
-    double row[32];
+    double row[64];
+    if (bdl_diagnostics_column_count > 64)
+        return BDL_ERR_ARGS; // a column added without room for it here
     d->wall_seconds = bdl_wall_seconds() - o->start_wall;
     bdl_diagnostics_row(d, row);
     if (o->species_csv)

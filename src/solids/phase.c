@@ -610,10 +610,10 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
                     const long n = cell_neighbour(gr, a, at[a], side, idx);
                     if (n < 0 || !(z[n] < 0.0))
                         continue;
+                    changed |= lo[n] < 0.0 || !(slope[n] > 0.0);
                     lo[n] = 0.0; // a free one is held by the loop below; a held one here
                     if (!(slope[n] > 0.0))
                         z[n] = slope[n] = 0.0;
-                    changed = 1;
                 }
         }
     });
@@ -643,7 +643,7 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
 /// below eps_star pushed above it joins) gets the chord to where it was pushed, stiffer, and the
 /// system is solved again. A cell whose pressure would fall below zero (z < -P(eps^n)) is held
 /// there: an opening cell draws back at most what its own pressure pushed out in the momentum
-/// step. A few passes; the end points only rise and the held set only grows.
+/// step. A few passes (at most ten); the end points only rise.
 static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, double dt)
 {
     const bdl_grid *gr = &s->grid;
