@@ -63,8 +63,9 @@ static void finite_check(bdl_world *w)
 /// rods' order accepted.
 static void undefined_columns(const bdl_world *w)
 {
-    static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio", "mean_height",
-                                            "segregation", "rod_vertical_cos", "rod_order"};
+    static const char *const undefined[] = {"probe_pressure_drop", "weight_ratio",
+                                            "mean_height",         "segregation",
+                                            "rod_vertical_cos",    "rod_order"};
     int spring = -1, order = -1;
     for (int c = 0; c < bdl_diagnostics_column_count; ++c) {
         int expected = 0;

@@ -50,9 +50,9 @@ static double sp_of(double split, double lo_l, double hi_l, double lo_s, double 
 int main(void)
 {
     // The lattices' sites do not fill their layers symmetrically: within 0.1 of the ideal values.
-    CHECK(fabs(sp_of(0.02, 0.0, 0.02, 0.02, 0.04) - 1.0) < 0.1);          // layered, large below
-    CHECK(fabs(sp_of(0.01, 0.0, 0.04, 0.0, 0.04)) < 0.1);                 // side by side
-    CHECK(fabs(sp_of(0.02, 0.02, 0.04, 0.0, 0.02) + 1.0 / 3.0) < 0.1);    // upside down
+    CHECK(fabs(sp_of(0.02, 0.0, 0.02, 0.02, 0.04) - 1.0) < 0.1);       // layered, large below
+    CHECK(fabs(sp_of(0.01, 0.0, 0.04, 0.0, 0.04)) < 0.1);              // side by side
+    CHECK(fabs(sp_of(0.02, 0.02, 0.04, 0.0, 0.02) + 1.0 / 3.0) < 0.1); // upside down
     bdl_world *one = bdl_verify_world(
         "[run]\nend_time = 1\ngravity = 0 0 -9.81\n[domain]\nmin = 0 0 0\nmax = 0.02 0.02 0.08\n"
         "[contact]\nlaw = linear\n"

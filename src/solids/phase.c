@@ -419,17 +419,15 @@ static void new_velocity(bdl_solids *s, bdl_gas *gas, int a)
     wrap_face(gr, a, gas->u[a]);
 }
 
-/// eps* = eps^n - dt div(flux), into out.
-static void continuity(const bdl_solids *s, double dt, double *out)
+/// The fractions the volume fluxes on the faces leave: out = before - dt div(face).
+static void after_fluxes(const bdl_grid *gr, double *const face[3], const double *before, double dt,
+                         double *out)
 {
-    const bdl_grid *gr = &s->grid;
     FOR_CELLS(gr, {
         double div = 0.0;
-        for (int a = 0; a < 3; ++a) {
-            const long sa = gr->stride[a];
-            div += (s->flux[a][idx + sa] - s->flux[a][idx]) / gr->h[a];
-        }
-        out[idx] = s->eps[idx] - dt * div;
+        for (int a = 0; a < 3; ++a)
+            div += (face[a][idx + gr->stride[a]] - face[a][idx]) / gr->h[a];
+        out[idx] = before[idx] - dt * div;
     });
 }
 
@@ -560,12 +558,7 @@ static void plastic_result(bdl_solids *s, const double *star, const double *z, d
         FOR_INNER_FACES(gr, a, s->c[a][idx] = -(z[idx] - z[idx - sa]) / (gr->h[a] * s->a[a][idx]));
         wrap_face(gr, a, s->c[a]);
     }
-    FOR_CELLS(gr, {
-        double div = 0.0;
-        for (int a = 0; a < 3; ++a)
-            div += (s->c[a][idx + gr->stride[a]] - s->c[a][idx]) / gr->h[a];
-        x[idx] = star[idx] - dt * div;
-    });
+    after_fluxes(gr, s->c, star, dt, x);
 }
 
 /// The cell next to cell idx (at index `at` along axis a) on the side `side` (-1 or +1): across a
@@ -713,7 +706,7 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
     for (int a = 0; a < 3; ++a)
         new_velocity(s, gas, a);
     double *star = s->work[3];
-    continuity(s, dt, star);
+    after_fluxes(gr, s->flux, s->eps, dt, star);
     plastic_correction(s, gas, star, dt);
     bdl_solids_share_voidage(s, gas);
     double lo = INFINITY, hi = -INFINITY;

@@ -348,8 +348,8 @@ static bdl_result run_tfm_settling(int series, double n, bdl_verify_result *out)
            s.eps_bed_expected);
     out->value = s.interface;
     out->exact = s.expected;
-    out->error = r == BDL_OK ? finite_or_inf(fabs(s.interface - s.expected) / (0.1 - s.expected))
-                             : INFINITY;
+    out->error =
+        r == BDL_OK ? finite_or_inf(fabs(s.interface - s.expected) / (0.1 - s.expected)) : INFINITY;
     out->steps = s.steps;
     if (r == BDL_OK && (s.eps_low < 0.0 || s.eps_peak > s.eps_bed_expected + 2e-3))
         r = BDL_ERR_UNSTABLE; // below zero, or packed past Schaeffer's fraction for the weight
