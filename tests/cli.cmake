@@ -55,6 +55,11 @@ add_test(NAME cli_resume_tfm COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bed
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_bed.ini -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
 set_tests_properties(cli_resume_tfm PROPERTIES LABELS cli TIMEOUT 600)
+add_test(NAME cli_resume_tfm_binary COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_binary.ini
+  -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
+set_tests_properties(cli_resume_tfm_binary PROPERTIES LABELS cli TIMEOUT 600)
 
 add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.sh $<TARGET_FILE:bedlam>
   ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)
@@ -211,5 +216,17 @@ bdl_cli_expect(cli_tfm_no_gas 2 "tfm_no_gas.ini:10: \\[solids\\]: a solids phase
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_no_gas.ini)
 bdl_cli_expect(cli_tfm_fields 2 "\\[output\\] fields_interval = 0.1: the field files average particles"
   check ${TFM} --set output.fields_interval=0.1)
+set(TFM2 ${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_binary.ini)
+bdl_cli_expect(cli_tfm_phases_check 0 "solids phases \\(two-fluid model: 1.52 mm.*2.49 mm" check ${TFM2})
+bdl_cli_expect(cli_tfm_phases_sum 2
+  "\\[phase large\\] fraction = 0.4: out of range: the phases' fractions add up to 0.69167; allowed: a sum <= 0.6"
+  check ${TFM2} --set phase.large.fraction=0.4)
+bdl_cli_expect(cli_tfm_phases_own 2
+  "\\[solids\\] diameter = 0.002: the scene has \\[phase NAME\\] sections, and each phase gives its own"
+  check ${TFM2} --set solids.diameter=0.002)
+bdl_cli_expect(cli_tfm_phases_one 2 "tfm_one_phase.ini:[0-9]+: \\[phase\\]: one \\[phase NAME\\] section"
+  check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_one_phase.ini)
+bdl_cli_expect(cli_tfm_phases_missing 2 "\\[phase small\\] fraction: missing required key; allowed: \\(0, 0.6\\]"
+  check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_phase_no_fraction.ini)
 bdl_cli_expect(cli_tfm_elastic 2 "\\[solids\\] restitution = 1: out of range; allowed: \\(0, 1\\)"
   check ${TFM} --set solids.restitution=1)

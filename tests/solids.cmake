@@ -9,3 +9,5 @@ bdl_add_test(test_tfm_verify SOURCES test_tfm_verify.c LABELS "solids;verificati
 # Goldschmidt's bubbling bed for 10 s at two velocities, with and without rotation, and on three
 # grids (~20 min).
 bdl_add_test(test_tfm_goldschmidt SOURCES test_tfm_goldschmidt.c LABELS "solids;slow" TIMEOUT 3600)
+# Several phases: the drag between them (closed form, exact relaxation), a binary bubbling bed.
+bdl_add_test(test_tfm_mixture SOURCES test_tfm_mixture.c LABELS solids)

@@ -39,7 +39,7 @@ static void test_dilute_slip(void)
     const double expect = 0.99 * (sd.density - g->density) * 9.81 / k;
     const int mid = 50;
     const double u = bdl_gas_cell_velocity(c.gas, 2, 0, 0, mid);
-    const double v = bdl_solids_cell_velocity(c.solids, 2, 0, 0, mid);
+    const double v = bdl_solids_cell_velocity(c.solids, 0, 2, 0, 0, mid);
     printf("dilute cloud: slip %.6f m/s (expected %.6f), gas %.5f, solids %.5f, eps %.5f\n", u - v,
            expect, u, v, cell(&c, c.solids->eps, 0, mid));
     CHECK_CLOSE(u - v, expect, 2e-3);
@@ -115,8 +115,9 @@ static double column_momentum(const column *c)
     for (int k = 0; k < gr->n[2]; ++k)
         for (int i = 0; i < gr->n[0]; ++i) {
             const double es = cell(c, c->solids->eps, i, k);
-            sum += c->solids->def.density * es * bdl_solids_cell_velocity(c->solids, 2, i, 0, k) +
-                   c->gas->def.density * (1.0 - es) * bdl_gas_cell_velocity(c->gas, 2, i, 0, k);
+            sum +=
+                c->solids->def.density * es * bdl_solids_cell_velocity(c->solids, 0, 2, i, 0, k) +
+                c->gas->def.density * (1.0 - es) * bdl_gas_cell_velocity(c->gas, 2, i, 0, k);
         }
     return sum * gr->h[2] / gr->n[0];
 }
@@ -142,7 +143,7 @@ static void test_fluidised(void)
         if (n < 5000)
             continue;
         drop += cell(&c, c.gas->p, 0, 0) - c.gas->def.density * 9.81 * 44.5 * h;
-        wall += cell(&c, c.solids->pressure, 0, 0);
+        wall += cell(&c, c.solids->phase[0].pressure, 0, 0);
         double w = -0.5 * cell(&c, c.solids->eps, 0, 0);
         for (int k = 0; k < 45; ++k)
             w += cell(&c, c.solids->eps, 0, k);
@@ -177,7 +178,7 @@ static double periodic_run(int shift, double *out)
     for (int k = 0; k < 45; ++k)
         for (int i = 0; i < 3; ++i) {
             out[k * 3 + i] = cell(&c, c.solids->eps, i, k);
-            moved = fmax(moved, fabs(bdl_solids_cell_velocity(c.solids, 0, i, 0, k)));
+            moved = fmax(moved, fabs(bdl_solids_cell_velocity(c.solids, 0, 0, i, 0, k)));
         }
     column_destroy(&c);
     return moved;
@@ -213,7 +214,7 @@ static void test_bubbling_bed(double dt, double seconds)
     for (int side = 0; side < 2; ++side)
         c.gas->def.side[side].type = BDL_SIDE_WALL;
     column_fill(&c, 0, 15, 0.583);
-    const double volume = bdl_solids_volume(c.solids);
+    const double volume = bdl_solids_volume(c.solids, -1);
     double lo = 1.0, hi = 0.0;
     int ok = 1, iterations = 0, passes = 0, unsettled = 0;
     const long steps = lrint(seconds / dt);
@@ -226,17 +227,17 @@ static void test_bubbling_bed(double dt, double seconds)
         passes = st->passes > passes ? st->passes : passes;
         unsettled += st->unsettled;
     }
-    const double height = bdl_solids_mean_height(c.solids, 2);
+    const double height = bdl_solids_mean_height(c.solids, -1, 2);
     printf("bubbling bed, %g s at 2 U_mf, dt %g s: solids fraction %.3g to %.4f, volume drift "
            "%.2e, mean particle height %.4f m, plastic correction at most %d passes, %d "
            "iterations, %d steps unsettled\n",
-           seconds, dt, lo, hi, bdl_solids_volume(c.solids) / volume - 1.0, height, passes,
+           seconds, dt, lo, hi, bdl_solids_volume(c.solids, -1) / volume - 1.0, height, passes,
            iterations, unsettled);
     CHECK(ok);
     CHECK(lo >= 0.0);
     CHECK(hi <= 0.6);
     CHECK(unsettled == 0);
-    CHECK(fabs(bdl_solids_volume(c.solids) / volume - 1.0) < 1e-12);
+    CHECK(fabs(bdl_solids_volume(c.solids, -1) / volume - 1.0) < 1e-12);
     column_destroy(&c);
 }
 

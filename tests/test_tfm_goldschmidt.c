@@ -35,7 +35,7 @@ static double run(double U, double restitution, double h, double *seconds)
         ok = bdl_solids_step(c.solids, c.gas, dt) == BDL_OK;
         hi = fmax(hi, c.solids->stats.eps_max);
         if (n >= steps / 2 && n % every == 0)
-            sum += bdl_solids_mean_height(c.solids, 2), ++samples;
+            sum += bdl_solids_mean_height(c.solids, -1, 2), ++samples;
     }
     *seconds = (double)(clock() - start) / CLOCKS_PER_SEC;
     CHECK(ok);

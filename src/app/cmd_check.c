@@ -143,7 +143,7 @@ static void print_modules(const bdl_world *w)
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
     if (w->solids)
         printf("solids at start: %.4g m^3, a bed %g m tall at a solids fraction of %g\n",
-               bdl_solids_volume(w->solids), s->solids.bed_height, s->solids.fraction);
+               bdl_solids_volume(w->solids, -1), s->solids.bed_height, s->solids.fraction);
     else
         printf("%s at start: %ld (species: %d)\n", w->parcels ? "parcels" : "particles",
                w->particles.count, s->species_count);

@@ -118,44 +118,51 @@ static double cell_hash(uint64_t cell, uint64_t k, uint64_t salt)
 }
 
 /// A solids phase drawn as particles sampled from its field: each cell holds as many spheres of
-/// the particle diameter as its solids volume makes (the fraction left over decides one more),
-/// at places fixed for the cell, with the cell's solids velocity. Above SOLIDS_DISPLAY_MAX
-/// spheres in all, each stands for a larger volume and is drawn that large.
+/// the phase's particle diameter as its solids volume makes (the fraction left over decides one
+/// more), at places fixed for the cell and phase, with the phase's velocity at the cell; the
+/// species index is the phase's. Above SOLIDS_DISPLAY_MAX spheres in all, each stands for a
+/// larger volume and is drawn that large.
 static int capture_solids(bdl_snapshot *s, const bdl_world *w)
 {
     const bdl_solids *so = w->solids;
     const bdl_grid *g = &so->grid;
-    const double cell = g->h[0] * g->h[1] * g->h[2], d = so->def.diameter;
-    const double volume =
-        fmax(BDL_PI * d * d * d / 6.0, bdl_solids_volume(so) / SOLIDS_DISPLAY_MAX);
-    const float radius = (float)cbrt(0.75 / BDL_PI * volume);
+    const double cell = g->h[0] * g->h[1] * g->h[2];
     long n = 0;
     for (int pass = 0; pass < 2; ++pass) {
         if (pass == 1 && !bdl_snapshot_reserve(s, n))
             return 0;
         n = 0;
-        for (int k = 0; k < g->n[2]; ++k)
-            for (int j = 0; j < g->n[1]; ++j)
-                for (int i = 0; i < g->n[0]; ++i) {
-                    const uint64_t c = (uint64_t)((k * g->n[1] + j) * g->n[0] + i);
-                    const double want =
-                        fmax(so->eps[bdl_grid_index(g, i, j, k)], 0.0) * cell / volume;
-                    const long m = (long)want + (cell_hash(c, 0, 1) < want - floor(want));
-                    for (long q = 0; q < m && pass == 1; ++q) {
-                        const int ix[3] = {i, j, k};
-                        for (int a = 0; a < 3; ++a) {
-                            const double x = cell_hash(c, (uint64_t)q, (uint64_t)(2 + a));
-                            s->pos[3 * (n + q) + a] = (float)(g->origin[a] + (ix[a] + x) * g->h[a]);
-                            s->vel[3 * (n + q) + a] =
-                                (float)bdl_solids_cell_velocity(so, a, i, j, k);
+        for (int m = 0; m < so->count; ++m) {
+            const double d = so->phase[m].def.diameter;
+            const double volume =
+                fmax(BDL_PI * d * d * d / 6.0, bdl_solids_volume(so, -1) / SOLIDS_DISPLAY_MAX);
+            const float radius = (float)cbrt(0.75 / BDL_PI * volume);
+            const uint64_t salt = 8u * (uint64_t)m;
+            for (int k = 0; k < g->n[2]; ++k)
+                for (int j = 0; j < g->n[1]; ++j)
+                    for (int i = 0; i < g->n[0]; ++i) {
+                        const uint64_t c = (uint64_t)((k * g->n[1] + j) * g->n[0] + i);
+                        const double want =
+                            fmax(so->phase[m].eps[bdl_grid_index(g, i, j, k)], 0.0) * cell / volume;
+                        const long q_end =
+                            (long)want + (cell_hash(c, 0, 1 + salt) < want - floor(want));
+                        for (long q = 0; q < q_end && pass == 1; ++q) {
+                            const int ix[3] = {i, j, k};
+                            for (int a = 0; a < 3; ++a) {
+                                const double x = cell_hash(c, (uint64_t)q, salt + 2 + a);
+                                s->pos[3 * (n + q) + a] =
+                                    (float)(g->origin[a] + (ix[a] + x) * g->h[a]);
+                                s->vel[3 * (n + q) + a] =
+                                    (float)bdl_solids_cell_velocity(so, m, a, i, j, k);
+                            }
+                            s->radius[n + q] = radius;
+                            s->species[n + q] = (uint8_t)m;
+                            s->id[n + q] = (uint32_t)(n + q);
+                            s->coordination[n + q] = 0;
                         }
-                        s->radius[n + q] = radius;
-                        s->species[n + q] = 0;
-                        s->id[n + q] = (uint32_t)(n + q);
-                        s->coordination[n + q] = 0;
+                        n += q_end;
                     }
-                    n += m;
-                }
+        }
     }
     s->count = n;
     return 1;

@@ -73,7 +73,7 @@ typedef struct field {
     size_t bytes;
 } field;
 
-#define MAX_FIELDS 64
+#define MAX_FIELDS 96
 
 /// The arrays of the state in file order, for the counts `c`. Save and load walk the same table,
 /// so the two cannot drift apart; the load also sizes the payload with it before it allocates.
@@ -144,11 +144,14 @@ static int state_fields(bdl_world *w, const int64_t *c, field *f)
         const size_t cells = (size_t)s->grid.size * sizeof(double);
         f[k++] = (field){&s->time, sizeof s->time};
         f[k++] = (field){&s->steps, sizeof s->steps};
-        f[k++] = (field){s->eps, cells};
-        f[k++] = (field){s->theta, cells}; // the granular energy's balance starts from it
-        for (int a = 0; a < 3; ++a) {
-            f[k++] = (field){s->v[a], cells};
-            f[k++] = (field){s->flux[a], cells};
+        for (int m = 0; m < s->count; ++m) { // the phase count is the scene's
+            const bdl_solids_phase *ph = &s->phase[m];
+            f[k++] = (field){ph->eps, cells};
+            f[k++] = (field){ph->theta, cells}; // the granular energy's balance starts from it
+            for (int a = 0; a < 3; ++a) {
+                f[k++] = (field){ph->v[a], cells};
+                f[k++] = (field){ph->flux[a], cells};
+            }
         }
     }
     return k;
@@ -442,6 +445,8 @@ bdl_result bdl_checkpoint_read(bdl_world *w, FILE *f, const char *name, bdl_chec
         return fail(why, why_len, name, "%s", what);
     if (saved_dt != w->dt)
         reschedule_gas(w);
+    if (w->solids) // the mixture's fraction and the gas's voidage from the phases read
+        bdl_solids_share_voidage(w->solids, w->gas);
     if (info) {
         info->dt = saved_dt;
         snprintf(info->changes, sizeof info->changes, "%s", changes);

@@ -206,22 +206,26 @@ static int check_solids(const bdl_world *w, char *why, size_t len)
     if (!s)
         return 1;
     const long cells = s->grid.size;
-    if (first_bad(s->theta, cells, NON_NEGATIVE) >= 0) {
-        snprintf(why, len, "a granular temperature is negative or not finite");
-        return 0;
+    for (int m = 0; m < s->count; ++m) {
+        const bdl_solids_phase *p = &s->phase[m];
+        if (first_bad(p->theta, cells, NON_NEGATIVE) >= 0) {
+            snprintf(why, len, "a granular temperature is negative or not finite");
+            return 0;
+        }
+        for (long i = 0; i < cells; ++i)
+            if (!(p->eps[i] >= -1e-9 && p->eps[i] < 1.0)) { // round-off below zero is a state
+                snprintf(why, len,
+                         "the solids fraction of phase %d in cell %ld of %ld is %g (must be in "
+                         "[-1e-9, 1))",
+                         m + 1, i, cells, p->eps[i]);
+                return 0;
+            }
+        for (int a = 0; a < 3; ++a)
+            if (first_bad(p->v[a], cells, ANY) >= 0 || first_bad(p->flux[a], cells, ANY) >= 0) {
+                snprintf(why, len, "a solids velocity or flux along %c is not finite", "xyz"[a]);
+                return 0;
+            }
     }
-    for (long i = 0; i < cells; ++i)
-        if (!(s->eps[i] >= -1e-9 && s->eps[i] < 1.0)) { // round-off below zero is a state
-            snprintf(why, len,
-                     "the solids fraction in cell %ld of %ld is %g (must be in [-1e-9, 1))", i,
-                     cells, s->eps[i]);
-            return 0;
-        }
-    for (int a = 0; a < 3; ++a)
-        if (first_bad(s->v[a], cells, ANY) >= 0 || first_bad(s->flux[a], cells, ANY) >= 0) {
-            snprintf(why, len, "a solids velocity or flux along %c is not finite", "xyz"[a]);
-            return 0;
-        }
     return isfinite(s->time) && s->steps >= 0;
 }
 

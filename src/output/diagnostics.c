@@ -116,15 +116,42 @@ static void particle_terms(const bdl_world *w, long i, partial *s)
 /// / <h_large>, the species' volume-weighted mean heights above the floor, against its value
 /// when fully segregated, S_p,max = (2 - x) / (1 - x) with x the small species' share of the
 /// solids volume (the large below, the small above, both at one packing): s_p = (S_p - 1) /
-/// (S_p,max - 1), 0 mixed, 1 segregated. NAN unless the scene has exactly two species, both
-/// present, of different sizes.
+/// (S_p,max - 1), 0 mixed, 1 segregated. From each species' volume, sum of volume x height and
+/// (volume-weighted) size; NAN unless both are present, of different sizes, and the large
+/// species' mean height is above 0.
+static double segregation_index(const double volume[2], const double height[2],
+                                const double size[2])
+{
+    if (!(volume[0] > 0.0 && volume[1] > 0.0) || size[0] == size[1])
+        return NAN;
+    const int small = size[0] < size[1] ? 0 : 1, large = 1 - small;
+    const double x = volume[small] / (volume[0] + volume[1]);
+    if (!(height[large] > 0.0))
+        return NAN; // the large species' centres on the floor's plane (no floor there)
+    const double ratio = (height[small] / volume[small]) / (height[large] / volume[large]);
+    return (ratio - 1.0) / ((2.0 - x) / (1.0 - x) - 1.0);
+}
+
+/// The segregation percentage of a scene with exactly two species or two solids phases.
 static double segregation(const bdl_world *w)
 {
+    double volume[2] = {0.0, 0.0}, height[2] = {0.0, 0.0}, size[2] = {0, 0};
+    if (w->solids) {
+        const bdl_solids *so = w->solids;
+        if (so->count != 2)
+            return NAN;
+        for (int m = 0; m < 2; ++m) {
+            volume[m] = bdl_solids_volume(so, m);
+            height[m] = volume[m] * bdl_solids_mean_height(so, m, 2);
+            size[m] = so->phase[m].def.diameter;
+        }
+        return segregation_index(volume, height, size);
+    }
     const bdl_particles *p = &w->particles;
     if (w->scene.species_count != 2 || p->count == 0)
         return NAN;
     const bdl_vec3 up = up_of(w);
-    double base = INFINITY, volume[2] = {0.0, 0.0}, height[2] = {0.0, 0.0}, radius[2] = {0, 0};
+    double base = INFINITY;
     for (int c = 0; c < 8; ++c) { // the lowest corner of the domain along up
         const bdl_vec3 x = {c & 1 ? w->scene.domain_max.x : w->scene.domain_min.x,
                             c & 2 ? w->scene.domain_max.y : w->scene.domain_min.y,
@@ -136,16 +163,11 @@ static double segregation(const bdl_world *w)
         const double v = bdl_particle_solids_volume(p, i);
         volume[s] += v;
         height[s] += v * (bdl_v3_dot(up, p->pos[i]) - base);
-        radius[s] += v * p->radius[i];
+        size[s] += v * p->radius[i];
     }
-    if (!(volume[0] > 0.0 && volume[1] > 0.0) || radius[0] / volume[0] == radius[1] / volume[1])
-        return NAN;
-    const int small = radius[0] / volume[0] < radius[1] / volume[1] ? 0 : 1, large = 1 - small;
-    const double x = volume[small] / (volume[0] + volume[1]);
-    if (!(height[large] > 0.0))
-        return NAN; // the large species' centres on the floor's plane (no floor there)
-    const double ratio = (height[small] / volume[small]) / (height[large] / volume[large]);
-    return (ratio - 1.0) / ((2.0 - x) / (1.0 - x) - 1.0);
+    for (int s = 0; s < 2; ++s)
+        size[s] = volume[s] > 0.0 ? size[s] / volume[s] : 0.0;
+    return segregation_index(volume, height, size);
 }
 
 static double layer_pressure(const bdl_gas *gas, int a, int m)
@@ -178,20 +200,23 @@ static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
 {
     const bdl_solids *s = w->solids;
     const bdl_grid *g = &s->grid;
-    const double cell = g->h[0] * g->h[1] * g->h[2], rho = s->def.density;
-    double total = 0.0, kinetic = 0.0, speed = 0.0;
+    const double cell = g->h[0] * g->h[1] * g->h[2];
+    double total = 0.0, kinetic = 0.0, speed = 0.0, weight = 0.0;
     for (int k = 0; k < g->n[2]; ++k)
         for (int j = 0; j < g->n[1]; ++j)
-            for (int i = 0; i < g->n[0]; ++i) {
-                const double e = s->eps[bdl_grid_index(g, i, j, k)];
-                double v2 = 0.0;
-                for (int a = 0; a < 3; ++a)
-                    v2 += pow(bdl_solids_cell_velocity(s, a, i, j, k), 2.0);
-                total += e;
-                kinetic += 0.5 * rho * e * cell * v2;
-                speed = e > s->def.dilute ? fmax(speed, sqrt(v2)) : speed;
-            }
-    d->mean_height = bdl_solids_mean_height(s, 2);
+            for (int i = 0; i < g->n[0]; ++i)
+                for (int m = 0; m < s->count; ++m) {
+                    const bdl_solids_phase *p = &s->phase[m];
+                    const double e = p->eps[bdl_grid_index(g, i, j, k)], rho = p->def.density;
+                    double v2 = 0.0;
+                    for (int a = 0; a < 3; ++a)
+                        v2 += pow(bdl_solids_cell_velocity(s, m, a, i, j, k), 2.0);
+                    total += e;
+                    weight += e * (rho - w->gas->def.density);
+                    kinetic += 0.5 * rho * e * cell * v2;
+                    speed = e > s->def.dilute ? fmax(speed, sqrt(v2)) : speed;
+                }
+    d->mean_height = bdl_solids_mean_height(s, -1, 2);
     d->kinetic_energy = kinetic;
     d->max_speed = speed;
     double below = 0.0;
@@ -204,7 +229,7 @@ static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
         below += layer;
     }
     const double g_len = bdl_v3_len(w->scene.gravity), area = g->n[0] * g->h[0] * g->n[1] * g->h[1];
-    const double weight = total * cell * (rho - w->gas->def.density) * g_len / area;
+    weight *= cell * g_len / area;
     const double column = w->gas->def.density * g_len * (g->n[2] - 1) * g->h[2];
     d->weight_ratio = weight > 0.0 ? (d->pressure_drop - column) / weight : NAN;
 }

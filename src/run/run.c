@@ -159,7 +159,7 @@ static void log_solids(const bdl_world *w)
     const bdl_scene *s = &w->scene;
     log_domain(s);
     bdl_info("solids: %.4g m^3 (a bed %g m tall at a solids fraction of %g), restitution %.4g",
-             bdl_solids_volume(w->solids), s->solids.bed_height, s->solids.fraction,
+             bdl_solids_volume(w->solids, -1), s->solids.bed_height, s->solids.fraction,
              w->solids->def.restitution);
     const double stable =
         bdl_world_expected_gas_dt(w, fmax(s->gas.inlet_velocity, s->gas.jet_velocity));

@@ -272,6 +272,15 @@ typedef struct bdl_parcels_scene {
 
 /// [solids]: a solids phase on the gas grid (the two-fluid model, docs/theory-tfm.md); the scene
 /// has one when the section is given, and then no particles.
+/// [phase NAME]: one phase of a [solids] mixture.
+typedef struct bdl_phase_scene {
+    char name[BDL_NAME_LEN];
+    double diameter, density, restitution; ///< [m], [kg/m^3], -
+    double friction;                       ///< particle friction for Jenkins & Zhang's e_eff
+    double tangential_restitution;         ///< beta0 of Jenkins & Zhang
+    double fraction;                       ///< its solids fraction in the bed at the start
+} bdl_phase_scene;
+
 typedef struct bdl_solids_scene {
     int enabled;
     bdl_solids_def def;
@@ -279,6 +288,8 @@ typedef struct bdl_solids_scene {
     double tangential_restitution; ///< beta0 of Jenkins & Zhang
     double bed_height;             ///< the cells below this height start filled [m]
     double fraction;               ///< with this solids fraction
+    int phase_count;               ///< [phase NAME] sections: 0 (one phase, the above) or 2-4
+    bdl_phase_scene phases[BDL_SOLIDS_PHASES];
 } bdl_solids_scene;
 
 typedef struct bdl_scene {

@@ -30,6 +30,7 @@ typedef enum bdl_section_kind {
     BDL_SECTION_CREATE,
     BDL_SECTION_DIA, ///< [camera NAME]: the same word as [camera], with a name
     BDL_SECTION_SINK,
+    BDL_SECTION_PHASE, ///< [phase NAME]: a phase of a [solids] mixture
     BDL_SECTION_KIND_COUNT
 } bdl_section_kind;
 
@@ -100,7 +101,7 @@ extern const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT];
 #define BDL_SCENE_KEY_CAPACITY 256
 #define BDL_SCENE_MAX_SECTIONS                                                                     \
     (BDL_SECTION_SPECIES + BDL_MAX_SPECIES + BDL_MAX_PAIRS + BDL_MAX_WALLS + BDL_MAX_CREATES +     \
-     BDL_MAX_DIA + BDL_MAX_SINKS)
+     BDL_MAX_DIA + BDL_MAX_SINKS + BDL_SOLIDS_PHASES)
 /// Line number recorded for a value that came from a --set override.
 #define BDL_LINE_SET (-1)
 /// Longest line accepted in a scene file (characters, without the newline).

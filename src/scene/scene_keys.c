@@ -52,6 +52,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_CREATE] = {"create", "create NAME", 1, BDL_MAX_CREATES},
     [BDL_SECTION_DIA] = {"camera", "camera NAME", 1, BDL_MAX_DIA},
     [BDL_SECTION_SINK] = {"sink", "sink NAME", 1, BDL_MAX_SINKS},
+    [BDL_SECTION_PHASE] = {"phase", "phase NAME", 1, BDL_SOLIDS_PHASES},
 };
 
 // Words of the choices that are the scene's own (the solver modules define theirs beside their
@@ -85,6 +86,7 @@ BDL_CHOICE_WORDS(bdl_parcel_display, BDL_PARCEL_DISPLAYS);
 #define IN_WALL(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_wall_def, field)
 #define IN_CREATE(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_create_def, field)
 #define IN_SINK(field)   .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_sink_def, field)
+#define IN_PHASE(field)  .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_phase_scene, field)
 #define IN_DIA(field)    .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_dia_scene_def, field)
 #define IN_CAMERA(field) .target = BDL_TARGET_STRUCT, .offset = offsetof(bdl_scene, camera.field)
 #define IN_CAMERA_FLAGGED(field)                                                                   \
@@ -793,6 +795,27 @@ const bdl_scene_key bdl_scene_keys[] = {
             "start filled"},
     {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),
      .doc = "their solids fraction (the default: Sun's eps_mf 0.417, table 5.2)"},
+    {S(SOLIDS), "phase_friction", NUM, "-", IN_SOLIDS(def.phase_friction), .def = {0}, GE(0),
+     LE(10),
+     .doc = "with [phase NAME] sections: C_f, the friction coefficient of Syamlal's drag between "
+            "two phases (Sun 2007, eq. 3.18; the thesis gives no value)"},
+
+    // [phase NAME]
+    {S(PHASE), "diameter", NUM, "m", IN_PHASE(diameter), .def = {2.49e-3}, GT(0), LE(1),
+     .doc = "particle diameter of the phase"},
+    {S(PHASE), "density", NUM, "kg/m^3", IN_PHASE(density), .def = {2526}, GT(0), LE(1e5),
+     .doc = "material density of the phase"},
+    {S(PHASE), "restitution", NUM, "-", IN_PHASE(restitution), .def = {0.97}, GT(0), LT(1),
+     .doc = "normal restitution of the phase's kinetic theory (made effective by friction)"},
+    {S(PHASE), "friction", NUM, "-", IN_PHASE(friction), .def = {0}, GE(0), LE(10),
+     .doc = "particle friction: above 0 Jenkins & Zhang's effective restitution (as [solids] "
+            "friction)"},
+    {S(PHASE), "tangential_restitution", NUM, "-", IN_PHASE(tangential_restitution), .def = {0.33},
+     GE(0), LE(1), .doc = "beta0 of Jenkins & Zhang's effective restitution"},
+    {S(PHASE), "fraction", NUM, "-", IN_PHASE(fraction), .def = {0}, GT(0), LE(0.6),
+     .required = BDL_REQUIRED_ALWAYS,
+     .doc = "the phase's solids fraction in the bed's cells at the start (the phases' sum at "
+            "most 0.6)"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),
@@ -970,6 +993,8 @@ void *bdl_scene_key_field(const bdl_scene_key *key, bdl_scene *scene, bdl_scene_
         base = (char *)&scene->dias[section->index];
     else if (key->section == BDL_SECTION_SINK)
         base = (char *)&scene->sinks[section->index];
+    else if (key->section == BDL_SECTION_PHASE)
+        base = (char *)&scene->solids.phases[section->index];
     return base + key->offset;
 }
 

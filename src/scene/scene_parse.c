@@ -484,6 +484,8 @@ static int *section_counter(bdl_scene *scene, bdl_section_kind kind)
         return &scene->dia_count;
     case BDL_SECTION_SINK:
         return &scene->sink_count;
+    case BDL_SECTION_PHASE:
+        return &scene->solids.phase_count;
     default:
         return &scene->create_count;
     }
@@ -516,6 +518,9 @@ static bdl_scene_section *add_section(bdl_scene_parser *p, bdl_section_kind kind
     } else if (kind == BDL_SECTION_SINK) {
         memset(&scene->sinks[s->index], 0, sizeof scene->sinks[0]);
         memcpy(scene->sinks[s->index].name, names[0], BDL_NAME_LEN);
+    } else if (kind == BDL_SECTION_PHASE) {
+        memset(&scene->solids.phases[s->index], 0, sizeof scene->solids.phases[0]);
+        memcpy(scene->solids.phases[s->index].name, names[0], BDL_NAME_LEN);
     } else if (kind == BDL_SECTION_DIA) {
         memset(&scene->dias[s->index], 0, sizeof scene->dias[0]);
         memcpy(scene->dias[s->index].name, names[0], BDL_NAME_LEN);

@@ -633,12 +633,62 @@ static bdl_scene_section *solids_section(bdl_scene_parser *p)
 
 /// A scene with a solids phase on the grid: a gas, no particles or walls (the domain's sides
 /// bound the phase), gravity along -z, a bed height inside the domain, and the step in [run] dt.
+/// The i-th [phase NAME] section.
+static bdl_scene_section *phase_section(bdl_scene_parser *p, int i)
+{
+    for (int k = 0; k < p->section_count; ++k)
+        if (p->sections[k].kind == BDL_SECTION_PHASE && p->sections[k].index == i)
+            return &p->sections[k];
+    return NULL;
+}
+
+/// A mixture's [phase NAME] sections: two or more, their particles not also in [solids], their
+/// fractions' sum at most 0.6.
+static void check_phases(bdl_scene_parser *p, bdl_scene_section *s)
+{
+    const bdl_solids_scene *so = &p->scene->solids;
+    if (so->phase_count == 0)
+        return;
+    if (so->phase_count == 1) {
+        bdl_scene_fail(p, &(bdl_scene_where){.line = phase_section(p, 0)->line, .title = "phase"},
+                       "one [phase NAME] section: a mixture has 2 to %d phases (one phase is "
+                       "[solids] alone)",
+                       BDL_SOLIDS_PHASES);
+        return;
+    }
+    static const char *const own[] = {
+        "diameter", "density", "restitution", "friction", "tangential_restitution", "fraction"};
+    for (int k = 0; k < 6; ++k)
+        if (given(s, key_of(s, own[k]))) {
+            fail_at_key(p, s, own[k], 0,
+                        "the scene has [phase NAME] sections, and each phase gives its own: "
+                        "remove the key here");
+            return;
+        }
+    double sum = 0.0;
+    for (int i = 0; i < so->phase_count; ++i)
+        sum += so->phases[i].fraction;
+    if (sum > 0.6 + 1e-12) {
+        char what[160];
+        snprintf(what, sizeof what,
+                 "out of range: the phases' fractions add up to %g; allowed: a sum <= 0.6", sum);
+        fail_at_key(p, phase_section(p, so->phase_count - 1), "fraction", 0, what);
+    }
+}
+
 static void check_solids(bdl_scene_parser *p)
 {
     bdl_scene *scene = p->scene;
     bdl_scene_section *s = solids_section(p);
     scene->solids.enabled = s != NULL;
+    if (!s && scene->solids.phase_count > 0)
+        bdl_scene_fail(p, &(bdl_scene_where){.line = phase_section(p, 0)->line, .title = "phase"},
+                       "a [phase NAME] section is a phase of a [solids] mixture: the scene needs "
+                       "a [solids] section");
     if (!s)
+        return;
+    check_phases(p, s);
+    if (p->failed)
         return;
     const bdl_scene_where at = {.line = s->line, .title = "solids"};
     const double height = scene->domain_max.z - scene->domain_min.z;
@@ -893,10 +943,10 @@ int bdl_scene_validate(bdl_scene_parser *p)
         bdl_scene_fail(p, &(bdl_scene_where){.line = 0},
                        "no [species NAME] section: at least one species is required");
     // Species first: pairs and creators refer to them and to their diameters.
-    static const bdl_section_kind order[] = {BDL_SECTION_SPECIES, BDL_SECTION_PAIR,
-                                             BDL_SECTION_WALL,    BDL_SECTION_CREATE,
-                                             BDL_SECTION_DIA,     BDL_SECTION_SINK};
-    for (int k = 0; k < 6; ++k) {
+    static const bdl_section_kind order[] = {
+        BDL_SECTION_SPECIES, BDL_SECTION_PAIR, BDL_SECTION_WALL, BDL_SECTION_CREATE,
+        BDL_SECTION_DIA,     BDL_SECTION_SINK, BDL_SECTION_PHASE};
+    for (int k = 0; k < 7; ++k) {
         for (int i = 0; i < p->section_count && !p->failed; ++i) {
             bdl_scene_section *s = &p->sections[i];
             if (s->kind != order[k])
@@ -914,7 +964,7 @@ int bdl_scene_validate(bdl_scene_parser *p)
                 check_dia(p, s);
             else if (s->kind == BDL_SECTION_SINK)
                 check_box(p, s, "min", "max");
-            else
+            else if (s->kind == BDL_SECTION_CREATE)
                 check_create(p, s);
         }
     }

@@ -24,8 +24,13 @@ double bdl_g0_lebowitz(const double *eps, const double *d, int count, int l, int
 
 bdl_ktgf_coefficients bdl_ktgf_syamlal(double eps, double d, double rho, double e)
 {
+    return bdl_ktgf_syamlal_g0(eps, bdl_g0_carnahan_starling(eps), d, rho, e);
+}
+
+bdl_ktgf_coefficients bdl_ktgf_syamlal_g0(double eps, double g0, double d, double rho, double e)
+{
     bdl_ktgf_coefficients c;
-    c.g0 = bdl_g0_carnahan_starling(eps);
+    c.g0 = g0;
     const double eg = eps * c.g0, sqrt_pi = sqrt(pi);
     c.k1 = 2.0 * (1.0 + e) * rho * c.g0;
     c.k3 = 0.5 * d * rho *
@@ -106,4 +111,12 @@ bdl_jenkins_zhang bdl_jenkins_zhang_effective(double e, double mu, double beta0)
     j.temperature_ratio = j.b1 / j.b2;
     j.e_eff = e - 0.5 * j.a1 + 0.5 * j.a2 * j.temperature_ratio;
     return j;
+}
+
+double bdl_solids_drag_syamlal(double e, double cf, double g0, double d_l, double rho_l, double d_m,
+                               double rho_m, double speed)
+{
+    const double ds = d_l + d_m;
+    return 3.0 * (1.0 + e) * (0.5 * pi + cf * pi * pi / 8.0) * rho_l * rho_m * ds * ds * g0 *
+           speed / (2.0 * pi * (rho_l * d_l * d_l * d_l + rho_m * d_m * d_m * d_m));
 }

@@ -32,6 +32,16 @@ typedef struct bdl_ktgf_coefficients {
     double g0, k1, k2, k3, k4;
 } bdl_ktgf_coefficients;
 bdl_ktgf_coefficients bdl_ktgf_syamlal(double eps, double d, double rho, double e);
+/// The same with the radial distribution g0 given (a phase of a mixture: Lebowitz's g0_mm).
+bdl_ktgf_coefficients bdl_ktgf_syamlal_g0(double eps, double g0, double d, double rho, double e);
+
+/// Syamlal's (1987) drag between solids phases l and m (Sun 2007, eq. 3.18) divided by the two
+/// fractions: F_lm / (eps_l eps_m) = 3 (1 + e) (pi/2 + cf pi^2/8) rho_l rho_m (d_l + d_m)^2 g0
+/// |v_l - v_m| / (2 pi (rho_l d_l^3 + rho_m d_m^3)), e the restitution between the phases, cf
+/// their friction coefficient, g0 their radial distribution at contact, `speed` |v_l - v_m|
+/// [kg/(m^3 s)] per unit fraction of each: finite as either phase vanishes.
+double bdl_solids_drag_syamlal(double e, double cf, double g0, double d_l, double rho_l, double d_m,
+                               double rho_m, double speed);
 
 /// The granular temperature of homogeneous simple shear at `shear_rate` in the viscous regime:
 /// production mu shear_rate^2 equal to the dissipation, theta = k3 shear_rate^2 / (k4 eps)

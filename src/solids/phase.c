@@ -36,31 +36,85 @@ static int valid_def(const bdl_solids_def *d)
            d->eps_star > 0.0 && d->eps_star < 1.0 && d->schaeffer_a > 0.0 && d->schaeffer_n > 0.0 &&
            d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
-           (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
+           d->phase_friction >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
 }
 
-bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_solids **out)
+/// The face arrays of a phase and its cell arrays; 0 when out of memory.
+static int phase_alloc(const bdl_grid *gr, bdl_solids_phase *p, int mixture)
+{
+    int ok = (p->eps = bdl_grid_alloc(gr)) && (p->theta = bdl_grid_alloc(gr)) &&
+             (p->pressure = bdl_grid_alloc(gr)) && (p->mu = bdl_grid_alloc(gr)) &&
+             (p->slip = bdl_grid_alloc(gr)) && (!mixture || (p->star = bdl_grid_alloc(gr)));
+    for (int a = 0; a < 3; ++a)
+        ok =
+            ok && (p->v[a] = bdl_grid_alloc(gr)) && (p->a[a] = bdl_grid_alloc(gr)) &&
+            (p->b[a] = bdl_grid_alloc(gr)) && (p->k[a] = bdl_grid_alloc(gr)) &&
+            (p->up[a] = bdl_grid_alloc(gr)) && (p->flux[a] = bdl_grid_alloc(gr)) &&
+            (!mixture || ((p->drag[a] = bdl_grid_alloc(gr)) && (p->cflux[a] = bdl_grid_alloc(gr))));
+    return ok;
+}
+
+static void phase_free(bdl_solids_phase *p)
+{
+    free(p->eps);
+    free(p->theta);
+    free(p->pressure);
+    free(p->mu);
+    free(p->slip);
+    free(p->star);
+    for (int a = 0; a < 3; ++a) {
+        free(p->v[a]);
+        free(p->a[a]);
+        free(p->b[a]);
+        free(p->k[a]);
+        free(p->up[a]);
+        free(p->flux[a]);
+        free(p->drag[a]);
+        free(p->cflux[a]);
+    }
+}
+
+bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, const bdl_gas *gas,
+                                     bdl_solids **out)
 {
     *out = NULL;
-    if (!valid_def(def) || !gas->share[0])
+    if (count < 1 || count > BDL_SOLIDS_PHASES || !gas->share[0])
         return BDL_ERR_ARGS;
+    for (int m = 0; m < count; ++m) {
+        bdl_solids_def d = defs[0]; // the mixture's values, the phase's own particles
+        d.diameter = defs[m].diameter, d.density = defs[m].density;
+        d.restitution = defs[m].restitution;
+        d.drag = defs[m].drag, d.drag_params = defs[m].drag_params;
+        if (!valid_def(&d))
+            return BDL_ERR_ARGS;
+    }
     bdl_solids *s = calloc(1, sizeof *s);
     if (!s)
         return BDL_ERR_NOMEM;
-    s->def = *def;
+    s->def = defs[0];
     s->grid = gas->grid;
+    s->count = count;
     const bdl_grid *gr = &s->grid;
-    int ok = (s->eps = bdl_grid_alloc(gr)) && (s->theta = bdl_grid_alloc(gr)) &&
-             (s->pressure = bdl_grid_alloc(gr)) && (s->mu = bdl_grid_alloc(gr)) &&
-             (s->slip = bdl_grid_alloc(gr));
-    for (int a = 0; a < 3; ++a)
-        ok = ok && (s->v[a] = bdl_grid_alloc(gr)) && (s->a[a] = bdl_grid_alloc(gr)) &&
-             (s->b[a] = bdl_grid_alloc(gr)) && (s->k[a] = bdl_grid_alloc(gr)) &&
-             (s->up[a] = bdl_grid_alloc(gr)) && (s->c[a] = bdl_grid_alloc(gr)) &&
-             (s->flux[a] = bdl_grid_alloc(gr));
+    const int mixture = count > 1;
+    int ok = 1;
+    for (int m = 0; m < count; ++m) {
+        bdl_solids_phase *p = &s->phase[m];
+        p->def = defs[0];
+        p->def.diameter = defs[m].diameter, p->def.density = defs[m].density;
+        p->def.restitution = defs[m].restitution;
+        p->def.drag = defs[m].drag, p->def.drag_params = defs[m].drag_params;
+        ok = ok && phase_alloc(gr, p, mixture);
+    }
+    for (int q = 0; q < count * (count - 1) / 2; ++q)
+        ok = ok && (s->rel[q] = bdl_grid_alloc(gr));
+    s->eps = mixture ? bdl_grid_alloc(gr) : s->phase[0].eps;
+    for (int a = 0; a < 3; ++a) {
+        s->a[a] = mixture ? bdl_grid_alloc(gr) : s->phase[0].a[a];
+        ok = ok && s->a[a] && (s->c[a] = bdl_grid_alloc(gr));
+    }
     for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         ok = ok && (s->work[w] = bdl_grid_alloc(gr));
-    if (!ok) {
+    if (!ok || !s->eps) {
         bdl_solids_destroy(s);
         return BDL_ERR_NOMEM;
     }
@@ -68,32 +122,50 @@ bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_
     return BDL_OK;
 }
 
+bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_solids **out)
+{
+    return bdl_solids_create_mixture(def, 1, gas, out);
+}
+
 void bdl_solids_destroy(bdl_solids *s)
 {
     if (!s)
         return;
-    free(s->eps);
-    free(s->theta);
-    free(s->pressure);
-    free(s->mu);
-    free(s->slip);
+    const int mixture = s->count > 1;
+    if (mixture)
+        free(s->eps);
     for (int a = 0; a < 3; ++a) {
-        free(s->v[a]);
-        free(s->a[a]);
-        free(s->b[a]);
-        free(s->k[a]);
-        free(s->up[a]);
+        if (mixture)
+            free(s->a[a]);
         free(s->c[a]);
-        free(s->flux[a]);
     }
+    for (int m = 0; m < s->count; ++m)
+        phase_free(&s->phase[m]);
+    for (int q = 0; q < BDL_SOLIDS_PAIRS; ++q)
+        free(s->rel[q]);
     for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         free(s->work[w]);
     free(s);
 }
 
+/// The mixture's fraction, the sum of the phases' (with one phase the same array).
+static void mixture_fraction(const bdl_solids *s)
+{
+    if (s->count == 1)
+        return;
+    for (long i = 0; i < s->grid.size; ++i) {
+        double sum = 0.0;
+        for (int m = 0; m < s->count; ++m)
+            sum += s->phase[m].eps[i];
+        s->eps[i] = sum;
+    }
+}
+
 void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas)
 {
-    bdl_grid_extend_cells(&s->grid, s->eps);
+    for (int m = 0; m < s->count; ++m)
+        bdl_grid_extend_cells(&s->grid, s->phase[m].eps);
+    mixture_fraction(s);
     for (long i = 0; i < s->grid.size; ++i)
         gas->eps[i] = gas->eps_old[i] = 1.0 - s->eps[i];
 }
@@ -170,27 +242,30 @@ static void velocity_ghosts(const bdl_grid *gr, int a, double *v)
     }
 }
 
-double bdl_solids_cell_velocity(const bdl_solids *s, int a, int i, int j, int k)
+double bdl_solids_cell_velocity(const bdl_solids *s, int m, int a, int i, int j, int k)
 {
     const long idx = bdl_grid_index(&s->grid, i, j, k);
-    return 0.5 * (s->v[a][idx] + s->v[a][idx + s->grid.stride[a]]);
+    const double *v = s->phase[m].v[a];
+    return 0.5 * (v[idx] + v[idx + s->grid.stride[a]]);
 }
 
-double bdl_solids_volume(const bdl_solids *s)
+double bdl_solids_volume(const bdl_solids *s, int m)
 {
     const bdl_grid *gr = &s->grid;
+    const double *eps = m < 0 ? s->eps : s->phase[m].eps;
     double sum = 0.0;
-    FOR_CELLS(gr, sum += s->eps[idx]);
+    FOR_CELLS(gr, sum += eps[idx]);
     return sum * gr->h[0] * gr->h[1] * gr->h[2];
 }
 
-double bdl_solids_mean_height(const bdl_solids *s, int a)
+double bdl_solids_mean_height(const bdl_solids *s, int m, int a)
 {
     const bdl_grid *gr = &s->grid;
+    const double *eps = m < 0 ? s->eps : s->phase[m].eps;
     double sum = 0.0, mass = 0.0;
     FOR_CELLS(gr, {
         const int at[3] = {i, j, k};
-        sum += s->eps[idx] * (at[a] + 0.5) * gr->h[a], mass += s->eps[idx];
+        sum += eps[idx] * (at[a] + 0.5) * gr->h[a], mass += eps[idx];
     });
     return mass > 0.0 ? sum / mass : 0.0;
 }
@@ -198,13 +273,12 @@ double bdl_solids_mean_height(const bdl_solids *s, int a)
 // ---------------------------------------------------------------------------------------------
 // Closures in the cells.
 
-/// Rate of strain of v at the centre of cell idx: D (symmetric, 3 x 3).
-static void strain_rate(const bdl_solids *s, long idx, double D[3][3])
+/// Rate of strain of the phase's velocity at the centre of cell idx: D (symmetric, 3 x 3).
+static void strain_rate(const bdl_grid *gr, const bdl_solids_phase *p, long idx, double D[3][3])
 {
-    const bdl_grid *gr = &s->grid;
     double grad[3][3]; // grad[a][b] = d v_a / d x_b
     for (int a = 0; a < 3; ++a) {
-        const double *v = s->v[a];
+        const double *v = p->v[a];
         const long sa = gr->stride[a];
         for (int b = 0; b < 3; ++b) {
             const long sb = gr->stride[b];
@@ -232,28 +306,41 @@ static void strain_rate(const bdl_solids *s, long idx, double D[3][3])
 /// (divided by eps). As dt / (the collisions' relaxation time) grows it tends to the algebraic
 /// balance MFIX offers (the quadratic without the time terms); unlike that one it cannot jump
 /// from cell to cell with the local strain rate within a step, which on fine grids grew into a
-/// checkerboard of pressures that diverged.
-static void viscous_regime(const bdl_solids *s, double eps, double trace, double ddot,
-                           double theta_old, double dt, double *theta, double *p, double *mu)
+/// checkerboard of pressures that diverged. A phase of a mixture takes Lebowitz's g0_mm (g0 > 0)
+/// and balances its own collisions only.
+static void viscous_regime(const bdl_solids_def *d, double eps, double g0, double trace,
+                           double ddot, double theta_old, double dt, double *theta, double *p,
+                           double *mu)
 {
-    const bdl_solids_def *d = &s->def;
-    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d->diameter, d->density, d->restitution);
+    const bdl_ktgf_coefficients c =
+        g0 > 0.0 ? bdl_ktgf_syamlal_g0(eps, g0, d->diameter, d->density, d->restitution)
+                 : bdl_ktgf_syamlal(eps, d->diameter, d->density, d->restitution);
     *theta = bdl_ktgf_temperature_step(&c, eps, d->density, trace, ddot, theta_old, dt);
     *p = c.k1 * eps * eps * *theta;
     *mu = c.k3 * eps * sqrt(*theta);
 }
 
-/// Temperature, pressure and viscosity in every cell, and the slip |u - v| the drag sees.
-static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
+/// The cell's phase fractions and diameters, for Lebowitz's g0.
+static void cell_mixture(const bdl_solids *s, long idx, double *eps, double *d)
+{
+    for (int m = 0; m < s->count; ++m)
+        eps[m] = s->phase[m].eps[idx], d[m] = s->phase[m].def.diameter;
+}
+
+/// Phase m's temperature, pressure and viscosity in every cell, and the slip |u - v| the drag
+/// sees. Above eps_star (all phases together) Schaeffer's pressure of the mixture, each phase's
+/// share in proportion to its fraction.
+static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
 {
     const bdl_grid *gr = &s->grid;
-    const bdl_solids_def *d = &s->def;
+    bdl_solids_phase *ph = &s->phase[m];
+    const bdl_solids_def *d = &ph->def;
     const double phi = d->friction_angle * PI / 180.0; // radians
-    double pmax = 0.0;
+    double pmax = s->stats.pressure_max;
     FOR_CELLS(gr, {
-        const double eps = s->eps[idx];
+        const double eps = ph->eps[idx], total = s->eps[idx];
         double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, slip2 = 0.0;
-        strain_rate(s, idx, D);
+        strain_rate(gr, ph, idx, D);
         const double trace = D[0][0] + D[1][1] + D[2][2];
         double ddot = 0.0, i2d = 0.0;
         for (int a = 0; a < 3; ++a)
@@ -262,28 +349,66 @@ static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
                 const double dev = D[a][b] - (a == b ? trace / 3.0 : 0.0);
                 i2d += 0.5 * dev * dev;
             }
-        if (eps >= d->eps_star) {
-            p = bdl_schaeffer_pressure(eps, 1.0 - eps, 1.0 - d->eps_star, d->schaeffer_a,
-                                       d->schaeffer_n);
+        if (total >= d->eps_star) {
+            const double pt = bdl_schaeffer_pressure(total, 1.0 - total, 1.0 - d->eps_star,
+                                                     d->schaeffer_a, d->schaeffer_n);
+            p = pt * (eps / total);
             mu = bdl_schaeffer_viscosity(p, phi, i2d, d->mu_max);
+            pmax = fmax(pmax, pt);
         } else if (eps > d->dilute) {
-            viscous_regime(s, eps, trace, ddot, s->theta[idx], dt, &theta, &p, &mu);
+            double g0 = 0.0;
+            if (s->count > 1) {
+                double e[BDL_SOLIDS_PHASES], dm[BDL_SOLIDS_PHASES];
+                cell_mixture(s, idx, e, dm);
+                g0 = bdl_g0_lebowitz(e, dm, s->count, m, m);
+            }
+            viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, &theta, &p, &mu);
+            pmax = fmax(pmax, p);
         }
         for (int a = 0; a < 3; ++a) {
             const double r =
-                bdl_gas_cell_velocity(gas, a, i, j, k) - bdl_solids_cell_velocity(s, a, i, j, k);
+                bdl_gas_cell_velocity(gas, a, i, j, k) - bdl_solids_cell_velocity(s, m, a, i, j, k);
             slip2 += r * r;
         }
-        s->theta[idx] = theta;
-        s->pressure[idx] = p;
-        s->mu[idx] = mu;
-        s->slip[idx] = sqrt(slip2);
-        pmax = fmax(pmax, p);
+        ph->theta[idx] = theta;
+        ph->pressure[idx] = p;
+        ph->mu[idx] = mu;
+        ph->slip[idx] = sqrt(slip2);
     });
-    bdl_grid_extend_cells(gr, s->pressure);
-    bdl_grid_extend_cells(gr, s->mu);
-    bdl_grid_extend_cells(gr, s->slip);
+    bdl_grid_extend_cells(gr, ph->pressure);
+    bdl_grid_extend_cells(gr, ph->mu);
+    bdl_grid_extend_cells(gr, ph->slip);
     s->stats.pressure_max = pmax;
+}
+
+/// |v_l - v_m| of every pair of phases in the cells (pairs in the order (0,1), (0,2), ...).
+static void relative_speeds(bdl_solids *s)
+{
+    const bdl_grid *gr = &s->grid;
+    int q = 0;
+    for (int l = 0; l < s->count; ++l)
+        for (int m = l + 1; m < s->count; ++m, ++q) {
+            double *rel = s->rel[q];
+            FOR_CELLS(gr, {
+                double r2 = 0.0;
+                for (int a = 0; a < 3; ++a) {
+                    const double r = bdl_solids_cell_velocity(s, l, a, i, j, k) -
+                                     bdl_solids_cell_velocity(s, m, a, i, j, k);
+                    r2 += r * r;
+                }
+                rel[idx] = sqrt(r2);
+            });
+            bdl_grid_extend_cells(gr, rel);
+        }
+}
+
+/// Temperature, pressure and viscosity of every phase, the slips and the phases' relative speeds.
+static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
+{
+    s->stats.pressure_max = 0.0;
+    for (int m = 0; m < s->count; ++m)
+        phase_closures(s, m, gas, dt);
+    relative_speeds(s);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -300,17 +425,16 @@ typedef struct face_terms {
 /// div(F v_a) - v_a div(F) at the a-face idx, v_a upwind, F the last step's solids volume fluxes
 /// (the flux form less the face's continuity times v_a, as Patankar writes it): only what flows
 /// in counts, diag = sum of inflows / h.
-static face_terms transport(const bdl_solids *s, int a, long idx)
+static face_terms transport(const bdl_grid *gr, const bdl_solids_phase *p, int a, long idx)
 {
-    const bdl_grid *gr = &s->grid;
-    const double *va = s->v[a];
+    const double *va = p->v[a];
     const long sa = gr->stride[a];
     face_terms t = {0.0, 0.0};
     for (int b = 0; b < 3; ++b) {
         if (gr->n[b] == 1)
             continue;
         const long sb = gr->stride[b];
-        const double *fb = s->flux[b];
+        const double *fb = p->flux[b];
         double hi, lo;
         if (b == a) {
             hi = 0.5 * (fb[idx] + fb[idx + sb]);
@@ -328,10 +452,9 @@ static face_terms transport(const bdl_solids *s, int a, long idx)
 
 /// -div(mu grad v_a) at the a-face idx: mu from the cells beside a face of the same axis, the
 /// mean of the four cells around an edge otherwise.
-static face_terms viscous(const bdl_solids *s, int a, long idx)
+static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, long idx)
 {
-    const bdl_grid *gr = &s->grid;
-    const double *v = s->v[a], *mu = s->mu;
+    const double *v = p->v[a], *mu = p->mu;
     const long sa = gr->stride[a];
     face_terms t = {0.0, 0.0};
     for (int b = 0; b < 3; ++b) {
@@ -352,38 +475,53 @@ static face_terms viscous(const bdl_solids *s, int a, long idx)
     return t;
 }
 
-/// The solids' equation on every face of axis a, per unit solids volume (A, B, k), the upwind
-/// solids fraction by the old velocity's sign, and the gas's hooks: its drag, drag source and
-/// pressure share after the elimination, and the solids' flux still to come. Faces on a side
-/// that is not periodic carry no solids.
-static void momentum(bdl_solids *s, bdl_gas *gas, int a, double dt)
+/// The gas's hooks on every face of axis a before the solids' terms: no drag, the whole
+/// pressure gradient on the gas's fraction, no solids flux.
+static void reset_hooks(const bdl_solids *s, bdl_gas *gas, int a)
 {
     const bdl_grid *gr = &s->grid;
-    const bdl_solids_def *d = &s->def;
     const long sa = gr->stride[a];
-    const double rho = d->density, rg = gas->def.density, mug = gas->def.viscosity;
     for (long idx = 0; idx < gr->size; ++idx) {
         gas->beta[a][idx] = gas->bv[a][idx] = 0.0;
         gas->flux_u[a][idx] = gas->flux_p[a][idx] = gas->flux_0[a][idx] = 0.0;
         gas->share[a][idx] = idx >= sa ? 1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]) : 1.0;
-        s->a[a][idx] = 1.0, s->b[a][idx] = s->k[a][idx] = s->up[a][idx] = 0.0;
     }
+}
+
+/// Phase m's equation on every face of axis a, per unit solids volume (A, B, k), and the upwind
+/// solids fraction by the old velocity's sign. With one phase also the gas's hooks: its drag,
+/// drag source and pressure share after the elimination, and the solids' flux still to come
+/// (several phases: couple() below). Faces on a side that is not periodic carry no solids.
+static void momentum(bdl_solids *s, int m, bdl_gas *gas, int a, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    bdl_solids_phase *p = &s->phase[m];
+    const bdl_solids_def *d = &p->def;
+    const long sa = gr->stride[a];
+    const double rho = d->density, rg = gas->def.density, mug = gas->def.viscosity;
+    for (long idx = 0; idx < gr->size; ++idx)
+        p->a[a][idx] = 1.0, p->b[a][idx] = p->k[a][idx] = p->up[a][idx] = 0.0;
     FOR_INNER_FACES(gr, a, {
-        const double es = 0.5 * (s->eps[idx] + s->eps[idx - sa]), eg = 1.0 - es;
-        const double slip = 0.5 * (s->slip[idx] + s->slip[idx - sa]);
+        const double es = 0.5 * (p->eps[idx] + p->eps[idx - sa]);
+        const double eg = 1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]);
+        const double slip = 0.5 * (p->slip[idx] + p->slip[idx - sa]);
         const double kd =
             bdl_drag_per_volume(d->drag, &d->drag_params, eg, d->diameter, slip, rg, mug);
         // rho es (v^{n+1} - v^n) / dt + rho (div(F v) - v div F) = -grad P_s + div(mu grad v) + ...
         // with the transport and the viscous term point-implicit.
-        double A = rho / dt + kd, B = rho * s->v[a][idx] / dt + rho * gas->def.gravity[a];
+        double A = rho / dt + kd, B = rho * p->v[a][idx] / dt + rho * gas->def.gravity[a];
         if (es > d->dilute) {
-            const face_terms conv = transport(s, a, idx), visc = viscous(s, a, idx);
+            const face_terms conv = transport(gr, p, a, idx), visc = viscous(gr, p, a, idx);
             A += (rho * conv.diag + visc.diag) / es;
-            B += (rho * conv.nb + visc.nb - (s->pressure[idx] - s->pressure[idx - sa]) / gr->h[a]) /
+            B += (rho * conv.nb + visc.nb - (p->pressure[idx] - p->pressure[idx - sa]) / gr->h[a]) /
                  es;
         }
-        const double up = s->v[a][idx] >= 0.0 ? s->eps[idx - sa] : s->eps[idx];
-        s->a[a][idx] = A, s->b[a][idx] = B, s->k[a][idx] = kd, s->up[a][idx] = up;
+        const double up = p->v[a][idx] >= 0.0 ? p->eps[idx - sa] : p->eps[idx];
+        p->a[a][idx] = A, p->b[a][idx] = B, p->k[a][idx] = kd, p->up[a][idx] = up;
+        if (s->count > 1) {
+            p->drag[a][idx] = kd;
+            continue;
+        }
         gas->beta[a][idx] = es * kd * (A - kd) / A;
         gas->bv[a][idx] = es * kd * B / A;
         gas->share[a][idx] = eg + es * kd / A;
@@ -393,25 +531,113 @@ static void momentum(bdl_solids *s, bdl_gas *gas, int a, double dt)
     });
 }
 
-/// v^{n+1} = (B + k u - G) / A on the inner faces (zero on the walls), and the solids' volume
-/// flux by the new velocity's upwind fraction. Where that differs from the fraction the pressure
-/// equation was given, the difference is handed to the gas with the opposite sign, so that the
-/// flux of the two together stays free of divergence.
-static void new_velocity(bdl_solids *s, bdl_gas *gas, int a)
+/// Solves S x = r for the columns of R (n x cols), in place; S (n x n, n <= BDL_SOLIDS_PHASES)
+/// an M-matrix (diagonally dominant by rows), so Gaussian elimination without pivoting.
+static void solve_small(int n, double S[][BDL_SOLIDS_PHASES], double R[][3], int cols)
+{
+    for (int p = 0; p < n; ++p)
+        for (int r = p + 1; r < n; ++r) {
+            const double f = S[r][p] / S[p][p];
+            for (int c = p; c < n; ++c)
+                S[r][c] -= f * S[p][c];
+            for (int c = 0; c < cols; ++c)
+                R[r][c] -= f * R[p][c];
+        }
+    for (int p = n - 1; p >= 0; --p)
+        for (int c = 0; c < cols; ++c) {
+            double x = R[p][c];
+            for (int q = p + 1; q < n; ++q)
+                x -= S[p][q] * R[q][c];
+            R[p][c] = x / S[p][p];
+        }
+}
+
+/// Syamlal's drag between phases l and m per unit fraction of each at the a-face idx (Sun eq.
+/// 3.18; the relative speed and Lebowitz's g0 from the face's two cells).
+static double pair_drag(const bdl_solids *s, int q, int l, int m, int a, long idx)
+{
+    const long sa = s->grid.stride[a];
+    const bdl_solids_def *dl = &s->phase[l].def, *dm = &s->phase[m].def;
+    double eps[BDL_SOLIDS_PHASES], d[BDL_SOLIDS_PHASES], lo[BDL_SOLIDS_PHASES];
+    cell_mixture(s, idx, eps, d);
+    cell_mixture(s, idx - sa, lo, d);
+    for (int n = 0; n < s->count; ++n)
+        eps[n] = 0.5 * (eps[n] + lo[n]);
+    const double g0 = bdl_g0_lebowitz(eps, d, s->count, l, m);
+    const double speed = 0.5 * (s->rel[q][idx] + s->rel[q][idx - sa]);
+    return bdl_solids_drag_syamlal(0.5 * (dl->restitution + dm->restitution), s->def.phase_friction,
+                                   g0, dl->diameter, dl->density, dm->diameter, dm->density, speed);
+}
+
+/// Several phases on every inner a-face: with the drag F_lm (v_l - v_m) between them, per unit
+/// solids volume of m, the phases' equations A_m v_m = B_m + k_m u - G + sum_l F_lm (v_l - v_m) /
+/// eps_m form S v = B + k u - G 1 (S an M-matrix), solved for v = alpha + beta u - gamma G. Each
+/// phase keeps v = (B' + k' u - G) / A' with A' = 1 / gamma, B' = alpha A', k' = beta A'; the
+/// gas's drag sum_m eps_m kd_m (1 - beta_m), its source sum_m eps_m kd_m alpha_m, its share
+/// eps_g + sum_m eps_m kd_m gamma_m, the solids' flux sum_m up_m (alpha_m + beta_m u - gamma_m
+/// G); and 1/A of the mixture's plastic correction, the fraction-weighted mean of the gammas.
+static void couple(bdl_solids *s, bdl_gas *gas, int a)
 {
     const bdl_grid *gr = &s->grid;
     const long sa = gr->stride[a];
-    double *v = s->v[a], *f = s->flux[a];
+    const int n = s->count;
+    for (long idx = 0; idx < gr->size; ++idx)
+        s->a[a][idx] = 1.0;
+    FOR_INNER_FACES(gr, a, {
+        double S[BDL_SOLIDS_PHASES][BDL_SOLIDS_PHASES] = {{0}}, R[BDL_SOLIDS_PHASES][3];
+        double es[BDL_SOLIDS_PHASES], total = 0.0;
+        for (int m = 0; m < n; ++m) {
+            const bdl_solids_phase *p = &s->phase[m];
+            es[m] = 0.5 * (p->eps[idx] + p->eps[idx - sa]);
+            total += es[m];
+            S[m][m] = p->a[a][idx];
+            R[m][0] = p->b[a][idx], R[m][1] = p->k[a][idx], R[m][2] = 1.0;
+        }
+        for (int l = 0, q = 0; l < n; ++l)
+            for (int m = l + 1; m < n; ++m, ++q) {
+                const double f = pair_drag(s, q, l, m, a, idx); // F_lm / (eps_l eps_m)
+                S[m][m] += f * es[l], S[m][l] -= f * es[l];
+                S[l][l] += f * es[m], S[l][m] -= f * es[m];
+            }
+        solve_small(n, S, R, 3);
+        double beta = 0.0, bv = 0.0, share = 1.0 - total, fu = 0.0, fp = 0.0, f0 = 0.0, mob = 0.0;
+        for (int m = 0; m < n; ++m) {
+            bdl_solids_phase *p = &s->phase[m];
+            const double kd = p->drag[a][idx], up = p->up[a][idx];
+            const double alpha = R[m][0], b = R[m][1], gamma = R[m][2];
+            beta += es[m] * kd * (1.0 - b);
+            bv += es[m] * kd * alpha;
+            share += es[m] * kd * gamma;
+            fu += up * b, fp += up * gamma, f0 += up * alpha;
+            mob += (total > 0.0 ? es[m] / total : 1.0 / n) * gamma;
+            p->a[a][idx] = 1.0 / gamma, p->b[a][idx] = alpha / gamma, p->k[a][idx] = b / gamma;
+        }
+        gas->beta[a][idx] = beta, gas->bv[a][idx] = bv, gas->share[a][idx] = share;
+        gas->flux_u[a][idx] = fu, gas->flux_p[a][idx] = fp, gas->flux_0[a][idx] = f0;
+        s->a[a][idx] = 1.0 / mob;
+    });
+}
+
+/// Phase m's v^{n+1} = (B + k u - G) / A on the inner faces (zero on the walls), and its volume
+/// flux by the new velocity's upwind fraction. Where that differs from the fraction the pressure
+/// equation was given, the difference is handed to the gas with the opposite sign, so that the
+/// flux of the two together stays free of divergence.
+static void new_velocity(bdl_solids *s, int m, bdl_gas *gas, int a)
+{
+    const bdl_grid *gr = &s->grid;
+    bdl_solids_phase *p = &s->phase[m];
+    const long sa = gr->stride[a];
+    double *v = p->v[a], *f = p->flux[a];
     memset(f, 0, (size_t)gr->size * sizeof *f);
     memset(v, 0, (size_t)gr->size * sizeof *v);
     FOR_INNER_FACES(gr, a, {
         v[idx] =
-            (s->b[a][idx] + s->k[a][idx] * gas->u[a][idx] - gas->grad_p[a][idx]) / s->a[a][idx];
-        const double up = v[idx] >= 0.0 ? s->eps[idx - sa] : s->eps[idx];
+            (p->b[a][idx] + p->k[a][idx] * gas->u[a][idx] - gas->grad_p[a][idx]) / p->a[a][idx];
+        const double up = v[idx] >= 0.0 ? p->eps[idx - sa] : p->eps[idx];
         f[idx] = up * v[idx];
-        if (up != s->up[a][idx]) {
+        if (up != p->up[a][idx]) {
             const double eg = 1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]);
-            gas->u[a][idx] -= (up - s->up[a][idx]) * v[idx] / eg;
+            gas->u[a][idx] -= (up - p->up[a][idx]) * v[idx] / eg;
         }
     });
     wrap_face(gr, a, v);
@@ -625,6 +851,8 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
     return changed;
 }
 
+static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt);
+
 /// The correction: the increment z of the plastic pressure on the cells in Schaeffer's regime at
 /// the start or the end of the step, then the fluxes -grad(z) / A of solids (and the opposite of
 /// gas) on the inner faces, the velocities and eps^{n+1} from them, and the fluxes added to the
@@ -658,7 +886,8 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
     for (int a = 0; a < 3; ++a)
         memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
     if (!any) {
-        FOR_CELLS(gr, s->eps[idx] = star[idx]);
+        FOR_CELLS(gr, x[idx] = star[idx]);
+        distribute(s, gas, x, dt); // no fluxes: each phase at its eps*
         return;
     }
     int changed = 1;
@@ -666,26 +895,61 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         changed = plastic_pass(s, slope, star, dt);
     s->stats.unsettled = changed;
     plastic_result(s, star, z, dt, x);
+    double worst = 0.0;
+    FOR_CELLS(gr, worst = fmax(worst, fabs(x[idx] - star[idx])));
+    s->stats.correction = worst;
+    distribute(s, gas, x, dt);
+}
+
+/// The correction's fluxes c given to the phases and the gas: every phase's velocity gains
+/// c / eps_s and the gas's loses c / eps_g; each phase takes the share of c its fraction has in
+/// the cell c leaves (after the step's transport), so that no phase leaves a cell faster than
+/// the others; eps^{n+1} of each phase from its share (x: the mixture's, with one phase its own).
+static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    const int n = s->count;
+    for (int m = 0; m < n; ++m)
+        if (n > 1)
+            bdl_grid_wrap_cells(gr, s->phase[m].star);
     for (int a = 0; a < 3; ++a) {
         const long sa = gr->stride[a];
+        for (int m = 0; m < n; ++m)
+            if (n > 1)
+                memset(s->phase[m].cflux[a], 0, (size_t)gr->size * sizeof(double));
         FOR_INNER_FACES(gr, a, {
             const double df = s->c[a][idx];
             const double es = 0.5 * (s->eps[idx] + s->eps[idx - sa]);
-            s->v[a][idx] += df / fmax(es, d->dilute);
+            const long from = df >= 0.0 ? idx - sa : idx;
+            double total = 0.0;
+            for (int m = 0; m < n && n > 1; ++m)
+                total += s->phase[m].star[from];
+            for (int m = 0; m < n; ++m) {
+                bdl_solids_phase *p = &s->phase[m];
+                p->v[a][idx] += df / fmax(es, s->def.dilute);
+                if (n > 1)
+                    p->cflux[a][idx] = df * (total > 0.0 ? p->star[from] / total : 1.0 / n);
+            }
             gas->u[a][idx] -= df / (1.0 - es);
         });
-        wrap_face(gr, a, s->v[a]);
+        for (int m = 0; m < n; ++m) {
+            bdl_solids_phase *p = &s->phase[m];
+            wrap_face(gr, a, p->v[a]);
+            if (n > 1)
+                wrap_face(gr, a, p->cflux[a]);
+            double *const add = n > 1 ? p->cflux[a] : s->c[a];
+            for (long idx = 0; idx < gr->size; ++idx)
+                p->flux[a][idx] += add[idx];
+        }
         wrap_face(gr, a, gas->u[a]);
     }
-    double worst = 0.0;
-    FOR_CELLS(gr, {
-        worst = fmax(worst, fabs(x[idx] - star[idx]));
-        s->eps[idx] = x[idx];
-    });
-    s->stats.correction = worst;
-    for (int a = 0; a < 3; ++a)
-        for (long idx = 0; idx < gr->size; ++idx)
-            s->flux[a][idx] += s->c[a][idx];
+    if (n == 1) {
+        FOR_CELLS(gr, s->eps[idx] = x[idx]);
+        return;
+    }
+    for (int m = 0; m < n; ++m)
+        after_fluxes(gr, s->phase[m].cflux, s->phase[m].star, dt, s->phase[m].eps);
+    mixture_fraction(s);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -694,28 +958,46 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 {
     const bdl_grid *gr = &s->grid;
-    for (int a = 0; a < 3; ++a) { // the fluxes' images too: the transport reads across a period
-        velocity_ghosts(gr, a, s->v[a]);
-        velocity_ghosts(gr, a, s->flux[a]);
-    }
+    for (int m = 0; m < s->count; ++m)
+        for (int a = 0; a < 3; ++a) { // the fluxes' images too: the transport reads a period
+            velocity_ghosts(gr, a, s->phase[m].v[a]);
+            velocity_ghosts(gr, a, s->phase[m].flux[a]);
+        }
     bdl_solids_share_voidage(s, gas);
     closures(s, gas, dt);
-    for (int a = 0; a < 3; ++a)
-        momentum(s, gas, a, dt);
+    for (int a = 0; a < 3; ++a) {
+        reset_hooks(s, gas, a);
+        for (int m = 0; m < s->count; ++m)
+            momentum(s, m, gas, a, dt);
+        if (s->count > 1)
+            couple(s, gas, a);
+    }
     const bdl_result r = bdl_gas_step(gas, dt);
     for (int a = 0; a < 3; ++a)
-        new_velocity(s, gas, a);
+        for (int m = 0; m < s->count; ++m)
+            new_velocity(s, m, gas, a);
     double *star = s->work[3];
-    after_fluxes(gr, s->flux, s->eps, dt, star);
+    if (s->count == 1) {
+        after_fluxes(gr, s->phase[0].flux, s->eps, dt, star);
+    } else {
+        memset(star, 0, (size_t)gr->size * sizeof *star);
+        for (int m = 0; m < s->count; ++m) {
+            bdl_solids_phase *p = &s->phase[m];
+            after_fluxes(gr, p->flux, p->eps, dt, p->star);
+            FOR_CELLS(gr, star[idx] += p->star[idx]);
+        }
+    }
     plastic_correction(s, gas, star, dt);
     bdl_solids_share_voidage(s, gas);
     double lo = INFINITY, hi = -INFINITY;
     int finite = 1;
     FOR_CELLS(gr, {
-        lo = fmin(lo, s->eps[idx]);
         hi = fmax(hi, s->eps[idx]);
-        for (int a = 0; a < 3; ++a)
-            finite = finite && isfinite(s->v[a][idx]);
+        for (int m = 0; m < s->count; ++m) {
+            lo = fmin(lo, s->phase[m].eps[idx]);
+            for (int a = 0; a < 3; ++a)
+                finite = finite && isfinite(s->phase[m].v[a][idx]);
+        }
     });
     s->stats.eps_min = lo;
     s->stats.eps_max = hi;
@@ -730,14 +1012,17 @@ double bdl_solids_stable_dt(const bdl_solids *s)
 {
     const bdl_grid *gr = &s->grid;
     double out = 0.0; // the largest rate at which a cell's faces carry its solids out [1/s]
-    FOR_CELLS(gr, {
-        if (s->eps[idx] > 0.0) {
-            double rate = 0.0;
-            for (int a = 0; a < 3; ++a)
-                rate +=
-                    (fmax(s->v[a][idx + gr->stride[a]], 0.0) + fmax(-s->v[a][idx], 0.0)) / gr->h[a];
-            out = fmax(out, rate);
-        }
-    });
+    for (int m = 0; m < s->count; ++m) {
+        const bdl_solids_phase *p = &s->phase[m];
+        FOR_CELLS(gr, {
+            if (p->eps[idx] > 0.0) {
+                double rate = 0.0;
+                for (int a = 0; a < 3; ++a)
+                    rate += (fmax(p->v[a][idx + gr->stride[a]], 0.0) + fmax(-p->v[a][idx], 0.0)) /
+                            gr->h[a];
+                out = fmax(out, rate);
+            }
+        });
+    }
     return out > 0.0 ? 0.5 / out : INFINITY;
 }

@@ -44,6 +44,7 @@ typedef struct bdl_solids_def {
         restitution; ///< normal restitution of the kinetic theory (an effective one for rotation)
     bdl_drag_law drag;
     bdl_drag_params drag_params;
+    // The mixture's: with several phases the first phase's values hold for all.
     double eps_star;       ///< solids fraction where the plastic regime starts (Sun eq. 7.7: 0.58)
     double schaeffer_a;    ///< Schaeffer's P = eps A (eps - eps_star)^n: A [Pa]
     double schaeffer_n;    ///< and n
@@ -52,12 +53,14 @@ typedef struct bdl_solids_def {
     double dilute;         ///< below this solids fraction a face carries no stress
     double tolerance;      ///< relative residual of the plastic correction's solver
     int max_iterations;    ///< its iteration limit
+    double phase_friction; ///< C_f of the drag between solids phases (Sun eq. 3.18)
 } bdl_solids_def;
 
 /// Glass beads of 2.49 mm (Goldschmidt's large particles, Sun 2007 table 5.1), e 0.97,
 /// Syamlal-O'Brien drag with C 0.8 and D 2.65, the plastic regime from 0.58 with A = 1e24 Pa
 /// (10^25 dyn/cm^2) and n = 10, a friction angle of 30 degrees and the viscosity capped at
-/// 100 Pa s (MFIX's 1000 poise), no stress below a solids fraction of 1e-6.
+/// 100 Pa s (MFIX's 1000 poise), no stress below a solids fraction of 1e-6; between phases no
+/// friction.
 bdl_solids_def bdl_default_solids_def(void);
 
 typedef struct bdl_solids_stats {
@@ -65,16 +68,18 @@ typedef struct bdl_solids_stats {
     int passes;          ///< the correction's passes, last step (at most 10)
     int unsettled;       ///< 1 if its last pass still changed its set: a step not converged
     double correction;   ///< largest |eps^{n+1} - eps*| it made
-    double eps_max;      ///< largest solids fraction after the step
-    double eps_min;      ///< smallest (round-off below zero would show here)
+    double eps_max;      ///< largest solids fraction (all phases) after the step
+    double eps_min;      ///< smallest of any phase (round-off below zero would show here)
     double pressure_max; ///< largest solids pressure [Pa]
 } bdl_solids_stats;
 
-#define BDL_SOLIDS_WORK 13
+#define BDL_SOLIDS_WORK   13
+#define BDL_SOLIDS_PHASES 4 ///< most phases of a mixture
+#define BDL_SOLIDS_PAIRS  (BDL_SOLIDS_PHASES * (BDL_SOLIDS_PHASES - 1) / 2)
 
-typedef struct bdl_solids {
+/// One phase of spheres: its fields on the grid.
+typedef struct bdl_solids_phase {
     bdl_solids_def def;
-    bdl_grid grid;
     double *eps;  ///< solids fraction in the cells (padded, cfd/grid.h)
     double *v[3]; ///< solids velocity on the faces [m/s]
     double
@@ -82,8 +87,23 @@ typedef struct bdl_solids {
     double *pressure; ///< solids pressure in the cells [Pa]
     double *mu;       ///< solids shear viscosity in the cells [Pa s]
     double *slip;     ///< |u - v| in the cells [m/s]
-    /// Per face: A, B, k and eps_up of the momentum step, w of the correction, the solids' flux.
-    double *a[3], *b[3], *k[3], *up[3], *c[3], *flux[3];
+    /// Per face: A, B, k and eps_up of the momentum step (with several phases A, B and k after
+    /// the phases' coupling: v = (B + k u - G) / A still), the solids' flux, the gas's drag.
+    double *a[3], *b[3], *k[3], *up[3], *flux[3], *drag[3];
+    double *cflux[3]; ///< its share of the plastic correction's flux (several phases)
+    double *star;     ///< the fraction after the step's transport (several phases)
+} bdl_solids_phase;
+
+typedef struct bdl_solids {
+    bdl_solids_def def; ///< the first phase's: the mixture's plastic regime and solver
+    bdl_grid grid;
+    int count;                                 ///< phases
+    bdl_solids_phase phase[BDL_SOLIDS_PHASES]; ///< the phases
+    double *eps; ///< all phases' solids fraction in the cells (the first phase's own with one)
+    double *rel[BDL_SOLIDS_PAIRS]; ///< |v_l - v_m| of each pair of phases in the cells [m/s]
+    /// Per face: 1/A of the mixture's correction (the first phase's A with one), w of the
+    /// correction, its flux.
+    double *a[3], *c[3];
     double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
     double time;
     long steps;
@@ -95,10 +115,17 @@ typedef struct bdl_solids {
 /// range (a diameter, density, restitution outside (0, 1), eps_star outside (0, 1), A, n,
 /// tolerance or iteration count not positive), BDL_ERR_NOMEM.
 bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_solids **out);
+
+/// A mixture of `count` phases (1 to BDL_SOLIDS_PHASES) with no solids: defs[m] gives phase m's
+/// diameter, density, restitution and drag; defs[0] the rest. Between phases l and m Syamlal's
+/// drag (Sun eq. 3.18) with the mean of their restitutions, defs[0].phase_friction, Lebowitz's
+/// g0; each phase's kinetic theory with Lebowitz's g0_mm.
+bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, const bdl_gas *gas,
+                                     bdl_solids **out);
 void bdl_solids_destroy(bdl_solids *s);
 
-/// Sets the gas's voidage to 1 - eps in every cell, its ghosts included (start of a run, and
-/// after eps was changed by hand).
+/// Sets the mixture's fraction from the phases' and the gas's voidage to 1 - eps in every cell,
+/// its ghosts included (start of a run, and after eps was changed by hand).
 void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 
 /// Advances solids and gas together by dt. BDL_ERR_UNSTABLE when the gas step fails or a value
@@ -111,14 +138,15 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
 /// are point-implicit, the plastic pressure implicit).
 double bdl_solids_stable_dt(const bdl_solids *s);
 
-/// Solids velocity component a at the centre of cell (i, j, k).
-double bdl_solids_cell_velocity(const bdl_solids *s, int a, int i, int j, int k);
+/// Velocity component a of phase m at the centre of cell (i, j, k).
+double bdl_solids_cell_velocity(const bdl_solids *s, int m, int a, int i, int j, int k);
 
-/// Total solids volume in the cells [m^3] (conserved to round-off: no side lets solids through).
-double bdl_solids_volume(const bdl_solids *s);
+/// Solids volume of phase m in the cells [m^3] (m = -1: all phases; conserved to round-off: no
+/// side lets solids through).
+double bdl_solids_volume(const bdl_solids *s, int m);
 
-/// Mean height of the solids above the grid's low side along axis a, sum(eps x_a) / sum(eps)
-/// [m] (Sun 2007's <h_p> for a = z); 0 without solids.
-double bdl_solids_mean_height(const bdl_solids *s, int a);
+/// Mean height of phase m's solids (m = -1: all phases) above the grid's low side along axis a,
+/// sum(eps x_a) / sum(eps) [m] (Sun 2007's <h_p> for a = z); 0 without solids.
+double bdl_solids_mean_height(const bdl_solids *s, int m, int a);
 
 #endif

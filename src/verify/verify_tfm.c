@@ -70,7 +70,7 @@ bdl_result bdl_verify_tfm_cooling(int per_tau, double *error, long *steps)
     if (r == BDL_OK) {
         for (int k = 0; k < 2; ++k) {
             *cell(&b, b.solids->eps, k) = eps;
-            *cell(&b, b.solids->theta, k) = theta0;
+            *cell(&b, b.solids->phase[0].theta, k) = theta0;
         }
         bdl_solids_share_voidage(b.solids, b.gas);
         const long n = lrint(periods * per_tau);
@@ -79,7 +79,7 @@ bdl_result bdl_verify_tfm_cooling(int per_tau, double *error, long *steps)
         const double haff = theta0 / ((1.0 + periods) * (1.0 + periods));
         double worst = 0.0;
         for (int k = 0; k < 2; ++k)
-            worst = fmax(worst, fabs(*cell(&b, b.solids->theta, k) / haff - 1.0));
+            worst = fmax(worst, fabs(*cell(&b, b.solids->phase[0].theta, k) / haff - 1.0));
         if (r == BDL_OK && isfinite(worst))
             *error = worst;
         *steps = n;
@@ -135,7 +135,7 @@ bdl_result bdl_verify_tfm_settling(int cells, bdl_verify_sediment *out)
     for (int k = 0; k < cells; ++k)
         *cell(&b, b.solids->eps, k) = (k + 0.5) * h < filled ? eps0 : 0.0;
     bdl_solids_share_voidage(b.solids, b.gas);
-    const double volume = bdl_solids_volume(b.solids);
+    const double volume = bdl_solids_volume(b.solids, -1);
     // The uniform suspension: (rho_s eps_g + rho_g eps) dw/dt = (rho_s - rho_g) g - k w / eps_g
     // for the slip w = u - v, with v = -eps_g w (no net volume flux through a layer).
     const double rg = b.gas->def.density, eg = 1.0 - eps0;
@@ -161,11 +161,11 @@ bdl_result bdl_verify_tfm_settling(int cells, bdl_verify_sediment *out)
     out->eps_bed = bottom;
     out->eps_bed_expected =
         packed_fraction(&sd, (sd.density - rg) * g * (volume / (h * h) - 0.5 * h * bottom));
-    out->volume_drift = bdl_solids_volume(b.solids) / volume - 1.0;
+    out->volume_drift = bdl_solids_volume(b.solids, -1) / volume - 1.0;
     double speed = 0.0;
     for (int kk = 0; kk < cells; ++kk)
         if (*cell(&b, b.solids->eps, kk) > 0.01)
-            speed = fmax(speed, fabs(bdl_solids_cell_velocity(b.solids, 2, 0, 0, kk)));
+            speed = fmax(speed, fabs(bdl_solids_cell_velocity(b.solids, 0, 2, 0, 0, kk)));
     out->speed_end = speed;
     box_destroy(&b);
     return r;

@@ -422,10 +422,13 @@ uint64_t bdl_world_hash(const bdl_world *w)
     }
     if (w->solids) {
         const size_t cells = (size_t)w->solids->grid.size * sizeof(double);
-        h = bdl_hash_bytes(h, w->solids->eps, cells);
-        h = bdl_hash_bytes(h, w->solids->theta, cells);
-        for (int a = 0; a < 3; ++a)
-            h = bdl_hash_bytes(h, w->solids->v[a], cells);
+        for (int m = 0; m < w->solids->count; ++m) {
+            const bdl_solids_phase *ph = &w->solids->phase[m];
+            h = bdl_hash_bytes(h, ph->eps, cells);
+            h = bdl_hash_bytes(h, ph->theta, cells);
+            for (int a = 0; a < 3; ++a)
+                h = bdl_hash_bytes(h, ph->v[a], cells);
+        }
     }
     return h;
 }

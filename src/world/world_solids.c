@@ -9,27 +9,49 @@
 #include "solids/phase.h"
 #include "world/world.h"
 
-/// The phase's definition with the restitution made effective by friction (Jenkins & Zhang).
-static bdl_solids_def solids_def(const bdl_scene *s)
+/// The restitution made effective by friction (Jenkins & Zhang), or as it is without friction.
+static double effective_restitution(double e, double friction, double beta0)
 {
-    bdl_solids_def d = s->solids.def;
-    if (s->solids.friction > 0.0)
-        d.restitution = bdl_jenkins_zhang_effective(d.restitution, s->solids.friction,
-                                                    s->solids.tangential_restitution)
-                            .e_eff;
-    return d;
+    return friction > 0.0 ? bdl_jenkins_zhang_effective(e, friction, beta0).e_eff : e;
 }
 
-/// The cells whose centres lie below the bed height hold the scene's solids fraction.
+/// The phases' definitions (the scene's [phase NAME] sections, or [solids] alone as one phase);
+/// returns their count.
+static int solids_defs(const bdl_scene *s, bdl_solids_def *defs)
+{
+    const bdl_solids_scene *so = &s->solids;
+    if (so->phase_count == 0) {
+        defs[0] = so->def;
+        defs[0].restitution =
+            effective_restitution(so->def.restitution, so->friction, so->tangential_restitution);
+        return 1;
+    }
+    for (int m = 0; m < so->phase_count; ++m) {
+        const bdl_phase_scene *ph = &so->phases[m];
+        defs[m] = so->def;
+        defs[m].diameter = ph->diameter;
+        defs[m].density = ph->density;
+        defs[m].restitution =
+            effective_restitution(ph->restitution, ph->friction, ph->tangential_restitution);
+    }
+    return so->phase_count;
+}
+
+/// The cells whose centres lie below the bed height hold the scene's solids fraction of each
+/// phase.
 static void fill_bed(bdl_world *w)
 {
     bdl_solids *s = w->solids;
     const bdl_grid *gr = &s->grid;
-    for (int k = 0; k < gr->n[2]; ++k)
-        for (int j = 0; j < gr->n[1]; ++j)
-            for (int i = 0; i < gr->n[0]; ++i)
-                if ((k + 0.5) * gr->h[2] < w->scene.solids.bed_height)
-                    s->eps[bdl_grid_index(gr, i, j, k)] = w->scene.solids.fraction;
+    const bdl_solids_scene *so = &w->scene.solids;
+    for (int m = 0; m < s->count; ++m) {
+        const double fraction = so->phase_count ? so->phases[m].fraction : so->fraction;
+        for (int k = 0; k < gr->n[2]; ++k)
+            for (int j = 0; j < gr->n[1]; ++j)
+                for (int i = 0; i < gr->n[0]; ++i)
+                    if ((k + 0.5) * gr->h[2] < so->bed_height)
+                        s->phase[m].eps[bdl_grid_index(gr, i, j, k)] = fraction;
+    }
     bdl_solids_share_voidage(s, w->gas);
 }
 
@@ -38,8 +60,9 @@ bdl_result bdl_world_solids_init(bdl_world *w, bdl_scene_error *err)
     bdl_result r = bdl_world_gas_init(w, err);
     if (r != BDL_OK)
         return r;
-    const bdl_solids_def def = solids_def(&w->scene);
-    r = bdl_solids_create(&def, w->gas, &w->solids);
+    bdl_solids_def defs[BDL_SOLIDS_PHASES];
+    const int count = solids_defs(&w->scene, defs);
+    r = bdl_solids_create_mixture(defs, count, w->gas, &w->solids);
     if (r != BDL_OK) {
         snprintf(err->message, sizeof err->message, "%s: [solids]: %s", w->scene.path,
                  r == BDL_ERR_NOMEM ? "out of memory" : "a parameter out of range");
@@ -55,7 +78,11 @@ bdl_result bdl_world_solids_init(bdl_world *w, bdl_scene_error *err)
     w->gas_fixed = 1;
     w->gas_every = w->gas_every_max = 1;
     w->gas_next = 0;
-    w->max_solids = w->solids->stats.eps_max = w->scene.solids.fraction;
+    double filled = 0.0; // the bed's fraction
+    for (int m = 0; m < count; ++m)
+        filled += w->scene.solids.phase_count ? w->scene.solids.phases[m].fraction
+                                              : w->scene.solids.fraction;
+    w->max_solids = w->solids->stats.eps_max = filled;
     w->gas_stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
     w->budget.dt = w->dt;
     w->budget.steps = w->scene.end_time / w->dt;
@@ -99,14 +126,26 @@ bdl_result bdl_world_solids_step(bdl_world *w)
 
 void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
 {
-    const bdl_solids_def *d = &w->solids->def;
+    const bdl_solids *s = w->solids;
+    const bdl_solids_def *d = &s->def;
+    char phases[256] = "";
+    size_t at = 0;
+    for (int m = 0; m < s->count && at < sizeof phases; ++m) {
+        const bdl_solids_def *p = &s->phase[m].def;
+        const int rotation = s->count > 1 ? w->scene.solids.phases[m].friction > 0.0
+                                          : w->scene.solids.friction > 0.0;
+        at += (size_t)snprintf(phases + at, sizeof phases - at,
+                               "%s%.4g mm, %.4g kg/m^3, "
+                               "restitution %.4g%s",
+                               m ? "; " : "", 1e3 * p->diameter, p->density, p->restitution,
+                               rotation ? " (Jenkins & Zhang's effective)" : "");
+    }
     snprintf(buf, size,
-             "solids phase (two-fluid model: %.4g mm, %.4g kg/m^3, restitution %.4g%s; drag %s; "
+             "solids %s (two-fluid model: %s; drag %s%s; "
              "Syamlal's viscous regime, its energy balanced in each cell; Schaeffer's plastic "
              "regime from "
              "%.3g, A %.3g Pa, n %.3g, %.3g deg, viscosity at most %.3g Pa s; step %.3g s)",
-             1e3 * d->diameter, d->density, d->restitution,
-             w->scene.solids.friction > 0.0 ? " (Jenkins & Zhang's effective)" : "",
-             bdl_drag_law_names[d->drag], d->eps_star, d->schaeffer_a, d->schaeffer_n,
-             d->friction_angle, d->mu_max, w->dt);
+             s->count > 1 ? "phases" : "phase", phases, bdl_drag_law_names[d->drag],
+             s->count > 1 ? ", Syamlal's between phases" : "", d->eps_star, d->schaeffer_a,
+             d->schaeffer_n, d->friction_angle, d->mu_max, w->dt);
 }
