@@ -228,5 +228,8 @@ bdl_cli_expect(cli_tfm_phases_one 2 "tfm_one_phase.ini:[0-9]+: \\[phase\\]: one 
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_one_phase.ini)
 bdl_cli_expect(cli_tfm_phases_missing 2 "\\[phase small\\] fraction: missing required key; allowed: \\(0, 0.6\\]"
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_phase_no_fraction.ini)
+bdl_cli_expect(cli_parcels_mean_drag 2
+  "\\[coupling\\] drag_velocity = mean: a parcel's drag is implicit in its own velocity"
+  check ${PROJECT_SOURCE_DIR}/scenes/parcels_bubbling_bed.ini --set coupling.drag_velocity=mean)
 bdl_cli_expect(cli_tfm_elastic 2 "\\[solids\\] restitution = 1: out of range; allowed: \\(0, 1\\)"
   check ${TFM} --set solids.restitution=1)

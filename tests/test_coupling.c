@@ -293,9 +293,79 @@ static void test_pressure_shares(void)
     bdl_gas_destroy(g);
 }
 
+/// Drag on each particle of a cloud in a stirred gas after one step, by the solids velocity of
+/// `mean_drag`; the gas's drag in gas_total. Particles 400 and 401 share a place and a size
+/// but move differently.
+static void cloud_drag(int mean_drag, int same_motion, bdl_vec3 *drag, double gas_total[3])
+{
+    bdl_gas *g = make_gas(8, 6, 10, 2e-3, 1, 1);
+    cloud c = make_cloud(402, g, 11);
+    c.p.pos[401] = c.p.pos[400];
+    c.p.radius[401] = c.p.radius[400];
+    c.p.inv_mass[401] = c.p.inv_mass[400];
+    c.p.vel[401] = bdl_v3(0.4, -0.2, 0.1);
+    if (same_motion)
+        for (long i = 0; i < c.p.count; ++i)
+            c.p.vel[i] = bdl_v3(0.1, 0.0, -0.2), c.acc[i] = bdl_v3(0.0, 0.0, -9.81);
+    bdl_coupling_def def = bdl_default_coupling_def(&g->grid);
+    def.mean_drag = mean_drag;
+    bdl_coupling k;
+    CHECK(bdl_coupling_init(&k, &def, g) == BDL_OK);
+    CHECK(bdl_coupling_locate(&k, g, &c.p) == BDL_OK);
+    bdl_coupling_voidage(&k, g, &c.p);
+    memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
+    unsigned seed = 5;
+    for (int a = 0; a < 3; ++a)
+        for (long i = 0; i < g->grid.size; ++i)
+            g->u[a][i] = uniform(&seed, -0.3, 0.3);
+    const double dt = 2e-4;
+    bdl_coupling_drag_setup(&k, g, &c.p, c.acc, NULL, dt);
+    CHECK(bdl_gas_step(g, dt) == BDL_OK);
+    bdl_coupling_forces(&k, g, &c.p, c.acc, dt, drag, NULL);
+    bdl_coupling_gas_drag(g, g->u, gas_total);
+    bdl_coupling_free(&k);
+    free_cloud(&c);
+    bdl_gas_destroy(g);
+}
+
+/// Sun's "averaged" drag (drag_velocity = mean): the gas feels what the particles feel, in sum;
+/// two particles at one place and of one size feel the same drag however they move (with their
+/// own velocities they do not); and when every particle moves alike it is the drag of their own
+/// velocities.
+static void test_mean_drag(void)
+{
+    bdl_vec3 own[402], mean[402];
+    double gas[3], sum[3] = {0, 0, 0}, scale = 0.0;
+    cloud_drag(1, 0, mean, gas);
+    for (long i = 0; i < 402; ++i)
+        for (int a = 0; a < 3; ++a) {
+            sum[a] += bdl_v3_comp(mean[i], a);
+            scale += fabs(bdl_v3_comp(mean[i], a));
+        }
+    double worst = 0.0;
+    for (int a = 0; a < 3; ++a)
+        worst = fmax(worst, fabs(sum[a] + gas[a]) / scale);
+    CHECK_MSG(worst < 1e-12, "mean drag: momentum exchange does not balance: %g", worst);
+    const double pair = bdl_v3_len(bdl_v3_sub(mean[400], mean[401])) / bdl_v3_len(mean[400]);
+    cloud_drag(0, 0, own, gas);
+    const double apart = bdl_v3_len(bdl_v3_sub(own[400], own[401])) / bdl_v3_len(own[400]);
+    CHECK(pair < 1e-12);
+    CHECK(apart > 0.1);
+    cloud_drag(1, 1, mean, gas);
+    cloud_drag(0, 1, own, gas);
+    double alike = 0.0;
+    for (long i = 0; i < 402; ++i)
+        alike = fmax(alike, bdl_v3_len(bdl_v3_sub(mean[i], own[i])) / bdl_v3_len(own[i]));
+    printf("mean drag: balance %.1e; two particles at one place %.1e apart (own velocities "
+           "%.2f); all alike: %.1e from the particles' own\n",
+           worst, pair, apart, alike);
+    CHECK(alike < 1e-12);
+}
+
 int main(void)
 {
     test_threads();
+    test_mean_drag();
     test_linear_interpolation();
     test_pressure_shares();
     test_conservation_and_balance(0, 1.0);

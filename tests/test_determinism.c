@@ -197,6 +197,14 @@ int main(void)
               steps);
     CHECK(counts[0] > 300); // pouring happened
     test_coupled();
+    { // Sun's "averaged" drag: the cells' mean solids velocity deposited and read back
+        char mean_text[4096];
+        snprintf(mean_text, sizeof mean_text,
+                 "%s[gas]\ncells = 20 20 30\nzmin = inlet\nzmax = outlet\ninlet_velocity = 0.8\n"
+                 "[coupling]\ndrag = beetstra\ndrag_velocity = mean\n",
+                 scene_text);
+        same_bits("coupled, mean drag", mean_text, 1200);
+    }
     CHECK(same_bits("vessel", vessel_text, 6000) > 0); // beads left through the bottom
     same_bits("sheared", sheared_text, 4000);
     same_bits("sheared rods", sheared_rods_text, 3000);

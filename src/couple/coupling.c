@@ -55,6 +55,11 @@ bdl_result bdl_coupling_init(bdl_coupling *c, const bdl_coupling_def *def, const
             return BDL_ERR_NOMEM;
         }
     }
+    for (int f = 0; f < 7 && def->mean_drag; ++f)
+        if (!(c->mean[f] = bdl_grid_alloc(&gas->grid))) {
+            bdl_coupling_free(c);
+            return BDL_ERR_NOMEM;
+        }
     const int *n = c->points;
     c->shape = n[0] == 2 && n[1] == 2 && n[2] == 2   ? BDL_KERNEL_TRILINEAR
                : n[0] == 2 && n[1] == 1 && n[2] == 2 ? BDL_KERNEL_FLAT_Y
@@ -70,6 +75,9 @@ void bdl_coupling_free(bdl_coupling *c)
     free(c->hi);
     for (int a = 0; a < 3; ++a)
         free(c->grad[a]);
+    for (int f = 0; f < 7; ++f)
+        free(c->mean[f]);
+    free(c->target);
     free(c->weight);
     free(c->factor);
     free(c->accel);
@@ -107,6 +115,7 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
         !bdl_grow((void **)&c->accel, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&c->drag, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)) ||
+        (c->def.mean_drag && !bdl_grow((void **)&c->target, cap, sizeof(bdl_vec3))) ||
         !bdl_grow((void **)&c->listed, cap, sizeof(int32_t)))
         return BDL_ERR_NOMEM;
     c->capacity = cap;
@@ -539,16 +548,61 @@ bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, lo
 typedef struct drag_deposit {
     const bdl_particles *p;
     const bdl_vec3 *accel, *moved;
+    const bdl_vec3 *mean; ///< the mean targets (def.mean_drag), else NULL
     double dt, cell_volume;
     int share; ///< deposit the pressure share's and the flux's sums too
 } drag_deposit;
 
-/// The velocity the drag pulls the gas towards at particle i: v + dt A.
+/// The velocity the drag pulls the gas towards at particle i: v + dt A (with mean_drag their
+/// mean around it).
 static void drag_target(const drag_deposit *d, long i, double target[3])
 {
+    if (d->mean) {
+        for (int a = 0; a < 3; ++a)
+            target[a] = bdl_v3_comp(d->mean[i], a);
+        return;
+    }
     for (int a = 0; a < 3; ++a)
         target[a] =
             bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
+}
+
+/// Particle i's solids volume, and that times its v and its A, on the cell centres (mean_drag).
+static void deposit_motion(const bdl_coupling *c, const void *ctx, long i, long shift,
+                           double *const *out)
+{
+    const drag_deposit *d = ctx;
+    const double v = bdl_particle_solids_volume(d->p, i) * point_share(c, i);
+    double t[6];
+    for (int a = 0; a < 3; ++a) {
+        t[a] = v * bdl_v3_comp(d->p->vel[i], a);
+        t[3 + a] = d->accel ? v * bdl_v3_comp(d->accel[i], a) : 0.0;
+    }
+    for (long pt = c->first[i]; pt < c->first[i + 1]; ++pt)
+        FOR_KERNEL(c, pt, {
+            out[0][idx - shift] += w * v;
+            for (int f = 0; f < 6; ++f)
+                out[1 + f][idx - shift] += w * t[f];
+        });
+}
+
+/// The cells' means of v and A weighted by solids volume (into c->mean[1..6]), and at every
+/// particle the mean drag target v + dt A read back into c->target (a cell a particle's kernel
+/// reaches holds some of its volume: no empty cell is read).
+static void mean_targets(bdl_coupling *c, const bdl_grid *g, const drag_deposit *d)
+{
+    bdl_coupling_deposit(c, g, d->p->count, 7, c->mean, deposit_motion, d);
+    for (long idx = 0; idx < g->size; ++idx)
+        for (int f = 1; f < 7; ++f)
+            c->mean[f][idx] = c->mean[0][idx] > 0.0 ? c->mean[f][idx] / c->mean[0][idx] : 0.0;
+    BDL_PARALLEL_FOR(
+        d->p->count >= c->parallel_min, for (long i = 0; i < d->p->count; ++i) {
+            double t[3];
+            for (int a = 0; a < 3; ++a)
+                t[a] = bdl_coupling_interpolate(c, i, c->mean[1 + a]) +
+                       d->dt * bdl_coupling_interpolate(c, i, c->mean[4 + a]);
+            c->target[i] = bdl_v3(t[0], t[1], t[2]);
+        });
 }
 
 /// Adds f[k] times the flux weights of kernel point pt across the faces normal to axis a to
@@ -636,11 +690,20 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
 {
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
+    const int mean = c->def.mean_drag && !gas->def.pressure_share;
+    const drag_deposit ctx = {
+        p, accel, moved, mean ? c->target : NULL, dt, vc, gas->def.pressure_share};
+    if (mean)
+        mean_targets(c, g, &ctx);
     BDL_PARALLEL_FOR(
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             double u[3];
             gas_velocity_at(c, gas, i, u);
-            const double v[3] = {p->vel[i].x, p->vel[i].y, p->vel[i].z};
+            const bdl_vec3 vi = mean ? bdl_v3(bdl_coupling_interpolate(c, i, c->mean[1]),
+                                              bdl_coupling_interpolate(c, i, c->mean[2]),
+                                              bdl_coupling_interpolate(c, i, c->mean[3]))
+                                     : p->vel[i];
+            const double v[3] = {vi.x, vi.y, vi.z};
             double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
                                (u[2] - v[2]) * (u[2] - v[2]));
             double eps = bdl_coupling_interpolate(c, i, gas->eps);
@@ -649,7 +712,6 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
             double D = K / density, m = density * bdl_particle_solids_volume(p, i);
             c->factor[i] = m * D / (1.0 + D * dt);
         });
-    const drag_deposit ctx = {p, accel, moved, dt, vc, gas->def.pressure_share};
     double *const out[BDL_COUPLING_FIELDS] = {
         gas->beta[0],   gas->beta[1],   gas->beta[2],   gas->bv[0],     gas->bv[1],
         gas->bv[2],     gas->share[0],  gas->share[1],  gas->share[2],  gas->flux_u[0],
@@ -701,6 +763,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_pa
                          const bdl_vec3 *accel, double dt, bdl_vec3 *drag, bdl_vec3 *pressure)
 {
     const bdl_grid *g = &gas->grid;
+    const int mean = c->def.mean_drag && !gas->def.pressure_share; // targets from the set-up
     if (pressure) // the cell-centred pressure gradient, into the coupling's scratch fields
         for (int k = 0; k < g->n[2]; ++k)
             for (int j = 0; j < g->n[1]; ++j)
@@ -716,8 +779,9 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_pa
                 double u[3], f[3];
                 gas_velocity_at(c, gas, i, u);
                 for (int a = 0; a < 3; ++a)
-                    f[a] = c->factor[i] * (u[a] - bdl_v3_comp(p->vel[i], a) -
-                                           dt * (accel ? bdl_v3_comp(accel[i], a) : 0.0));
+                    f[a] = mean ? c->factor[i] * (u[a] - bdl_v3_comp(c->target[i], a))
+                                : c->factor[i] * (u[a] - bdl_v3_comp(p->vel[i], a) -
+                                                  dt * (accel ? bdl_v3_comp(accel[i], a) : 0.0));
                 drag[i] = (bdl_vec3){f[0], f[1], f[2]};
             }
             if (pressure) {

@@ -66,6 +66,10 @@ typedef struct bdl_coupling_def {
     bdl_drag_params drag_params;
     double kernel_width; ///< tent half-width [m]; raised to one cell, lowered to four
     double max_solids;   ///< cap on the deposited solids fraction
+    /// The solids velocity the drag sees: 0 each particle's own; 1 the solids' mean around it
+    /// (Sun 2007 eqs. 7.33-7.34, the TF-DEM's "averaged" drag): every particle of a cell drawn by
+    /// the drag of the cell's mean solids velocity (bdl_coupling_drag_setup)
+    int mean_drag;
     /// Particles per deposit chunk: 0, one pass in particle order; else the particles in chunks
     /// of this many (of more when that makes over BDL_COUPLING_CHUNKS), each summed on its own
     /// (in parallel), the chunks' sums added cell by cell in chunk order (the same on any number
@@ -108,10 +112,12 @@ typedef struct bdl_coupling {
     double inv_reach[3]; ///< 1 / reach
     long parallel_min;   ///< per-particle loops go parallel from this many particles
     double *grad[3];     ///< scratch: cell-centred pressure gradient (padded grid fields)
+    double *mean[7];     ///< with def.mean_drag: the cells' solids volume, mean v and mean A
     // Per particle, for one coupling step:
     bdl_vec3 *accel;    ///< acceleration other than the drag over the last step [m/s^2]
     bdl_vec3 *drag;     ///< drag force for the coming step [N]
     bdl_vec3 *pressure; ///< pressure force for the coming step [N]
+    bdl_vec3 *target;   ///< with def.mean_drag: the mean v + dt A at the particle [m/s]
     int32_t *listed;    ///< scratch: the particles bdl_coupling_relocate locates
     // Scratch of bdl_coupling_sort:
     long order_capacity;  ///< particles
@@ -191,7 +197,12 @@ bdl_vec3 bdl_coupling_gas_velocity(const bdl_coupling *c, const bdl_gas *gas, lo
 void bdl_coupling_voidage(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p);
 
 /// Drag coefficients for a macro step of length dt: fills gas->beta and gas->bv. `accel`: each
-/// particle's acceleration other than drag (NULL: none). A gas with a pressure share (the
+/// particle's acceleration other than drag (NULL: none). With def.mean_drag each particle's
+/// velocity v and acceleration A are replaced, in the slip |u - v| and in the drag's v + dt A,
+/// by their solids-volume-weighted means over the cells (deposited and read back with the
+/// kernel), so
+/// that all the particles of a cell feel the drag of its mean solids velocity (per unit volume)
+/// and the gas the same in sum (parcels: not with mean_drag). A gas with a pressure share (the
 /// parcels' implicit scheme) gets it too: gas->share = 1 - C_pr on the faces, C_pr = sum W V /
 /// (1 + D dt) / V_cell, the part of the particles' volume the drag does not tie to the gas; and
 /// the particles' volume flux still to come (gas->flux_u, flux_p, flux_0): the particles moved

@@ -254,6 +254,7 @@ typedef struct bdl_coupling_scene {
     double kernel_width; ///< half-width of the deposition kernel [m]; 0: 1.5 cells
     double max_solids;   ///< cap on the deposited solids fraction
     double syamlal_c, syamlal_d;
+    int drag_velocity; ///< 0 each particle's own velocity, 1 the solids' mean (Sun's "averaged")
 } bdl_coupling_scene;
 
 /// How frames and the viewer draw a parcel ([parcels] display).

@@ -69,6 +69,7 @@ const char *const bdl_gas_field_names[] = {BDL_GAS_FIELDS(BDL_X_WORD) NULL};
 const char *const bdl_gas_field_labels[] = {BDL_GAS_FIELDS(BDL_X_LABEL) NULL};
 const char *const bdl_gas_field_units[] = {BDL_GAS_FIELDS(BDL_X_UNIT) NULL};
 static const char *const axis_names[] = {"x", "y", "z", NULL};
+static const char *const drag_velocity_names[] = {"particle", "mean", NULL};
 static const char *const dia_kind_names[] = {"dia", NULL};
 BDL_CHOICE_WORDS(bdl_dia_projection, BDL_DIA_PROJECTIONS);
 BDL_CHOICE_WORDS(bdl_dia_lighting, BDL_DIA_LIGHTINGS);
@@ -706,6 +707,12 @@ const bdl_scene_key bdl_scene_keys[] = {
             "at most four"},
     {S(COUPLING), "max_solids", NUM, "-", IN_COUPLING(max_solids), .def = {0.7}, GT(0), LT(1),
      .doc = "cap on the solids fraction deposited in a cell"},
+    {S(COUPLING), "drag_velocity", .type = BDL_KEY_ENUM, "-", IN_COUPLING(drag_velocity),
+     .def = {0}, .enum_names = drag_velocity_names, .default_text = "particle",
+     .doc = "the solids velocity in the drag: particle (each particle's own; Sun 2007's "
+            "'instantaneous' TF-DEM method) or mean (the solids' volume-weighted mean over the "
+            "cells around the particle, read with the kernel: every particle of a cell drawn by "
+            "the cell's mean drag, Sun's 'averaged' method, eqs. 7.33-7.34; not for parcels)"},
     {S(COUPLING), "syamlal_c", NUM, "-", IN_COUPLING(syamlal_c), .def = {0.8}, GT(0),
      .doc = "Syamlal-O'Brien C (Sun 2007, table 4.3: 0.8, 0.7, 0.64)"},
     {S(COUPLING), "syamlal_d", NUM, "-", IN_COUPLING(syamlal_d), .def = {2.65}, GT(0),

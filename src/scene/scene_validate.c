@@ -620,6 +620,12 @@ static void check_parcels(bdl_scene_parser *p)
         fail_at_key(p, camera, "color", 0,
                     "parcels have no contacts, so no coordination number; colour them by solids "
                     "(the solids fraction), speed, vx, vy, vz, voidage or species");
+    else if (scene->coupling.drag_velocity != 0)
+        for (int i = 0; i < p->section_count; ++i)
+            if (p->sections[i].kind == BDL_SECTION_COUPLING)
+                fail_at_key(p, &p->sections[i], "drag_velocity", 0,
+                            "a parcel's drag is implicit in its own velocity: parcels take "
+                            "drag_velocity = particle");
 }
 
 /// The [solids] section, if the scene uses it.

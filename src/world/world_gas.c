@@ -72,6 +72,7 @@ static bdl_coupling_def coupling_def(const bdl_world *w)
     if (w->scene.parcels.enabled) // parcels deposit in chunks, in parallel
         d.chunk = BDL_COUPLING_CHUNK;
     d.max_solids = cs->max_solids;
+    d.mean_drag = cs->drag_velocity;
     if (w->scene.solids.enabled) // the packing the gas's expected step flows through
         d.max_solids = w->scene.solids.def.eps_star;
     return d;
