@@ -241,8 +241,78 @@ static void test_bubbling_bed(double dt, double seconds)
     column_destroy(&c);
 }
 
+/// A vertical channel 2 cm wide (10 cells), periodic along z, walls at x = 0 and 2 cm free-slip
+/// to the gas, the solids at 0.3 falling under gravity (2.49 mm glass, Stokes drag, dt 5e-4 s)
+/// for `seconds`: the wall-side cells' solids velocity and temperature, and the wall's shear
+/// stress on the solids per unit wall area (both walls), against the mixture's weight over the
+/// channel's width.
+static double channel(double specularity, double seconds, double *v_mid, double *v_wall,
+                      double *weight)
+{
+    bdl_gas_def g = bdl_default_gas_def();
+    g.n[0] = 10, g.n[1] = 1, g.n[2] = 4;
+    g.hi[0] = 0.02, g.hi[1] = 0.0025, g.hi[2] = 0.04;
+    g.gravity[2] = -9.81;
+    g.pressure_share = 1;
+    g.tolerance = 1e-12;
+    g.max_iterations = 1000;
+    g.side[0].type = g.side[1].type = BDL_SIDE_SLIP;
+    g.side[2].type = g.side[3].type = g.side[4].type = g.side[5].type = BDL_SIDE_PERIODIC;
+    bdl_gas *gas;
+    bdl_solids *s;
+    CHECK(bdl_gas_create(&g, &gas) == BDL_OK);
+    bdl_solids_def d = bdl_default_solids_def();
+    d.specularity = specularity;
+    d.drag = BDL_DRAG_STOKES;
+    CHECK(bdl_solids_create(&d, gas, &s) == BDL_OK);
+    const bdl_grid *gr = &s->grid;
+    for (long i = 0; i < gr->size; ++i)
+        s->eps[i] = 0.3, s->phase[0].theta[i] = 0.01;
+    bdl_solids_share_voidage(s, gas);
+    for (int n = 0; n < (int)(seconds / 5e-4 + 0.5); ++n)
+        CHECK(bdl_solids_step(s, gas, 5e-4) == BDL_OK);
+    double stress = 0.0; // the faces of v_z beside the walls, C v, averaged along z
+    const bdl_solids_phase *p = &s->phase[0];
+    for (int k = 0; k < gr->n[2]; ++k)
+        for (int side = 0; side < 2; ++side) {
+            const long idx = bdl_grid_index(gr, side ? gr->n[0] - 1 : 0, 0, k);
+            stress -= 0.5 * (p->wall[idx] + p->wall[idx - gr->stride[2]]) * p->v[2][idx];
+        }
+    *v_mid = bdl_solids_cell_velocity(s, 0, 2, 5, 0, 1);
+    *v_wall = bdl_solids_cell_velocity(s, 0, 2, 0, 0, 1);
+    *weight = (d.density * 0.3 + gas->def.density * 0.7) * 9.81 * 0.02;
+    stress /= gr->n[2];
+    bdl_solids_destroy(s);
+    bdl_gas_destroy(gas);
+    return stress;
+}
+
+/// Johnson & Jackson's partial slip: in the steady fall down a vertical channel the walls carry
+/// the mixture's whole weight (the gas's walls are free-slip), the slip at the wall about
+/// inversely proportional to the specularity; free-slip walls let the solids accelerate.
+static void test_johnson_jackson(void)
+{
+    double v_mid[3], v_wall[3], weight;
+    const double stress = channel(0.5, 12.0, &v_mid[0], &v_wall[0], &weight);
+    const double later = channel(0.5, 14.0, &v_mid[1], &v_wall[1], &weight);
+    channel(0.2, 14.0, &v_mid[2], &v_wall[2], &weight);
+    double free_mid, free_wall, w;
+    channel(0.0, 4.0, &free_mid, &free_wall, &w);
+    printf("Johnson & Jackson channel: wall stress %.4f Pa against the weight %.4f Pa (%.1e), "
+           "steady to %.1e; centre %.4f, wall %.4f m/s at phi' 0.5, %.4f and %.4f at 0.2 (slip "
+           "ratio %.3f); free slip: %.2f m/s after 4 s\n",
+           stress, weight, stress / weight - 1.0, fabs(later / stress - 1.0), v_mid[1], v_wall[1],
+           v_mid[2], v_wall[2], v_wall[2] / v_wall[1], free_mid);
+    CHECK(fabs(stress / weight - 1.0) < 1e-3);
+    CHECK(fabs(later / stress - 1.0) < 1e-4);
+    CHECK(fabs(v_wall[2] / v_wall[1] / 2.5 - 1.0) < 0.05);
+    CHECK(v_mid[2] < v_mid[1]); // less friction, faster (the velocities point down)
+    CHECK(free_mid < -20.0);    // 4 s of fall (39 m/s free) less the gas's drag: no steady state
+}
+
 int main(void)
 {
+    test_johnson_jackson();
     test_dilute_slip();
     test_packed_bed();
     test_fluidised();

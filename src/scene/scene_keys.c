@@ -802,6 +802,10 @@ const bdl_scene_key bdl_scene_keys[] = {
             "start filled"},
     {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),
      .doc = "their solids fraction (the default: Sun's eps_mf 0.417, table 5.2)"},
+    {S(SOLIDS), "specularity", NUM, "-", IN_SOLIDS(def.specularity), .def = {0}, GE(0), LE(1),
+     .doc = "Johnson & Jackson's specularity coefficient phi' of the walls: their shear stress on "
+            "the solids pi sqrt(3) phi' rho eps g0 sqrt(theta) v / (6 plastic_fraction) (Sun "
+            "2007, ch. 5; the thesis gives no value); 0 = free slip"},
     {S(SOLIDS), "phase_friction", NUM, "-", IN_SOLIDS(def.phase_friction), .def = {0}, GE(0),
      LE(10),
      .doc = "with [phase NAME] sections: C_f, the friction coefficient of Syamlal's drag between "

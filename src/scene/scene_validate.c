@@ -639,6 +639,17 @@ static bdl_scene_section *solids_section(bdl_scene_parser *p)
 
 /// A scene with a solids phase on the grid: a gas, no particles or walls (the domain's sides
 /// bound the phase), gravity along -z, a bed height inside the domain, and the step in [run] dt.
+/// The first wall that is not the container's vibration (with a solids phase only that one may
+/// be given: its motion is the container's), or -1.
+static int bounding_wall(const bdl_scene *scene)
+{
+    for (int k = 0; k < scene->wall_count; ++k)
+        if (scene->walls[k].motion != BDL_MOTION_VIBRATE ||
+            scene->walls[k].frame != BDL_FRAME_CONTAINER)
+            return k;
+    return -1;
+}
+
 /// The i-th [phase NAME] section.
 static bdl_scene_section *phase_section(bdl_scene_parser *p, int i)
 {
@@ -707,10 +718,12 @@ static void check_solids(bdl_scene_parser *p)
         bdl_scene_fail(p, &(bdl_scene_where){.line = scene->line.species[0], .title = "species"},
                        "a scene with [solids] holds no particles (the hybrid of a solids phase "
                        "and particles is not built yet): remove the [species] sections");
-    else if (scene->wall_count > 0)
-        bdl_scene_fail(p, &(bdl_scene_where){.line = scene->line.walls[0], .title = "wall"},
-                       "[wall] sections bound particles; a solids phase is bounded by the "
-                       "domain's sides: remove the wall");
+    else if (bounding_wall(scene) >= 0)
+        bdl_scene_fail(
+            p, &(bdl_scene_where){.line = scene->line.walls[bounding_wall(scene)], .title = "wall"},
+            "[wall] sections bound particles; a solids phase is bounded by the domain's sides: "
+            "remove the wall (a wall with motion = vibrate and frame = container may stay: it "
+            "shakes the container)");
     else if (!(scene->solids.bed_height > 0.0) || scene->solids.bed_height > height) {
         snprintf(what, sizeof what, "%s; allowed: > 0 and <= the domain's height, %g (m)",
                  given(s, key_of(s, "bed_height")) ? "out of range" : "missing required key",

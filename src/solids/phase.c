@@ -36,7 +36,8 @@ static int valid_def(const bdl_solids_def *d)
            d->eps_star > 0.0 && d->eps_star < 1.0 && d->schaeffer_a > 0.0 && d->schaeffer_n > 0.0 &&
            d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
-           d->phase_friction >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
+           d->phase_friction >= 0.0 && d->specularity >= 0.0 && d->specularity <= 1.0 &&
+           (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
 }
 
 /// The face arrays of a phase and its cell arrays; 0 when out of memory.
@@ -44,7 +45,8 @@ static int phase_alloc(const bdl_grid *gr, bdl_solids_phase *p, int mixture)
 {
     int ok = (p->eps = bdl_grid_alloc(gr)) && (p->theta = bdl_grid_alloc(gr)) &&
              (p->pressure = bdl_grid_alloc(gr)) && (p->mu = bdl_grid_alloc(gr)) &&
-             (p->slip = bdl_grid_alloc(gr)) && (!mixture || (p->star = bdl_grid_alloc(gr)));
+             (p->slip = bdl_grid_alloc(gr)) && (p->wall = bdl_grid_alloc(gr)) &&
+             (!mixture || (p->star = bdl_grid_alloc(gr)));
     for (int a = 0; a < 3; ++a)
         ok =
             ok && (p->v[a] = bdl_grid_alloc(gr)) && (p->a[a] = bdl_grid_alloc(gr)) &&
@@ -61,6 +63,7 @@ static void phase_free(bdl_solids_phase *p)
     free(p->pressure);
     free(p->mu);
     free(p->slip);
+    free(p->wall);
     free(p->star);
     for (int a = 0; a < 3; ++a) {
         free(p->v[a]);
@@ -308,9 +311,9 @@ static void strain_rate(const bdl_grid *gr, const bdl_solids_phase *p, long idx,
 /// from cell to cell with the local strain rate within a step, which on fine grids grew into a
 /// checkerboard of pressures that diverged. A phase of a mixture takes Lebowitz's g0_mm (g0 > 0)
 /// and balances its own collisions only.
-static void viscous_regime(const bdl_solids_def *d, double eps, double g0, double trace,
-                           double ddot, double theta_old, double dt, double *theta, double *p,
-                           double *mu)
+static double viscous_regime(const bdl_solids_def *d, double eps, double g0, double trace,
+                             double ddot, double theta_old, double dt, double *theta, double *p,
+                             double *mu)
 {
     const bdl_ktgf_coefficients c =
         g0 > 0.0 ? bdl_ktgf_syamlal_g0(eps, g0, d->diameter, d->density, d->restitution)
@@ -318,6 +321,16 @@ static void viscous_regime(const bdl_solids_def *d, double eps, double g0, doubl
     *theta = bdl_ktgf_temperature_step(&c, eps, d->density, trace, ddot, theta_old, dt);
     *p = c.k1 * eps * eps * *theta;
     *mu = c.k3 * eps * sqrt(*theta);
+    return c.g0;
+}
+
+/// Johnson & Jackson's (1987) wall friction coefficient: the wall's shear stress on the solids is
+/// -C v_slip, C = pi sqrt(3) phi' rho eps g0 sqrt(theta) / (6 eps_max), with eps_max the
+/// plastic regime's fraction (MFIX's 1 - ep_star).
+static double wall_coefficient(const bdl_solids_def *d, double eps, double g0, double theta)
+{
+    return PI * sqrt(3.0) * d->specularity * d->density * eps * g0 * sqrt(theta) /
+           (6.0 * d->eps_star);
 }
 
 /// The cell's phase fractions and diameters, for Lebowitz's g0.
@@ -339,7 +352,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
     double pmax = s->stats.pressure_max;
     FOR_CELLS(gr, {
         const double eps = ph->eps[idx], total = s->eps[idx];
-        double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, slip2 = 0.0;
+        double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, slip2 = 0.0, wall = 0.0;
         strain_rate(gr, ph, idx, D);
         const double trace = D[0][0] + D[1][1] + D[2][2];
         double ddot = 0.0, i2d = 0.0;
@@ -362,7 +375,8 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
                 cell_mixture(s, idx, e, dm);
                 g0 = bdl_g0_lebowitz(e, dm, s->count, m, m);
             }
-            viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, &theta, &p, &mu);
+            g0 = viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, &theta, &p, &mu);
+            wall = wall_coefficient(d, eps, g0, theta);
             pmax = fmax(pmax, p);
         }
         for (int a = 0; a < 3; ++a) {
@@ -374,6 +388,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
         ph->pressure[idx] = p;
         ph->mu[idx] = mu;
         ph->slip[idx] = sqrt(slip2);
+        ph->wall[idx] = wall;
     });
     bdl_grid_extend_cells(gr, ph->pressure);
     bdl_grid_extend_cells(gr, ph->mu);
@@ -450,9 +465,12 @@ static face_terms transport(const bdl_grid *gr, const bdl_solids_phase *p, int a
     return t;
 }
 
-/// -div(mu grad v_a) at the a-face idx: mu from the cells beside a face of the same axis, the
-/// mean of the four cells around an edge otherwise.
-static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, long idx)
+/// -div(mu grad v_a) at the a-face idx (at: its cell's indices): mu from the cells beside a face
+/// of the same axis, the mean of the four cells around an edge otherwise. Beside a wall along b
+/// != a, with a specularity, Johnson & Jackson's partial slip replaces the viscous flux through
+/// the wall: the stress -C v_a, C the mean of the face's two cells' coefficients, over h_b.
+static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, long idx,
+                          const int at[3])
 {
     const double *v = p->v[a], *mu = p->mu;
     const long sa = gr->stride[a];
@@ -461,6 +479,19 @@ static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, 
         if (gr->n[b] == 1)
             continue;
         const long sb = gr->stride[b];
+        const int low = at[b] == 0, high = at[b] == gr->n[b] - 1;
+        if (b != a && p->def.specularity > 0.0 && !gr->periodic[b] && (low || high)) {
+            const double C = 0.5 * (p->wall[idx] + p->wall[idx - sa]), h2 = gr->h[b] * gr->h[b];
+            double m_in = 0.25 * (mu[idx] + mu[idx - sa]), v_in;
+            m_in += low ? 0.25 * (mu[idx + sb] + mu[idx + sb - sa])
+                        : 0.25 * (mu[idx - sb] + mu[idx - sb - sa]);
+            v_in = low ? v[idx + sb] : v[idx - sb];
+            if (low && high) // one cell between two walls
+                m_in = 0.0, v_in = 0.0, t.diag += C / gr->h[b];
+            t.diag += m_in / h2 + C / gr->h[b];
+            t.nb += m_in * v_in / h2;
+            continue;
+        }
         double mhi, mlo;
         if (b == a) {
             mhi = mu[idx], mlo = mu[idx - sa];
@@ -511,7 +542,8 @@ static void momentum(bdl_solids *s, int m, bdl_gas *gas, int a, double dt)
         // with the transport and the viscous term point-implicit.
         double A = rho / dt + kd, B = rho * p->v[a][idx] / dt + rho * gas->def.gravity[a];
         if (es > d->dilute) {
-            const face_terms conv = transport(gr, p, a, idx), visc = viscous(gr, p, a, idx);
+            const int at[3] = {i, j, k};
+            const face_terms conv = transport(gr, p, a, idx), visc = viscous(gr, p, a, idx, at);
             A += (rho * conv.diag + visc.diag) / es;
             B += (rho * conv.nb + visc.nb - (p->pressure[idx] - p->pressure[idx - sa]) / gr->h[a]) /
                  es;

@@ -54,6 +54,7 @@ typedef struct bdl_solids_def {
     double tolerance;      ///< relative residual of the plastic correction's solver
     int max_iterations;    ///< its iteration limit
     double phase_friction; ///< C_f of the drag between solids phases (Sun eq. 3.18)
+    double specularity;    ///< Johnson & Jackson's phi' of the walls (0: free slip)
 } bdl_solids_def;
 
 /// Glass beads of 2.49 mm (Goldschmidt's large particles, Sun 2007 table 5.1), e 0.97,
@@ -87,6 +88,7 @@ typedef struct bdl_solids_phase {
     double *pressure; ///< solids pressure in the cells [Pa]
     double *mu;       ///< solids shear viscosity in the cells [Pa s]
     double *slip;     ///< |u - v| in the cells [m/s]
+    double *wall; ///< Johnson & Jackson's wall friction coefficient of the cells [kg/(m^2 s)]
     /// Per face: A, B, k and eps_up of the momentum step (with several phases A, B and k after
     /// the phases' coupling: v = (B + k u - G) / A still), the solids' flux, the gas's drag.
     double *a[3], *b[3], *k[3], *up[3], *flux[3], *drag[3];
