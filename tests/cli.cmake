@@ -228,6 +228,12 @@ bdl_cli_expect(cli_tfm_phases_one 2 "tfm_one_phase.ini:[0-9]+: \\[phase\\]: one 
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_one_phase.ini)
 bdl_cli_expect(cli_tfm_phases_missing 2 "\\[phase small\\] fraction: missing required key; allowed: \\(0, 0.6\\]"
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_phase_no_fraction.ini)
+bdl_cli_expect(cli_tfm_phases_layers 2
+  "\\[phase large\\] fraction = 0.58: out of range: the phases' fractions add up to 0.87167 at 0.05 m"
+  check ${TFM2} --set phase.small.bed_top=0.1 --set phase.large.bed_bottom=0.05 --set phase.large.fraction=0.58)
+bdl_cli_expect(cli_tfm_phases_top 2
+  "\\[phase small\\] bed_top = 0.5: out of range: the phase's layer runs from 0 to 0.5 m"
+  check ${TFM2} --set phase.small.bed_top=0.5)
 bdl_cli_expect(cli_parcels_mean_drag 2
   "\\[coupling\\] drag_velocity = mean: a parcel's drag is implicit in its own velocity"
   check ${PROJECT_SOURCE_DIR}/scenes/parcels_bubbling_bed.ini --set coupling.drag_velocity=mean)

@@ -141,10 +141,11 @@ static void print_modules(const bdl_world *w)
     printf("  periodic axes: %s%s%s%s\n", s->periodic[0] ? "x " : "", s->periodic[1] ? "y " : "",
            s->periodic[2] ? "z " : "",
            s->periodic[0] || s->periodic[1] || s->periodic[2] ? "" : "none");
-    if (w->solids)
-        printf("solids at start: %.4g m^3, a bed %g m tall at a solids fraction of %g\n",
-               bdl_solids_volume(w->solids, -1), s->solids.bed_height, s->solids.fraction);
-    else
+    if (w->solids) {
+        char bed[512];
+        bdl_world_solids_bed(w, bed, sizeof bed);
+        printf("solids at start: %.4g m^3, %s\n", bdl_solids_volume(w->solids, -1), bed);
+    } else
         printf("%s at start: %ld (species: %d)\n", w->parcels ? "parcels" : "particles",
                w->particles.count, s->species_count);
     print_warnings(w);

@@ -158,9 +158,10 @@ static void log_solids(const bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
     log_domain(s);
-    bdl_info("solids: %.4g m^3 (a bed %g m tall at a solids fraction of %g), restitution %.4g",
-             bdl_solids_volume(w->solids, -1), s->solids.bed_height, s->solids.fraction,
-             w->solids->def.restitution);
+    char bed[512];
+    bdl_world_solids_bed(w, bed, sizeof bed);
+    bdl_info("solids: %.4g m^3 (%s), restitution %.4g%s", bdl_solids_volume(w->solids, -1), bed,
+             w->solids->def.restitution, w->solids->count > 1 ? " (the first phase's)" : "");
     const double stable =
         bdl_world_expected_gas_dt(w, fmax(s->gas.inlet_velocity, s->gas.jet_velocity));
     bdl_info("dt = %g s, the gas's expected stable step %g s (dt = %.3g of it; refused above twice "

@@ -280,6 +280,7 @@ typedef struct bdl_phase_scene {
     double friction;                       ///< particle friction for Jenkins & Zhang's e_eff
     double tangential_restitution;         ///< beta0 of Jenkins & Zhang
     double fraction;                       ///< its solids fraction in the bed at the start
+    double bed_bottom, bed_top; ///< the cells it fills [m] (bed_top 0: [solids] bed_height)
 } bdl_phase_scene;
 
 typedef struct bdl_solids_scene {

@@ -825,8 +825,15 @@ const bdl_scene_key bdl_scene_keys[] = {
      GE(0), LE(1), .doc = "beta0 of Jenkins & Zhang's effective restitution"},
     {S(PHASE), "fraction", NUM, "-", IN_PHASE(fraction), .def = {0}, GT(0), LE(0.6),
      .required = BDL_REQUIRED_ALWAYS,
-     .doc = "the phase's solids fraction in the bed's cells at the start (the phases' sum at "
-            "most 0.6)"},
+     .doc = "the phase's solids fraction in its cells at the start (where phases overlap, their "
+            "sum at most 0.6)"},
+    {S(PHASE), "bed_bottom", NUM, "m", IN_PHASE(bed_bottom), .def = {0}, GE(0),
+     .doc = "the cells whose centres lie at or above this height (and below bed_top) start "
+            "filled with the phase"},
+    {S(PHASE), "bed_top", NUM, "m", IN_PHASE(bed_top), .def = {0}, GE(0),
+     .default_text = "[solids] bed_height",
+     .doc = "the cells whose centres lie below this height (at or above bed_bottom) start "
+            "filled with the phase; above bed_bottom and within the domain's height"},
 
     // [guards]
     {S(GUARDS), "max_overlap", NUM, "-", IN_SCENE(guards.max_overlap), .def = {0.25}, GT(0), LE(1),

@@ -659,8 +659,10 @@ static bdl_scene_section *phase_section(bdl_scene_parser *p, int i)
     return NULL;
 }
 
+static void check_phase_layers(bdl_scene_parser *p, const bdl_solids_scene *so);
+
 /// A mixture's [phase NAME] sections: two or more, their particles not also in [solids], their
-/// fractions' sum at most 0.6.
+/// layers' fractions at most 0.6 where they overlap.
 static void check_phases(bdl_scene_parser *p, bdl_scene_section *s)
 {
     const bdl_solids_scene *so = &p->scene->solids;
@@ -682,15 +684,51 @@ static void check_phases(bdl_scene_parser *p, bdl_scene_section *s)
                         "remove the key here");
             return;
         }
-    double sum = 0.0;
-    for (int i = 0; i < so->phase_count; ++i)
-        sum += so->phases[i].fraction;
-    if (sum > 0.6 + 1e-12) {
-        char what[160];
-        snprintf(what, sizeof what,
-                 "out of range: the phases' fractions add up to %g; allowed: a sum <= 0.6", sum);
-        fail_at_key(p, phase_section(p, so->phase_count - 1), "fraction", 0, what);
+    check_phase_layers(p, so);
+}
+
+/// Each phase's layer [bed_bottom, bed_top) inside the domain and not empty; where layers
+/// overlap, their fractions' sum at most 0.6 (checked between every two of their ends).
+static void check_phase_layers(bdl_scene_parser *p, const bdl_solids_scene *so)
+{
+    const double height = p->scene->domain_max.z - p->scene->domain_min.z;
+    double ends[2 * BDL_SOLIDS_PHASES];
+    int n = 0;
+    char what[200];
+    for (int i = 0; i < so->phase_count; ++i) {
+        const bdl_phase_scene *ph = &so->phases[i];
+        const double top = ph->bed_top > 0.0 ? ph->bed_top : so->bed_height;
+        if (!(top > ph->bed_bottom) || top > height) {
+            snprintf(what, sizeof what,
+                     "out of range: the phase's layer runs from %g to %g m; allowed: above "
+                     "bed_bottom and <= the domain's height, %g (m)",
+                     ph->bed_bottom, top, height);
+            fail_at_key(p, phase_section(p, i), ph->bed_top > 0.0 ? "bed_top" : "bed_bottom", 0,
+                        what);
+            return;
+        }
+        ends[n++] = ph->bed_bottom, ends[n++] = top;
     }
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            const double mid = 0.5 * (ends[a] + ends[b]);
+            double sum = 0.0;
+            int last = -1;
+            for (int i = 0; i < so->phase_count; ++i) {
+                const bdl_phase_scene *ph = &so->phases[i];
+                const double top = ph->bed_top > 0.0 ? ph->bed_top : so->bed_height;
+                if (mid >= ph->bed_bottom && mid < top)
+                    sum += ph->fraction, last = i;
+            }
+            if (sum > 0.6 + 1e-12) {
+                snprintf(what, sizeof what,
+                         "out of range: the phases' fractions add up to %g at %g m; allowed: a "
+                         "sum <= 0.6",
+                         sum, mid);
+                fail_at_key(p, phase_section(p, last), "fraction", 0, what);
+                return;
+            }
+        }
 }
 
 static void check_solids(bdl_scene_parser *p)

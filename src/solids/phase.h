@@ -88,7 +88,7 @@ typedef struct bdl_solids_phase {
     double *pressure; ///< solids pressure in the cells [Pa]
     double *mu;       ///< solids shear viscosity in the cells [Pa s]
     double *slip;     ///< |u - v| in the cells [m/s]
-    double *wall; ///< Johnson & Jackson's wall friction coefficient of the cells [kg/(m^2 s)]
+    double *wall;     ///< Johnson & Jackson's wall friction coefficient of the cells [kg/(m^2 s)]
     /// Per face: A, B, k and eps_up of the momentum step (with several phases A, B and k after
     /// the phases' coupling: v = (B + k u - G) / A still), the solids' flux, the gas's drag.
     double *a[3], *b[3], *k[3], *up[3], *flux[3], *drag[3];

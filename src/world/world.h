@@ -177,6 +177,10 @@ void bdl_world_solids_free(bdl_world *world);
 /// One step of a world with a solids phase (bdl_world_step calls it).
 bdl_result bdl_world_solids_step(bdl_world *world);
 
+/// The solids' bed at the start, for logs: "a bed 0.15 m tall at a solids fraction of 0.583", or
+/// each phase's fraction and layer.
+void bdl_world_solids_bed(const bdl_world *world, char *buf, size_t size);
+
 /// One line on the solids phase and its parameters, for logs.
 void bdl_world_solids_describe(const bdl_world *world, char *buf, size_t size);
 

@@ -45,12 +45,17 @@ static void fill_bed(bdl_world *w)
     const bdl_grid *gr = &s->grid;
     const bdl_solids_scene *so = &w->scene.solids;
     for (int m = 0; m < s->count; ++m) {
-        const double fraction = so->phase_count ? so->phases[m].fraction : so->fraction;
+        const bdl_phase_scene *ph = so->phase_count ? &so->phases[m] : NULL;
+        const double fraction = ph ? ph->fraction : so->fraction;
+        const double bottom = ph ? ph->bed_bottom : 0.0;
+        const double top = ph && ph->bed_top > 0.0 ? ph->bed_top : so->bed_height;
         for (int k = 0; k < gr->n[2]; ++k)
             for (int j = 0; j < gr->n[1]; ++j)
-                for (int i = 0; i < gr->n[0]; ++i)
-                    if ((k + 0.5) * gr->h[2] < so->bed_height)
+                for (int i = 0; i < gr->n[0]; ++i) {
+                    const double z = (k + 0.5) * gr->h[2];
+                    if (z >= bottom && z < top)
                         s->phase[m].eps[bdl_grid_index(gr, i, j, k)] = fraction;
+                }
     }
     bdl_solids_share_voidage(s, w->gas);
 }
@@ -78,10 +83,9 @@ bdl_result bdl_world_solids_init(bdl_world *w, bdl_scene_error *err)
     w->gas_fixed = 1;
     w->gas_every = w->gas_every_max = 1;
     w->gas_next = 0;
-    double filled = 0.0; // the bed's fraction
-    for (int m = 0; m < count; ++m)
-        filled += w->scene.solids.phase_count ? w->scene.solids.phases[m].fraction
-                                              : w->scene.solids.fraction;
+    double filled = 0.0; // the bed's largest fraction
+    for (long i = 0; i < w->solids->grid.size; ++i)
+        filled = fmax(filled, w->solids->eps[i]);
     w->max_solids = w->solids->stats.eps_max = filled;
     w->gas_stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
     w->budget.dt = w->dt;
@@ -122,6 +126,23 @@ bdl_result bdl_world_solids_step(bdl_world *w)
     w->step++;
     w->time += w->dt;
     return BDL_OK;
+}
+
+void bdl_world_solids_bed(const bdl_world *w, char *buf, size_t size)
+{
+    const bdl_solids_scene *so = &w->scene.solids;
+    if (so->phase_count == 0) {
+        snprintf(buf, size, "a bed %g m tall at a solids fraction of %g", so->bed_height,
+                 so->fraction);
+        return;
+    }
+    size_t at = (size_t)snprintf(buf, size, "phases:");
+    for (int m = 0; m < so->phase_count && at < size; ++m) {
+        const bdl_phase_scene *ph = &so->phases[m];
+        at += (size_t)snprintf(buf + at, size - at, "%s %s at %g from %g to %g m", m ? "," : "",
+                               ph->name, ph->fraction, ph->bed_bottom,
+                               ph->bed_top > 0.0 ? ph->bed_top : so->bed_height);
+    }
 }
 
 void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
