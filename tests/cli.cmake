@@ -59,7 +59,15 @@ add_test(NAME cli_resume_tfm_binary COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_F
   -DSCENE=${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_binary.ini
   -DWORK=${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary
   -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/resume_cli.cmake)
-set_tests_properties(cli_resume_tfm_binary PROPERTIES LABELS cli TIMEOUT 600)
+set_tests_properties(cli_resume_tfm_binary PROPERTIES LABELS cli TIMEOUT 600
+  FIXTURES_SETUP tfm_binary_checkpoint)
+# The mixture's checkpoint refused with a phase's diameter changed.
+bdl_cli_expect(cli_resume_tfm_phase_changed 2
+  "does not match the scene: solids phase 1: diameter 0.00152 m in the checkpoint, 0.002 m in the scene"
+  run ${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_binary.ini --steps 10 --quiet
+  --out ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/changed
+  --resume ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/split --set phase.small.diameter=0.002)
+set_tests_properties(cli_resume_tfm_phase_changed PROPERTIES FIXTURES_REQUIRED tfm_binary_checkpoint)
 
 add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.sh $<TARGET_FILE:bedlam>
   ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)

@@ -139,10 +139,10 @@ typedef struct layout {
 static layout layout_of(const blob *b, long gas_cells)
 {
     layout L = {0};
-    int32_t head[10];
+    int32_t head[11]; // the scene record's counts (the last: solids phases, 24 bytes each)
     memcpy(head, b->data + 32, sizeof head);
-    size_t off = 32 + 40 + 24 + (size_t)head[0] * 120 + (size_t)head[1] * 68 +
-                 (size_t)head[3] * 56 + (size_t)head[2] * 4;
+    size_t off = 32 + 44 + 24 + (size_t)head[0] * 120 + (size_t)head[1] * 68 +
+                 (size_t)head[3] * 56 + (size_t)head[2] * 4 + (size_t)head[10] * 24;
     L.dt = off, L.time = off + 8, L.rng = off + 24, L.poured = off + 56;
     off += 8 + 8 + 8 + 32 + 16 * 8 + 33 * 8 + 4 * 8 + 3 * 8;
     L.counts = off;

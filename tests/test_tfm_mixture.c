@@ -8,7 +8,7 @@
 
 #include "check.h"
 #include "solids/kinetic.h"
-#include "solids/phase.h"
+#include "tfm_column.h"
 
 /// Syamlal's drag per unit fraction of each phase (Sun eq. 3.18) at values worked by hand:
 /// e 0.9, no friction, g0 2, 1 and 2 mm beads of 2500 kg/m^3, 1 m/s apart: (pi/2)/(2 pi) = 1/4
@@ -100,22 +100,10 @@ static void test_binary_bed(double dt, double seconds)
 {
     bdl_solids_def defs[2] = {bdl_default_solids_def(), bdl_default_solids_def()};
     defs[0].diameter = 1.52e-3, defs[0].density = 2523.0;
-    bdl_gas_def g = bdl_default_gas_def();
-    g.n[0] = 15, g.n[1] = 1, g.n[2] = 45;
-    g.hi[0] = 0.15, g.hi[1] = 0.01, g.hi[2] = 0.45;
-    g.gravity[2] = -9.81;
-    g.pressure_share = 1;
-    g.convection = BDL_CONVECTION_SUPERBEE;
-    g.tolerance = 1e-10;
-    g.max_iterations = 1000;
-    g.side[2].type = g.side[3].type = BDL_SIDE_PERIODIC;
-    g.side[4].type = BDL_SIDE_INLET;
-    g.side[4].inflow = 1.30;
-    g.side[5].type = BDL_SIDE_OUTLET;
-    bdl_gas *gas;
-    bdl_solids *s;
-    CHECK(bdl_gas_create(&g, &gas) == BDL_OK);
-    CHECK(bdl_solids_create_mixture(defs, 2, gas, &s) == BDL_OK);
+    column c;
+    CHECK(column_create_mixture(&c, 15, 45, 0.01, 0, 1.30, defs, 2));
+    bdl_gas *gas = c.gas;
+    bdl_solids *s = c.solids;
     const bdl_grid *gr = &s->grid;
     const double fill[2] = {0.29167, 0.29133};
     for (int m = 0; m < 2; ++m)
@@ -145,8 +133,7 @@ static void test_binary_bed(double dt, double seconds)
     CHECK(lo > -1e-12);
     CHECK(hi < 0.5895);
     CHECK(sp > 0.1);
-    bdl_solids_destroy(s);
-    bdl_gas_destroy(gas);
+    column_destroy(&c);
 }
 
 int main(void)

@@ -1,4 +1,4 @@
-// A column or pseudo-2D bed of gas and one solids phase for the two-fluid model's tests.
+// A column or pseudo-2D bed of gas and solids phases for the two-fluid model's tests.
 #ifndef BDL_TEST_TFM_COLUMN_H
 #define BDL_TEST_TFM_COLUMN_H
 
@@ -14,9 +14,9 @@ enum { COLUMN_CLOSED = 1, COLUMN_PERIODIC_X = 2 };
 
 /// nx x nz cells of h (one cell of h along y, periodic), gravity along -z; walls on the sides
 /// (periodic with COLUMN_PERIODIC_X or one cell across), and below and above either walls
-/// (COLUMN_CLOSED) or an inlet of superficial velocity U and an outlet.
-static int column_create(column *c, int nx, int nz, double h, int flags, double U,
-                         const bdl_solids_def *sd)
+/// (COLUMN_CLOSED) or an inlet of superficial velocity U and an outlet; `count` solids phases.
+static inline int column_create_mixture(column *c, int nx, int nz, double h, int flags, double U,
+                                        const bdl_solids_def *defs, int count)
 {
     bdl_gas_def g = bdl_default_gas_def();
     g.n[0] = nx, g.n[1] = 1, g.n[2] = nz;
@@ -36,17 +36,24 @@ static int column_create(column *c, int nx, int nz, double h, int flags, double 
     }
     if (bdl_gas_create(&g, &c->gas) != BDL_OK)
         return 0;
-    return bdl_solids_create(sd, c->gas, &c->solids) == BDL_OK;
+    return bdl_solids_create_mixture(defs, count, c->gas, &c->solids) == BDL_OK;
 }
 
-static void column_destroy(column *c)
+/// The same with one solids phase.
+static inline int column_create(column *c, int nx, int nz, double h, int flags, double U,
+                                const bdl_solids_def *sd)
+{
+    return column_create_mixture(c, nx, nz, h, flags, U, sd, 1);
+}
+
+static inline void column_destroy(column *c)
 {
     bdl_solids_destroy(c->solids);
     bdl_gas_destroy(c->gas);
 }
 
 /// Solids fraction eps in the cell layers [lo, hi) of z, and the gas at rest or at the inflow.
-static void column_fill(column *c, int lo, int hi, double eps)
+static inline void column_fill(column *c, int lo, int hi, double eps)
 {
     const bdl_grid *gr = &c->solids->grid;
     for (int k = lo; k < hi; ++k)

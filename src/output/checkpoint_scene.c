@@ -28,6 +28,7 @@ enum {
     R_FRICTION,
     R_RODS,
     R_GAS,
+    R_PHASES, ///< solids phases on the grid (0 without)
     R_HEAD
 };
 
@@ -76,7 +77,11 @@ typedef struct record {
     double wall_material[BDL_MAX_WALLS][MATERIAL_KEYS];
     saved_pair pairs[BDL_MAX_PAIRS];
     int32_t create_kind[BDL_MAX_CREATES];
+    double phases[BDL_SOLIDS_PHASES][3]; ///< each solids phase's diameter, density, restitution
 } record;
+
+static const char *const phase_keys[3] = {"diameter", "density", "restitution"};
+static const char *const phase_units[3] = {" m", " kg/m^3", ""};
 
 static void material_values(const bdl_material *m, double *v)
 {
@@ -107,10 +112,17 @@ static void record_of(const bdl_world *w, record *r)
 {
     const bdl_scene *s = &w->scene;
     memset(r, 0, sizeof *r);
-    const int32_t head[R_HEAD] = {s->species_count,    s->wall_count,   s->create_count,
-                                  s->pair_count,       (int32_t)s->law, (int32_t)s->damping,
-                                  (int32_t)s->rolling, w->friction,     w->particles.rods,
-                                  w->gas != NULL};
+    const int32_t head[R_HEAD] = {s->species_count,
+                                  s->wall_count,
+                                  s->create_count,
+                                  s->pair_count,
+                                  (int32_t)s->law,
+                                  (int32_t)s->damping,
+                                  (int32_t)s->rolling,
+                                  w->friction,
+                                  w->particles.rods,
+                                  w->gas != NULL,
+                                  w->solids ? w->solids->count : 0};
     memcpy(r->head, head, sizeof head);
     if (w->gas)
         r->cells[0] = s->gas.cells.x, r->cells[1] = s->gas.cells.y, r->cells[2] = s->gas.cells.z;
@@ -124,6 +136,11 @@ static void record_of(const bdl_world *w, record *r)
         r->pairs[k] = pair_of(&s->pairs[k]);
     for (int k = 0; k < s->create_count; ++k)
         r->create_kind[k] = (int32_t)s->creates[k].kind;
+    for (int m = 0; w->solids && m < w->solids->count; ++m) {
+        const bdl_solids_def *d = &w->solids->phase[m].def;
+        r->phases[m][0] = d->diameter, r->phases[m][1] = d->density;
+        r->phases[m][2] = d->restitution;
+    }
 }
 
 /// The record's fields in file order, for `r`'s counts; the writer and the reader walk the same
@@ -148,11 +165,12 @@ static int record_fields(record *r, void **data, size_t *bytes)
         FIELD(r->pairs[s].value, sizeof r->pairs[s].value);
     }
     FIELD(r->create_kind, (size_t)r->head[R_CREATES] * sizeof(int32_t));
+    FIELD(r->phases, (size_t)r->head[R_PHASES] * sizeof r->phases[0]);
 #undef FIELD
     return k;
 }
 
-#define MAX_RECORD_FIELDS (2 + 3 * BDL_MAX_SPECIES + 2 * BDL_MAX_WALLS + 2 * BDL_MAX_PAIRS + 1)
+#define MAX_RECORD_FIELDS (2 + 3 * BDL_MAX_SPECIES + 2 * BDL_MAX_WALLS + 2 * BDL_MAX_PAIRS + 2)
 
 void bdl_ckpt_put_scene(bdl_ckpt_writer *out, const bdl_world *w)
 {
@@ -173,7 +191,8 @@ static int read_record(bdl_ckpt_reader *in, record *r)
     const int32_t *h = r->head;
     if (!in->ok || h[R_SPECIES] < 0 || h[R_SPECIES] > BDL_MAX_SPECIES || h[R_WALLS] < 0 ||
         h[R_WALLS] > BDL_MAX_WALLS || h[R_CREATES] < 0 || h[R_CREATES] > BDL_MAX_CREATES ||
-        h[R_PAIRS] < 0 || h[R_PAIRS] > BDL_MAX_PAIRS)
+        h[R_PAIRS] < 0 || h[R_PAIRS] > BDL_MAX_PAIRS || h[R_PHASES] < 0 ||
+        h[R_PHASES] > BDL_SOLIDS_PHASES)
         return 0;
     void *data[MAX_RECORD_FIELDS];
     size_t bytes[MAX_RECORD_FIELDS];
@@ -242,6 +261,11 @@ static int check_layout(const record *r, const bdl_world *w, char *why, size_t l
                  word(off_on, r->head[k], a, sizeof a), off_on[s.head[k] != 0]);
         return 0;
     }
+    if (r->head[R_PHASES] != s.head[R_PHASES]) {
+        snprintf(why, len, "%d solids phases in the checkpoint, %d in the scene",
+                 (int)r->head[R_PHASES], (int)s.head[R_PHASES]);
+        return 0;
+    }
     if (memcmp(r->cells, s.cells, sizeof s.cells) != 0) {
         snprintf(why, len,
                  "gas grid %g x %g x %g cells in the checkpoint, %g x %g x %g in the scene",
@@ -282,6 +306,16 @@ static int check_things(const record *r, const bdl_world *w, char *why, size_t l
                      bdl_wall_kind_names[sc->walls[k].kind]);
             return 0;
         }
+    record now;
+    record_of(w, &now);
+    for (int m = 0; m < now.head[R_PHASES]; ++m)
+        for (int q = 0; q < 2; ++q) // sizes and densities: the state's fractions are of them
+            if (!(r->phases[m][q] == now.phases[m][q])) {
+                snprintf(why, len, "solids phase %d: %s %g%s in the checkpoint, %g%s in the scene",
+                         m + 1, phase_keys[q], r->phases[m][q], phase_units[q], now.phases[m][q],
+                         phase_units[q]);
+                return 0;
+            }
     for (int k = 0; k < sc->create_count; ++k)
         if (r->create_kind[k] != (int32_t)sc->creates[k].kind) {
             snprintf(why, len, "[create %s]: type %s in the checkpoint, %s in the scene",
@@ -356,6 +390,12 @@ static void note_changes(const record *r, const bdl_world *w, char *changes, siz
                    material_text(y.has[q] ? y.value[q] : -1.0, "", b, sizeof b));
         }
     }
+    record now;
+    record_of(w, &now);
+    for (int m = 0; m < now.head[R_PHASES]; ++m)
+        if (!(r->phases[m][2] == now.phases[m][2]))
+            append(changes, len, "solids phase %d: %s %g in the checkpoint, %g in the scene", m + 1,
+                   phase_keys[2], r->phases[m][2], now.phases[m][2]);
     if (r->head[R_DAMPING] != (int32_t)sc->damping)
         append(changes, len, "[contact] damping = %s in the checkpoint, %s in the scene",
                word(bdl_damping_mode_names, r->head[R_DAMPING], a, sizeof a),

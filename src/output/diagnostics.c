@@ -202,20 +202,24 @@ static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
     const bdl_grid *g = &s->grid;
     const double cell = g->h[0] * g->h[1] * g->h[2];
     double total = 0.0, kinetic = 0.0, speed = 0.0, weight = 0.0;
-    for (int k = 0; k < g->n[2]; ++k)
-        for (int j = 0; j < g->n[1]; ++j)
-            for (int i = 0; i < g->n[0]; ++i)
-                for (int m = 0; m < s->count; ++m) {
-                    const bdl_solids_phase *p = &s->phase[m];
-                    const double e = p->eps[bdl_grid_index(g, i, j, k)], rho = p->def.density;
+    for (int m = 0; m < s->count; ++m) {
+        const bdl_solids_phase *p = &s->phase[m];
+        const double rho = p->def.density;
+        double phase = 0.0;
+        for (int k = 0; k < g->n[2]; ++k)
+            for (int j = 0; j < g->n[1]; ++j)
+                for (int i = 0; i < g->n[0]; ++i) {
+                    const double e = p->eps[bdl_grid_index(g, i, j, k)];
                     double v2 = 0.0;
                     for (int a = 0; a < 3; ++a)
                         v2 += pow(bdl_solids_cell_velocity(s, m, a, i, j, k), 2.0);
-                    total += e;
-                    weight += e * (rho - w->gas->def.density);
+                    phase += e;
                     kinetic += 0.5 * rho * e * cell * v2;
                     speed = e > s->def.dilute ? fmax(speed, sqrt(v2)) : speed;
                 }
+        total += phase;
+        weight += phase * cell * (rho - w->gas->def.density);
+    }
     d->mean_height = bdl_solids_mean_height(s, -1, 2);
     d->kinetic_energy = kinetic;
     d->max_speed = speed;
@@ -229,7 +233,7 @@ static void solids_terms(const bdl_world *w, bdl_diagnostics *d)
         below += layer;
     }
     const double g_len = bdl_v3_len(w->scene.gravity), area = g->n[0] * g->h[0] * g->n[1] * g->h[1];
-    weight *= cell * g_len / area;
+    weight = weight * g_len / area;
     const double column = w->gas->def.density * g_len * (g->n[2] - 1) * g->h[2];
     d->weight_ratio = weight > 0.0 ? (d->pressure_drop - column) / weight : NAN;
 }

@@ -183,7 +183,7 @@ static void log_setup(const run *r)
         bdl_info("override: %s", r->def->overrides[k]);
     bdl_info("output: %s", r->def->out_dir);
     bdl_info("threads: %d", r->threads);
-    char modules[512];
+    char modules[1536];
     bdl_world_describe(w, modules, sizeof modules);
     bdl_info("modules: %s", modules);
     if (w->parcels) {

@@ -650,6 +650,15 @@ static int bounding_wall(const bdl_scene *scene)
     return -1;
 }
 
+/// Whether [solids] bed_height is needed: without phases, or when a phase has no bed_top.
+static int needs_bed_height(const bdl_solids_scene *so)
+{
+    for (int i = 0; i < so->phase_count; ++i)
+        if (!(so->phases[i].bed_top > 0.0))
+            return 1;
+    return so->phase_count == 0;
+}
+
 /// The i-th [phase NAME] section.
 static bdl_scene_section *phase_section(bdl_scene_parser *p, int i)
 {
@@ -695,14 +704,19 @@ static void check_phase_layers(bdl_scene_parser *p, const bdl_solids_scene *so)
     double ends[2 * BDL_SOLIDS_PHASES];
     int n = 0;
     char what[200];
+    const double h = height / fmax(p->scene->gas.cells.z, 1.0); // the cells' height
     for (int i = 0; i < so->phase_count; ++i) {
         const bdl_phase_scene *ph = &so->phases[i];
         const double top = ph->bed_top > 0.0 ? ph->bed_top : so->bed_height;
-        if (!(top > ph->bed_bottom) || top > height) {
+        if (!(top > 0.0))
+            continue; // [solids] bed_height missing: its own check names it
+        const double centre = (ceil(ph->bed_bottom / h - 0.5) + 0.5) * h; // the lowest at or above
+        if (!(top > ph->bed_bottom) || top > height || !(centre < top)) {
             snprintf(what, sizeof what,
                      "out of range: the phase's layer runs from %g to %g m; allowed: above "
-                     "bed_bottom and <= the domain's height, %g (m)",
-                     ph->bed_bottom, top, height);
+                     "bed_bottom, <= the domain's height, %g (m), and holding a cell's centre "
+                     "(cells %g m high)",
+                     ph->bed_bottom, top, height, h);
             fail_at_key(p, phase_section(p, i), ph->bed_top > 0.0 ? "bed_top" : "bed_bottom", 0,
                         what);
             return;
@@ -762,7 +776,8 @@ static void check_solids(bdl_scene_parser *p)
             "[wall] sections bound particles; a solids phase is bounded by the domain's sides: "
             "remove the wall (a wall with motion = vibrate and frame = container may stay: it "
             "shakes the container)");
-    else if (!(scene->solids.bed_height > 0.0) || scene->solids.bed_height > height) {
+    else if (needs_bed_height(&scene->solids) &&
+             (!(scene->solids.bed_height > 0.0) || scene->solids.bed_height > height)) {
         snprintf(what, sizeof what, "%s; allowed: > 0 and <= the domain's height, %g (m)",
                  given(s, key_of(s, "bed_height")) ? "out of range" : "missing required key",
                  height);

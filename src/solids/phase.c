@@ -393,6 +393,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
     bdl_grid_extend_cells(gr, ph->pressure);
     bdl_grid_extend_cells(gr, ph->mu);
     bdl_grid_extend_cells(gr, ph->slip);
+    bdl_grid_extend_cells(gr, ph->wall); // a face's two cells: across a period the image's
     s->stats.pressure_max = pmax;
 }
 
@@ -607,7 +608,7 @@ static double pair_drag(const bdl_solids *s, int q, int l, int m, int a, long id
 /// phase keeps v = (B' + k' u - G) / A' with A' = 1 / gamma, B' = alpha A', k' = beta A'; the
 /// gas's drag sum_m eps_m kd_m (1 - beta_m), its source sum_m eps_m kd_m alpha_m, its share
 /// eps_g + sum_m eps_m kd_m gamma_m, the solids' flux sum_m up_m (alpha_m + beta_m u - gamma_m
-/// G); and 1/A of the mixture's plastic correction, the fraction-weighted mean of the gammas.
+/// G); and A of the mixture's plastic correction, 1/A the fraction-weighted mean of the gammas.
 static void couple(bdl_solids *s, bdl_gas *gas, int a)
 {
     const bdl_grid *gr = &s->grid;

@@ -103,8 +103,8 @@ typedef struct bdl_solids {
     bdl_solids_phase phase[BDL_SOLIDS_PHASES]; ///< the phases
     double *eps; ///< all phases' solids fraction in the cells (the first phase's own with one)
     double *rel[BDL_SOLIDS_PAIRS]; ///< |v_l - v_m| of each pair of phases in the cells [m/s]
-    /// Per face: 1/A of the mixture's correction (the first phase's A with one), w of the
-    /// correction, its flux.
+    /// Per face: A of the mixture's correction, 1/A = sum_m (eps_m / eps_s) gamma_m (the first
+    /// phase's A with one phase); the correction's weights and then its flux.
     double *a[3], *c[3];
     double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
     double time;

@@ -149,7 +149,7 @@ void bdl_world_describe(const bdl_world *w, char *buf, size_t size)
         return;
     }
     if (w->solids) {
-        char solids[512];
+        char solids[1024];
         bdl_world_solids_describe(w, solids, sizeof solids);
         snprintf(buf, size, "%s, gas: %s", solids, gas);
         return;

@@ -149,7 +149,7 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
 {
     const bdl_solids *s = w->solids;
     const bdl_solids_def *d = &s->def;
-    char phases[256] = "";
+    char phases[512] = "";
     size_t at = 0;
     for (int m = 0; m < s->count && at < sizeof phases; ++m) {
         const bdl_solids_def *p = &s->phase[m].def;
