@@ -806,6 +806,10 @@ const bdl_scene_key bdl_scene_keys[] = {
      .doc = "Johnson & Jackson's specularity coefficient phi' of the walls: their shear stress on "
             "the solids pi sqrt(3) phi' rho eps g0 sqrt(theta) v / (6 plastic_fraction) (Sun "
             "2007, ch. 5; the thesis gives no value); 0 = free slip"},
+    {S(SOLIDS), "hindrance", NUM, "s/m^2", IN_SOLIDS(def.hindrance), .def = {0}, GE(0), LE(1e9),
+     .doc = "with [phase NAME] sections: Gera et al.'s (2004) C1, the drag between two phases "
+            "gains C1 times the plastic pressure (the hindrance of packed particles that cannot "
+            "pass each other); 0 = Syamlal's drag alone, as Sun's runs"},
     {S(SOLIDS), "phase_friction", NUM, "-", IN_SOLIDS(def.phase_friction), .def = {0}, GE(0),
      LE(10),
      .doc = "with [phase NAME] sections: C_f, the friction coefficient of Syamlal's drag between "

@@ -37,6 +37,7 @@ static int valid_def(const bdl_solids_def *d)
            d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
            d->phase_friction >= 0.0 && d->specularity >= 0.0 && d->specularity <= 1.0 &&
+           d->hindrance >= 0.0 &&
            (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
 }
 
@@ -111,6 +112,7 @@ bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, cons
     for (int q = 0; q < count * (count - 1) / 2; ++q)
         ok = ok && (s->rel[q] = bdl_grid_alloc(gr));
     s->eps = mixture ? bdl_grid_alloc(gr) : s->phase[0].eps;
+    ok = ok && (!mixture || (s->plastic = bdl_grid_alloc(gr)));
     for (int a = 0; a < 3; ++a) {
         s->a[a] = mixture ? bdl_grid_alloc(gr) : s->phase[0].a[a];
         ok = ok && s->a[a] && (s->c[a] = bdl_grid_alloc(gr));
@@ -137,6 +139,7 @@ void bdl_solids_destroy(bdl_solids *s)
     const int mixture = s->count > 1;
     if (mixture)
         free(s->eps);
+    free(s->plastic);
     for (int a = 0; a < 3; ++a) {
         if (mixture)
             free(s->a[a]);
@@ -368,6 +371,8 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
             p = pt * (eps / total);
             mu = bdl_schaeffer_viscosity(p, phi, i2d, d->mu_max);
             pmax = fmax(pmax, pt);
+            if (s->plastic)
+                s->plastic[idx] = pt;
         } else if (eps > d->dilute) {
             double g0 = 0.0;
             if (s->count > 1) {
@@ -422,8 +427,12 @@ static void relative_speeds(bdl_solids *s)
 static void closures(bdl_solids *s, const bdl_gas *gas, double dt)
 {
     s->stats.pressure_max = 0.0;
+    if (s->plastic)
+        memset(s->plastic, 0, (size_t)s->grid.size * sizeof *s->plastic);
     for (int m = 0; m < s->count; ++m)
         phase_closures(s, m, gas, dt);
+    if (s->plastic)
+        bdl_grid_extend_cells(&s->grid, s->plastic);
     relative_speeds(s);
 }
 
@@ -586,7 +595,9 @@ static void solve_small(int n, double S[][BDL_SOLIDS_PHASES], double R[][3], int
 }
 
 /// Syamlal's drag between phases l and m per unit fraction of each at the a-face idx (Sun eq.
-/// 3.18; the relative speed and Lebowitz's g0 from the face's two cells).
+/// 3.18; the relative speed and Lebowitz's g0 from the face's two cells), with Gera et al.'s
+/// hindrance C1 P_plastic (P the mean of the face's two cells; the fractions it is divided by
+/// no smaller than the dilute limit).
 static double pair_drag(const bdl_solids *s, int q, int l, int m, int a, long idx)
 {
     const long sa = s->grid.stride[a];
@@ -598,8 +609,14 @@ static double pair_drag(const bdl_solids *s, int q, int l, int m, int a, long id
         eps[n] = 0.5 * (eps[n] + lo[n]);
     const double g0 = bdl_g0_lebowitz(eps, d, s->count, l, m);
     const double speed = 0.5 * (s->rel[q][idx] + s->rel[q][idx - sa]);
-    return bdl_solids_drag_syamlal(0.5 * (dl->restitution + dm->restitution), s->def.phase_friction,
-                                   g0, dl->diameter, dl->density, dm->diameter, dm->density, speed);
+    double f = bdl_solids_drag_syamlal(0.5 * (dl->restitution + dm->restitution),
+                                       s->def.phase_friction, g0, dl->diameter, dl->density,
+                                       dm->diameter, dm->density, speed);
+    if (s->def.hindrance > 0.0) {
+        const double P = 0.5 * (s->plastic[idx] + s->plastic[idx - sa]), floor_eps = s->def.dilute;
+        f += s->def.hindrance * P / (fmax(eps[l], floor_eps) * fmax(eps[m], floor_eps));
+    }
+    return f;
 }
 
 /// Several phases on every inner a-face: with the drag F_lm (v_l - v_m) between them, per unit

@@ -55,6 +55,8 @@ typedef struct bdl_solids_def {
     int max_iterations;    ///< its iteration limit
     double phase_friction; ///< C_f of the drag between solids phases (Sun eq. 3.18)
     double specularity;    ///< Johnson & Jackson's phi' of the walls (0: free slip)
+    double hindrance;      ///< Gera et al.'s (2004) C1: the drag between phases gains C1 P_plastic
+                           ///< [s/m^2] (0: Syamlal's alone)
 } bdl_solids_def;
 
 /// Glass beads of 2.49 mm (Goldschmidt's large particles, Sun 2007 table 5.1), e 0.97,
@@ -103,6 +105,7 @@ typedef struct bdl_solids {
     bdl_solids_phase phase[BDL_SOLIDS_PHASES]; ///< the phases
     double *eps; ///< all phases' solids fraction in the cells (the first phase's own with one)
     double *rel[BDL_SOLIDS_PAIRS]; ///< |v_l - v_m| of each pair of phases in the cells [m/s]
+    double *plastic; ///< the mixture's plastic pressure in the cells [Pa] (several phases)
     /// Per face: A of the mixture's correction, 1/A = sum_m (eps_m / eps_s) gamma_m (the first
     /// phase's A with one phase); the correction's weights and then its flux.
     double *a[3], *c[3];
@@ -121,7 +124,7 @@ bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_
 /// A mixture of `count` phases (1 to BDL_SOLIDS_PHASES) with no solids: defs[m] gives phase m's
 /// diameter, density, restitution and drag; defs[0] the rest. Between phases l and m Syamlal's
 /// drag (Sun eq. 3.18) with the mean of their restitutions, defs[0].phase_friction, Lebowitz's
-/// g0; each phase's kinetic theory with Lebowitz's g0_mm.
+/// g0, and Gera et al.'s hindrance defs[0].hindrance times the plastic pressure; each phase's kinetic theory with Lebowitz's g0_mm.
 bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, const bdl_gas *gas,
                                      bdl_solids **out);
 void bdl_solids_destroy(bdl_solids *s);
