@@ -63,7 +63,7 @@ set_tests_properties(cli_resume_tfm_binary PROPERTIES LABELS cli TIMEOUT 600
   FIXTURES_SETUP tfm_binary_checkpoint)
 # The mixture's checkpoint refused with a phase's diameter changed.
 bdl_cli_expect(cli_resume_tfm_phase_changed 2
-  "does not match the scene: solids phase 1: diameter 0.00152 m in the checkpoint, 0.002 m in the scene"
+  "does not match the scene: \\[phase small\\]: diameter 0.00152 m in the checkpoint, 0.002 m in the scene"
   run ${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_binary.ini --steps 10 --quiet
   --out ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/changed
   --resume ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/split --set phase.small.diameter=0.002)
@@ -225,7 +225,7 @@ bdl_cli_expect(cli_tfm_no_gas 2 "tfm_no_gas.ini:10: \\[solids\\]: a solids phase
 bdl_cli_expect(cli_tfm_fields 2 "\\[output\\] fields_interval = 0.1: the field files average particles"
   check ${TFM} --set output.fields_interval=0.1)
 set(TFM2 ${PROJECT_SOURCE_DIR}/scenes/tfm_goldschmidt_binary.ini)
-bdl_cli_expect(cli_tfm_phases_check 0 "solids phases \\(two-fluid model: 1.52 mm.*2.49 mm" check ${TFM2})
+bdl_cli_expect(cli_tfm_phases_check 0 "solids phases \\(multi-fluid model: 1.52 mm.*2.49 mm" check ${TFM2})
 bdl_cli_expect(cli_tfm_phases_sum 2
   "\\[phase large\\] fraction = 0.4: out of range: the phases' fractions add up to 0.69167; allowed: a sum <= 0.6"
   check ${TFM2} --set phase.large.fraction=0.4)

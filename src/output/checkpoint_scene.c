@@ -5,10 +5,11 @@
 // (their particles' sizes and masses, their shapes, which decide the arrays saved), the same walls
 // (whose primitives the wall contacts name), the same creators (whose pour counters are saved),
 // the same contact law, sliding friction or none (the tangential history is saved only with it)
-// and the same gas grid (its fields are saved cell by cell). A difference there refuses the
-// checkpoint and names what differs. The contact parameters (stiffness, Young's modulus,
-// restitution, friction ...) may change on a resume: they are listed, and the run reports them
-// and steps with the time step of the scene (docs/checkpoints.md).
+// and the same gas grid (its fields are saved cell by cell), and the same solids phases on the
+// grid (their number, diameters and densities: their fractions are saved). A difference there
+// refuses the checkpoint and names what differs. The contact parameters (stiffness, Young's
+// modulus, restitution, friction ...) may change on a resume: they are listed, and the run reports
+// them and steps with the time step of the scene (docs/checkpoints.md).
 #include <math.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -81,6 +82,15 @@ typedef struct record {
 } record;
 
 static const char *const phase_keys[3] = {"diameter", "density", "restitution"};
+
+/// "[phase NAME]" for phase m of a scene with [phase] sections, "[solids]" for one phase.
+static const char *phase_name(const bdl_scene *sc, int m, char *buf, size_t len)
+{
+    if (sc->solids.phase_count == 0)
+        return "[solids]";
+    snprintf(buf, len, "[phase %s]", sc->solids.phases[m].name);
+    return buf;
+}
 static const char *const phase_units[3] = {" m", " kg/m^3", ""};
 
 static void material_values(const bdl_material *m, double *v)
@@ -311,9 +321,10 @@ static int check_things(const record *r, const bdl_world *w, char *why, size_t l
     for (int m = 0; m < now.head[R_PHASES]; ++m)
         for (int q = 0; q < 2; ++q) // sizes and densities: the state's fractions are of them
             if (!(r->phases[m][q] == now.phases[m][q])) {
-                snprintf(why, len, "solids phase %d: %s %g%s in the checkpoint, %g%s in the scene",
-                         m + 1, phase_keys[q], r->phases[m][q], phase_units[q], now.phases[m][q],
-                         phase_units[q]);
+                char label[BDL_NAME_LEN + 16];
+                snprintf(why, len, "%s: %s %g%s in the checkpoint, %g%s in the scene",
+                         phase_name(sc, m, label, sizeof label), phase_keys[q], r->phases[m][q],
+                         phase_units[q], now.phases[m][q], phase_units[q]);
                 return 0;
             }
     for (int k = 0; k < sc->create_count; ++k)
@@ -394,8 +405,11 @@ static void note_changes(const record *r, const bdl_world *w, char *changes, siz
     record_of(w, &now);
     for (int m = 0; m < now.head[R_PHASES]; ++m)
         if (!(r->phases[m][2] == now.phases[m][2]))
-            append(changes, len, "solids phase %d: %s %g in the checkpoint, %g in the scene", m + 1,
-                   phase_keys[2], r->phases[m][2], now.phases[m][2]);
+            append(changes, len,
+                   "%s: %s %g in the checkpoint, %g in the scene (the effective one, with "
+                   "friction)",
+                   phase_name(sc, m, who, sizeof who), phase_keys[2], r->phases[m][2],
+                   now.phases[m][2]);
     if (r->head[R_DAMPING] != (int32_t)sc->damping)
         append(changes, len, "[contact] damping = %s in the checkpoint, %s in the scene",
                word(bdl_damping_mode_names, r->head[R_DAMPING], a, sizeof a),

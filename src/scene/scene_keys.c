@@ -797,7 +797,8 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(SOLIDS), "viscosity_max", NUM, "Pa s", IN_SOLIDS(def.mu_max), .def = {100}, GT(0), LE(1e6),
      .doc = "cap of the plastic regime's viscosity (MFIX's 1000 poise)"},
     {S(SOLIDS), "bed_height", NUM, "m", IN_SOLIDS(bed_height), .def = {0}, GE(0),
-     .default_text = "none: required with [solids], > 0 and within the domain's height",
+     .default_text = "none: required with [solids] (unless every [phase] has its bed_top), > 0 "
+                     "and within the domain's height",
      .doc = "the cells whose centres lie below this height above the domain's floor (along z) "
             "start filled"},
     {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),

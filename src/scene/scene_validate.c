@@ -675,6 +675,14 @@ static void check_phase_layers(bdl_scene_parser *p, const bdl_solids_scene *so);
 static void check_phases(bdl_scene_parser *p, bdl_scene_section *s)
 {
     const bdl_solids_scene *so = &p->scene->solids;
+    static const char *const mixture_keys[] = {"hindrance", "phase_friction"};
+    for (int k = 0; k < 2 && so->phase_count == 0; ++k)
+        if (given(s, key_of(s, mixture_keys[k]))) {
+            fail_at_key(p, s, mixture_keys[k], 0,
+                        "acts between solids phases, and the scene has one: give [phase NAME] "
+                        "sections or remove the key");
+            return;
+        }
     if (so->phase_count == 0)
         return;
     if (so->phase_count == 1) {
@@ -708,8 +716,8 @@ static void check_phase_layers(bdl_scene_parser *p, const bdl_solids_scene *so)
     for (int i = 0; i < so->phase_count; ++i) {
         const bdl_phase_scene *ph = &so->phases[i];
         const double top = ph->bed_top > 0.0 ? ph->bed_top : so->bed_height;
-        if (!(top > 0.0))
-            continue; // [solids] bed_height missing: its own check names it
+        if (!(ph->bed_top > 0.0) && !(so->bed_height > 0.0 && so->bed_height <= height))
+            continue; // [solids] bed_height missing or out of range: its own check names it
         const double centre = (ceil(ph->bed_bottom / h - 0.5) + 0.5) * h; // the lowest at or above
         if (!(top > ph->bed_bottom) || top > height || !(centre < top)) {
             snprintf(what, sizeof what,
@@ -756,9 +764,6 @@ static void check_solids(bdl_scene_parser *p)
                        "a [solids] section");
     if (!s)
         return;
-    check_phases(p, s);
-    if (p->failed)
-        return;
     const bdl_scene_where at = {.line = s->line, .title = "solids"};
     const double height = scene->domain_max.z - scene->domain_min.z;
     char what[160];
@@ -776,7 +781,7 @@ static void check_solids(bdl_scene_parser *p)
             "[wall] sections bound particles; a solids phase is bounded by the domain's sides: "
             "remove the wall (a wall with motion = vibrate and frame = container may stay: it "
             "shakes the container)");
-    else if (needs_bed_height(&scene->solids) &&
+    else if ((needs_bed_height(&scene->solids) || given(s, key_of(s, "bed_height"))) &&
              (!(scene->solids.bed_height > 0.0) || scene->solids.bed_height > height)) {
         snprintf(what, sizeof what, "%s; allowed: > 0 and <= the domain's height, %g (m)",
                  given(s, key_of(s, "bed_height")) ? "out of range" : "missing required key",
@@ -790,12 +795,14 @@ static void check_solids(bdl_scene_parser *p)
         bdl_scene_fail(p, &at,
                        "with [solids] the gas and the solids share one step: give it as "
                        "[run] dt (1e-4 s suits 1 cm cells)");
-    else if (scene->output.fields_interval > 0.0)
+    else if (scene->output.fields_interval > 0.0) {
         for (int i = 0; i < p->section_count; ++i)
             if (p->sections[i].kind == BDL_SECTION_OUTPUT)
                 fail_at_key(p, &p->sections[i], "fields_interval", 0,
                             "the field files average particles, and a solids phase has none (its "
                             "voidage is in the pictures' slice): remove the key");
+    } else
+        check_phases(p, s);
 }
 
 /// [output] fields_cell against the domain: no larger than its largest side, and no grid of

@@ -37,8 +37,7 @@ static int valid_def(const bdl_solids_def *d)
            d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
            d->phase_friction >= 0.0 && d->specularity >= 0.0 && d->specularity <= 1.0 &&
-           d->hindrance >= 0.0 &&
-           (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
+           d->hindrance >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
 }
 
 /// The face arrays of a phase and its cell arrays; 0 when out of memory.
@@ -480,7 +479,7 @@ static face_terms transport(const bdl_grid *gr, const bdl_solids_phase *p, int a
 /// != a, with a specularity, Johnson & Jackson's partial slip replaces the viscous flux through
 /// the wall: the stress -C v_a, C the mean of the face's two cells' coefficients, over h_b.
 static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, long idx,
-                          const int at[3])
+                          const int at[3], const int wall[6])
 {
     const double *v = p->v[a], *mu = p->mu;
     const long sa = gr->stride[a];
@@ -489,8 +488,8 @@ static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, 
         if (gr->n[b] == 1)
             continue;
         const long sb = gr->stride[b];
-        const int low = at[b] == 0, high = at[b] == gr->n[b] - 1;
-        if (b != a && p->def.specularity > 0.0 && !gr->periodic[b] && (low || high)) {
+        const int low = at[b] == 0 && wall[2 * b], high = at[b] == gr->n[b] - 1 && wall[2 * b + 1];
+        if (b != a && p->def.specularity > 0.0 && (low || high)) {
             const double C = 0.5 * (p->wall[idx] + p->wall[idx - sa]), h2 = gr->h[b] * gr->h[b];
             double m_in = 0.25 * (mu[idx] + mu[idx - sa]), v_in;
             m_in += low ? 0.25 * (mu[idx + sb] + mu[idx + sb - sa])
@@ -542,6 +541,10 @@ static void momentum(bdl_solids *s, int m, bdl_gas *gas, int a, double dt)
     const double rho = d->density, rg = gas->def.density, mug = gas->def.viscosity;
     for (long idx = 0; idx < gr->size; ++idx)
         p->a[a][idx] = 1.0, p->b[a][idx] = p->k[a][idx] = p->up[a][idx] = 0.0;
+    int wall[6]; // the gas's walls (an inlet or outlet has no Johnson & Jackson friction)
+    for (int side = 0; side < 6; ++side)
+        wall[side] =
+            gas->def.side[side].type == BDL_SIDE_WALL || gas->def.side[side].type == BDL_SIDE_SLIP;
     FOR_INNER_FACES(gr, a, {
         const double es = 0.5 * (p->eps[idx] + p->eps[idx - sa]);
         const double eg = 1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]);
@@ -553,7 +556,8 @@ static void momentum(bdl_solids *s, int m, bdl_gas *gas, int a, double dt)
         double A = rho / dt + kd, B = rho * p->v[a][idx] / dt + rho * gas->def.gravity[a];
         if (es > d->dilute) {
             const int at[3] = {i, j, k};
-            const face_terms conv = transport(gr, p, a, idx), visc = viscous(gr, p, a, idx, at);
+            const face_terms conv = transport(gr, p, a, idx),
+                             visc = viscous(gr, p, a, idx, at, wall);
             A += (rho * conv.diag + visc.diag) / es;
             B += (rho * conv.nb + visc.nb - (p->pressure[idx] - p->pressure[idx - sa]) / gr->h[a]) /
                  es;
@@ -609,9 +613,9 @@ static double pair_drag(const bdl_solids *s, int q, int l, int m, int a, long id
         eps[n] = 0.5 * (eps[n] + lo[n]);
     const double g0 = bdl_g0_lebowitz(eps, d, s->count, l, m);
     const double speed = 0.5 * (s->rel[q][idx] + s->rel[q][idx - sa]);
-    double f = bdl_solids_drag_syamlal(0.5 * (dl->restitution + dm->restitution),
-                                       s->def.phase_friction, g0, dl->diameter, dl->density,
-                                       dm->diameter, dm->density, speed);
+    double f =
+        bdl_solids_drag_syamlal(0.5 * (dl->restitution + dm->restitution), s->def.phase_friction,
+                                g0, dl->diameter, dl->density, dm->diameter, dm->density, speed);
     if (s->def.hindrance > 0.0) {
         const double P = 0.5 * (s->plastic[idx] + s->plastic[idx - sa]), floor_eps = s->def.dilute;
         f += s->def.hindrance * P / (fmax(eps[l], floor_eps) * fmax(eps[m], floor_eps));

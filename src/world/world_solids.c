@@ -161,12 +161,17 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
                                m ? "; " : "", 1e3 * p->diameter, p->density, p->restitution,
                                rotation ? " (Jenkins & Zhang's effective)" : "");
     }
+    char between[160] = "";
+    if (s->count > 1)
+        snprintf(between, sizeof between,
+                 ", Syamlal's between phases (C_f %.3g) with Gera's hindrance %.3g s/m^2",
+                 d->phase_friction, d->hindrance);
     snprintf(buf, size,
-             "solids %s (two-fluid model: %s; drag %s%s; "
-             "Syamlal's viscous regime, its energy balanced in each cell; Schaeffer's plastic "
-             "regime from "
-             "%.3g, A %.3g Pa, n %.3g, %.3g deg, viscosity at most %.3g Pa s; step %.3g s)",
-             s->count > 1 ? "phases" : "phase", phases, bdl_drag_law_names[d->drag],
-             s->count > 1 ? ", Syamlal's between phases" : "", d->eps_star, d->schaeffer_a,
-             d->schaeffer_n, d->friction_angle, d->mu_max, w->dt);
+             "solids %s (%s model: %s; drag %s%s; Syamlal's viscous regime, its energy balanced "
+             "in each cell; Schaeffer's plastic regime from %.3g, A %.3g Pa, n %.3g, %.3g deg, "
+             "viscosity at most %.3g Pa s; walls %s, specularity %.3g; step %.3g s)",
+             s->count > 1 ? "phases" : "phase", s->count > 1 ? "multi-fluid" : "two-fluid", phases,
+             bdl_drag_law_names[d->drag], between, d->eps_star, d->schaeffer_a, d->schaeffer_n,
+             d->friction_angle, d->mu_max,
+             d->specularity > 0.0 ? "Johnson & Jackson's" : "free-slip", d->specularity, w->dt);
 }
