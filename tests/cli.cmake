@@ -68,6 +68,12 @@ bdl_cli_expect(cli_resume_tfm_phase_changed 2
   --out ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/changed
   --resume ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/split --set phase.small.diameter=0.002)
 set_tests_properties(cli_resume_tfm_phase_changed PROPERTIES FIXTURES_REQUIRED tfm_binary_checkpoint)
+# Each phase's layer fractions in profile.csv, averaged by analyze profile.
+bdl_cli_expect(cli_profile_phases 0
+  "solids fraction against height \\(and each phase's: small, large\\), averaged over 2 rows"
+  analyze profile ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/straight
+  --out ${CMAKE_CURRENT_BINARY_DIR}/runs/resume_tfm_binary/profile --no-plots)
+set_tests_properties(cli_profile_phases PROPERTIES FIXTURES_REQUIRED tfm_binary_checkpoint)
 
 add_test(NAME cli_sigint COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/scripts/sigint.sh $<TARGET_FILE:bedlam>
   ${PROJECT_SOURCE_DIR}/scenes/settling_box.ini ${CMAKE_CURRENT_BINARY_DIR}/runs/sigint)

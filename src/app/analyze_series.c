@@ -133,11 +133,38 @@ bdl_result bdl_analyze_mean(const bdl_analyze_opts *o)
     return BDL_OK;
 }
 
+/// The solids phases of a multi-fluid run's profile.csv: the NAMEs of its phase_NAME_at_H
+/// columns, in order (at most BDL_PROFILE_PHASES); returns their count.
+#define BDL_PROFILE_PHASES 4
+static int profile_phases(const char *header, char names[][64])
+{
+    int count = 0;
+    for (const char *at = strstr(header, "phase_"); at && count < BDL_PROFILE_PHASES;
+         at = strstr(at + 1, "phase_")) {
+        const char *end = strstr(at, "_at_");
+        const size_t len = end ? (size_t)(end - at - 6) : 0;
+        if (!end || len == 0 || len >= 64 || (at != header && at[-1] != ','))
+            continue;
+        char name[64];
+        memcpy(name, at + 6, len);
+        name[len] = '\0';
+        int seen = 0;
+        for (int k = 0; k < count; ++k)
+            seen |= strcmp(names[k], name) == 0;
+        if (!seen)
+            snprintf(names[count++], 64, "%s", name);
+    }
+    return count;
+}
+
 /// The table's rows: one per phi_at_HEIGHT column of RUN/profile.csv (named in `header`), its
-/// samples in the time window averaged. *used: the samples of the last column read (0: none).
+/// samples in the time window averaged, and each phase's phase_NAME_at_HEIGHT so averaged.
+/// *used: the samples of the last column read (0: none).
 static void profile_rows(const bdl_analyze_opts *o, char *header, const double *t, long n,
                          FILE *table, long *used, double *peak, double *peak_h)
 {
+    char phases[BDL_PROFILE_PHASES][64];
+    const int count = profile_phases(header, phases);
     *used = 0, *peak = 0.0, *peak_h = 0.0;
     for (char *tok = strtok(header, ",\r\n"); tok; tok = strtok(NULL, ",\r\n")) {
         if (strncmp(tok, "phi_at_", 7) != 0)
@@ -154,24 +181,40 @@ static void profile_rows(const bdl_analyze_opts *o, char *header, const double *
         if (s.count == 0)
             continue;
         const double h = atof(tok + 7);
-        fprintf(table, "%.6g,%.6g,%.6g\n", h, s.mean, s.sd);
+        fprintf(table, "%.6g,%.6g,%.6g", h, s.mean, s.sd);
+        for (int k = 0; k < count; ++k) {
+            char column[160];
+            snprintf(column, sizeof column, "phase_%s_at_%s", phases[k], tok + 7);
+            double *y = NULL;
+            long q = 0;
+            const int ok = bdl_analyze_read_column(o->run, "profile.csv", column, &y, &q) && q == n;
+            fprintf(table, ",%.6g", ok ? bdl_sample_stats_in(t, y, n, o->from, o->to).mean : NAN);
+            free(y);
+        }
+        fprintf(table, "\n");
         if (s.mean > *peak)
             *peak = s.mean, *peak_h = h;
     }
 }
 
-static void plot_profile(const char *out)
+static void plot_profile(const char *out, char phases[][64], int count)
 {
-    char path[1300];
+    char path[1300], extra[1024] = "";
+    size_t at = 0;
+    for (int k = 0; k < count && at < sizeof extra; ++k)
+        at += (size_t)snprintf(extra + at, sizeof extra - at,
+                               ", '%s/profile.csv' every ::1 using %d:1 with lines lw 2 title "
+                               "'phase %s'",
+                               out, 4 + k, phases[k]);
     snprintf(path, sizeof path, "%s/profile.gp", out);
     bdl_analyze_plot(path,
                      "set terminal pngcairo size 600,700 font 'DejaVu Sans,11'\n"
                      "set output '%s/profile.png'\nset datafile separator ','\n"
                      "set xlabel 'solids fraction (layer mean)'\nset ylabel 'height [m]'\n"
-                     "set grid\nset key top right\nset xrange [0:*]\n"
+                     "set grid\nset key top right noenhanced\nset xrange [0:*]\n"
                      "plot '%s/profile.csv' every ::1 using 2:1:($2-$3):($2+$3) with xerrorlines "
-                     "pt 7 lc rgb '#3060c0' title 'time average +- standard deviation'\n",
-                     out, out);
+                     "pt 7 lc rgb '#3060c0' title 'time average +- standard deviation'%s\n",
+                     out, out, extra);
 }
 
 /// The header line of RUN/profile.csv (its columns name the layers' heights).
@@ -205,7 +248,12 @@ bdl_result bdl_analyze_profile(const bdl_analyze_opts *o)
         free(t);
         return BDL_ERR_OUTPUT_DIR;
     }
-    fprintf(af.file, "height,solids_fraction,std\n");
+    char phases[BDL_PROFILE_PHASES][64];
+    const int count = profile_phases(header, phases);
+    fprintf(af.file, "height,solids_fraction,std");
+    for (int k = 0; k < count; ++k)
+        fprintf(af.file, ",%s", phases[k]);
+    fprintf(af.file, "\n");
     long used;
     double peak, peak_h;
     profile_rows(o, header, t, n, af.file, &used, &peak, &peak_h);
@@ -218,10 +266,14 @@ bdl_result bdl_analyze_profile(const bdl_analyze_opts *o)
     }
     if (bdl_atomic_commit(&af) != BDL_OK)
         return BDL_ERR_OUTPUT_DIR;
-    printf("solids fraction against height, averaged over %ld rows: largest %.4f at %.4g m; "
+    char names[BDL_PROFILE_PHASES * 66] = "";
+    for (int k = 0; k < count; ++k)
+        snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", k ? ", " : "",
+                 phases[k]);
+    printf("solids fraction against height%s%s%s, averaged over %ld rows: largest %.4f at %.4g m; "
            "table in %s\n",
-           used, peak, peak_h, path);
+           count ? " (and each phase's: " : "", names, count ? ")" : "", used, peak, peak_h, path);
     if (o->plots)
-        plot_profile(o->out);
+        plot_profile(o->out, phases, count);
     return BDL_OK;
 }

@@ -6,6 +6,7 @@
 #include "analysis/granular.h"
 #include "cfd/gas.h"
 #include "core/file.h"
+#include "solids/phase.h"
 
 /// Cells with fewer particles than this are left out of the Lacey indices: a cell of one or two
 /// particles has a fraction of 0, 1/2 or 1 whatever the mixing.
@@ -95,12 +96,17 @@ int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN
     double up;
     const int a = bdl_world_vertical_axis(w, &up);
     const bdl_grid *g = &w->gas->grid;
+    const int phases = w->solids && w->solids->count > 1 ? w->solids->count : 0;
     if (names) {
         snprintf(names[0], BDL_SPECIES_COLUMN_LEN, "time");
         for (int k = 0; k < g->n[a]; ++k)
             snprintf(names[k + 1], BDL_SPECIES_COLUMN_LEN, "phi_at_%.6g", (k + 0.5) * g->h[a]);
+        for (int m = 0; m < phases; ++m)
+            for (int k = 0; k < g->n[a]; ++k)
+                snprintf(names[1 + (m + 1) * g->n[a] + k], BDL_SPECIES_COLUMN_LEN,
+                         "phase_%s_at_%.6g", w->scene.solids.phases[m].name, (k + 0.5) * g->h[a]);
     }
-    return g->n[a] + 1;
+    return (phases + 1) * g->n[a] + 1;
 }
 
 void bdl_profile_row(const bdl_world *w, double *row)
@@ -112,6 +118,10 @@ void bdl_profile_row(const bdl_world *w, double *row)
     for (int k = 0; k < n; ++k)
         row[k + 1] =
             1.0 - bdl_grid_layer_mean(&w->gas->grid, w->gas->eps, a, up > 0.0 ? k : n - 1 - k);
+    for (int m = 0; w->solids && w->solids->count > 1 && m < w->solids->count; ++m)
+        for (int k = 0; k < n; ++k)
+            row[1 + (m + 1) * n + k] = bdl_grid_layer_mean(&w->gas->grid, w->solids->phase[m].eps,
+                                                           a, up > 0.0 ? k : n - 1 - k);
 }
 
 static void write_contact(FILE *f, const bdl_particles *p, long i, long j_label, int sj,

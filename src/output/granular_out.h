@@ -24,8 +24,9 @@ int bdl_species_columns(const bdl_world *w, char names[][BDL_SPECIES_COLUMN_LEN]
 void bdl_species_row(const bdl_world *w, double *row);
 
 /// profile.csv (with a gas): the solids fraction 1 - voidage of each gas cell layer along
-/// gravity, from the floor up; columns "time" and "phi_at_H" with H the layer centre's height [m].
-/// Returns the column count into names (NULL: just the count).
+/// gravity, from the floor up; columns "time" and "phi_at_H" with H the layer centre's height [m];
+/// with several solids phases then each phase's layer fractions, "phase_NAME_at_H". Returns the
+/// column count into names (NULL: just the count).
 int bdl_profile_columns(const bdl_world *w, char (*names)[BDL_SPECIES_COLUMN_LEN]);
 void bdl_profile_row(const bdl_world *w, double *row);
 
