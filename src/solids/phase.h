@@ -124,7 +124,8 @@ bdl_result bdl_solids_create(const bdl_solids_def *def, const bdl_gas *gas, bdl_
 /// A mixture of `count` phases (1 to BDL_SOLIDS_PHASES) with no solids: defs[m] gives phase m's
 /// diameter, density, restitution and drag; defs[0] the rest. Between phases l and m Syamlal's
 /// drag (Sun eq. 3.18) with the mean of their restitutions, defs[0].phase_friction, Lebowitz's
-/// g0, and Gera et al.'s hindrance defs[0].hindrance times the plastic pressure; each phase's kinetic theory with Lebowitz's g0_mm.
+/// g0, and Gera et al.'s hindrance defs[0].hindrance times the plastic pressure; each phase's
+/// kinetic theory with Lebowitz's g0_mm.
 bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, const bdl_gas *gas,
                                      bdl_solids **out);
 void bdl_solids_destroy(bdl_solids *s);
