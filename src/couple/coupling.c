@@ -78,6 +78,7 @@ void bdl_coupling_free(bdl_coupling *c)
     for (int f = 0; f < 7; ++f)
         free(c->mean[f]);
     free(c->target);
+    free(c->mean_vel);
     free(c->weight);
     free(c->factor);
     free(c->accel);
@@ -115,7 +116,8 @@ static bdl_result reserve(bdl_coupling *c, long n, long points)
         !bdl_grow((void **)&c->accel, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&c->drag, cap, sizeof(bdl_vec3)) ||
         !bdl_grow((void **)&c->pressure, cap, sizeof(bdl_vec3)) ||
-        (c->def.mean_drag && !bdl_grow((void **)&c->target, cap, sizeof(bdl_vec3))) ||
+        (c->def.mean_drag && (!bdl_grow((void **)&c->target, cap, sizeof(bdl_vec3)) ||
+                              !bdl_grow((void **)&c->mean_vel, cap, sizeof(bdl_vec3)))) ||
         !bdl_grow((void **)&c->listed, cap, sizeof(int32_t)))
         return BDL_ERR_NOMEM;
     c->capacity = cap;
@@ -567,6 +569,13 @@ static void drag_target(const drag_deposit *d, long i, double target[3])
             bdl_v3_comp(d->p->vel[i], a) + d->dt * (d->accel ? bdl_v3_comp(d->accel[i], a) : 0.0);
 }
 
+/// Whether the drag takes the solids' mean velocity: def.mean_drag, and not for parcels (whose
+/// drag is implicit in their own velocity; the scene refuses the pair).
+static int uses_mean(const bdl_coupling *c, const bdl_gas *gas)
+{
+    return c->def.mean_drag && !gas->def.pressure_share;
+}
+
 /// Particle i's solids volume, and that times its v and its A, on the cell centres (mean_drag).
 static void deposit_motion(const bdl_coupling *c, const void *ctx, long i, long shift,
                            double *const *out)
@@ -587,8 +596,9 @@ static void deposit_motion(const bdl_coupling *c, const void *ctx, long i, long 
 }
 
 /// The cells' means of v and A weighted by solids volume (into c->mean[1..6]), and at every
-/// particle the mean drag target v + dt A read back into c->target (a cell a particle's kernel
-/// reaches holds some of its volume: no empty cell is read).
+/// particle the mean v read back into c->mean_vel and the mean drag target v + dt A into
+/// c->target (a cell a particle's kernel reaches holds some of its volume: no empty cell is
+/// read).
 static void mean_targets(bdl_coupling *c, const bdl_grid *g, const drag_deposit *d)
 {
     bdl_coupling_deposit(c, g, d->p->count, 7, c->mean, deposit_motion, d);
@@ -597,10 +607,12 @@ static void mean_targets(bdl_coupling *c, const bdl_grid *g, const drag_deposit 
             c->mean[f][idx] = c->mean[0][idx] > 0.0 ? c->mean[f][idx] / c->mean[0][idx] : 0.0;
     BDL_PARALLEL_FOR(
         d->p->count >= c->parallel_min, for (long i = 0; i < d->p->count; ++i) {
-            double t[3];
-            for (int a = 0; a < 3; ++a)
-                t[a] = bdl_coupling_interpolate(c, i, c->mean[1 + a]) +
-                       d->dt * bdl_coupling_interpolate(c, i, c->mean[4 + a]);
+            double v[3], t[3];
+            for (int a = 0; a < 3; ++a) {
+                v[a] = bdl_coupling_interpolate(c, i, c->mean[1 + a]);
+                t[a] = v[a] + d->dt * bdl_coupling_interpolate(c, i, c->mean[4 + a]);
+            }
+            c->mean_vel[i] = bdl_v3(v[0], v[1], v[2]);
             c->target[i] = bdl_v3(t[0], t[1], t[2]);
         });
 }
@@ -690,7 +702,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
 {
     const bdl_grid *g = &gas->grid;
     const double rho = gas->def.density, mu = gas->def.viscosity, vc = cell_volume(g);
-    const int mean = c->def.mean_drag && !gas->def.pressure_share;
+    const int mean = uses_mean(c, gas);
     const drag_deposit ctx = {
         p, accel, moved, mean ? c->target : NULL, dt, vc, gas->def.pressure_share};
     if (mean)
@@ -699,10 +711,7 @@ void bdl_coupling_drag_setup(bdl_coupling *c, bdl_gas *gas, const bdl_particles 
         p->count >= c->parallel_min, for (long i = 0; i < p->count; ++i) {
             double u[3];
             gas_velocity_at(c, gas, i, u);
-            const bdl_vec3 vi = mean ? bdl_v3(bdl_coupling_interpolate(c, i, c->mean[1]),
-                                              bdl_coupling_interpolate(c, i, c->mean[2]),
-                                              bdl_coupling_interpolate(c, i, c->mean[3]))
-                                     : p->vel[i];
+            const bdl_vec3 vi = mean ? c->mean_vel[i] : p->vel[i];
             const double v[3] = {vi.x, vi.y, vi.z};
             double slip = sqrt((u[0] - v[0]) * (u[0] - v[0]) + (u[1] - v[1]) * (u[1] - v[1]) +
                                (u[2] - v[2]) * (u[2] - v[2]));
@@ -763,7 +772,7 @@ void bdl_coupling_forces(const bdl_coupling *c, const bdl_gas *gas, const bdl_pa
                          const bdl_vec3 *accel, double dt, bdl_vec3 *drag, bdl_vec3 *pressure)
 {
     const bdl_grid *g = &gas->grid;
-    const int mean = c->def.mean_drag && !gas->def.pressure_share; // targets from the set-up
+    const int mean = uses_mean(c, gas); // targets from the set-up
     if (pressure) // the cell-centred pressure gradient, into the coupling's scratch fields
         for (int k = 0; k < g->n[2]; ++k)
             for (int j = 0; j < g->n[1]; ++j)

@@ -118,6 +118,7 @@ typedef struct bdl_coupling {
     bdl_vec3 *drag;     ///< drag force for the coming step [N]
     bdl_vec3 *pressure; ///< pressure force for the coming step [N]
     bdl_vec3 *target;   ///< with def.mean_drag: the mean v + dt A at the particle [m/s]
+    bdl_vec3 *mean_vel; ///< with def.mean_drag: the mean v at the particle (the slip's) [m/s]
     int32_t *listed;    ///< scratch: the particles bdl_coupling_relocate locates
     // Scratch of bdl_coupling_sort:
     long order_capacity;  ///< particles

@@ -127,6 +127,7 @@ static int capture_solids(bdl_snapshot *s, const bdl_world *w)
     const bdl_solids *so = w->solids;
     const bdl_grid *g = &so->grid;
     const double cell = g->h[0] * g->h[1] * g->h[2];
+    const double least = bdl_solids_volume(so, -1) / SOLIDS_DISPLAY_MAX; // per sphere, at least
     long n = 0;
     for (int pass = 0; pass < 2; ++pass) {
         if (pass == 1 && !bdl_snapshot_reserve(s, n))
@@ -134,8 +135,7 @@ static int capture_solids(bdl_snapshot *s, const bdl_world *w)
         n = 0;
         for (int m = 0; m < so->count; ++m) {
             const double d = so->phase[m].def.diameter;
-            const double volume =
-                fmax(BDL_PI * d * d * d / 6.0, bdl_solids_volume(so, -1) / SOLIDS_DISPLAY_MAX);
+            const double volume = fmax(BDL_PI * d * d * d / 6.0, least);
             const float radius = (float)cbrt(0.75 / BDL_PI * volume);
             const uint64_t salt = 8u * (uint64_t)m;
             for (int k = 0; k < g->n[2]; ++k)

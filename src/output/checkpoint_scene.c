@@ -239,54 +239,54 @@ static const char *word(const char *const *names, int32_t value, char *buf, size
 }
 
 /// The numbers of things and the choices the state's layout depends on; 0 with the reason.
-static int check_layout(const record *r, const bdl_world *w, char *why, size_t len)
+static int check_layout(const record *r, const record *now, char *why, size_t len)
 {
-    record s;
-    record_of(w, &s);
+    const record *s = now;
     static const char *const what[R_PAIRS + 1] = {"species", "walls", "creators",
                                                   "[pair] sections"};
     for (int k = R_SPECIES; k <= R_PAIRS; ++k)
-        if (r->head[k] != s.head[k]) {
+        if (r->head[k] != s->head[k]) {
             snprintf(why, len, "%d %s in the checkpoint, %d in the scene", (int)r->head[k], what[k],
-                     (int)s.head[k]);
+                     (int)s->head[k]);
             return 0;
         }
     char a[32], b[32];
-    if (r->head[R_LAW] != s.head[R_LAW]) {
+    if (r->head[R_LAW] != s->head[R_LAW]) {
         snprintf(why, len, "[contact] law = %s in the checkpoint, %s in the scene",
                  word(bdl_normal_law_names, r->head[R_LAW], a, sizeof a),
-                 word(bdl_normal_law_names, s.head[R_LAW], b, sizeof b));
+                 word(bdl_normal_law_names, s->head[R_LAW], b, sizeof b));
         return 0;
     }
     static const char *const off_on[3] = {"none", "some", NULL};
-    if (r->head[R_FRICTION] != s.head[R_FRICTION] || r->head[R_RODS] != s.head[R_RODS] ||
-        r->head[R_GAS] != s.head[R_GAS]) {
-        const int k = r->head[R_FRICTION] != s.head[R_FRICTION] ? R_FRICTION
-                      : r->head[R_RODS] != s.head[R_RODS]       ? R_RODS
-                                                                : R_GAS;
+    if (r->head[R_FRICTION] != s->head[R_FRICTION] || r->head[R_RODS] != s->head[R_RODS] ||
+        r->head[R_GAS] != s->head[R_GAS]) {
+        const int k = r->head[R_FRICTION] != s->head[R_FRICTION] ? R_FRICTION
+                      : r->head[R_RODS] != s->head[R_RODS]       ? R_RODS
+                                                                 : R_GAS;
         const char *name = k == R_FRICTION ? "sliding friction (tangential history)"
                            : k == R_RODS   ? "rods"
                                            : "a gas";
         snprintf(why, len, "%s: %s in the checkpoint, %s in the scene", name,
-                 word(off_on, r->head[k], a, sizeof a), off_on[s.head[k] != 0]);
+                 word(off_on, r->head[k], a, sizeof a), off_on[s->head[k] != 0]);
         return 0;
     }
-    if (r->head[R_PHASES] != s.head[R_PHASES]) {
+    if (r->head[R_PHASES] != s->head[R_PHASES]) {
         snprintf(why, len, "%d solids phases in the checkpoint, %d in the scene",
-                 (int)r->head[R_PHASES], (int)s.head[R_PHASES]);
+                 (int)r->head[R_PHASES], (int)s->head[R_PHASES]);
         return 0;
     }
-    if (memcmp(r->cells, s.cells, sizeof s.cells) != 0) {
+    if (memcmp(r->cells, s->cells, sizeof s->cells) != 0) {
         snprintf(why, len,
                  "gas grid %g x %g x %g cells in the checkpoint, %g x %g x %g in the scene",
-                 r->cells[0], r->cells[1], r->cells[2], s.cells[0], s.cells[1], s.cells[2]);
+                 r->cells[0], r->cells[1], r->cells[2], s->cells[0], s->cells[1], s->cells[2]);
         return 0;
     }
     return 1;
 }
 
 /// Species' shapes, sizes and densities, walls' and creators' kinds; 0 with the reason.
-static int check_things(const record *r, const bdl_world *w, char *why, size_t len)
+static int check_things(const record *r, const record *now, const bdl_world *w, char *why,
+                        size_t len)
 {
     const bdl_scene *sc = &w->scene;
     char a[32], b[32];
@@ -316,15 +316,13 @@ static int check_things(const record *r, const bdl_world *w, char *why, size_t l
                      bdl_wall_kind_names[sc->walls[k].kind]);
             return 0;
         }
-    record now;
-    record_of(w, &now);
-    for (int m = 0; m < now.head[R_PHASES]; ++m)
+    for (int m = 0; m < now->head[R_PHASES]; ++m)
         for (int q = 0; q < 2; ++q) // sizes and densities: the state's fractions are of them
-            if (!(r->phases[m][q] == now.phases[m][q])) {
+            if (!(r->phases[m][q] == now->phases[m][q])) {
                 char label[BDL_NAME_LEN + 16];
                 snprintf(why, len, "%s: %s %g%s in the checkpoint, %g%s in the scene",
                          phase_name(sc, m, label, sizeof label), phase_keys[q], r->phases[m][q],
-                         phase_units[q], now.phases[m][q], phase_units[q]);
+                         phase_units[q], now->phases[m][q], phase_units[q]);
                 return 0;
             }
     for (int k = 0; k < sc->create_count; ++k)
@@ -364,7 +362,8 @@ static void note_material(const char *who, const double *saved, const double *no
 
 /// Lists the contact parameters that differ: species' and walls' materials, background damping,
 /// [pair] overrides, the damping and rolling models.
-static void note_changes(const record *r, const bdl_world *w, char *changes, size_t len)
+static void note_changes(const record *r, const record *now, const bdl_world *w, char *changes,
+                         size_t len)
 {
     const bdl_scene *sc = &w->scene;
     char who[2 * BDL_NAME_LEN + 16], a[32];
@@ -379,10 +378,10 @@ static void note_changes(const record *r, const bdl_world *w, char *changes, siz
                    who, r->species[k].size[5], y.size[5]);
     }
     for (int k = 0; k < sc->wall_count; ++k) {
-        double now[MATERIAL_KEYS];
-        material_values(&sc->walls[k].material, now);
+        double values[MATERIAL_KEYS];
+        material_values(&sc->walls[k].material, values);
         snprintf(who, sizeof who, "wall '%s'", sc->walls[k].name);
-        note_material(who, r->wall_material[k], now, changes, len);
+        note_material(who, r->wall_material[k], values, changes, len);
     }
     for (int k = 0; k < sc->pair_count; ++k) {
         const saved_pair x = r->pairs[k], y = pair_of(&sc->pairs[k]);
@@ -401,15 +400,13 @@ static void note_changes(const record *r, const bdl_world *w, char *changes, siz
                    material_text(y.has[q] ? y.value[q] : -1.0, "", b, sizeof b));
         }
     }
-    record now;
-    record_of(w, &now);
-    for (int m = 0; m < now.head[R_PHASES]; ++m)
-        if (!(r->phases[m][2] == now.phases[m][2]))
+    for (int m = 0; m < now->head[R_PHASES]; ++m)
+        if (!(r->phases[m][2] == now->phases[m][2]))
             append(changes, len,
                    "%s: %s %g in the checkpoint, %g in the scene (the effective one, with "
                    "friction)",
                    phase_name(sc, m, who, sizeof who), phase_keys[2], r->phases[m][2],
-                   now.phases[m][2]);
+                   now->phases[m][2]);
     if (r->head[R_DAMPING] != (int32_t)sc->damping)
         append(changes, len, "[contact] damping = %s in the checkpoint, %s in the scene",
                word(bdl_damping_mode_names, r->head[R_DAMPING], a, sizeof a),
@@ -430,10 +427,13 @@ int bdl_ckpt_check_scene(bdl_ckpt_reader *in, const bdl_world *w, char *why, siz
         return 0;
     }
     char what[512];
-    if (!check_layout(&r, w, what, sizeof what) || !check_things(&r, w, what, sizeof what)) {
+    record now; // the scene's own record, to compare with
+    record_of(w, &now);
+    if (!check_layout(&r, &now, what, sizeof what) ||
+        !check_things(&r, &now, w, what, sizeof what)) {
         snprintf(why, why_len, "does not match the scene: %s", what);
         return 0;
     }
-    note_changes(&r, w, changes, changes_len);
+    note_changes(&r, &now, w, changes, changes_len);
     return 1;
 }

@@ -495,8 +495,6 @@ static face_terms viscous(const bdl_grid *gr, const bdl_solids_phase *p, int a, 
             m_in += low ? 0.25 * (mu[idx + sb] + mu[idx + sb - sa])
                         : 0.25 * (mu[idx - sb] + mu[idx - sb - sa]);
             v_in = low ? v[idx + sb] : v[idx - sb];
-            if (low && high) // one cell between two walls
-                m_in = 0.0, v_in = 0.0, t.diag += C / gr->h[b];
             t.diag += m_in / h2 + C / gr->h[b];
             t.nb += m_in * v_in / h2;
             continue;
@@ -963,14 +961,12 @@ static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt)
 {
     const bdl_grid *gr = &s->grid;
     const int n = s->count;
-    for (int m = 0; m < n; ++m)
-        if (n > 1)
-            bdl_grid_wrap_cells(gr, s->phase[m].star);
+    for (int m = 0; m < n && n > 1; ++m)
+        bdl_grid_wrap_cells(gr, s->phase[m].star);
     for (int a = 0; a < 3; ++a) {
         const long sa = gr->stride[a];
-        for (int m = 0; m < n; ++m)
-            if (n > 1)
-                memset(s->phase[m].cflux[a], 0, (size_t)gr->size * sizeof(double));
+        for (int m = 0; m < n && n > 1; ++m)
+            memset(s->phase[m].cflux[a], 0, (size_t)gr->size * sizeof(double));
         FOR_INNER_FACES(gr, a, {
             const double df = s->c[a][idx];
             const double es = 0.5 * (s->eps[idx] + s->eps[idx - sa]);
