@@ -215,6 +215,8 @@ static bdl_result drift(bdl_parcels *pc, const bdl_gas *gas, bdl_particles *p, d
     const int parts = pc->def.substeps > 0 ? pc->def.substeps : 1;
     const int collisions = pc->def.model == BDL_PARCEL_COLLISIONS;
     const double h = dt / parts;
+    if (p->count == 0) // no arrays yet (a null pointer may not go to memset, even for 0 bytes)
+        return BDL_OK;
     memset(pc->held, 0, (size_t)p->count);
     memset(pc->moved, 0, (size_t)p->count * sizeof(bdl_vec3));
     if (collisions)
@@ -544,7 +546,8 @@ bdl_result bdl_parcels_step(bdl_parcels *pc, bdl_coupling *c, bdl_gas *gas, bdl_
     if (reserve(pc, p->count) != BDL_OK || bdl_coupling_sort(c, gas, p, NULL) != BDL_OK)
         return BDL_ERR_NOMEM;
     memcpy(pc->eps_begin, gas->eps, (size_t)gas->grid.size * sizeof(double));
-    memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
+    if (p->count > 0) // no arrays without parcels (memcpy takes no null pointer)
+        memcpy(pc->start, p->pos, (size_t)p->count * sizeof(bdl_vec3));
     pc->collisions.parallel_min = c->parallel_min;
     long leaving = 0;
     bdl_result r = drift(pc, gas, p, dt, &leaving);
