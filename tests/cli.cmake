@@ -221,7 +221,7 @@ bdl_cli_expect(cli_tfm_fraction 2 "\\[solids\\] fraction = 0.7: out of range; al
 bdl_cli_expect(cli_tfm_typo 2 "unknown key in \\[solids\\]; did you mean 'density'"
   check ${TFM} --set solids.densty=3)
 bdl_cli_expect(cli_tfm_dt 2 "\\[run\\] dt = 0.002 s is 4 times the gas's expected stable step"
-  check ${TFM} --set run.dt=0.002)
+  check ${TFM} --set solids.courant=0 --set run.dt=0.002)
 bdl_cli_expect(cli_tfm_no_gas_dt 2 "with \\[solids\\] the gas and the solids share one step"
   check ${TFM} --set run.dt=0)
 bdl_cli_expect(cli_tfm_species 2 "tfm_species.ini:11: \\[species\\]: a scene with \\[solids\\] holds no particles"

@@ -310,8 +310,70 @@ static void test_johnson_jackson(void)
     CHECK(free_mid < -20.0);    // 4 s of fall (39 m/s free) less the gas's drag: no steady state
 }
 
+/// A thin dilute layer (eps_s 1e-7 of 50 um glass) carried up a column by gas at 5 m/s with a
+/// step of 5 ms: its cells empty at a Courant number above 2 in a step. Their outflow is limited
+/// to what they hold: no fraction below zero, the solids' volume conserved, and the stable step
+/// not set by cells below the dilute limit. (Without the limit the emptied cells go below zero
+/// by up to the Courant number less one times their fraction.)
+static void test_outflow_limit(void)
+{
+    bdl_solids_def sd = bdl_default_solids_def();
+    sd.diameter = 50e-6;
+    column c;
+    CHECK(column_create(&c, 1, 40, 0.01, 0, 5.0, &sd));
+    c.gas->def.convection_step = BDL_CONVECTION_POINT_IMPLICIT;
+    column_fill(&c, 2, 4, 1e-7);
+    const double volume = bdl_solids_volume(c.solids, -1), dt = 5e-3;
+    double lowest = INFINITY, fastest = 0.0;
+    int limited = 0;
+    for (int n = 0; n < 40; ++n) {
+        CHECK(bdl_solids_step(c.solids, c.gas, dt) == BDL_OK);
+        lowest = fmin(lowest, c.solids->stats.eps_min);
+        for (int k = 1; k < 40; ++k) {
+            const double v = c.solids->phase[0].v[2][bdl_grid_index(&c.solids->grid, 0, 0, k)];
+            fastest = fmax(fastest, v);
+            limited |= v * dt / 0.01 > 1.0 && cell(&c, c.solids->eps, 0, k - 1) > 0.0;
+        }
+    }
+    const double change = fabs(bdl_solids_volume(c.solids, -1) / volume - 1.0);
+    printf("dilute layer carried at up to %.3g m/s (Courant %.2f): lowest fraction %.3g, volume "
+           "changed by %.2e, stable step %.3g s\n",
+           fastest, fastest * dt / 0.01, lowest, change, bdl_solids_stable_dt(c.solids));
+    CHECK_MSG(limited, "no cell was emptied faster than a step allows: the test tests nothing");
+    CHECK(lowest > -1e-15 * 1e-7); // round-off of the layer's fraction
+    CHECK(change < 1e-12);
+    CHECK(bdl_solids_stable_dt(c.solids) == INFINITY); // every cell below the dilute limit
+    column_destroy(&c);
+}
+
+/// The stable step of a dense, agitated phase at rest: 0.5 / (c (1/h_x + 1/h_z)), c the speed of
+/// the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) = 2 (1 + e) theta (2 eps
+/// g0 + eps^2 g0'), g0 Carnahan & Starling's.
+static void test_sound_speed(void)
+{
+    const bdl_solids_def sd = bdl_default_solids_def();
+    column c;
+    CHECK(column_create(&c, 3, 3, 0.01, COLUMN_CLOSED, 0.0, &sd));
+    const double eps = 0.5, theta = 0.01, e = sd.restitution;
+    column_fill(&c, 0, 3, eps);
+    const bdl_grid *gr = &c.solids->grid;
+    for (long idx = 0; idx < gr->size; ++idx)
+        c.solids->phase[0].theta[idx] = theta;
+    const double q = 1.0 - eps, g0 = (1.0 - 0.5 * eps) / (q * q * q),
+                 dg0 = -0.5 / (q * q * q) + 3.0 * (1.0 - 0.5 * eps) / (q * q * q * q);
+    const double speed = sqrt(2.0 * (1.0 + e) * theta * (2.0 * eps * g0 + eps * eps * dg0));
+    const double expect = 0.5 / (speed * 2.0 / 0.01);
+    printf("pressure waves at eps %.2f, theta %.2f m^2/s^2: c = %.4f m/s, stable step %.6g s "
+           "(expected %.6g s)\n",
+           eps, theta, speed, bdl_solids_stable_dt(c.solids), expect);
+    CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect, 1e-5); // (a difference of 1e-6)
+    column_destroy(&c);
+}
+
 int main(void)
 {
+    test_outflow_limit();
+    test_sound_speed();
     test_johnson_jackson();
     test_dilute_slip();
     test_packed_bed();

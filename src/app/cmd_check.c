@@ -205,10 +205,15 @@ static bdl_result print_time_step(const bdl_world *w)
         const bdl_gas_scene *gs = &w->scene.gas;
         const double stable =
             bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
-        printf("time step: dt = %.4g s = %.3g of the gas's expected stable step %.4g s (CFL 1/2 "
-               "for the inflow through the packed bed, plus 0.5 m/s for bubbles); refused above "
-               "twice it\n",
-               w->dt, w->dt / stable, stable);
+        if (w->scene.solids.courant > 0.0)
+            printf("time step: adaptive, Courant number %.3g ([solids] courant), at most %.4g s; "
+                   "the first %.4g s (the gas's expected stable step %.4g s)\n",
+                   w->scene.solids.courant, w->scene.dt, w->dt, stable);
+        else
+            printf("time step: dt = %.4g s = %.3g of the gas's expected stable step %.4g s (CFL "
+                   "1/2 for the inflow through the packed bed, plus 0.5 m/s for bubbles); refused "
+                   "above twice it\n",
+                   w->dt, w->dt / stable, stable);
     } else {
         print_contact_step(w);
     }
@@ -279,10 +284,11 @@ static void print_cost(bdl_world *w)
     if (w->solids) {
         const bdl_grid *g = &w->gas->grid;
         const double cells = (double)g->n[0] * g->n[1] * g->n[2], wall = per_step * steps_total;
-        printf("cost: %.0f steps to t = %g s; measured %.3g cell-steps/s on %d threads (%.0f "
+        printf("cost: %.0f steps to t = %g s%s; measured %.3g cell-steps/s on %d threads (%.0f "
                "cells) -> about %.3g s wall time (%.3gx real time)\n",
-               steps_total, s->end_time, cells / per_step, omp_get_max_threads(), cells, wall,
-               s->end_time / wall);
+               steps_total, s->end_time,
+               s->solids.courant > 0.0 ? " at the first step's size (the adaptive step grows)" : "",
+               cells / per_step, omp_get_max_threads(), cells, wall, s->end_time / wall);
         return;
     }
     long n = w->particles.count > 0 ? w->particles.count : 1;

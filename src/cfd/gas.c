@@ -11,6 +11,8 @@
 BDL_CHOICE_WORDS(bdl_gas_side, BDL_GAS_SIDES);
 BDL_CHOICE_WORDS(bdl_convection, BDL_CONVECTIONS);
 const char *const bdl_convection_labels[] = {BDL_CONVECTIONS(BDL_ENUM_LABEL) NULL};
+BDL_CHOICE_WORDS(bdl_convection_step, BDL_CONVECTION_STEPS);
+const char *const bdl_convection_step_labels[] = {BDL_CONVECTION_STEPS(BDL_ENUM_LABEL) NULL};
 
 static int periodic_axis(const bdl_gas *g, int a)
 {
@@ -256,13 +258,20 @@ static double face_value(bdl_convection scheme, double q, double m2, double m1, 
     return c + 0.5 * psi * delta;
 }
 
-/// div(eps u u_a) at the a-face `idx`, with q[b] = eps u_b on the b-faces.
-static double convection(const bdl_gas *g, int a, long idx, const double *u, double *const q[3])
+/// div(eps u u_a) at the a-face `idx`, with q[b] = eps u_b on the b-faces, by the scheme
+/// (`value`) and by upwinding (`upwind`), and the outflow through the face's control volume
+/// (`out`, 1/s times eps: the upwind form's diagonal, upwind = out u_a - inflows).
+typedef struct convection_terms {
+    double value, upwind, out;
+} convection_terms;
+
+static convection_terms convection(const bdl_gas *g, int a, long idx, const double *u,
+                                   double *const q[3])
 {
     const bdl_grid *gr = &g->grid;
     const bdl_convection sc = g->def.convection;
     const long sa = gr->stride[a];
-    double sum = 0.0;
+    convection_terms t = {0.0, 0.0, 0.0};
     for (int b = 0; b < 3; ++b) {
         // One cell along b: between walls the b-fluxes vanish on both faces, and across a period
         // of one cell they are equal; either way the b-term is zero.
@@ -277,11 +286,14 @@ static double convection(const bdl_gas *g, int a, long idx, const double *u, dou
             qhi = 0.5 * (q[b][idx + s] + q[b][idx + s - sa]);
             qlo = 0.5 * (q[b][idx] + q[b][idx - sa]);
         }
-        double fhi = qhi * face_value(sc, qhi, u[idx - s], u[idx], u[idx + s], u[idx + 2 * s]);
-        double flo = qlo * face_value(sc, qlo, u[idx - 2 * s], u[idx - s], u[idx], u[idx + s]);
-        sum += (fhi - flo) / gr->h[b];
+        const double um = u[idx - s], u0 = u[idx], up = u[idx + s];
+        double fhi = qhi * face_value(sc, qhi, um, u0, up, u[idx + 2 * s]);
+        double flo = qlo * face_value(sc, qlo, u[idx - 2 * s], um, u0, up);
+        t.value += (fhi - flo) / gr->h[b];
+        t.upwind += (qhi * (qhi >= 0.0 ? u0 : up) - qlo * (qlo >= 0.0 ? um : u0)) / gr->h[b];
+        t.out += (fmax(qhi, 0.0) + fmax(-qlo, 0.0)) / gr->h[b];
     }
-    return sum;
+    return t;
 }
 
 static double laplacian(const bdl_grid *gr, long idx, const double *u)
@@ -367,6 +379,7 @@ static void predict(bdl_gas *g, double *const q[3], double dt)
 {
     const bdl_grid *gr = &g->grid;
     const double rho = g->def.density, mu = g->def.viscosity;
+    const int implicit = g->def.convection_step == BDL_CONVECTION_POINT_IMPLICIT;
     for (int a = 0; a < 3; ++a) {
         int flo, fhi;
         unknown_faces(g, a, &flo, &fhi);
@@ -375,10 +388,15 @@ static void predict(bdl_gas *g, double *const q[3], double dt)
         FOR_FACES(gr, a, flo, fhi, {
             const double e0 = face_eps(g, g->eps_old, a, idx), e1 = face_eps(g, g->eps, a, idx);
             const double beta = g->beta[a][idx], bv = g->bv[a][idx];
-            const double A = rho * e1 / dt + beta;
-            double r = rho * e0 * u[idx] / dt - rho * convection(g, a, idx, u, q) +
-                       mu * e0 * laplacian(gr, idx, u) + e1 * rho * g->def.gravity[a] + bv +
-                       g->source[a][idx];
+            const convection_terms ct = convection(g, a, idx, u, q);
+            double A = rho * e1 / dt + beta, conv = ct.value;
+            if (implicit) { // out u* - inflows, the correction explicit (gas.h)
+                const double c = dt * ct.out / e1;
+                A += rho * ct.out;
+                conv = ct.upwind - ct.out * u[idx] + (ct.value - ct.upwind) * fmin(1.0, 1.0 / c);
+            }
+            double r = rho * e0 * u[idx] / dt - rho * conv + mu * e0 * laplacian(gr, idx, u) +
+                       e1 * rho * g->def.gravity[a] + bv + g->source[a][idx];
             us[idx] = r / A;
             d[idx] = (g->share[a] ? g->share[a][idx] : e1) / A;
         });
@@ -575,7 +593,7 @@ double bdl_gas_stable_dt(const bdl_gas *g)
             for (int j = 0; j < gr->n[1]; ++j)
                 for (int i = 0; i < gr->n[0]; ++i)
                     umax = fmax(umax, fabs(g->u[a][bdl_grid_index(gr, i, j, k)]));
-        if (umax > 0.0)
+        if (umax > 0.0 && g->def.convection_step == BDL_CONVECTION_EXPLICIT)
             cfl = fmin(cfl, 0.5 * gr->h[a] / umax);
         if (!(gr->n[a] == 1 && gr->periodic[a]))
             inv_h2 += 1.0 / (gr->h[a] * gr->h[a]);

@@ -17,7 +17,7 @@
 // coupling with the same weights it interpolates the gas velocity with), so that the drag the gas
 // feels equals, summed, the drag the particles feel (src/couple).
 // Convection is conservative and TVD (upwind, van Leer or Superbee limiter on the face values;
-// central for tests), explicit; viscosity is explicit, eps mu lap(u) (the terms with grad eps are
+// central for tests), explicit or point-implicit (bdl_convection_step); viscosity is explicit, eps mu lap(u) (the terms with grad eps are
 // left out). beta, v_p and eps come from the coupling; without particles eps = 1, beta = 0.
 #ifndef BDL_GAS_H
 #define BDL_GAS_H
@@ -49,6 +49,20 @@ extern const char *const bdl_gas_side_names[]; ///< scene words (no "periodic"),
 BDL_CHOICES(bdl_convection, BDL_CONVECTIONS);
 extern const char *const bdl_convection_labels[]; ///< for logs ("van Leer")
 
+/// How convection steps in time: explicit (stable up to a Courant number of 1/2), or point-
+/// implicit: the upwind part's diagonal (the face's outflow) implicit, so that the upwind step is
+/// a weighted mean of the old velocities at any Courant number c = dt outflow / eps; the
+/// limiter's correction stays explicit, scaled by min(1, 1/c) (bounded with the limiters' psi <=
+/// 2). Below c = 1 it is the explicit step with its convection divided by 1 + c: a wave moves at
+/// U / (1 + c), slowed where c is not small (first order in dt, as the explicit step; the solids'
+/// transport is treated the same way). Where the drag ties the gas to the solids, it is the drag
+/// and not the convection that sets the gas's velocity.
+#define BDL_CONVECTION_STEPS(X)                                                                    \
+    X(CONVECTION_EXPLICIT, "explicit", "explicit")                                                 \
+    X(CONVECTION_POINT_IMPLICIT, "point_implicit", "point-implicit")
+BDL_CHOICES(bdl_convection_step, BDL_CONVECTION_STEPS);
+extern const char *const bdl_convection_step_labels[];
+
 typedef struct bdl_gas_side {
     bdl_gas_side_type type;
     double wall_velocity[3];     ///< tangential velocity of a no-slip wall [m/s]
@@ -73,6 +87,7 @@ typedef struct bdl_gas_def {
     double gravity[3];
     bdl_gas_side side[6]; ///< 2a + s: side s (0 low, 1 high) of axis a
     bdl_convection convection;
+    bdl_convection_step convection_step; ///< explicit, or point-implicit: no Courant limit
     double tolerance; ///< relative residual of the pressure solver
     int max_iterations;
     int pressure_share; ///< keep `share` (below): parcels' implicit scheme

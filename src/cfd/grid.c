@@ -34,11 +34,11 @@ int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double 
 
 double *bdl_grid_alloc(const bdl_grid *g) { return calloc((size_t)g->size, sizeof(double)); }
 
-void bdl_grid_wrap_cells(const bdl_grid *g, double *f)
+static void wrap_cells(const bdl_grid *g, double *f, int fewest)
 {
     const int G = BDL_GRID_GHOST;
     for (int a = 0; a < 3; ++a) {
-        if (!g->periodic[a])
+        if (!g->periodic[a] || g->n[a] < fewest)
             continue;
         const int b = (a + 1) % 3, c = (a + 2) % 3;
         const long sa = g->stride[a];
@@ -56,6 +56,10 @@ void bdl_grid_wrap_cells(const bdl_grid *g, double *f)
             }
     }
 }
+
+void bdl_grid_wrap_cells(const bdl_grid *g, double *f) { wrap_cells(g, f, 1); }
+
+void bdl_grid_wrap_cells_wide(const bdl_grid *g, double *f) { wrap_cells(g, f, 2); }
 
 double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m)
 {

@@ -59,6 +59,10 @@ double *bdl_grid_alloc(const bdl_grid *g);
 /// Copies periodic images into the ghost layers of a cell-centred field on every periodic axis.
 void bdl_grid_wrap_cells(const bdl_grid *g, double *f);
 
+/// The same on the periodic axes with more than one cell only, for stencils that skip the axes of
+/// one cell (across a period of one cell the neighbour is the cell itself: no difference).
+void bdl_grid_wrap_cells_wide(const bdl_grid *g, double *f);
+
 /// Fills the ghost layers of a cell-centred field: periodic images on periodic axes, the
 /// nearest cell's value (zero gradient) on the others.
 void bdl_grid_extend_cells(const bdl_grid *g, double *f);

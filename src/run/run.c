@@ -164,9 +164,14 @@ static void log_solids(const bdl_world *w)
              w->solids->def.restitution, w->solids->count > 1 ? " (the first phase's)" : "");
     const double stable =
         bdl_world_expected_gas_dt(w, fmax(s->gas.inlet_velocity, s->gas.jet_velocity));
-    bdl_info("dt = %g s, the gas's expected stable step %g s (dt = %.3g of it; refused above twice "
-             "it), end time = %g s",
-             w->dt, stable, w->dt / stable, s->end_time);
+    if (s->solids.courant > 0.0)
+        bdl_info("dt adaptive: Courant number %g, at most %g s, first %g s (the gas's expected "
+                 "stable step %g s), end time = %g s",
+                 s->solids.courant, s->dt, w->dt, stable, s->end_time);
+    else
+        bdl_info("dt = %g s, the gas's expected stable step %g s (dt = %.3g of it; refused above "
+                 "twice it), end time = %g s",
+                 w->dt, stable, w->dt / stable, s->end_time);
     bdl_info("limits: the solids fraction held below packing by the plastic regime from %g; "
              "energy_growth not checked (the solids' energy is not booked)",
              w->solids->def.eps_star);

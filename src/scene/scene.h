@@ -229,6 +229,7 @@ typedef struct bdl_gas_scene {
     double viscosity; ///< dynamic [Pa s]
     bdl_vec3 cells;   ///< cells per axis (whole numbers)
     bdl_convection convection;
+    bdl_convection_step convection_step;
     double tolerance;              ///< relative residual of the pressure solver
     bdl_gas_side_type side[6];     ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
     double inlet_velocity;         ///< superficial velocity into the domain through inlets [m/s]
@@ -290,6 +291,7 @@ typedef struct bdl_solids_scene {
     double tangential_restitution; ///< beta0 of Jenkins & Zhang
     double bed_height;             ///< the cells below this height start filled [m]
     double fraction;               ///< with this solids fraction
+    double courant; ///< > 0: each step min([run] dt, this Courant number's step); 0: [run] dt
     int phase_count;               ///< [phase NAME] sections: 0 (one phase, the above) or 2-4
     bdl_phase_scene phases[BDL_SOLIDS_PHASES];
 } bdl_solids_scene;

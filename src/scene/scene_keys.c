@@ -639,6 +639,11 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(GAS), "convection", .type = BDL_KEY_ENUM, "-", IN_GAS(convection),
      .def = {BDL_CONVECTION_VANLEER}, .enum_names = bdl_convection_names,
      .doc = "momentum convection: upwind, vanleer or superbee (TVD), central (verification only)"},
+    {S(GAS), "convection_step", .type = BDL_KEY_ENUM, "-", IN_GAS(convection_step),
+     .def = {BDL_CONVECTION_EXPLICIT}, .enum_names = bdl_convection_step_names,
+     .doc = "explicit (the gas's step at most a Courant number of 1/2) or point_implicit (the "
+            "upwind part's diagonal implicit, the limiter's correction explicit and scaled down "
+            "above a Courant number of 1: no Courant limit on the gas's step)"},
     {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
      .doc = "relative residual at which the pressure solver stops"},
     GAS_SIDE("xmin", 0),
@@ -803,6 +808,12 @@ const bdl_scene_key bdl_scene_keys[] = {
             "start filled"},
     {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),
      .doc = "their solids fraction (the default: Sun's eps_mf 0.417, table 5.2)"},
+    {S(SOLIDS), "courant", NUM, "-", IN_SOLIDS(courant), .def = {0}, GE(0), LE(1),
+     .default_text = "0 (the step is [run] dt)",
+     .doc = "above 0 the step adapts: each step is the largest, at most [run] dt, that keeps "
+            "the Courant number at most this: the solids' (their outflow and the speed of their "
+            "pressure waves, dt (v + c) / h) and, with explicit convection, the gas's; it lands "
+            "on the rows of diagnostics.csv"},
     {S(SOLIDS), "specularity", NUM, "-", IN_SOLIDS(def.specularity), .def = {0}, GE(0), LE(1),
      .doc = "Johnson & Jackson's specularity coefficient phi' of the walls: their shear stress on "
             "the solids pi sqrt(3) phi' rho eps g0 sqrt(theta) v / (6 plastic_fraction) (Sun "

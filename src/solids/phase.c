@@ -697,6 +697,46 @@ static void new_velocity(bdl_solids *s, int m, bdl_gas *gas, int a)
     wrap_face(gr, a, gas->u[a]);
 }
 
+/// Phase m's fluxes limited so that no cell sends out more than it holds in a step: the
+/// outgoing fluxes of a cell whose outflow dt sum(out) / h exceeds its fraction are scaled down
+/// to it, and the gas takes the difference (the flux of the two together keeps its divergence).
+/// Only nearly empty cells need it: the step's Courant limit (bdl_solids_stable_dt) leaves them
+/// out, and their solids, carried by the gas at its speed, would otherwise set the step.
+static void limit_outflow(bdl_solids *s, int m, bdl_gas *gas, double dt)
+{
+    const bdl_grid *gr = &s->grid;
+    bdl_solids_phase *p = &s->phase[m];
+    double *scale = s->work[4];
+    int any = 0;
+    FOR_CELLS(gr, {
+        double out = 0.0;
+        for (int a = 0; a < 3; ++a)
+            out += (fmax(p->flux[a][idx + gr->stride[a]], 0.0) - fmin(p->flux[a][idx], 0.0)) /
+                   gr->h[a];
+        out *= dt;
+        const double held = fmax(p->eps[idx], 0.0); // (round-off may leave a cell below zero)
+        scale[idx] = out > held ? held / out : 1.0;
+        any = any || scale[idx] < 1.0;
+    });
+    if (!any)
+        return;
+    bdl_grid_wrap_cells(gr, scale);
+    for (int a = 0; a < 3; ++a) {
+        const long sa = gr->stride[a];
+        double *f = p->flux[a];
+        FOR_INNER_FACES(gr, a, {
+            const double c = scale[f[idx] >= 0.0 ? idx - sa : idx];
+            if (c < 1.0) {
+                const double df = (c - 1.0) * f[idx];
+                f[idx] += df;
+                gas->u[a][idx] -= df / (1.0 - 0.5 * (s->eps[idx] + s->eps[idx - sa]));
+            }
+        });
+        wrap_face(gr, a, f);
+        wrap_face(gr, a, gas->u[a]);
+    }
+}
+
 /// The fractions the volume fluxes on the faces leave: out = before - dt div(face).
 static void after_fluxes(const bdl_grid *gr, double *const face[3], const double *before, double dt,
                          double *out)
@@ -756,6 +796,8 @@ static void plastic_apply(const bdl_solids *s, const double *slope, const double
             continue;
         double sum = z[idx] / slope[idx];
         for (int a = 0; a < 3; ++a) {
+            if (gr->n[a] == 1) // a period of one cell, or walls on both sides: no flux
+                continue;
             const long sa = gr->stride[a];
             sum +=
                 s->c[a][idx] * (z[idx] - z[idx - sa]) + s->c[a][idx + sa] * (z[idx] - z[idx + sa]);
@@ -798,7 +840,7 @@ static int plastic_solve(bdl_solids *s, const double *slope, const double *r, do
     int it = 0;
     double rz = plastic_dot(s, slope, res, dir);
     while (norm0 > 0.0 && it < s->def.max_iterations) {
-        bdl_grid_wrap_cells(gr, dir);
+        bdl_grid_wrap_cells_wide(gr, dir);
         plastic_apply(s, slope, dir, q);
         const double alpha = rz / plastic_dot(s, slope, dir, q);
         FOR_CELLS(gr, {
@@ -1026,6 +1068,8 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
     for (int a = 0; a < 3; ++a)
         for (int m = 0; m < s->count; ++m)
             new_velocity(s, m, gas, a);
+    for (int m = 0; m < s->count; ++m)
+        limit_outflow(s, m, gas, dt);
     double *star = s->work[3];
     if (s->count == 1) {
         after_fluxes(gr, s->phase[0].flux, s->eps, dt, star);
@@ -1058,18 +1102,41 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
     return finite && isfinite(lo) && isfinite(hi) ? BDL_OK : BDL_ERR_UNSTABLE;
 }
 
+/// The speed of the viscous regime's pressure waves in a cell of phase fraction eps (the
+/// mixture's `total`, for the radial distribution) at temperature theta: c^2 = dP/d(eps) / rho at
+/// fixed theta, P = k1 eps^2 theta with Carnahan & Starling's g0 of the total fraction (a
+/// mixture's Lebowitz g0_mm is of its size), by a difference of one part in 10^6. The momentum
+/// step takes -grad P explicitly: a step above h / c would let the waves grow.
+static double sound_speed(const bdl_solids_def *d, double eps, double total, double theta)
+{
+    const double de = 1e-6 * eps;
+    const double k = bdl_ktgf_syamlal_g0(eps, bdl_g0_carnahan_starling(total), d->diameter,
+                                         d->density, d->restitution)
+                         .k1,
+                 k2 = bdl_ktgf_syamlal_g0(eps + de, bdl_g0_carnahan_starling(total + de),
+                                          d->diameter, d->density, d->restitution)
+                          .k1;
+    const double slope = theta * (k2 * (eps + de) * (eps + de) - k * eps * eps) / de;
+    return sqrt(fmax(slope, 0.0) / d->density);
+}
+
 double bdl_solids_stable_dt(const bdl_solids *s)
 {
     const bdl_grid *gr = &s->grid;
+    double inv_h = 0.0; // sum of 1/h over the axes with more than one cell
+    for (int a = 0; a < 3; ++a)
+        inv_h += gr->n[a] > 1 ? 1.0 / gr->h[a] : 0.0;
     double out = 0.0; // the largest rate at which a cell's faces carry its solids out [1/s]
     for (int m = 0; m < s->count; ++m) {
         const bdl_solids_phase *p = &s->phase[m];
         FOR_CELLS(gr, {
-            if (p->eps[idx] > 0.0) {
+            if (p->eps[idx] > s->def.dilute) {
                 double rate = 0.0;
                 for (int a = 0; a < 3; ++a)
                     rate += (fmax(p->v[a][idx + gr->stride[a]], 0.0) + fmax(-p->v[a][idx], 0.0)) /
                             gr->h[a];
+                if (p->theta[idx] > 0.0)
+                    rate += sound_speed(&p->def, p->eps[idx], s->eps[idx], p->theta[idx]) * inv_h;
                 out = fmax(out, rate);
             }
         });

@@ -138,10 +138,14 @@ void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 /// is not finite.
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
 
-/// The largest stable time step of the solids' explicit transport: half the step at which a cell
-/// holding solids would send out all it holds through the faces its velocity leaves by (the
-/// upwind update keeps eps >= 0 up to twice this; the viscous term and the transport of momentum
-/// are point-implicit, the plastic pressure implicit).
+/// The largest stable time step of the solids' explicit terms, a Courant number of 1/2: 0.5 /
+/// max over the cells above the dilute limit of sum_a (v_out,a + c) / h_a, v_out the velocities
+/// of the faces a cell's solids leave by (the upwind transport keeps eps >= 0 up to twice this)
+/// and c the speed of the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) (the
+/// momentum step takes -grad P explicitly). The viscous term and the transport of momentum are
+/// point-implicit, the plastic pressure implicit. Cells below the dilute limit do not count: a
+/// step limits their outflow to what they hold (the gas takes the difference). INFINITY with no
+/// such cell.
 double bdl_solids_stable_dt(const bdl_solids *s);
 
 /// Velocity component a of phase m at the centre of cell (i, j, k).

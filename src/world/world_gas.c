@@ -53,6 +53,7 @@ static bdl_gas_def gas_def(bdl_world *w)
     d.density = gs->density;
     d.viscosity = gs->viscosity;
     d.convection = gs->convection;
+    d.convection_step = gs->convection_step;
     d.tolerance = gs->tolerance;
     d.pressure_share = s->parcels.enabled || s->solids.enabled; // their elimination's hooks
     return d;
@@ -248,6 +249,9 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
         return;
     }
     const bdl_grid *g = &w->gas->grid;
+    char conv[64];
+    snprintf(conv, sizeof conv, "%s%s", bdl_convection_labels[w->gas->def.convection],
+             w->gas->def.convection_step == BDL_CONVECTION_POINT_IMPLICIT ? " point-implicit" : "");
     char plate[80] = "";
     if (w->scene.gas.distributor_resistance > 0.0)
         snprintf(plate, sizeof plate, "; inlets through a porous plate of %.4g Pa s/m",
@@ -257,7 +261,7 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; one step with the "
                  "solids phase, %.3g s%s",
                  g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-                 bdl_convection_labels[w->gas->def.convection], w->dt, plate);
+                 conv, w->dt, plate);
         return;
     }
     if (w->parcels) {
@@ -265,8 +269,7 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
                  "half-width %.3g mm; one gas step per step of the parcels, %.3g s%s",
                  g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-                 bdl_convection_labels[w->gas->def.convection],
-                 bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt,
+                 conv, bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt,
                  plate);
         return;
     }
@@ -274,8 +277,7 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
              "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
              "half-width %.3g mm; gas step %.3g s = %ld particle steps%s%s",
              g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-             bdl_convection_labels[w->gas->def.convection],
-             bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0],
+             conv, bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0],
              (double)w->gas_every * w->dt, w->gas_every,
              w->gas_fixed ? " (fixed)" : " at first, then CFL 1/2 for the gas as it flows", plate);
 }
