@@ -17,8 +17,9 @@
 // coupling with the same weights it interpolates the gas velocity with), so that the drag the gas
 // feels equals, summed, the drag the particles feel (src/couple).
 // Convection is conservative and TVD (upwind, van Leer or Superbee limiter on the face values;
-// central for tests), explicit or point-implicit (bdl_convection_step); viscosity is explicit, eps mu lap(u) (the terms with grad eps are
-// left out). beta, v_p and eps come from the coupling; without particles eps = 1, beta = 0.
+// central for tests), explicit or point-implicit (bdl_convection_step); viscosity is explicit,
+// eps mu lap(u) (the terms with grad eps are left out). beta, v_p and eps come from the coupling;
+// without particles eps = 1, beta = 0.
 #ifndef BDL_GAS_H
 #define BDL_GAS_H
 
