@@ -89,7 +89,7 @@ typedef struct bdl_gas_def {
     bdl_gas_side side[6]; ///< 2a + s: side s (0 low, 1 high) of axis a
     bdl_convection convection;
     bdl_convection_step convection_step; ///< explicit, or point-implicit: no Courant limit
-    double tolerance; ///< relative residual of the pressure solver
+    double tolerance;                    ///< relative residual of the pressure solver
     int max_iterations;
     int pressure_share; ///< keep `share` (below): parcels' implicit scheme
 } bdl_gas_def;
