@@ -291,8 +291,8 @@ typedef struct bdl_solids_scene {
     double tangential_restitution; ///< beta0 of Jenkins & Zhang
     double bed_height;             ///< the cells below this height start filled [m]
     double fraction;               ///< with this solids fraction
-    double courant; ///< > 0: each step min([run] dt, this Courant number's step); 0: [run] dt
-    int phase_count;               ///< [phase NAME] sections: 0 (one phase, the above) or 2-4
+    double courant;  ///< > 0: each step min([run] dt, this Courant number's step); 0: [run] dt
+    int phase_count; ///< [phase NAME] sections: 0 (one phase, the above) or 2-4
     bdl_phase_scene phases[BDL_SOLIDS_PHASES];
 } bdl_solids_scene;
 
