@@ -268,8 +268,7 @@ static void test_point_implicit_convection(void)
             // moves at U / (1 + c), behind the exact one by pi c / (1 + c) after half a period
             // (the price of a step that is a weighted mean at any c; gas.h).
             const double expected = BDL_PI * courants[c] / (1.0 + courants[c]);
-            CHECK_MSG(fabs(lag - expected) < 0.02, "phase lag %g rad, expected %g", lag,
-                      expected);
+            CHECK_MSG(fabs(lag - expected) < 0.02, "phase lag %g rad, expected %g", lag, expected);
         }
 }
 

@@ -260,24 +260,24 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
         snprintf(buf, size,
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; one step with the "
                  "solids phase, %.3g s%s",
-                 g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-                 conv, w->dt, plate);
+                 g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2], conv,
+                 w->dt, plate);
         return;
     }
     if (w->parcels) {
         snprintf(buf, size,
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
                  "half-width %.3g mm; one gas step per step of the parcels, %.3g s%s",
-                 g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-                 conv, bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt,
+                 g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2], conv,
+                 bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0], w->dt,
                  plate);
         return;
     }
     snprintf(buf, size,
              "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; drag %s, kernel "
              "half-width %.3g mm; gas step %.3g s = %ld particle steps%s%s",
-             g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2],
-             conv, bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0],
+             g->n[0], g->n[1], g->n[2], 1e3 * g->h[0], 1e3 * g->h[1], 1e3 * g->h[2], conv,
+             bdl_drag_law_names[w->coupling->def.drag], 1e3 * w->coupling->width[0],
              (double)w->gas_every * w->dt, w->gas_every,
              w->gas_fixed ? " (fixed)" : " at first, then CFL 1/2 for the gas as it flows", plate);
 }

@@ -91,8 +91,9 @@ bdl_result bdl_world_solids_init(bdl_world *w, bdl_scene_error *err)
     const double courant = w->scene.solids.courant;
     if (courant > 0.0) { // an adaptive step starts from the gas's expected stable one
         const bdl_gas_scene *gs = &w->scene.gas;
-        w->gas_stable = fmin(w->gas_stable, bdl_world_expected_gas_dt(
-                                                w, fmax(gs->inlet_velocity, gs->jet_velocity)));
+        w->gas_stable =
+            fmin(w->gas_stable,
+                 bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity)));
         w->dt = fmin(w->scene.dt, 2.0 * courant * w->gas_stable);
     }
     w->budget.dt = w->dt;
