@@ -390,6 +390,10 @@ static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *rep
         bdl_info("finished at t = %.6g s, step %ld, %ld particles, %.3f s wall, checkpoint %s",
                  w->time, w->step, w->particles.count, wall,
                  r->outputs.final_checkpoint[0] ? r->outputs.final_checkpoint : "NOT written");
+    if (solved && w->solids && w->scene.solids.courant > 0.0)
+        bdl_info("adaptive step: %ld steps, %.4g s on average; %ld taken back and retaken "
+                 "shorter (in this process)",
+                 w->step, w->time / (double)(w->step > 0 ? w->step : 1), w->solids_retakes);
     if (solved && w->parcels)
         bdl_info("parcels: %ld held back by the packing guard over the run; after the last step "
                  "%ld touching pairs, %ld side contacts, largest overlap %.3g of R_ep (model B)",

@@ -150,7 +150,62 @@ void bdl_solids_destroy(bdl_solids *s)
         free(s->rel[q]);
     for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         free(s->work[w]);
+    free(s->kept);
     free(s);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Keeping the state a step starts from.
+
+enum { KEPT_GAS = 6, KEPT_PHASE = 8 }; ///< padded arrays kept of the gas and of each phase
+
+static void mixture_fraction(const bdl_solids *s);
+
+/// The arrays of the state, gas first: `out` gets their addresses, the count returned.
+static int kept_arrays(bdl_solids *s, bdl_gas *gas, double **out)
+{
+    int n = 0;
+    for (int a = 0; a < 3; ++a)
+        out[n++] = gas->u[a];
+    out[n++] = gas->p, out[n++] = gas->eps, out[n++] = gas->eps_old;
+    for (int m = 0; m < s->count; ++m) {
+        bdl_solids_phase *p = &s->phase[m];
+        out[n++] = p->eps, out[n++] = p->theta;
+        for (int a = 0; a < 3; ++a)
+            out[n++] = p->v[a], out[n++] = p->flux[a];
+    }
+    return n;
+}
+
+/// The clocks and counters kept beside the arrays, as doubles.
+enum { KEPT_SCALARS = 8 };
+
+bdl_result bdl_solids_keep(bdl_solids *s, bdl_gas *gas)
+{
+    double *arrays[KEPT_GAS + KEPT_PHASE * BDL_SOLIDS_PHASES];
+    const int n = kept_arrays(s, gas, arrays);
+    const size_t cells = (size_t)s->grid.size;
+    if (!s->kept && !(s->kept = malloc((n * cells + KEPT_SCALARS) * sizeof(double))))
+        return BDL_ERR_NOMEM;
+    for (int q = 0; q < n; ++q)
+        memcpy(s->kept + q * cells, arrays[q], cells * sizeof(double));
+    double *t = s->kept + n * cells;
+    t[0] = gas->time, t[1] = (double)gas->steps, t[2] = gas->mass_imbalance;
+    t[3] = s->time, t[4] = (double)s->steps;
+    return BDL_OK;
+}
+
+void bdl_solids_undo(bdl_solids *s, bdl_gas *gas)
+{
+    double *arrays[KEPT_GAS + KEPT_PHASE * BDL_SOLIDS_PHASES];
+    const int n = kept_arrays(s, gas, arrays);
+    const size_t cells = (size_t)s->grid.size;
+    for (int q = 0; q < n; ++q)
+        memcpy(arrays[q], s->kept + q * cells, cells * sizeof(double));
+    const double *t = s->kept + n * cells;
+    gas->time = t[0], gas->steps = (long)t[1], gas->mass_imbalance = t[2];
+    s->time = t[3], s->steps = (long)t[4];
+    mixture_fraction(s);
 }
 
 /// The mixture's fraction, the sum of the phases' (with one phase the same array).

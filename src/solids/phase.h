@@ -110,6 +110,7 @@ typedef struct bdl_solids {
     /// phase's A with one phase); the correction's weights and then its flux.
     double *a[3], *c[3];
     double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
+    double *kept; ///< the state bdl_solids_keep saved (NULL until it is first called)
     double time;
     long steps;
     bdl_solids_stats stats;
@@ -137,6 +138,16 @@ void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 /// Advances solids and gas together by dt. BDL_ERR_UNSTABLE when the gas step fails or a value
 /// is not finite.
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
+
+/// Saves the state of the solids and the gas a step starts from (what a checkpoint holds of
+/// them: the fractions, velocities, fluxes, temperatures, the gas's velocities, pressure and
+/// voidages, and their clocks), so that bdl_solids_undo can take the step back and it can be
+/// retaken with a shorter one. BDL_ERR_NOMEM if the copy cannot be allocated (the first call
+/// allocates it).
+bdl_result bdl_solids_keep(bdl_solids *s, bdl_gas *gas);
+
+/// Puts back the state the last bdl_solids_keep saved.
+void bdl_solids_undo(bdl_solids *s, bdl_gas *gas);
 
 /// The largest stable time step of the solids' explicit terms, a Courant number of 1/2: 0.5 /
 /// max over the cells above the dilute limit of sum_a (v_out,a + c) / h_a, v_out the velocities

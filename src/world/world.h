@@ -93,6 +93,7 @@ typedef struct bdl_world {
     int gas_fixed;           ///< [gas] dt given: every gas step spans gas_every particle steps
     long gas_next;           ///< particle step at which the next gas step starts
     double gas_stable;       ///< the stable gas step after the last one (CFL 1/2, viscous) [s]
+    long solids_retakes;     ///< adaptive solids steps taken back and retaken (this process)
     int gas_inflow_raised;   ///< the live inlet scale rose since the last gas step
     long gas_steps;          ///< gas steps taken
     double particle_drag[3]; ///< drag of the gas on all particles over the last gas step [N]

@@ -127,10 +127,9 @@ static double adaptive_step(const bdl_world *w)
     return dt;
 }
 
-bdl_result bdl_world_solids_step(bdl_world *w)
+/// Sets the gravity (a vibrated container's at mid-step) and the inflow for a step of w->dt.
+static void step_conditions(bdl_world *w)
 {
-    if (w->scene.solids.courant > 0.0)
-        w->dt = adaptive_step(w);
     const bdl_vec3 g = bdl_world_gravity(w, w->time + 0.5 * w->dt);
     const double gravity[3] = {g.x, g.y, g.z};
     bdl_gas_set_gravity(w->gas, gravity);
@@ -138,18 +137,48 @@ bdl_result bdl_world_solids_step(bdl_world *w)
         bdl_gas_set_inflow(w->gas, bdl_world_inlet_velocity(w, w->time),
                            w->live.inlet_scale * w->scene.gas.jet_velocity);
     w->gas_inflow_raised = 0;
+}
+
+/// Whether an adaptive step should be taken back: it failed, its plastic correction did not
+/// settle, or the state it left asks for less than half of it.
+static int retake(const bdl_world *w, bdl_result r, double stable)
+{
+    return r != BDL_OK || w->solids->stats.unsettled ||
+           2.0 * w->scene.solids.courant * stable < 0.5 * w->dt;
+}
+
+bdl_result bdl_world_solids_step(bdl_world *w)
+{
+    const int adaptive = w->scene.solids.courant > 0.0;
+    if (adaptive)
+        w->dt = adaptive_step(w);
     // The stable step of the state the step starts from (CFL 1/2 for gas and solids; the last
     // step's, or the start's): a step above twice it is not taken.
     if (w->dt > 2.0 * w->gas_stable) {
         bdl_world_gas_failure(w, "solids step", "[run] dt", w->dt, w->gas_stable);
         return BDL_ERR_UNSTABLE;
     }
-    const bdl_result r = bdl_solids_step(w->solids, w->gas, w->dt);
+    if (adaptive && bdl_solids_keep(w->solids, w->gas) != BDL_OK)
+        return BDL_ERR_NOMEM;
+    bdl_result r;
+    double stable;
+    for (int attempt = 0;; ++attempt) {
+        step_conditions(w);
+        r = bdl_solids_step(w->solids, w->gas, w->dt);
+        stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
+        // An adaptive step is retaken at most eight times, each time at most half as long.
+        if (!adaptive || attempt == 8 || !retake(w, r, stable))
+            break;
+        bdl_solids_undo(w->solids, w->gas);
+        const double shorter = 2.0 * w->scene.solids.courant * stable;
+        w->dt = r == BDL_OK && shorter > 0.0 ? fmin(0.5 * w->dt, shorter) : 0.5 * w->dt;
+        w->solids_retakes++;
+    }
     if (r != BDL_OK) {
         bdl_world_gas_failure(w, "solids step", "[run] dt", w->dt, 0.0);
         return r;
     }
-    w->gas_stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
+    w->gas_stable = stable;
     w->max_solids = w->solids->stats.eps_max;
     w->gas_steps++;
     w->gas_next = w->step + 1;
