@@ -11,3 +11,4 @@ bdl_add_test(test_tfm_verify SOURCES test_tfm_verify.c LABELS "solids;verificati
 bdl_add_test(test_tfm_goldschmidt SOURCES test_tfm_goldschmidt.c LABELS "solids;slow" TIMEOUT 3600)
 # Several phases: the drag between them (closed form, exact relaxation), a binary bubbling bed.
 bdl_add_test(test_tfm_mixture SOURCES test_tfm_mixture.c LABELS solids)
+bdl_add_test(test_tfm_energy SOURCES test_tfm_energy.c LABELS "solids;verification")

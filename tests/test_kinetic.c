@@ -144,8 +144,30 @@ static void test_schaeffer(void)
     CHECK(bdl_schaeffer_viscosity(0.0, phi, 0.0, 100.0) == 0.0);
 }
 
+/// Lun et al.'s conductivity with Ma & Ahmadi's gas correction: at no drag the dilute limit
+/// 75 rho d sqrt(pi theta) / (48 eta (41 - 33 eta)) / g0 times its bracket; the drag's reduction
+/// K* = K / (1 + 1.2 beta K / (rho^2 eps^2 g0 theta)); zero at zero temperature.
+static void test_conductivity(void)
+{
+    const double eps = 0.35, d = 2.49e-3, rho = 2526.0, e = 0.9, theta = 0.02,
+                 pi = 3.141592653589793;
+    const double g0 = bdl_g0_carnahan_starling(eps), eta = 0.95;
+    const double k = 75.0 * rho * d * sqrt(pi * theta) / (48.0 * eta * (41.0 - 33.0 * eta));
+    const double bracket = (1.0 / g0 + 12.0 / 5.0 * eta * eps) *
+                               (1.0 + 12.0 / 5.0 * eta * eta * (4.0 * eta - 3.0) * eps * g0) +
+                           64.0 / (25.0 * pi) * (41.0 - 33.0 * eta) * eta * eta * eps * eps * g0;
+    CHECK_CLOSE(bdl_ktgf_conductivity(eps, g0, d, rho, e, theta, 0.0), k * bracket, 1e-13);
+    const double beta = 3e4,
+                 reduced = k / (1.0 + 1.2 * beta * k / (rho * rho * eps * eps * g0 * theta));
+    CHECK_CLOSE(bdl_ktgf_conductivity(eps, g0, d, rho, e, theta, beta), reduced * bracket, 1e-13);
+    CHECK(bdl_ktgf_conductivity(eps, g0, d, rho, e, 0.0, beta) == 0.0);
+    printf("conductivity at eps %.2f, theta %.2f: %.4f kg/(m s) without drag, %.4f with beta %g\n",
+           eps, theta, k * bracket, reduced * bracket, beta);
+}
+
 int main(void)
 {
+    test_conductivity();
     test_jenkins_zhang();
     test_g0();
     test_pressure_against_lun();

@@ -808,6 +808,17 @@ const bdl_scene_key bdl_scene_keys[] = {
             "start filled"},
     {S(SOLIDS), "fraction", NUM, "-", IN_SOLIDS(fraction), .def = {0.583}, GT(0), LE(0.6),
      .doc = "their solids fraction (the default: Sun's eps_mf 0.417, table 5.2)"},
+    {S(SOLIDS), "granular_energy", .type = BDL_KEY_ENUM, "-", IN_SOLIDS(def.granular_energy),
+     .def = {BDL_GRANULAR_ENERGY_LOCAL}, .enum_names = bdl_granular_energy_names,
+     .doc = "local: production and dissipation balanced in each cell in time (no transport); "
+            "transport: the granular energy's transport equation, with convection, Lun et al.'s "
+            "conduction (Ma & Ahmadi's gas correction) and, with a specularity, Johnson & "
+            "Jackson's energy flux through the walls (Sun 2007, eqs. 5.5, 5.9)"},
+    {S(SOLIDS), "wall_restitution", NUM, "-", IN_SOLIDS(def.wall_restitution), .def = {0.6}, GE(0),
+     LE(1),
+     .doc = "Johnson & Jackson's particle-wall restitution e_w of the walls' energy flux "
+            "(granular_energy = transport with a specularity; 0.6 as Guo et al.'s 2021 MFiX "
+            "cases)"},
     {S(SOLIDS), "courant", NUM, "-", IN_SOLIDS(courant), .def = {0}, GE(0), LE(1),
      .default_text = "0 (the step is [run] dt)",
      .doc = "above 0 the step adapts: each step is the largest, at most [run] dt, that keeps "

@@ -41,6 +41,20 @@ bdl_ktgf_coefficients bdl_ktgf_syamlal_g0(double eps, double g0, double d, doubl
     return c;
 }
 
+double bdl_ktgf_conductivity(double eps, double g0, double d, double rho, double e, double theta,
+                             double beta)
+{
+    if (!(theta > 0.0))
+        return 0.0;
+    const double eta = 0.5 * (1.0 + e), q = 41.0 - 33.0 * eta;
+    const double k = 75.0 * rho * d * sqrt(pi * theta) / (48.0 * eta * q);
+    const double held = rho * rho * eps * eps * g0 * theta; // K* = K held / (held + 1.2 beta K)
+    const double k_star = k * held / (held + 1.2 * beta * k);
+    return k_star *
+           ((1.0 / g0 + 2.4 * eta * eps) * (1.0 + 2.4 * eta * eta * (4.0 * eta - 3.0) * eps * g0) +
+            64.0 / (25.0 * pi) * q * eta * eta * eps * eps * g0);
+}
+
 double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, double shear_rate)
 {
     const bdl_ktgf_coefficients c = bdl_ktgf_syamlal(eps, d, rho, e);

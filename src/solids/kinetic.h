@@ -59,6 +59,17 @@ double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, do
 double bdl_ktgf_temperature_step(const bdl_ktgf_coefficients *c, double eps, double rho,
                                  double trace, double ddot, double theta_old, double dt);
 
+/// The granular conductivity k_theta [kg/(m s)] of Lun et al. (1984) with Ma & Ahmadi's (1988)
+/// reduction by the interstitial gas, as MFIX's granular-energy transport branch writes it
+/// (eta = (1 + e)/2, beta the gas-solids drag coefficient per unit volume [kg/(m^3 s)]):
+///     K = 75 rho d sqrt(pi theta) / (48 eta (41 - 33 eta)),
+///     K* = K / (1 + 1.2 beta K / (rho^2 eps^2 g0 theta)),
+///     k_theta = K* [(1/g0 + 12/5 eta eps)(1 + 12/5 eta^2 (4 eta - 3) eps g0)
+///                   + 64/(25 pi) (41 - 33 eta) (eta eps)^2 g0].
+/// 0 at theta = 0.
+double bdl_ktgf_conductivity(double eps, double g0, double d, double rho, double e, double theta,
+                             double beta);
+
 /// Schaeffer's plastic regime: the solids pressure eps_s A (eps_g_star - eps_g)^n when the gas
 /// fraction eps_g is below eps_g_star (else 0), and the frictional viscosity P sin(phi) /
 /// (2 sqrt(i2d)) for the second invariant i2d of the rate-of-strain deviator, never above mu_max

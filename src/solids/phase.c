@@ -6,9 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "solids/energy.h"
 #include "solids/kinetic.h"
 
 #define PI 3.14159265358979323846
+
+BDL_CHOICE_WORDS(bdl_granular_energy, BDL_GRANULAR_ENERGIES);
 
 bdl_solids_def bdl_default_solids_def(void)
 {
@@ -27,6 +30,7 @@ bdl_solids_def bdl_default_solids_def(void)
     d.dilute = 1e-6;
     d.tolerance = 1e-10;
     d.max_iterations = 2000;
+    d.wall_restitution = 0.6;
     return d;
 }
 
@@ -37,7 +41,10 @@ static int valid_def(const bdl_solids_def *d)
            d->friction_angle >= 0.0 && d->friction_angle < 90.0 && d->mu_max > 0.0 &&
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
            d->phase_friction >= 0.0 && d->specularity >= 0.0 && d->specularity <= 1.0 &&
-           d->hindrance >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT;
+           d->hindrance >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT &&
+           d->wall_restitution >= 0.0 && d->wall_restitution <= 1.0 &&
+           (d->granular_energy == BDL_GRANULAR_ENERGY_LOCAL ||
+            d->granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT);
 }
 
 /// The face arrays of a phase and its cell arrays; 0 when out of memory.
@@ -358,27 +365,48 @@ static void strain_rate(const bdl_grid *gr, const bdl_solids_phase *p, long idx,
             D[a][b] = 0.5 * (grad[a][b] + grad[b][a]);
 }
 
-/// Syamlal's viscous regime with the granular energy's balance in time but without its transport
-/// (no convection or conduction): (3/2) rho eps (theta - theta^n) / dt = -P tr D + 2 mu D:D +
-/// lambda tr(D)^2 - k4 eps^2 theta^(3/2), backward Euler, a cubic in x = sqrt(theta):
+/// Syamlal's viscous regime with the granular energy's balance in time: (3/2) rho eps (theta -
+/// theta^n) / dt = -P tr D + 2 mu D:D + lambda tr(D)^2 - k4 eps^2 theta^(3/2), backward Euler, a
+/// cubic in x = sqrt(theta):
 ///     k4 eps x^3 + (3 rho / (2 dt) + k1 eps tr D) x^2 - (2 k3 D:D + k2 tr(D)^2) x
 ///       - 3 rho theta^n / (2 dt) = 0
 /// (divided by eps). As dt / (the collisions' relaxation time) grows it tends to the algebraic
 /// balance MFIX offers (the quadratic without the time terms); unlike that one it cannot jump
 /// from cell to cell with the local strain rate within a step, which on fine grids grew into a
-/// checkerboard of pressures that diverged. A phase of a mixture takes Lebowitz's g0_mm (g0 > 0)
-/// and balances its own collisions only.
-static double viscous_regime(const bdl_solids_def *d, double eps, double g0, double trace,
-                             double ddot, double theta_old, double dt, double *theta, double *p,
-                             double *mu)
+/// checkerboard of pressures that diverged. g0 is Carnahan & Starling's for one phase, Lebowitz's
+/// g0_mm for a phase of a mixture (which balances its own collisions only). With the transport
+/// terms e (solids/energy.h; NULL: none) the time term gains e->diag, the old energy e->nb and
+/// the dissipation e->k4: the same cubic.
+static void viscous_regime(const bdl_solids_def *d, double eps, double g0, double trace,
+                           double ddot, double theta_old, double dt, const bdl_energy_terms *e,
+                           double *theta, double *p, double *mu)
 {
-    const bdl_ktgf_coefficients c =
-        g0 > 0.0 ? bdl_ktgf_syamlal_g0(eps, g0, d->diameter, d->density, d->restitution)
-                 : bdl_ktgf_syamlal(eps, d->diameter, d->density, d->restitution);
+    bdl_ktgf_coefficients c = bdl_ktgf_syamlal_g0(eps, g0, d->diameter, d->density, d->restitution);
+    if (e) { // 3/2 rho eps / dt' = 3/2 rho eps / dt + diag, theta_old' its weighted mean
+        const double rate = 1.5 * d->density * eps / dt;
+        theta_old = (rate * theta_old + e->nb) / (rate + e->diag);
+        dt = 1.5 * d->density * eps / (rate + e->diag);
+        c.k4 += e->k4;
+    }
     *theta = bdl_ktgf_temperature_step(&c, eps, d->density, trace, ddot, theta_old, dt);
     *p = c.k1 * eps * eps * *theta;
     *mu = c.k3 * eps * sqrt(*theta);
-    return c.g0;
+}
+
+/// The cell's phase fractions and diameters, for Lebowitz's g0.
+static void cell_mixture(const bdl_solids *s, long idx, double *eps, double *d)
+{
+    for (int m = 0; m < s->count; ++m)
+        eps[m] = s->phase[m].eps[idx], d[m] = s->phase[m].def.diameter;
+}
+
+double bdl_solids_phase_g0(const bdl_solids *s, int m, long idx)
+{
+    if (s->count == 1)
+        return bdl_g0_carnahan_starling(s->eps[idx]);
+    double e[BDL_SOLIDS_PHASES], dm[BDL_SOLIDS_PHASES];
+    cell_mixture(s, idx, e, dm);
+    return bdl_g0_lebowitz(e, dm, s->count, m, m);
 }
 
 /// Johnson & Jackson's (1987) wall friction coefficient: the wall's shear stress on the solids is
@@ -388,13 +416,6 @@ static double wall_coefficient(const bdl_solids_def *d, double eps, double g0, d
 {
     return PI * sqrt(3.0) * d->specularity * d->density * eps * g0 * sqrt(theta) /
            (6.0 * d->eps_star);
-}
-
-/// The cell's phase fractions and diameters, for Lebowitz's g0.
-static void cell_mixture(const bdl_solids *s, long idx, double *eps, double *d)
-{
-    for (int m = 0; m < s->count; ++m)
-        eps[m] = s->phase[m].eps[idx], d[m] = s->phase[m].def.diameter;
 }
 
 /// Phase m's temperature, pressure and viscosity in every cell, and the slip |u - v| the drag
@@ -407,6 +428,9 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
     const bdl_solids_def *d = &ph->def;
     const double phi = d->friction_angle * PI / 180.0; // radians
     double pmax = s->stats.pressure_max;
+    const int transport = s->def.granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT;
+    if (transport)
+        bdl_solids_energy_prepare(s, m, gas);
     FOR_CELLS(gr, {
         const double eps = ph->eps[idx], total = s->eps[idx];
         double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, slip2 = 0.0, wall = 0.0;
@@ -428,13 +452,14 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
             if (s->plastic)
                 s->plastic[idx] = pt;
         } else if (eps > d->dilute) {
-            double g0 = 0.0;
-            if (s->count > 1) {
-                double e[BDL_SOLIDS_PHASES], dm[BDL_SOLIDS_PHASES];
-                cell_mixture(s, idx, e, dm);
-                g0 = bdl_g0_lebowitz(e, dm, s->count, m, m);
+            const double g0 = bdl_solids_phase_g0(s, m, idx);
+            bdl_energy_terms terms, *e = NULL;
+            if (transport) {
+                const int at[3] = {i, j, k};
+                terms = bdl_solids_energy_terms(s, m, gas, idx, at, g0);
+                e = &terms;
             }
-            g0 = viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, &theta, &p, &mu);
+            viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, e, &theta, &p, &mu);
             wall = wall_coefficient(d, eps, g0, theta);
             pmax = fmax(pmax, p);
         }

@@ -26,16 +26,26 @@
 //
 // Stresses: below eps_star Syamlal's viscous regime (solids/kinetic.h) with the granular
 // temperature from the balance of production and dissipation in time, cell by cell, without
-// transport (backward Euler; its limit dt -> infinity is MFIX's algebraic form), above it
-// Schaeffer's plastic regime with the temperature set to zero (Sun 2007, eq. 7.7). The viscous
-// term is div(mu_s grad v) (the transposed and bulk parts are left out). Every side of the
-// domain that is not periodic is a free-slip wall to the solids. docs/theory-tfm.md.
+// transport (backward Euler; its limit dt -> infinity is MFIX's algebraic form), or with its
+// transport (def.granular_energy: solids/energy.h), above it Schaeffer's plastic regime with the
+// temperature set to zero (Sun 2007, eq. 7.7). The viscous term is div(mu_s grad v) (the
+// transposed and bulk parts are left out). Every side of the domain that is not periodic is a
+// wall to the solids: free-slip, or Johnson & Jackson's partial slip with def.specularity.
+// docs/theory-tfm.md.
 #ifndef BDL_SOLIDS_PHASE_H
 #define BDL_SOLIDS_PHASE_H
 
 #include "cfd/gas.h"
 #include "core/error.h"
+#include "core/names.h"
 #include "couple/drag.h"
+
+/// The granular energy: balanced in each cell in time without transport, or the transport
+/// equation (solids/energy.h).
+#define BDL_GRANULAR_ENERGIES(X)                                                                   \
+    X(GRANULAR_ENERGY_LOCAL, "local", "balanced in each cell")                                     \
+    X(GRANULAR_ENERGY_TRANSPORT, "transport", "transport equation")
+BDL_CHOICES(bdl_granular_energy, BDL_GRANULAR_ENERGIES);
 
 typedef struct bdl_solids_def {
     double diameter; ///< [m]
@@ -55,8 +65,10 @@ typedef struct bdl_solids_def {
     int max_iterations;    ///< its iteration limit
     double phase_friction; ///< C_f of the drag between solids phases (Sun eq. 3.18)
     double specularity;    ///< Johnson & Jackson's phi' of the walls (0: free slip)
-    double hindrance;      ///< Gera et al.'s (2004) C1: the drag between phases gains C1 P_plastic
-                           ///< [s/m^2] (0: Syamlal's alone)
+    bdl_granular_energy granular_energy; ///< local balance or transport equation
+    double wall_restitution; ///< Johnson & Jackson's e_w of the walls' energy flux (transport)
+    double hindrance; ///< Gera et al.'s (2004) C1: the drag between phases gains C1 P_plastic
+                      ///< [s/m^2] (0: Syamlal's alone)
 } bdl_solids_def;
 
 /// Glass beads of 2.49 mm (Goldschmidt's large particles, Sun 2007 table 5.1), e 0.97,
@@ -111,6 +123,9 @@ typedef struct bdl_solids {
     double *a[3], *c[3];
     double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
     double *kept; ///< the state bdl_solids_keep saved (NULL until it is first called)
+    /// NULL, or a source of granular energy in each cell [W/m^3] with the transport equation
+    /// (verification: manufactured solutions).
+    double *theta_source;
     double time;
     long steps;
     bdl_solids_stats stats;
@@ -138,6 +153,10 @@ void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 /// Advances solids and gas together by dt. BDL_ERR_UNSTABLE when the gas step fails or a value
 /// is not finite.
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
+
+/// The radial distribution at contact of phase m in cell idx: Carnahan & Starling's of the
+/// fraction for one phase, Lebowitz's g0_mm for a phase of a mixture.
+double bdl_solids_phase_g0(const bdl_solids *s, int m, long idx);
 
 /// Saves the state of the solids and the gas a step starts from (what a checkpoint holds of
 /// them: the fractions, velocities, fluxes, temperatures, the gas's velocities, pressure and

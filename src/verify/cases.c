@@ -356,6 +356,22 @@ static bdl_result run_tfm_settling(int series, double n, bdl_verify_result *out)
     return r;
 }
 
+// Two-fluid model: the granular energy's transport against a manufactured solution on N cells.
+static bdl_result run_tfm_energy(int series, double n, bdl_verify_result *out)
+{
+    (void)series;
+    bdl_verify_energy e;
+    bdl_result r = bdl_verify_tfm_energy((int)lrint(n), &e);
+    printf("  granular energy, %d cells: largest |theta / theta_exact - 1| %.3e (conduction up to "
+           "%.2f of the source; solids at most %.2e m/s)\n",
+           (int)lrint(n), e.error, e.conduction_share, e.speed);
+    out->exact = 0.0;
+    out->value = e.error;
+    out->error = r == BDL_OK ? finite_or_inf(e.error) : INFINITY;
+    out->steps = e.steps;
+    return r;
+}
+
 // The acceptance, quick-set, series and level fields of a case stand on one line each.
 // clang-format off
 static const bdl_verify_case cases[] = {
@@ -832,6 +848,27 @@ static const bdl_verify_case cases[] = {
         .series_count = 1, .series = {"dt ~ h^2"},
         .level_count = 5, .level = {20, 40, 80, 160, 320},
         .run = run_tfm_settling,
+    },
+    {
+        .name = "tfm_energy",
+        .tolerance = 1e-3, .tolerance_level = 2, .order_min = 1.8,
+        .breaks = "the conduction is central with the cells' conductivities averaged harmonically "
+                  "(second order where theta is smooth); the convection is not exercised (the "
+                  "solids stay at rest).",
+        .title = "Two-fluid model: the granular energy's transport (manufactured solution)",
+        .model = "Goldschmidt's 2.49 mm glass (e 0.97) at rest in a layer 0.04 m long, periodic "
+                 "along x, 1 cm tall between Johnson & Jackson walls (phi' 0.3, e_w 0.6); "
+                 "[solids] granular_energy = transport; 4000 steps of 1 ms (solids/energy.h)",
+        .reference = "eps(x) = 0.3 + 0.05 sin(2 pi x/L), theta(x) = C / (eps^2 g0(eps)) with C = "
+                     "1.7e-3 m^2/s^2 (Syamlal's pressure uniform: no motion), steady under the "
+                     "source k4 eps^2 theta^1.5 + 2 D_w theta^1.5/h_z - d/dx(k_theta dtheta/dx)",
+        .measure = "the largest |theta / theta(x) - 1| of the cells at the end",
+        .param = "N = cells along x",
+        .order_note = "second order: central conduction",
+        .quick = 1, .quick_levels = 4,
+        .series_count = 1, .series = {"steady"},
+        .level_count = 4, .level = {8, 16, 32, 64},
+        .run = run_tfm_energy,
     },
 };
 // clang-format on

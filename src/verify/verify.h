@@ -406,4 +406,17 @@ typedef struct bdl_verify_sediment {
 } bdl_verify_sediment;
 bdl_result bdl_verify_tfm_settling(int cells, bdl_verify_sediment *out);
 
+/// The granular energy's transport equation against a manufactured solution: solids at rest in a
+/// layer periodic along x (0.04 m, `cells` cells), 1 cm tall between Johnson & Jackson walls
+/// (phi' 0.3, e_w 0.6), fraction eps(x) = 0.3 + 0.05 sin(2 pi x / L) and temperature theta(x) =
+/// C / (eps^2 g0), which keeps Syamlal's pressure uniform (the solids stay at rest); the source
+/// that makes theta(x) steady given to the cells; 4 s of steps of 1 ms.
+typedef struct bdl_verify_energy {
+    double error;            ///< largest |theta / theta(x) - 1| of the cells at the end
+    double conduction_share; ///< the conduction's largest share of the source
+    double speed;            ///< largest solids speed over the run [m/s]
+    long steps;
+} bdl_verify_energy;
+bdl_result bdl_verify_tfm_energy(int cells, bdl_verify_energy *out);
+
 #endif

@@ -1,8 +1,10 @@
 // bedlam — verification of the two-fluid model (solids/phase.h): a homogeneous cooling state,
 // which checks the granular energy's dissipation inside the full step, and a settling column,
 // which checks the solids' momentum with drag and continuity against Kynch's theory, and then
-// checks that the plastic regime stops the sediment at packing without overshoot.
+// checks that the plastic regime stops the sediment at packing without overshoot; and a
+// manufactured solution of the granular energy's transport equation (solids/energy.h).
 #include <math.h>
+#include <stdlib.h>
 
 #include "cfd/gas.h"
 #include "solids/kinetic.h"
@@ -167,6 +169,101 @@ bdl_result bdl_verify_tfm_settling(int cells, bdl_verify_sediment *out)
         if (*cell(&b, b.solids->eps, kk) > 0.01)
             speed = fmax(speed, fabs(bdl_solids_cell_velocity(b.solids, 0, 2, 0, 0, kk)));
     out->speed_end = speed;
+    box_destroy(&b);
+    return r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The granular energy's transport: a manufactured solution.
+
+static const double mms_length = 0.04, mms_c = 1.7e-3; // m; theta = C / (eps^2 g0), ~0.01 m^2/s^2
+
+static double mms_eps(double x) { return 0.3 + 0.05 * sin(2.0 * PI * x / mms_length); }
+
+static double mms_theta(double x)
+{
+    const double e = mms_eps(x);
+    return mms_c / (e * e * bdl_g0_carnahan_starling(e));
+}
+
+/// k_theta dtheta/dx at x, the solids at rest in still gas (the drag at zero slip).
+static double mms_heat_flux(const bdl_solids_def *d, const bdl_gas *gas, double x)
+{
+    const double e = mms_eps(x), g0 = bdl_g0_carnahan_starling(e), dx = 1e-7 * mms_length;
+    const double kd = bdl_drag_per_volume(d->drag, &d->drag_params, 1.0 - e, d->diameter, 0.0,
+                                          gas->def.density, gas->def.viscosity);
+    const double k =
+        bdl_ktgf_conductivity(e, g0, d->diameter, d->density, d->restitution, mms_theta(x), e * kd);
+    return k * (mms_theta(x + dx) - mms_theta(x - dx)) / (2.0 * dx);
+}
+
+/// The fractions and temperatures of the manufactured solution in the cells, and the source
+/// that keeps that temperature steady; returns the conduction's largest share of the source.
+static double mms_fill(bdl_solids *s, const bdl_gas *gas, double *source)
+{
+    const bdl_grid *gr = &s->grid;
+    const bdl_solids_def *d = &s->def;
+    const double dx = 1e-6 * mms_length,
+                 k4 = 12.0 * (1.0 - d->restitution * d->restitution) * d->density /
+                      (sqrt(PI) * d->diameter),
+                 wall = sqrt(3.0) * PI * (1.0 - d->wall_restitution * d->wall_restitution) *
+                        d->density / (4.0 * d->eps_star);
+    double share = 0.0;
+    for (int i = 0; i < gr->n[0]; ++i) {
+        const double x = (i + 0.5) * gr->h[0], e = mms_eps(x), th = mms_theta(x);
+        const double g0 = bdl_g0_carnahan_starling(e), th32 = th * sqrt(th);
+        const long idx = bdl_grid_index(gr, i, 0, 0);
+        s->eps[idx] = e;
+        s->phase[0].theta[idx] = th;
+        const double conduction =
+            (mms_heat_flux(d, gas, x + dx) - mms_heat_flux(d, gas, x - dx)) / (2.0 * dx);
+        // the collisions, both walls' dissipation, less what conduction brings
+        source[idx] = k4 * g0 * e * e * th32 + 2.0 * wall * e * g0 * th32 / gr->h[2] - conduction;
+        share = fmax(share, fabs(conduction / source[idx]));
+    }
+    bdl_solids_share_voidage(s, (bdl_gas *)gas);
+    return share;
+}
+
+bdl_result bdl_verify_tfm_energy(int cells, bdl_verify_energy *out)
+{
+    *out = (bdl_verify_energy){0};
+    bdl_solids_def sd = bdl_default_solids_def();
+    sd.granular_energy = BDL_GRANULAR_ENERGY_TRANSPORT;
+    sd.specularity = 0.3;
+    bdl_gas_def gd = bdl_default_gas_def();
+    gd.n[0] = cells, gd.n[1] = gd.n[2] = 1;
+    gd.hi[0] = mms_length, gd.hi[1] = mms_length / cells, gd.hi[2] = 0.01;
+    gd.pressure_share = 1;
+    gd.tolerance = 1e-12;
+    gd.max_iterations = 1000;
+    for (int side = 0; side < 4; ++side)
+        gd.side[side].type = BDL_SIDE_PERIODIC; // x and y; walls below and above
+    tfm_box b = {NULL, NULL};
+    double *source = NULL;
+    bdl_result r = bdl_gas_create(&gd, &b.gas);
+    if (r == BDL_OK)
+        r = bdl_solids_create(&sd, b.gas, &b.solids);
+    if (r == BDL_OK && !(source = calloc((size_t)b.gas->grid.size, sizeof *source)))
+        r = BDL_ERR_NOMEM;
+    if (r == BDL_OK) {
+        bdl_solids *s = b.solids;
+        const bdl_grid *gr = &s->grid;
+        out->conduction_share = mms_fill(s, b.gas, source);
+        s->theta_source = source;
+        for (int step = 0; step < 4000 && r == BDL_OK; ++step, ++out->steps) {
+            r = bdl_solids_step(s, b.gas, 1e-3);
+            for (int i = 0; i < cells; ++i)
+                out->speed = fmax(out->speed, fabs(s->phase[0].v[0][bdl_grid_index(gr, i, 0, 0)]));
+        }
+        for (int i = 0; i < cells; ++i) {
+            const double x = (i + 0.5) * gr->h[0];
+            const double th = s->phase[0].theta[bdl_grid_index(gr, i, 0, 0)];
+            out->error = fmax(out->error, fabs(th / mms_theta(x) - 1.0));
+        }
+        s->theta_source = NULL;
+    }
+    free(source);
     box_destroy(&b);
     return r;
 }
