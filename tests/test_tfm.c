@@ -386,19 +386,20 @@ static void test_keep_undo(void)
         CHECK(bdl_solids_step(c.solids, c.gas, 1e-4) == BDL_OK);
     const bdl_grid *gr = &c.solids->grid;
     const size_t bytes = (size_t)gr->size * sizeof(double);
-    double *eps = malloc(bytes), *vz = malloc(bytes), *p = malloc(bytes);
-    CHECK(eps && vz && p);
+    double *eps = malloc(bytes), *vz = malloc(bytes), *p = malloc(bytes), *th = malloc(bytes);
+    CHECK(eps && vz && p && th);
     CHECK(bdl_solids_keep(c.solids, c.gas) == BDL_OK);
     CHECK(bdl_solids_step(c.solids, c.gas, 2e-3) == BDL_OK);
     memcpy(eps, c.solids->eps, bytes), memcpy(vz, c.solids->phase[0].v[2], bytes);
-    memcpy(p, c.gas->p, bytes);
+    memcpy(p, c.gas->p, bytes), memcpy(th, c.solids->phase[0].theta, bytes);
     bdl_solids_undo(c.solids, c.gas);
     CHECK(c.solids->steps == 50 && c.gas->steps == 50);
     CHECK(bdl_solids_step(c.solids, c.gas, 2e-3) == BDL_OK);
     CHECK(memcmp(eps, c.solids->eps, bytes) == 0);
     CHECK(memcmp(vz, c.solids->phase[0].v[2], bytes) == 0);
     CHECK(memcmp(p, c.gas->p, bytes) == 0);
-    free(eps), free(vz), free(p);
+    CHECK(memcmp(th, c.solids->phase[0].theta, bytes) == 0);
+    free(eps), free(vz), free(p), free(th);
     column_destroy(&c);
 }
 

@@ -237,7 +237,13 @@ static bdl_result resume(run *r)
     snprintf(r->outputs.good_path, sizeof r->outputs.good_path, "%s", ckpt);
     if (info.changes[0])
         bdl_warn("the scene's contact parameters differ from the checkpoint's: %s", info.changes);
-    if (info.dt != w->dt && w->parcels) {
+    if (w->solids && w->scene.solids.courant > 0.0) {
+        // An adaptive step: the next one follows from the checkpointed state, as it would have.
+    } else if (info.dt != w->dt && w->solids) {
+        bdl_warn("the checkpoint was written with dt = %g s; the run continues with the scene's "
+                 "dt = %g s. The resumed run does not repeat an uninterrupted one bit for bit",
+                 info.dt, w->dt);
+    } else if (info.dt != w->dt && w->parcels) {
         bdl_warn("the checkpoint was written with dt = %g s; the run continues with the scene's "
                  "dt = %g s (%.3g of the parcels' stable step %g s). The resumed run does not "
                  "repeat an uninterrupted one bit for bit",

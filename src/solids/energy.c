@@ -64,7 +64,9 @@ bdl_energy_terms bdl_solids_energy_terms(const bdl_solids *s, int m, const bdl_g
     const double rho = d->density, eps = p->eps[idx];
     bdl_energy_terms t = {0.0, 0.0, 0.0};
     for (int a = 0; a < 3; ++a) {
-        if (gr->n[a] == 1 && gr->periodic[a]) // its own image on both sides: nothing moves
+        // One cell along a: across a period its own image, between walls no flux (and no wall
+        // friction: the momentum has none there either, phase.c: viscous).
+        if (gr->n[a] == 1)
             continue;
         const long sa = gr->stride[a];
         const double h = gr->h[a];

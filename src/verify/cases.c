@@ -851,17 +851,17 @@ static const bdl_verify_case cases[] = {
     },
     {
         .name = "tfm_energy",
-        .tolerance = 1e-3, .tolerance_level = 2, .order_min = 1.8,
+        .tolerance = 2e-3, .tolerance_level = 2, .order_min = 1.8,
         .breaks = "the conduction is central with the cells' conductivities averaged harmonically "
                   "(second order where theta is smooth); the convection is not exercised (the "
                   "solids stay at rest).",
         .title = "Two-fluid model: the granular energy's transport (manufactured solution)",
         .model = "Goldschmidt's 2.49 mm glass (e 0.97) at rest in a layer 0.04 m long, periodic "
-                 "along x, 1 cm tall between Johnson & Jackson walls (phi' 0.3, e_w 0.6); "
+                 "along x, two cells of 1 cm between Johnson & Jackson walls (phi' 0.3, e_w 0.6); "
                  "[solids] granular_energy = transport; 4000 steps of 1 ms (solids/energy.h)",
         .reference = "eps(x) = 0.3 + 0.05 sin(2 pi x/L), theta(x) = C / (eps^2 g0(eps)) with C = "
                      "1.7e-3 m^2/s^2 (Syamlal's pressure uniform: no motion), steady under the "
-                     "source k4 eps^2 theta^1.5 + 2 D_w theta^1.5/h_z - d/dx(k_theta dtheta/dx)",
+                     "source k4 eps^2 theta^1.5 + D_w theta^1.5/h_z - d/dx(k_theta dtheta/dx)",
         .measure = "the largest |theta / theta(x) - 1| of the cells at the end",
         .param = "N = cells along x",
         .order_note = "second order: central conduction",

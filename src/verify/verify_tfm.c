@@ -209,18 +209,19 @@ static double mms_fill(bdl_solids *s, const bdl_gas *gas, double *source)
                  wall = sqrt(3.0) * PI * (1.0 - d->wall_restitution * d->wall_restitution) *
                         d->density / (4.0 * d->eps_star);
     double share = 0.0;
-    for (int i = 0; i < gr->n[0]; ++i) {
-        const double x = (i + 0.5) * gr->h[0], e = mms_eps(x), th = mms_theta(x);
-        const double g0 = bdl_g0_carnahan_starling(e), th32 = th * sqrt(th);
-        const long idx = bdl_grid_index(gr, i, 0, 0);
-        s->eps[idx] = e;
-        s->phase[0].theta[idx] = th;
-        const double conduction =
-            (mms_heat_flux(d, gas, x + dx) - mms_heat_flux(d, gas, x - dx)) / (2.0 * dx);
-        // the collisions, both walls' dissipation, less what conduction brings
-        source[idx] = k4 * g0 * e * e * th32 + 2.0 * wall * e * g0 * th32 / gr->h[2] - conduction;
-        share = fmax(share, fabs(conduction / source[idx]));
-    }
+    for (int k = 0; k < 2; ++k)
+        for (int i = 0; i < gr->n[0]; ++i) {
+            const double x = (i + 0.5) * gr->h[0], e = mms_eps(x), th = mms_theta(x);
+            const double g0 = bdl_g0_carnahan_starling(e), th32 = th * sqrt(th);
+            const long idx = bdl_grid_index(gr, i, 0, k);
+            s->eps[idx] = e;
+            s->phase[0].theta[idx] = th;
+            const double conduction =
+                (mms_heat_flux(d, gas, x + dx) - mms_heat_flux(d, gas, x - dx)) / (2.0 * dx);
+            // the collisions, the dissipation at the cell's wall, less what conduction brings
+            source[idx] = k4 * g0 * e * e * th32 + wall * e * g0 * th32 / gr->h[2] - conduction;
+            share = fmax(share, fabs(conduction / source[idx]));
+        }
     bdl_solids_share_voidage(s, (bdl_gas *)gas);
     return share;
 }
@@ -232,8 +233,8 @@ bdl_result bdl_verify_tfm_energy(int cells, bdl_verify_energy *out)
     sd.granular_energy = BDL_GRANULAR_ENERGY_TRANSPORT;
     sd.specularity = 0.3;
     bdl_gas_def gd = bdl_default_gas_def();
-    gd.n[0] = cells, gd.n[1] = gd.n[2] = 1;
-    gd.hi[0] = mms_length, gd.hi[1] = mms_length / cells, gd.hi[2] = 0.01;
+    gd.n[0] = cells, gd.n[1] = 1, gd.n[2] = 2; // each layer of cells beside one wall
+    gd.hi[0] = mms_length, gd.hi[1] = mms_length / cells, gd.hi[2] = 0.02;
     gd.pressure_share = 1;
     gd.tolerance = 1e-12;
     gd.max_iterations = 1000;
@@ -253,14 +254,19 @@ bdl_result bdl_verify_tfm_energy(int cells, bdl_verify_energy *out)
         s->theta_source = source;
         for (int step = 0; step < 4000 && r == BDL_OK; ++step, ++out->steps) {
             r = bdl_solids_step(s, b.gas, 1e-3);
-            for (int i = 0; i < cells; ++i)
-                out->speed = fmax(out->speed, fabs(s->phase[0].v[0][bdl_grid_index(gr, i, 0, 0)]));
+            for (int k = 0; k < 2; ++k)
+                for (int i = 0; i < cells; ++i) {
+                    const long idx = bdl_grid_index(gr, i, 0, k);
+                    out->speed = fmax(
+                        out->speed, fmax(fabs(s->phase[0].v[0][idx]), fabs(s->phase[0].v[2][idx])));
+                }
         }
-        for (int i = 0; i < cells; ++i) {
-            const double x = (i + 0.5) * gr->h[0];
-            const double th = s->phase[0].theta[bdl_grid_index(gr, i, 0, 0)];
-            out->error = fmax(out->error, fabs(th / mms_theta(x) - 1.0));
-        }
+        for (int k = 0; k < 2; ++k)
+            for (int i = 0; i < cells; ++i) {
+                const double x = (i + 0.5) * gr->h[0];
+                const double th = s->phase[0].theta[bdl_grid_index(gr, i, 0, k)];
+                out->error = fmax(out->error, fabs(th / mms_theta(x) - 1.0));
+            }
         s->theta_source = NULL;
     }
     free(source);

@@ -109,14 +109,16 @@ void bdl_world_solids_free(bdl_world *w)
 
 /// The adaptive step: the largest at most [run] dt that keeps the Courant number at most
 /// [solids] courant (gas_stable is the step of Courant number 1/2), shortened to land on the
-/// next row of diagnostics.csv (and the end), in two equal steps where one would leave a sliver.
+/// next row of diagnostics.csv, in two equal steps where one would leave a sliver. Not on the
+/// end time: that is not in a checkpoint, and a run stopped early (--until) and resumed must
+/// take the steps of one that was not.
 static double adaptive_step(const bdl_world *w)
 {
     double dt = fmin(w->scene.dt, 2.0 * w->scene.solids.courant * w->gas_stable);
     const double every = w->scene.output.diagnostics_interval;
-    double next = w->scene.end_time;
-    if (every > 0.0)
-        next = fmin(next, every * (floor(w->time / every * (1.0 + 1e-12) + 1e-9) + 1.0));
+    if (!(every > 0.0))
+        return dt;
+    const double next = every * (floor(w->time / every * (1.0 + 1e-12) + 1e-9) + 1.0);
     const double left = next - w->time;
     if (left > 1e-12 * fmax(next, 1.0)) {
         if (dt >= left)
