@@ -408,8 +408,8 @@ bdl_result bdl_verify_tfm_settling(int cells, bdl_verify_sediment *out);
 
 /// The granular energy's transport equation against a manufactured solution: solids at rest in a
 /// layer periodic along x (0.04 m, `cells` cells), two cells of 1 cm between Johnson & Jackson
-/// walls (phi' 0.3, e_w 0.6), fraction eps(x) = 0.3 + 0.05 sin(2 pi x / L) and temperature theta(x) =
-/// C / (eps^2 g0), which keeps Syamlal's pressure uniform (the solids stay at rest); the source
+/// walls (phi' 0.3, e_w 0.6), fraction eps(x) = 0.3 + 0.05 sin(2 pi x / L) and temperature theta(x)
+/// = C / (eps^2 g0), which keeps Syamlal's pressure uniform (the solids stay at rest); the source
 /// that makes theta(x) steady given to the cells; 4 s of steps of 1 ms.
 typedef struct bdl_verify_energy {
     double error;            ///< largest |theta / theta(x) - 1| of the cells at the end
