@@ -251,5 +251,8 @@ bdl_cli_expect(cli_tfm_phases_top 2
 bdl_cli_expect(cli_parcels_mean_drag 2
   "\\[coupling\\] drag_velocity = mean: a parcel's drag is implicit in its own velocity"
   check ${PROJECT_SOURCE_DIR}/scenes/parcels_bubbling_bed.ini --set coupling.drag_velocity=mean)
+bdl_cli_expect(cli_point_implicit_particles 2
+  "\\[gas\\] convection_step = point_implicit: point_implicit is for a solids phase on the grid"
+  check ${PROJECT_SOURCE_DIR}/scenes/parcels_bubbling_bed.ini --set gas.convection_step=point_implicit)
 bdl_cli_expect(cli_tfm_elastic 2 "\\[solids\\] restitution = 1: out of range; allowed: \\(0, 1\\)"
   check ${TFM} --set solids.restitution=1)

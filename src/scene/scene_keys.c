@@ -643,7 +643,7 @@ const bdl_scene_key bdl_scene_keys[] = {
      .def = {BDL_CONVECTION_EXPLICIT}, .enum_names = bdl_convection_step_names,
      .doc = "explicit (the gas's step at most a Courant number of 1/2) or point_implicit (the "
             "upwind part's diagonal implicit, the limiter's correction explicit and scaled down "
-            "above a Courant number of 1: no Courant limit on the gas's step)"},
+            "above a Courant number of 1: no Courant limit on the gas's step; with [solids] only)"},
     {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
      .doc = "relative residual at which the pressure solver stops"},
     GAS_SIDE("xmin", 0),

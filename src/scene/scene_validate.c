@@ -758,6 +758,14 @@ static void check_solids(bdl_scene_parser *p)
     bdl_scene *scene = p->scene;
     bdl_scene_section *s = solids_section(p);
     scene->solids.enabled = s != NULL;
+    if (!s && scene->gas.enabled && scene->gas.convection_step == BDL_CONVECTION_POINT_IMPLICIT) {
+        for (int i = 0; i < p->section_count; ++i)
+            if (p->sections[i].kind == BDL_SECTION_GAS)
+                fail_at_key(p, &p->sections[i], "convection_step", 0,
+                            "point_implicit is for a solids phase on the grid ([solids]); with "
+                            "particles or parcels the gas steps within its Courant limit");
+        return;
+    }
     if (!s && scene->solids.phase_count > 0)
         bdl_scene_fail(p, &(bdl_scene_where){.line = phase_section(p, 0)->line, .title = "phase"},
                        "a [phase NAME] section is a phase of a [solids] mixture: the scene needs "
