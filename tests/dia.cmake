@@ -16,3 +16,11 @@ bdl_add_test(test_dia_flux SOURCES test_dia_flux.c ${PROJECT_SOURCE_DIR}/src/app
   ${PROJECT_SOURCE_DIR}/src/app/analyze_files.c
   LABELS dia)
 target_include_directories(test_dia_flux PRIVATE ${PROJECT_BINARY_DIR}/layers/app)
+# The camera filming a solids phase on the grid (the two-fluid model): spheres sampled from the
+# field, their truth at the field's fraction.
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+add_test(NAME dia_tfm_cli COMMAND ${CMAKE_COMMAND} -DBEDLAM=$<TARGET_FILE:bedlam>
+  -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_camera.ini
+  -DWORK=${CMAKE_CURRENT_BINARY_DIR}/dia_tfm_cli -DPYTHON=${Python3_EXECUTABLE}
+  -P ${CMAKE_CURRENT_SOURCE_DIR}/scripts/dia_tfm_cli.cmake)
+set_tests_properties(dia_tfm_cli PROPERTIES LABELS "dia;cli;solids" TIMEOUT 300)

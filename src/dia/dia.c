@@ -717,7 +717,9 @@ static bdl_result solids_truth(const bdl_dia_camera *c, const bdl_dia_scene *s,
     bdl_result r = s->axis ? capsule_solids(c, s, t, &b, cells) : BDL_OK;
     for (int k = 0; k < b.nx * b.ny; ++k) {
         cells[k].solids_depth /= b.cw * b.ch * (t->back - t->front);
-        cells[k].solids_layer /= b.cw * b.ch * t->layer;
+        // (a scene without particles' sizes has no first layer: none of its solids is in it)
+        cells[k].solids_layer =
+            t->layer > 0.0 ? cells[k].solids_layer / (b.cw * b.ch * t->layer) : 0.0;
     }
     return r;
 }

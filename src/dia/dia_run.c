@@ -43,7 +43,7 @@ static bdl_result write_failed(bdl_dia_run *r, const char *path)
 static int due(const bdl_particle_view *v, double t) { return v->time >= t - 0.5 * v->dt; }
 
 /// The camera of a scene section, with the bed's depth range (front and back along the view,
-/// from the domain's corners) and the first layer (the largest species diameter).
+/// from the domain's corners) and the first layer (the largest species or solids phase diameter).
 static bdl_result camera_from_scene(const bdl_scene *s, int index, bdl_dia_camera *camera,
                                     bdl_dia_truth_def *truth)
 {
@@ -93,6 +93,10 @@ static bdl_result camera_from_scene(const bdl_scene *s, int index, bdl_dia_camer
         layer =
             fmax(layer, s->species[k].size_dist == BDL_SIZE_SINGLE ? s->species[k].diameter
                                                                    : s->species[k].diameter_max);
+    if (s->solids.enabled) // solids phases on the grid: drawn as spheres of their diameters
+        layer = s->solids.phase_count == 0 ? s->solids.def.diameter : 0.0;
+    for (int m = 0; s->solids.enabled && m < s->solids.phase_count; ++m)
+        layer = fmax(layer, s->solids.phases[m].diameter);
     camera->def.fade_start = front;
     camera->def.fade_length = d->fade;
     truth->cells[0] = d->cells_across, truth->cells[1] = d->cells_down;

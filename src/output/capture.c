@@ -2,6 +2,7 @@
 #include "output/capture.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cfd/gas.h"
@@ -117,55 +118,135 @@ static double cell_hash(uint64_t cell, uint64_t k, uint64_t salt)
     return (double)(x >> 11) * 0x1.0p-53;
 }
 
+/// Where along axis a in cell `at` a sphere of radius r sits for the number x in [0, 1): clear of
+/// the domain's sides (a wall, or the period of an axis of one cell, whose image the truth of a
+/// camera does not see), so that the spheres hold the field's volume inside the domain.
+static double inside(const bdl_grid *g, int a, int at, double r, double x)
+{
+    const int edge = !g->periodic[a] || g->n[a] == 1;
+    const double lo = edge && at == 0 ? r : 0.0, hi = edge && at == g->n[a] - 1 ? r : 0.0;
+    const double room = g->h[a] - lo - hi;
+    return room > 0.0 ? lo + x * room : 0.5 * g->h[a];
+}
+
+/// One sampled sphere: its index, centre, velocity, radius and phase.
+typedef void (*sphere_fn)(void *ctx, long n, const double pos[3], const double vel[3],
+                          double radius, int phase);
+
 /// A solids phase drawn as particles sampled from its field: each cell holds as many spheres of
 /// the phase's particle diameter as its solids volume makes (the fraction left over decides one
-/// more), at places fixed for the cell and phase, with the phase's velocity at the cell; the
+/// more), at places fixed for the cell and phase and clear of the domain's sides, with the
+/// phase's velocity at the cell; the
 /// species index is the phase's. Above SOLIDS_DISPLAY_MAX spheres in all, each stands for a
-/// larger volume and is drawn that large.
-static int capture_solids(bdl_snapshot *s, const bdl_world *w)
+/// larger volume and is drawn that large. Hands each sphere to `emit` (none when NULL) and returns
+/// their count.
+static long sample_solids(const bdl_world *w, sphere_fn emit, void *ctx)
 {
     const bdl_solids *so = w->solids;
     const bdl_grid *g = &so->grid;
     const double cell = g->h[0] * g->h[1] * g->h[2];
     const double least = bdl_solids_volume(so, -1) / SOLIDS_DISPLAY_MAX; // per sphere, at least
     long n = 0;
-    for (int pass = 0; pass < 2; ++pass) {
-        if (pass == 1 && !bdl_snapshot_reserve(s, n))
-            return 0;
-        n = 0;
-        for (int m = 0; m < so->count; ++m) {
-            const double d = so->phase[m].def.diameter;
-            const double volume = fmax(BDL_PI * d * d * d / 6.0, least);
-            const float radius = (float)cbrt(0.75 / BDL_PI * volume);
-            const uint64_t salt = 8u * (uint64_t)m;
-            for (int k = 0; k < g->n[2]; ++k)
-                for (int j = 0; j < g->n[1]; ++j)
-                    for (int i = 0; i < g->n[0]; ++i) {
-                        const uint64_t c = (uint64_t)((k * g->n[1] + j) * g->n[0] + i);
-                        const double want =
-                            fmax(so->phase[m].eps[bdl_grid_index(g, i, j, k)], 0.0) * cell / volume;
-                        const long q_end =
-                            (long)want + (cell_hash(c, 0, 1 + salt) < want - floor(want));
-                        for (long q = 0; q < q_end && pass == 1; ++q) {
-                            const int ix[3] = {i, j, k};
-                            for (int a = 0; a < 3; ++a) {
-                                const double x = cell_hash(c, (uint64_t)q, salt + 2 + a);
-                                s->pos[3 * (n + q) + a] =
-                                    (float)(g->origin[a] + (ix[a] + x) * g->h[a]);
-                                s->vel[3 * (n + q) + a] =
-                                    (float)bdl_solids_cell_velocity(so, m, a, i, j, k);
-                            }
-                            s->radius[n + q] = radius;
-                            s->species[n + q] = (uint8_t)m;
-                            s->id[n + q] = (uint32_t)(n + q);
-                            s->coordination[n + q] = 0;
+    for (int m = 0; m < so->count; ++m) {
+        const double d = so->phase[m].def.diameter;
+        const double volume = fmax(BDL_PI * d * d * d / 6.0, least);
+        const double radius = cbrt(0.75 / BDL_PI * volume);
+        const uint64_t salt = 8u * (uint64_t)m;
+        for (int k = 0; k < g->n[2]; ++k)
+            for (int j = 0; j < g->n[1]; ++j)
+                for (int i = 0; i < g->n[0]; ++i) {
+                    const uint64_t c = (uint64_t)((k * g->n[1] + j) * g->n[0] + i);
+                    const double want =
+                        fmax(so->phase[m].eps[bdl_grid_index(g, i, j, k)], 0.0) * cell / volume;
+                    const long q_end =
+                        (long)want + (cell_hash(c, 0, 1 + salt) < want - floor(want));
+                    for (long q = 0; q < q_end && emit; ++q) {
+                        const int ix[3] = {i, j, k};
+                        double pos[3], vel[3];
+                        for (int a = 0; a < 3; ++a) {
+                            const double x = cell_hash(c, (uint64_t)q, salt + 2 + a);
+                            pos[a] =
+                                g->origin[a] + ix[a] * g->h[a] + inside(g, a, ix[a], radius, x);
+                            vel[a] = bdl_solids_cell_velocity(so, m, a, i, j, k);
                         }
-                        n += q_end;
+                        emit(ctx, n + q, pos, vel, radius, m);
                     }
-        }
+                    n += q_end;
+                }
     }
+    return n;
+}
+
+static void snapshot_sphere(void *ctx, long n, const double pos[3], const double vel[3],
+                            double radius, int phase)
+{
+    bdl_snapshot *s = ctx;
+    for (int a = 0; a < 3; ++a) {
+        s->pos[3 * n + a] = (float)pos[a];
+        s->vel[3 * n + a] = (float)vel[a];
+    }
+    s->radius[n] = (float)radius;
+    s->species[n] = (uint8_t)phase;
+    s->id[n] = (uint32_t)n;
+    s->coordination[n] = 0;
+}
+
+static int capture_solids(bdl_snapshot *s, const bdl_world *w)
+{
+    const long n = sample_solids(w, NULL, NULL);
+    if (!bdl_snapshot_reserve(s, n))
+        return 0;
+    sample_solids(w, snapshot_sphere, s);
     s->count = n;
     return 1;
+}
+
+static void sample_sphere(void *ctx, long n, const double pos[3], const double vel[3],
+                          double radius, int phase)
+{
+    bdl_solids_sample *s = ctx;
+    s->pos[n] = (bdl_vec3){pos[0], pos[1], pos[2]};
+    s->vel[n] = (bdl_vec3){vel[0], vel[1], vel[2]};
+    s->radius[n] = radius;
+    s->species[n] = phase;
+    s->id[n] = (uint32_t)n;
+}
+
+int bdl_capture_solids_view(bdl_solids_sample *s, const bdl_world *w, bdl_particle_view *view)
+{
+    *view = bdl_capture_view(w);
+    if (!w->solids)
+        return 1;
+    const long n = sample_solids(w, NULL, NULL);
+    if (n > s->capacity) {
+        bdl_solids_sample_free(s);
+        s->pos = malloc((size_t)n * sizeof *s->pos);
+        s->vel = malloc((size_t)n * sizeof *s->vel);
+        s->radius = malloc((size_t)n * sizeof *s->radius);
+        s->id = malloc((size_t)n * sizeof *s->id);
+        s->species = malloc((size_t)n * sizeof *s->species);
+        if (!s->pos || !s->vel || !s->radius || !s->id || !s->species) {
+            bdl_solids_sample_free(s);
+            return 0;
+        }
+        s->capacity = n;
+    }
+    sample_solids(w, sample_sphere, s);
+    view->count = n;
+    view->pos = s->pos, view->vel = s->vel, view->radius = s->radius;
+    view->id = s->id, view->species = s->species;
+    view->orient = NULL, view->half_length = NULL;
+    return 1;
+}
+
+void bdl_solids_sample_free(bdl_solids_sample *s)
+{
+    free(s->pos);
+    free(s->vel);
+    free(s->radius);
+    free(s->id);
+    free(s->species);
+    *s = (bdl_solids_sample){0};
 }
 
 int bdl_capture(bdl_snapshot *s, const bdl_world *w)

@@ -607,7 +607,9 @@ static bdl_result open_cameras(bdl_run_outputs *o, int resume)
 {
     const bdl_scene *s = &o->world->scene;
     char why[1024] = "";
-    const bdl_particle_view now = bdl_capture_view(o->world);
+    bdl_particle_view now;
+    if (!bdl_capture_solids_view(&o->solids_sample, o->world, &now))
+        return BDL_ERR_NOMEM;
     bdl_result r = bdl_dia_run_open(s, &now, o->out, resume, &o->dia, why, sizeof why);
     if (r != BDL_OK) {
         bdl_error("synthetic cameras: %s", why);
@@ -787,9 +789,12 @@ static bdl_result write_due(bdl_run_outputs *o, bdl_world *w, const due_now *d)
         r = write_frame(o);
         advance(w, &o->next_frame, out->frame_interval);
     }
-    if (r == BDL_OK && o->dia) {
-        const bdl_particle_view view = bdl_capture_view(w);
-        r = camera_images(o, &view);
+    if (r == BDL_OK && o->dia) { // a continuum's spheres sampled only when an image is due
+        bdl_particle_view view = bdl_capture_view(w);
+        if (d->camera && !bdl_capture_solids_view(&o->solids_sample, w, &view))
+            r = BDL_ERR_NOMEM;
+        if (r == BDL_OK)
+            r = camera_images(o, &view);
     }
     if (r == BDL_OK && d->fields) {
         r = sample_fields(o);
@@ -863,6 +868,7 @@ static void close_images(bdl_run_outputs *o, bdl_result *r)
         bdl_info("synthetic cameras: %ld images written", bdl_dia_run_count(o->dia));
         bdl_dia_run_close(o->dia);
         o->dia = NULL;
+        bdl_solids_sample_free(&o->solids_sample);
     }
 }
 

@@ -22,6 +22,7 @@
 
 #include "analysis/fields.h"
 #include "dia/dia_run.h"
+#include "output/capture.h"
 #include "io/csv.h"
 #include "io/vtk.h"
 #include "output/diagnostics.h"
@@ -50,8 +51,9 @@ typedef struct bdl_run_outputs {
     double start_wall; ///< wall clock when the outputs opened [s]
     double next_diag, next_vtk, next_checkpoint, next_contacts, next_frame, next_orientation;
     long vtk_index, frame_index;
-    bdl_frames *frames; ///< NULL: no frames
-    bdl_dia_run *dia;   ///< synthetic cameras ([camera NAME]); NULL without
+    bdl_frames *frames;              ///< NULL: no frames
+    bdl_dia_run *dia;                ///< synthetic cameras ([camera NAME]); NULL without
+    bdl_solids_sample solids_sample; ///< their view of solids phases on the grid
     // The time-averaged solids fields of fields.vti, with [output] fields_interval.
     int fields_on;
     bdl_fields fields;
