@@ -93,7 +93,9 @@ static bdl_result camera_from_scene(const bdl_scene *s, int index, bdl_dia_camer
         layer =
             fmax(layer, s->species[k].size_dist == BDL_SIZE_SINGLE ? s->species[k].diameter
                                                                    : s->species[k].diameter_max);
-    if (s->solids.enabled) // solids phases on the grid: drawn as spheres of their diameters
+    // Solids phases on the grid (a scene without particles): drawn as spheres of their diameters
+    // (larger above 200 000 spheres; the layer stays a particle diameter deep).
+    if (s->solids.enabled)
         layer = s->solids.phase_count == 0 ? s->solids.def.diameter : 0.0;
     for (int m = 0; s->solids.enabled && m < s->solids.phase_count; ++m)
         layer = fmax(layer, s->solids.phases[m].diameter);

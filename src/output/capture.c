@@ -119,12 +119,12 @@ static double cell_hash(uint64_t cell, uint64_t k, uint64_t salt)
 }
 
 /// Where along axis a in cell `at` a sphere of radius r sits for the number x in [0, 1): clear of
-/// the domain's sides (a wall, or the period of an axis of one cell, whose image the truth of a
-/// camera does not see), so that the spheres hold the field's volume inside the domain.
+/// the domain's sides (walls, and periodic sides too: neither the pictures nor a camera's truth
+/// wrap a sphere), so that the spheres hold the field's volume inside the domain. A cell thinner
+/// than the sphere has it at its middle (sticking out: the sphere cannot fit).
 static double inside(const bdl_grid *g, int a, int at, double r, double x)
 {
-    const int edge = !g->periodic[a] || g->n[a] == 1;
-    const double lo = edge && at == 0 ? r : 0.0, hi = edge && at == g->n[a] - 1 ? r : 0.0;
+    const double lo = at == 0 ? r : 0.0, hi = at == g->n[a] - 1 ? r : 0.0;
     const double room = g->h[a] - lo - hi;
     return room > 0.0 ? lo + x * room : 0.5 * g->h[a];
 }

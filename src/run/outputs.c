@@ -608,8 +608,10 @@ static bdl_result open_cameras(bdl_run_outputs *o, int resume)
     const bdl_scene *s = &o->world->scene;
     char why[1024] = "";
     bdl_particle_view now;
-    if (!bdl_capture_solids_view(&o->solids_sample, o->world, &now))
+    if (!bdl_capture_solids_view(&o->solids_sample, o->world, &now)) {
+        bdl_error("synthetic cameras: out of memory for the spheres of the solids phases");
         return BDL_ERR_NOMEM;
+    }
     bdl_result r = bdl_dia_run_open(s, &now, o->out, resume, &o->dia, why, sizeof why);
     if (r != BDL_OK) {
         bdl_error("synthetic cameras: %s", why);
@@ -868,8 +870,8 @@ static void close_images(bdl_run_outputs *o, bdl_result *r)
         bdl_info("synthetic cameras: %ld images written", bdl_dia_run_count(o->dia));
         bdl_dia_run_close(o->dia);
         o->dia = NULL;
-        bdl_solids_sample_free(&o->solids_sample);
     }
+    bdl_solids_sample_free(&o->solids_sample); // (filled before the cameras opened, or failed to)
 }
 
 /// The series closed: their last rows reach the disk, or the failure names the file.
