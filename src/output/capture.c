@@ -136,10 +136,9 @@ typedef void (*sphere_fn)(void *ctx, long n, const double pos[3], const double v
 /// A solids phase drawn as particles sampled from its field: each cell holds as many spheres of
 /// the phase's particle diameter as its solids volume makes (the fraction left over decides one
 /// more), at places fixed for the cell and phase and clear of the domain's sides, with the
-/// phase's velocity at the cell; the
-/// species index is the phase's. Above SOLIDS_DISPLAY_MAX spheres in all, each stands for a
-/// larger volume and is drawn that large. Hands each sphere to `emit` (none when NULL) and returns
-/// their count.
+/// phase's velocity at the cell; the species index is the phase's. Above SOLIDS_DISPLAY_MAX
+/// spheres in all, each stands for a larger volume and is drawn that large. Hands each sphere to
+/// `emit` (none when NULL) and returns their count.
 static long sample_solids(const bdl_world *w, sphere_fn emit, void *ctx)
 {
     const bdl_solids *so = w->solids;
