@@ -202,9 +202,7 @@ static bdl_result print_time_step(const bdl_world *w)
             printf(", and dt / substeps below %.4g s for the collisions", collision);
         printf("\n");
     } else if (w->solids) {
-        const bdl_gas_scene *gs = &w->scene.gas;
-        const double stable =
-            bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+        const double stable = bdl_world_inflow_gas_dt(w);
         if (w->scene.solids.courant > 0.0)
             printf("time step: adaptive, Courant number %.3g ([solids] courant), at most %.4g s; "
                    "the first %.4g s (the gas's expected stable step %.4g s)\n",

@@ -43,8 +43,7 @@ static bdl_result check_parcel_dt(const bdl_world *w, char *message, size_t len)
 /// the inflow through the densest packing, with a margin for bubbles): twice it is refused.
 static bdl_result check_solids_dt(const bdl_world *w, char *message, size_t len)
 {
-    const bdl_gas_scene *gs = &w->scene.gas;
-    const double stable = bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+    const double stable = bdl_world_inflow_gas_dt(w);
     if (w->dt > 2.0 * stable) {
         snprintf(message, len,
                  "%s: [run] dt = %g s is %.3g times the gas's expected stable step %g s (CFL 1/2 "

@@ -162,8 +162,7 @@ static void log_solids(const bdl_world *w)
     bdl_world_solids_bed(w, bed, sizeof bed);
     bdl_info("solids: %.4g m^3 (%s), restitution %.4g%s", bdl_solids_volume(w->solids, -1), bed,
              w->solids->def.restitution, w->solids->count > 1 ? " (the first phase's)" : "");
-    const double stable =
-        bdl_world_expected_gas_dt(w, fmax(s->gas.inlet_velocity, s->gas.jet_velocity));
+    const double stable = bdl_world_inflow_gas_dt(w);
     if (s->solids.courant > 0.0)
         bdl_info("dt adaptive: Courant number %g, at most %g s, first %g s (the gas's expected "
                  "stable step %g s), end time = %g s",

@@ -9,18 +9,6 @@ enum { OLD_THETA = 12, CONDUCTIVITY = 11 }; ///< the solids' work arrays this us
 
 static const double pi = 3.14159265358979323846;
 
-/// |u - v|^2 of phase m in the cell (i, j, k), by the velocities at the cell's centre.
-static double slip2(const bdl_solids *s, int m, const bdl_gas *gas, int i, int j, int k)
-{
-    double sum = 0.0;
-    for (int a = 0; a < 3; ++a) {
-        const double r =
-            bdl_gas_cell_velocity(gas, a, i, j, k) - bdl_solids_cell_velocity(s, m, a, i, j, k);
-        sum += r * r;
-    }
-    return sum;
-}
-
 void bdl_solids_energy_prepare(bdl_solids *s, int m, const bdl_gas *gas)
 {
     const bdl_grid *gr = &s->grid;
@@ -37,9 +25,9 @@ void bdl_solids_energy_prepare(bdl_solids *s, int m, const bdl_gas *gas)
                 if (total >= s->def.eps_star || !(eps > d->dilute) || !(theta > 0.0))
                     continue;
                 const double g0 = bdl_solids_phase_g0(s, m, idx);
-                const double kd = bdl_drag_per_volume(d->drag, &d->drag_params, 1.0 - total,
-                                                      d->diameter, sqrt(slip2(s, m, gas, i, j, k)),
-                                                      gas->def.density, gas->def.viscosity);
+                const double kd = bdl_drag_per_volume(
+                    d->drag, &d->drag_params, 1.0 - total, d->diameter,
+                    bdl_solids_cell_slip(s, m, gas, i, j, k), gas->def.density, gas->def.viscosity);
                 kappa[idx] = bdl_ktgf_conductivity(eps, g0, d->diameter, d->density, d->restitution,
                                                    theta, eps * kd);
             }

@@ -400,6 +400,17 @@ static void cell_mixture(const bdl_solids *s, long idx, double *eps, double *d)
         eps[m] = s->phase[m].eps[idx], d[m] = s->phase[m].def.diameter;
 }
 
+double bdl_solids_cell_slip(const bdl_solids *s, int m, const bdl_gas *gas, int i, int j, int k)
+{
+    double sum = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        const double r =
+            bdl_gas_cell_velocity(gas, a, i, j, k) - bdl_solids_cell_velocity(s, m, a, i, j, k);
+        sum += r * r;
+    }
+    return sqrt(sum);
+}
+
 double bdl_solids_phase_g0(const bdl_solids *s, int m, long idx)
 {
     if (s->count == 1)
@@ -433,7 +444,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
         bdl_solids_energy_prepare(s, m, gas);
     FOR_CELLS(gr, {
         const double eps = ph->eps[idx], total = s->eps[idx];
-        double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, slip2 = 0.0, wall = 0.0;
+        double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, wall = 0.0;
         strain_rate(gr, ph, idx, D);
         const double trace = D[0][0] + D[1][1] + D[2][2];
         double ddot = 0.0, i2d = 0.0;
@@ -463,15 +474,10 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
             wall = wall_coefficient(d, eps, g0, theta);
             pmax = fmax(pmax, p);
         }
-        for (int a = 0; a < 3; ++a) {
-            const double r =
-                bdl_gas_cell_velocity(gas, a, i, j, k) - bdl_solids_cell_velocity(s, m, a, i, j, k);
-            slip2 += r * r;
-        }
         ph->theta[idx] = theta;
         ph->pressure[idx] = p;
         ph->mu[idx] = mu;
-        ph->slip[idx] = sqrt(slip2);
+        ph->slip[idx] = bdl_solids_cell_slip(s, m, gas, i, j, k);
         ph->wall[idx] = wall;
     });
     bdl_grid_extend_cells(gr, ph->pressure);

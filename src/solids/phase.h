@@ -154,6 +154,9 @@ void bdl_solids_share_voidage(const bdl_solids *s, bdl_gas *gas);
 /// is not finite.
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt);
 
+/// |u - v| of phase m in cell (i, j, k), by the gas's and the phase's velocities at its centre.
+double bdl_solids_cell_slip(const bdl_solids *s, int m, const bdl_gas *gas, int i, int j, int k);
+
 /// The radial distribution at contact of phase m in cell idx: Carnahan & Starling's of the
 /// fraction for one phase, Lebowitz's g0_mm for a phase of a mixture.
 double bdl_solids_phase_g0(const bdl_solids *s, int m, long idx);

@@ -212,6 +212,8 @@ bdl_result bdl_world_gas_step(bdl_world *world);
 /// CFL 1/2 for the fastest gas to expect at a superficial inflow: the inflow through the densest
 /// packing plus a margin, at most 5e-4 s and the gas's own stable step [s].
 double bdl_world_expected_gas_dt(const bdl_world *world, double inflow);
+/// The same for the scene's inflow: the faster of its inlet and jet velocities.
+double bdl_world_inflow_gas_dt(const bdl_world *world);
 
 /// Says in world->failure why a gas step (`what`: "gas step", "parcel step") of length dt failed:
 /// beyond twice the stable step stable_dt, or (stable_dt 0) the pressure solver or a velocity;

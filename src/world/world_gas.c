@@ -97,6 +97,12 @@ double bdl_world_expected_gas_dt(const bdl_world *w, double inflow)
     return fmin(fmin(BDL_GAS_DT_MAX, 0.5 * hmin / u), bdl_gas_stable_dt(w->gas));
 }
 
+double bdl_world_inflow_gas_dt(const bdl_world *w)
+{
+    const bdl_gas_scene *gs = &w->scene.gas;
+    return bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+}
+
 /// The first gas step: as given, or expected_gas_dt for the scene's inflow; after the first, CFL
 /// 1/2 for the gas as it is.
 static void schedule_gas(bdl_world *w)
@@ -105,7 +111,7 @@ static void schedule_gas(bdl_world *w)
     double dt_gas = gs->dt;
     w->gas_fixed = dt_gas > 0.0;
     if (!w->gas_fixed)
-        dt_gas = bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity));
+        dt_gas = bdl_world_inflow_gas_dt(w);
     w->gas_every = steps_in(w, dt_gas);
     if (w->gas_every < 1)
         w->gas_every = 1;

@@ -106,10 +106,8 @@ bdl_result bdl_world_parcels_init(bdl_world *w, bdl_scene_error *err)
     if (!w->coordination || bdl_neighbor_none(&w->neighbor, n) != BDL_OK ||
         bdl_neighbor_none(&w->neighbor, w->particles.count) != BDL_OK)
         return BDL_ERR_NOMEM;
-    const bdl_gas_scene *gs = &w->scene.gas;
     const double automatic =
-        fmin(bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity)),
-             0.5 * bdl_world_parcels_collision_dt(w));
+        fmin(bdl_world_inflow_gas_dt(w), 0.5 * bdl_world_parcels_collision_dt(w));
     w->dt = w->scene.dt > 0.0 ? w->scene.dt : automatic;
     w->gas_fixed = 1;
     w->gas_every = w->gas_every_max = 1;

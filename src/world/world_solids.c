@@ -90,10 +90,7 @@ bdl_result bdl_world_solids_init(bdl_world *w, bdl_scene_error *err)
     w->gas_stable = fmin(bdl_gas_stable_dt(w->gas), bdl_solids_stable_dt(w->solids));
     const double courant = w->scene.solids.courant;
     if (courant > 0.0) { // an adaptive step starts from the gas's expected stable one
-        const bdl_gas_scene *gs = &w->scene.gas;
-        w->gas_stable =
-            fmin(w->gas_stable,
-                 bdl_world_expected_gas_dt(w, fmax(gs->inlet_velocity, gs->jet_velocity)));
+        w->gas_stable = fmin(w->gas_stable, bdl_world_inflow_gas_dt(w));
         w->dt = fmin(w->scene.dt, 2.0 * courant * w->gas_stable);
     }
     w->budget.dt = w->dt;
