@@ -238,6 +238,9 @@ bdl_cli_expect(cli_tfm_phases_sum 2
 bdl_cli_expect(cli_tfm_phases_own 2
   "\\[solids\\] diameter = 0.002: the scene has \\[phase NAME\\] sections, and each phase gives its own"
   check ${TFM2} --set solids.diameter=0.002)
+bdl_cli_expect(cli_tfm_phases_kinetic_pressure 2
+  "\\[solids\\] kinetic_pressure = implicit: implicit is built for one phase"
+  check ${TFM2} --set solids.kinetic_pressure=implicit)
 bdl_cli_expect(cli_tfm_phases_one 2 "tfm_one_phase.ini:[0-9]+: \\[phase\\]: one \\[phase NAME\\] section"
   check ${CMAKE_CURRENT_SOURCE_DIR}/scenes/tfm_one_phase.ini)
 bdl_cli_expect(cli_tfm_phases_missing 2 "\\[phase small\\] fraction: missing required key; allowed: \\(0, 0.6\\]"

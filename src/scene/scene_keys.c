@@ -814,6 +814,12 @@ const bdl_scene_key bdl_scene_keys[] = {
             "transport: the granular energy's transport equation, with convection, Lun et al.'s "
             "conduction (Ma & Ahmadi's gas correction) and, with a specularity, Johnson & "
             "Jackson's energy flux through the walls (Sun 2007, eqs. 5.5, 5.9)"},
+    {S(SOLIDS), "kinetic_pressure", .type = BDL_KEY_ENUM, "-", IN_SOLIDS(def.kinetic_pressure),
+     .def = {BDL_KINETIC_PRESSURE_EXPLICIT}, .enum_names = bdl_kinetic_pressure_names,
+     .doc = "the viscous regime's pressure k1 eps^2 theta: explicit in the momentum step (its "
+            "waves limit the step, dt c / h); implicit: its change over the step solved with the "
+            "plastic regime's (backward Euler at the step's temperature), so that only the "
+            "solids' outflow limits the step (one phase only)"},
     {S(SOLIDS), "wall_restitution", NUM, "-", IN_SOLIDS(def.wall_restitution), .def = {0.6}, GE(0),
      LE(1),
      .doc = "Johnson & Jackson's particle-wall restitution e_w of the walls' energy flux "
@@ -822,8 +828,9 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(SOLIDS), "courant", NUM, "-", IN_SOLIDS(courant), .def = {0}, GE(0), LE(1),
      .default_text = "0 (the step is [run] dt)",
      .doc = "above 0 the step adapts: each step is the largest, at most [run] dt, that keeps "
-            "the Courant number at most this: the solids' (their outflow and the speed of their "
-            "pressure waves, dt (v + c) / h) and, with explicit convection, the gas's; it lands "
+            "the Courant number at most this: the solids' (their outflow and, with the kinetic "
+            "pressure explicit, the speed of their pressure waves, dt (v + c) / h) and, with "
+            "explicit convection, the gas's; it lands "
             "on the rows of diagnostics.csv"},
     {S(SOLIDS), "specularity", NUM, "-", IN_SOLIDS(def.specularity), .def = {0}, GE(0), LE(1),
      .doc = "Johnson & Jackson's specularity coefficient phi' of the walls: their shear stress on "

@@ -12,6 +12,7 @@
 #define PI 3.14159265358979323846
 
 BDL_CHOICE_WORDS(bdl_granular_energy, BDL_GRANULAR_ENERGIES);
+BDL_CHOICE_WORDS(bdl_kinetic_pressure, BDL_KINETIC_PRESSURES);
 
 bdl_solids_def bdl_default_solids_def(void)
 {
@@ -44,7 +45,9 @@ static int valid_def(const bdl_solids_def *d)
            d->hindrance >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT &&
            d->wall_restitution >= 0.0 && d->wall_restitution <= 1.0 &&
            (d->granular_energy == BDL_GRANULAR_ENERGY_LOCAL ||
-            d->granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT);
+            d->granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT) &&
+           (d->kinetic_pressure == BDL_KINETIC_PRESSURE_EXPLICIT ||
+            d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT);
 }
 
 /// The face arrays of a phase and its cell arrays; 0 when out of memory.
@@ -862,15 +865,42 @@ static double plastic_slope(const bdl_solids_def *d, double eps)
     return d->schaeffer_a * pow(x, d->schaeffer_n - 1.0) * (x + eps * d->schaeffer_n);
 }
 
-/// The slope of Schaeffer's pressure between fractions p and q: the chord (P(q) - P(p)) /
-/// (q - p), the tangent where they meet; 0 where both are below eps_star.
-static double plastic_chord(const bdl_solids_def *d, double p, double q)
+/// With the kinetic pressure implicit (one phase), the viscous regime's pressure k1(eps) eps^2
+/// theta of cell idx at the step's temperature (zero in the plastic regime: theta is zero there);
+/// zero otherwise.
+static double kinetic_pressure(const bdl_solids *s, long idx, double eps)
 {
-    if (p <= d->eps_star && q <= d->eps_star)
+    const bdl_solids_def *d = &s->def;
+    const double theta = s->phase[0].theta[idx];
+    if (d->kinetic_pressure != BDL_KINETIC_PRESSURE_IMPLICIT || !(theta > 0.0) || !(eps > 0.0))
         return 0.0;
-    if (!(fabs(q - p) > 1e-9))
-        return plastic_slope(d, fmax(p, q));
-    return (schaeffer(d, q) - schaeffer(d, p)) / (q - p);
+    const double e = fmin(eps, 0.9); // (g0 grows without bound towards 1)
+    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal_g0(e, bdl_g0_carnahan_starling(e), d->diameter,
+                                                        d->density, d->restitution);
+    return c.k1 * e * e * theta;
+}
+
+/// The pressure the correction models in cell idx as a function of its fraction.
+static double cell_pressure(const bdl_solids *s, long idx, double eps)
+{
+    return schaeffer(&s->def, eps) + kinetic_pressure(s, idx, eps);
+}
+
+/// The slope of cell idx's pressure between fractions p and q: the chord (P(q) - P(p)) /
+/// (q - p), the tangent where they meet; 0 where it has none (below eps_star at both, and no
+/// kinetic pressure in the correction).
+static double plastic_chord(const bdl_solids *s, long idx, double p, double q)
+{
+    const bdl_solids_def *d = &s->def;
+    double slope = 0.0;
+    if (fabs(q - p) > 1e-9) {
+        if (p > d->eps_star || q > d->eps_star)
+            slope = (schaeffer(d, q) - schaeffer(d, p)) / (q - p);
+        return slope + (kinetic_pressure(s, idx, q) - kinetic_pressure(s, idx, p)) / (q - p);
+    }
+    const double e = fmax(p, q), de = 1e-6 * e;
+    return plastic_slope(d, e) +
+           (kinetic_pressure(s, idx, e + de) - kinetic_pressure(s, idx, e)) / de;
 }
 
 /// y = M z on the free cells (M the matrix above; slope the cells' chords, w on the faces).
@@ -991,6 +1021,7 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
     const bdl_solids_def *d = &s->def;
     double *z = s->work[1], *r = s->work[2], *x = s->work[9], *end = s->work[8];
     double *lo = s->work[11], *res = s->work[12];
+    const double overshoot = d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT ? 1.0 : 0.0;
     for (int a = 0; a < 3; ++a) {
         memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
         FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
@@ -1022,8 +1053,10 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
             slope[idx] = lo[idx] < 0.0 ? -1.0 : 0.0; // held (at zero pressure: as outside)
             changed = 1;
         } else if (x[idx] > end[idx] + 1e-9 && (slope[idx] > 0.0 || x[idx] > d->eps_star)) {
-            end[idx] = x[idx]; // pushed past its end point: a stiffer chord (or it joins again)
-            slope[idx] = plastic_chord(d, s->eps[idx], x[idx]);
+            // pushed past its end point: a stiffer chord (or it joins again); with the kinetic
+            // pressure implicit the new end point as far again past where it was pushed
+            end[idx] = x[idx] + overshoot * (x[idx] - end[idx]);
+            slope[idx] = plastic_chord(s, idx, s->eps[idx], x[idx]);
             changed = 1;
         }
     });
@@ -1048,7 +1081,6 @@ static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt);
 static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, double dt)
 {
     const bdl_grid *gr = &s->grid;
-    const bdl_solids_def *d = &s->def;
     double *slope = s->work[0], *z = s->work[1], *r = s->work[2], *end = s->work[8];
     double *x = s->work[9], *lo = s->work[11];
     memset(slope, 0, (size_t)gr->size * sizeof *slope);
@@ -1056,8 +1088,8 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
     int any = 0;
     FOR_CELLS(gr, {
         end[idx] = star[idx];
-        slope[idx] = plastic_chord(d, s->eps[idx], star[idx]);
-        lo[idx] = -schaeffer(d, s->eps[idx]);
+        slope[idx] = plastic_chord(s, idx, s->eps[idx], star[idx]);
+        lo[idx] = -cell_pressure(s, idx, s->eps[idx]);
         r[idx] = star[idx] - s->eps[idx];
         any = any || slope[idx] > 0.0;
     });
@@ -1213,6 +1245,7 @@ double bdl_solids_stable_dt(const bdl_solids *s)
     for (int a = 0; a < 3; ++a)
         inv_h += gr->n[a] > 1 ? 1.0 / gr->h[a] : 0.0;
     double out = 0.0; // the largest rate at which a cell's faces carry its solids out [1/s]
+    const int implicit = s->def.kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT;
     for (int m = 0; m < s->count; ++m) {
         const bdl_solids_phase *p = &s->phase[m];
         FOR_CELLS(gr, {
@@ -1221,7 +1254,7 @@ double bdl_solids_stable_dt(const bdl_solids *s)
                 for (int a = 0; a < 3; ++a)
                     rate += (fmax(p->v[a][idx + gr->stride[a]], 0.0) + fmax(-p->v[a][idx], 0.0)) /
                             gr->h[a];
-                if (p->theta[idx] > 0.0)
+                if (p->theta[idx] > 0.0 && !implicit)
                     rate += sound_speed(&p->def, p->eps[idx], s->eps[idx], p->theta[idx]) * inv_h;
                 out = fmax(out, rate);
             }

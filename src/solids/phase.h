@@ -47,6 +47,13 @@
     X(GRANULAR_ENERGY_TRANSPORT, "transport", "transport equation")
 BDL_CHOICES(bdl_granular_energy, BDL_GRANULAR_ENERGIES);
 
+/// The viscous regime's pressure k1 eps^2 theta in the momentum step: explicit (its waves limit
+/// the step to h / c), or made implicit by the plastic correction (one phase only).
+#define BDL_KINETIC_PRESSURES(X)                                                                   \
+    X(KINETIC_PRESSURE_EXPLICIT, "explicit", "in the momentum step only")                          \
+    X(KINETIC_PRESSURE_IMPLICIT, "implicit", "corrected with the plastic regime's")
+BDL_CHOICES(bdl_kinetic_pressure, BDL_KINETIC_PRESSURES);
+
 typedef struct bdl_solids_def {
     double diameter; ///< [m]
     double density;  ///< [kg/m^3]
@@ -65,7 +72,8 @@ typedef struct bdl_solids_def {
     int max_iterations;    ///< its iteration limit
     double phase_friction; ///< C_f of the drag between solids phases (Sun eq. 3.18)
     double specularity;    ///< Johnson & Jackson's phi' of the walls (0: free slip)
-    bdl_granular_energy granular_energy; ///< local balance or transport equation
+    bdl_granular_energy granular_energy;   ///< local balance or transport equation
+    bdl_kinetic_pressure kinetic_pressure; ///< explicit, or implicit with the plastic regime's
     double wall_restitution; ///< Johnson & Jackson's e_w of the walls' energy flux (transport)
     double hindrance; ///< Gera et al.'s (2004) C1: the drag between phases gains C1 P_plastic
                       ///< [s/m^2] (0: Syamlal's alone)
