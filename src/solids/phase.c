@@ -898,9 +898,13 @@ static double plastic_chord(const bdl_solids *s, long idx, double p, double q)
             slope = (schaeffer(d, q) - schaeffer(d, p)) / (q - p);
         return slope + (kinetic_pressure(s, idx, q) - kinetic_pressure(s, idx, p)) / (q - p);
     }
-    const double e = fmax(p, q), de = 1e-6 * e;
-    return plastic_slope(d, e) +
-           (kinetic_pressure(s, idx, e + de) - kinetic_pressure(s, idx, e)) / de;
+    const double e = fmax(p, q);
+    slope = plastic_slope(d, e);
+    if (d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT && e > 0.0) {
+        const double de = 1e-6 * e; // the tangent by a difference
+        slope += (kinetic_pressure(s, idx, e + de) - kinetic_pressure(s, idx, e)) / de;
+    }
+    return slope;
 }
 
 /// y = M z on the free cells (M the matrix above; slope the cells' chords, w on the faces).
