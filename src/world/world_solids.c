@@ -225,11 +225,16 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
                  ", Syamlal's between phases (C_f %.3g) with Gera's hindrance %.3g s/m^2",
                  d->phase_friction, d->hindrance);
     snprintf(buf, size,
-             "solids %s (%s model: %s; drag %s%s; Syamlal's viscous regime, its energy balanced "
-             "in each cell; Schaeffer's plastic regime from %.3g, A %.3g Pa, n %.3g, %.3g deg, "
+             "solids %s (%s model: %s; drag %s%s; Syamlal's viscous regime, its energy %s, its "
+             "pressure %s; Schaeffer's plastic regime from %.3g, A %.3g Pa, n %.3g, %.3g deg, "
              "viscosity at most %.3g Pa s; walls %s, specularity %.3g; step %.3g s)",
              s->count > 1 ? "phases" : "phase", s->count > 1 ? "multi-fluid" : "two-fluid", phases,
-             bdl_drag_law_names[d->drag], between, d->eps_star, d->schaeffer_a, d->schaeffer_n,
-             d->friction_angle, d->mu_max,
+             bdl_drag_law_names[d->drag], between,
+             d->granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT ? "by its transport equation"
+                                                                 : "balanced in each cell",
+             d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT
+                 ? "implicit (with the plastic correction)"
+                 : "explicit",
+             d->eps_star, d->schaeffer_a, d->schaeffer_n, d->friction_angle, d->mu_max,
              d->specularity > 0.0 ? "Johnson & Jackson's" : "free-slip", d->specularity, w->dt);
 }
