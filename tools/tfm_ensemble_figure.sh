@@ -5,7 +5,8 @@
 # its runs; and per model the mean over its runs of s_p over 5-20 s and 10-20 s with that
 # standard error.
 # usage: tools/tfm_ensemble_figure.sh OUT.png TITLE "RUN RUN ..." [TITLE "RUN RUN ..."]
-# (every run writes diagnostics.csv at the same times: [output] diagnostics_interval)
+# (every run must write diagnostics.csv at the same times, [output] diagnostics_interval: the
+# script stops with exit code 2 when the row counts differ or a column is missing)
 set -euo pipefail
 out=$1; shift
 mkdir -p "$(dirname "$out")"
@@ -16,12 +17,21 @@ plot=""
 k=0
 while [ $# -ge 2 ]; do
   title=$1; runs=$2; shift 2
-  # time, mean and standard error over the runs, row by row
+  # time, mean and standard error over the runs, row by row (the runs' rows must match)
+  r=0
+  rows=""
   for run in $runs; do
-    awk -F, 'NR==1 { for (i = 1; i <= NF; i++) { if ($i == "segregation") s = i; if ($i == "time") t = i }; next }
-             { printf "%.6f %s\n", $t, $s }' "$run/diagnostics.csv" > "$work/$(basename "$run").$k"
+    awk -F, 'NR==1 { for (i = 1; i <= NF; i++) { if ($i == "segregation") s = i; if ($i == "time") t = i }
+                     if (!s || !t) { print FILENAME ": no time or segregation column" > "/dev/stderr"; exit 2 }; next }
+             { printf "%.6f %s\n", $t, $s }' "$run/diagnostics.csv" > "$work/run.$k.$(printf %04d $r)"
+    n=$(wc -l < "$work/run.$k.$(printf %04d $r)")
+    if [ -n "$rows" ] && [ "$n" != "$rows" ]; then
+      echo "$run: $n rows of diagnostics.csv, the first run of '$title' has $rows" >&2; exit 2
+    fi
+    rows=$n
+    r=$((r + 1))
   done
-  paste -d' ' "$work"/*."$k" | awk '{ n = NF / 2; sum = 0; sq = 0
+  paste -d' ' "$work"/run."$k".* | awk '{ n = NF / 2; sum = 0; sq = 0
         for (i = 2; i <= NF; i += 2) { sum += $i; sq += $i * $i }
         m = sum / n; v = n > 1 ? (sq - n * m * m) / (n - 1) : 0; if (v < 0) v = 0
         printf "%s %.6f %.6f\n", $1, m, sqrt(v / n) }' > "$work/mean.$k"
@@ -32,6 +42,7 @@ while [ $# -ge 2 ]; do
   done | awk -v name="$title" '{ a[NR] = $1; b[NR] = $2; sa += $1; sb += $2 }
       END { n = NR; ma = sa / n; mb = sb / n
             for (i = 1; i <= n; i++) { va += (a[i] - ma) ^ 2; vb += (b[i] - mb) ^ 2 }
+            if (n < 2) { printf "%s (1 run): s_p over 5-20 s %.3f; over 10-20 s %.3f\n", name, ma, mb; exit }
             printf "%s (%d runs): s_p over 5-20 s %.3f +- %.3f; over 10-20 s %.3f +- %.3f\n",
                    name, n, ma, sqrt(va / (n - 1) / n), mb, sqrt(vb / (n - 1) / n) }'
   c=${colors[$((k % 4))]}

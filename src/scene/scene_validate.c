@@ -676,12 +676,6 @@ static void check_phases(bdl_scene_parser *p, bdl_scene_section *s)
 {
     const bdl_solids_scene *so = &p->scene->solids;
     static const char *const mixture_keys[] = {"hindrance", "phase_friction"};
-    if (so->phase_count > 0 && so->def.kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT) {
-        fail_at_key(p, s, "kinetic_pressure", 0,
-                    "implicit is built for one phase; a mixture's phases have a pressure each: "
-                    "use explicit");
-        return;
-    }
     for (int k = 0; k < 2 && so->phase_count == 0; ++k)
         if (given(s, key_of(s, mixture_keys[k]))) {
             fail_at_key(p, s, mixture_keys[k], 0,
@@ -696,6 +690,12 @@ static void check_phases(bdl_scene_parser *p, bdl_scene_section *s)
                        "one [phase NAME] section: a mixture has 2 to %d phases (one phase is "
                        "[solids] alone)",
                        BDL_SOLIDS_PHASES);
+        return;
+    }
+    if (so->def.kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT) {
+        fail_at_key(p, s, "kinetic_pressure", 0,
+                    "implicit is built for one phase; a mixture's phases have a pressure each: "
+                    "use explicit");
         return;
     }
     static const char *const own[] = {

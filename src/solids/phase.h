@@ -22,7 +22,9 @@
 //   dP a chord of P_s times the change of eps and P_s kept >= 0 (a symmetric system, by
 //   conjugate gradients, in a few passes), with an equal and opposite flux of gas (the volume
 //   stays free of divergence; the gas's pressure is not corrected), so that a bed's stiff
-//   frictional pressure holds it at its packing at the time steps the gas allows.
+//   frictional pressure holds it at its packing at the time steps the gas allows; with
+//   def.kinetic_pressure implicit (one phase) the viscous regime's pressure k1 eps^2 theta, at
+//   the step's theta, is corrected the same way in every cell that has one.
 //
 // Stresses: below eps_star Syamlal's viscous regime (solids/kinetic.h) with the granular
 // temperature from the balance of production and dissipation in time, cell by cell, without
@@ -183,10 +185,11 @@ void bdl_solids_undo(bdl_solids *s, bdl_gas *gas);
 /// max over the cells above the dilute limit of sum_a (v_out,a + c) / h_a, v_out the velocities
 /// of the faces a cell's solids leave by (the upwind transport keeps eps >= 0 up to twice this)
 /// and c the speed of the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) (the
-/// momentum step takes -grad P explicitly). The viscous term and the transport of momentum are
-/// point-implicit, the plastic pressure implicit. Cells below the dilute limit do not count: a
-/// step limits their outflow to what they hold (the gas takes the difference). INFINITY with no
-/// such cell.
+/// momentum step takes -grad P explicitly; with def.kinetic_pressure implicit the correction
+/// takes its change implicitly, and c is left out). The viscous term and the transport of
+/// momentum are point-implicit, the plastic pressure implicit. Cells below the dilute limit do not
+/// count: a step limits their outflow to what they hold (the gas takes the difference). INFINITY
+/// with no such cell.
 double bdl_solids_stable_dt(const bdl_solids *s);
 
 /// Velocity component a of phase m at the centre of cell (i, j, k).
