@@ -5,8 +5,10 @@
 # its runs; and per model the mean over its runs of s_p over 5-20 s and 10-20 s with that
 # standard error.
 # usage: tools/tfm_ensemble_figure.sh OUT.png TITLE "RUN RUN ..." [TITLE "RUN RUN ..."]
-# (every run must write diagnostics.csv at the same times, [output] diagnostics_interval: the
-# script stops with exit code 2 when the row counts differ or a column is missing)
+# (every run must write diagnostics.csv at the same nominal times, [output]
+# diagnostics_interval; at a fixed step a row's time is the step's nearest to it, and the first
+# run's times label the mean. The script stops with exit code 2 when the row counts differ, a
+# column is missing or a run ends before 20 s.)
 set -euo pipefail
 out=$1; shift
 mkdir -p "$(dirname "$out")"
@@ -38,7 +40,8 @@ while [ $# -ge 2 ]; do
   for run in $runs; do
     awk -F, 'NR==1 { for (i = 1; i <= NF; i++) { if ($i == "segregation") s = i; if ($i == "time") t = i }; next }
              $t >= 5 && $t <= 20 { a += $s; na++ } $t >= 10 && $t <= 20 { b += $s; nb++ }
-             END { printf "%.4f %.4f\n", a / na, b / nb }' "$run/diagnostics.csv"
+             END { if (!nb) { print FILENAME ": no rows from 10 to 20 s" > "/dev/stderr"; exit 2 }
+                   printf "%.4f %.4f\n", a / na, b / nb }' "$run/diagnostics.csv"
   done | awk -v name="$title" '{ a[NR] = $1; b[NR] = $2; sa += $1; sb += $2 }
       END { n = NR; ma = sa / n; mb = sb / n
             for (i = 1; i <= n; i++) { va += (a[i] - ma) ^ 2; vb += (b[i] - mb) ^ 2 }

@@ -1014,18 +1014,22 @@ static long cell_neighbour(const bdl_grid *gr, int a, int at, int side, long idx
     return idx - side * (long)(gr->n[a] - 1) * sa;
 }
 
-/// With the kinetic pressure implicit, whether cell idx was pushed past its end point by more
-/// than its chord allows: at x its modelled pressure increment, slope (x - eps^n), falls short of
-/// the true P(x) - P(eps^n) by more than 1 % of that and 10^-3 Pa. (The plastic rule, any push
-/// of 10^-9, kept a tail of packed cells re-chorded pass after pass once most of the bed is
-/// free: their pushes shrink by a half to a quarter a pass.)
-static int pushed_past(const bdl_solids *s, long idx, double slope, double end, double x)
+/// With the kinetic pressure implicit, whether the pressure cell idx is modelled with falls
+/// short at the fraction x it was moved to: the increment it is given there (its chord times
+/// x - eps^n for a free cell, lo for a held one, none outside) below the true P(x) - P(eps^n) by
+/// more than 1 % of that and 10^-3 Pa. P is convex, so a chord falls short on both sides of its
+/// interval: beyond its end point and, for a cell moved back past where it started, below it.
+/// (The plastic rule, any push of 10^-9 beyond the end point, kept a tail of packed cells
+/// re-chorded pass after pass once most of the bed is free: their pushes shrink by a half to a
+/// quarter a pass.)
+static int short_of_pressure(const bdl_solids *s, long idx, double slope, double lo, double x)
 {
-    if (!(x > end))
-        return 0;
     const double eps = s->eps[idx];
+    if (!(fabs(x - eps) > 1e-9))
+        return 0;
     const double dp = cell_pressure(s, idx, x) - cell_pressure(s, idx, eps);
-    return dp - fmax(slope, 0.0) * (x - eps) > 1e-2 * fabs(dp) + 1e-3;
+    const double model = slope > 0.0 ? slope * (x - eps) : slope < 0.0 ? lo : 0.0;
+    return dp - model > 1e-2 * fabs(dp) + 1e-3;
 }
 
 /// One pass of the correction: the residual r - M z of the free cells (those with a slope), the
@@ -1072,7 +1076,7 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
             slope[idx] = lo[idx] < 0.0 ? -1.0 : 0.0; // held (at zero pressure: as outside)
             changed = 1;
         } else if (implicit
-                       ? pushed_past(s, idx, slope[idx], end[idx], x[idx])
+                       ? short_of_pressure(s, idx, slope[idx], lo[idx], x[idx])
                        : x[idx] > end[idx] + 1e-9 && (slope[idx] > 0.0 || x[idx] > d->eps_star)) {
             end[idx] = x[idx]; // pushed past its end point: a stiffer chord (or it joins again)
             slope[idx] = plastic_chord(s, idx, s->eps[idx], x[idx]);
