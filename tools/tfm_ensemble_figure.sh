@@ -8,7 +8,7 @@
 # (every run must write diagnostics.csv at the same nominal times, [output]
 # diagnostics_interval; at a fixed step a row's time is the step's nearest to it, and the first
 # run's times label the mean. The script stops with exit code 2 when the row counts differ, a
-# column is missing or a run ends before 20 s.)
+# column is missing or a run has no rows from 10 to 20 s.)
 set -euo pipefail
 out=$1; shift
 mkdir -p "$(dirname "$out")"

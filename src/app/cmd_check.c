@@ -67,7 +67,7 @@ static void print_solids_module(const bdl_world *w)
         return;
     }
     if (w->solids) {
-        char solids[512];
+        char solids[1024];
         bdl_world_solids_describe(w, solids, sizeof solids);
         printf("  %s; no particles, no walls: the domain's sides bound it\n", solids);
         return;

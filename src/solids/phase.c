@@ -850,6 +850,9 @@ static void after_fluxes(const bdl_grid *gr, double *const face[3], const double
 //     z_i / S_i + sum_f w_f (z_i - z_j) = r_i,   w_f = dt / (A_f h_f^2),
 // by conjugate gradients with a Jacobi preconditioner, z_i >= -P(eps^n_i) (no pressure below
 // zero). The fluxes -grad(z) / A then move the solids (the volume is conserved whatever z is).
+// With def.kinetic_pressure implicit P is Schaeffer's plus the viscous regime's k1 eps^2 theta
+// (theta the step's), so every cell with a temperature is in the system too, and a cell is
+// re-chorded by short_of_pressure() (its end point may then fall) instead of the plastic rule.
 
 static double schaeffer(const bdl_solids_def *d, double eps)
 {
@@ -1100,7 +1103,9 @@ static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt);
 /// below eps_star pushed above it joins) gets the chord to where it was pushed, stiffer, and the
 /// system is solved again. A cell whose pressure would fall below zero (z < -P(eps^n)) is held
 /// there: an opening cell draws back at most what its own pressure pushed out in the momentum
-/// step. A few passes (at most ten); the end points only rise.
+/// step. A few passes (at most ten); the end points only rise (with the kinetic pressure
+/// implicit a cell is re-chorded where its chord falls short of P on either side of its
+/// interval: short_of_pressure()).
 static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, double dt)
 {
     const bdl_grid *gr = &s->grid;
