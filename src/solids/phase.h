@@ -184,8 +184,8 @@ void bdl_solids_undo(bdl_solids *s, bdl_gas *gas);
 /// The largest stable time step of the solids' explicit terms, a Courant number of 1/2: 0.5 /
 /// max over the cells above the dilute limit of sum_a (v_out,a + c) / h_a, v_out the velocities
 /// of the faces a cell's solids leave by (the upwind transport keeps eps >= 0 up to twice this)
-/// and c the speed of the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) / rho_s (the
-/// momentum step takes -grad P explicitly; with def.kinetic_pressure implicit the correction
+/// and c the speed of the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) / rho_s
+/// (the momentum step takes -grad P explicitly; with def.kinetic_pressure implicit the correction
 /// takes its change implicitly, and c is left out). The viscous term and the transport of
 /// momentum are point-implicit, the plastic pressure implicit. Cells below the dilute limit do not
 /// count: a step limits their outflow to what they hold (the gas takes the difference). INFINITY

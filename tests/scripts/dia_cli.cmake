@@ -1,11 +1,7 @@
 # bedlam run with a synthetic camera, then bedlam calibrate on its images and --apply of the fit.
 # -DBEDLAM -DSCENE -DWORK
-file(REMOVE_RECURSE ${WORK})
-execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK}
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "run failed (${rc}):\n${out}\n${err}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/run_util.cmake)
+bdl_fresh_run()
 set(dir ${WORK}/dia/front)
 foreach(f camera.json frames.csv frame_000000_a.png frame_000000_b.png frame_000000_cells.csv
           frame_000000_a_particles.csv frame_000004_b_particles.csv)

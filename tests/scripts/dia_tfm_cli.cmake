@@ -1,11 +1,7 @@
 # A synthetic camera filming a solids phase on the grid: bedlam run, then the truth beside the
 # first image checked (dia_tfm_check.py). -DBEDLAM -DSCENE -DWORK -DPYTHON
-file(REMOVE_RECURSE ${WORK})
-execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK}
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "run failed (${rc}):\n${out}\n${err}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/run_util.cmake)
+bdl_fresh_run()
 foreach(f frame_000000.png frame_000000_particles.csv frame_000002_cells.csv)
   if(NOT EXISTS ${WORK}/dia/front/${f})
     message(FATAL_ERROR "dia/front/${f} was not written")

@@ -1,11 +1,7 @@
 # bedlam run of a small vibrated two-species bed, then its species.csv, its contact files and
 # bedlam analyze phase and networks on them. -DBEDLAM -DSCENE -DWORK
-file(REMOVE_RECURSE ${WORK})
-execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK}
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "run failed (${rc}):\n${out}\n${err}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/run_util.cmake)
+bdl_fresh_run()
 file(STRINGS ${WORK}/species.csv rows LIMIT_COUNT 1)
 if(NOT rows STREQUAL "time,count_small,mean_height_small,top_height_small,coordination_small,count_large,mean_height_large,top_height_large,coordination_large,lacey,lacey_horizontal,lacey_vertical")
   message(FATAL_ERROR "species.csv header: ${rows}")

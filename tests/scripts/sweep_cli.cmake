@@ -1,10 +1,6 @@
 # bedlam run with a [gas] sweep, then bedlam analyze sweep and spectrum on it. -DBEDLAM -DSCENE -DWORK
-file(REMOVE_RECURSE ${WORK})
-execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK}
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "run failed (${rc}):\n${out}\n${err}")
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/run_util.cmake)
+bdl_fresh_run()
 execute_process(COMMAND ${BEDLAM} analyze sweep ${WORK} --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 message("${out}${err}")
