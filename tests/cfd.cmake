@@ -22,3 +22,8 @@ bdl_add_test(test_close_packing SOURCES test_close_packing.c LABELS "cfd;stabili
 bdl_add_test(test_jet_outflow SOURCES test_jet_outflow.c LABELS "cfd;stability" TIMEOUT 600)
 bdl_add_test(test_parcels SOURCES test_parcels.c LABELS "cfd;verification")
 target_link_libraries(test_parcels PRIVATE OpenMP::OpenMP_C)
+# hypre's pressure solver against bedlam's (builds with MPI only; tests/mpi.cmake).
+if(BDL_WITH_MPI)
+  bdl_add_test(test_hypre SOURCES test_hypre.c LABELS "cfd;mpi")
+  add_dependencies(bdl_mpi_tests test_hypre)
+endif()

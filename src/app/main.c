@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include "app/app.h"
+#include "core/comm.h"
 
 static const char usage[] =
     "bedlam " BDL_VERSION " — interactive simulator of gas–solid and granular flows\n"
@@ -66,6 +67,29 @@ static void passive_wait(char **argv)
         execv("/proc/self/exe", argv);
 }
 
+/// Runs a command between the start and the end of MPI (when built with it). Under mpirun every
+/// rank runs it; the commands do not divide their work between ranks yet, so more than one rank
+/// is refused rather than run N times over.
+static int run_command(const command *c, int argc, char **argv)
+{
+    if (bdl_comm_init(&argc, &argv) != 0) {
+        fprintf(stderr, "error: MPI could not be started\n");
+        return 1;
+    }
+    int code = 2;
+    if (bdl_comm_size() > 1) {
+        if (bdl_comm_rank() == 0)
+            fprintf(stderr,
+                    "error: bedlam %s runs on one rank (mpirun -np 1); this build does not "
+                    "divide a run between %d ranks yet\n",
+                    c->name, bdl_comm_size());
+    } else {
+        code = bdl_exit_code(c->fn(argc - 1, argv + 1));
+    }
+    bdl_comm_finalize();
+    return code;
+}
+
 int main(int argc, char **argv)
 {
     passive_wait(argv);
@@ -85,7 +109,7 @@ int main(int argc, char **argv)
     }
     for (size_t k = 0; k < sizeof commands / sizeof commands[0]; ++k)
         if (strcmp(argv[1], commands[k].name) == 0)
-            return bdl_exit_code(commands[k].fn(argc - 1, argv + 1));
+            return run_command(&commands[k], argc, argv);
     fprintf(stderr, "error: unknown command '%s'\n\n%s", argv[1], usage);
     return 2;
 }

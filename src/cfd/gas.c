@@ -70,7 +70,7 @@ bdl_result bdl_gas_create(const bdl_gas_def *def, bdl_gas **out)
     int dirichlet[6];
     for (int s = 0; s < 6; ++s)
         dirichlet[s] = def->side[s].type == BDL_SIDE_OUTLET || distributor(&def->side[s]);
-    g->poisson = bdl_poisson_create(&g->grid, dirichlet);
+    g->poisson = bdl_poisson_create_solver(&g->grid, dirichlet, def->pressure_solver);
     int ok = g->poisson != NULL;
     for (int a = 0; a < 3; ++a) {
         g->u[a] = bdl_grid_alloc(&g->grid);

@@ -91,7 +91,8 @@ typedef struct bdl_gas_def {
     bdl_convection_step convection_step; ///< explicit, or point-implicit: no Courant limit
     double tolerance;                    ///< relative residual of the pressure solver
     int max_iterations;
-    int pressure_share; ///< keep `share` (below): parcels' implicit scheme
+    bdl_pressure_solver pressure_solver; ///< bedlam's MG-PCG (default), or hypre's
+    int pressure_share;                  ///< keep `share` (below): parcels' implicit scheme
 } bdl_gas_def;
 
 typedef struct bdl_gas {

@@ -6,6 +6,9 @@
 // ghost value 2 p_side - x, which adds 2K to the diagonal and 2K p_side to b.
 #include "core/parallel.h"
 #include "cfd/poisson.h"
+#if defined(BDL_WITH_MPI)
+#include "cfd/poisson_hypre.h"
+#endif
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,7 +39,33 @@ struct bdl_poisson {
     double *d, *q, *z; ///< CG vectors on the finest level
     double *xc, *r;    ///< solution and residual on the finest level
     double *zeros;     ///< a row of zero couplings (n[0] + 1)
+#if defined(BDL_WITH_MPI)
+    bdl_hypre_poisson *hypre; ///< NULL: bedlam's own solver
+#endif
 };
+
+BDL_CHOICE_WORDS(bdl_pressure_solver, BDL_PRESSURE_SOLVERS);
+const char *const bdl_pressure_solver_labels[] = {BDL_PRESSURE_SOLVERS(BDL_ENUM_LABEL) NULL};
+
+int bdl_pressure_solver_available(bdl_pressure_solver solver)
+{
+#if defined(BDL_WITH_MPI)
+    return solver == BDL_PRESSURE_MGPCG || solver == BDL_PRESSURE_HYPRE;
+#else
+    return solver == BDL_PRESSURE_MGPCG;
+#endif
+}
+
+/// With hypre, the solver's own (1) or bedlam's (0).
+static int uses_hypre(const bdl_poisson *p)
+{
+#if defined(BDL_WITH_MPI)
+    return p->hypre != NULL;
+#else
+    (void)p;
+    return 0;
+#endif
+}
 
 static long cell_of(const level *L, int i, int j, int k)
 {
@@ -81,6 +110,14 @@ static void level_free(level *L)
 
 bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6])
 {
+    return bdl_poisson_create_solver(g, dirichlet, BDL_PRESSURE_MGPCG);
+}
+
+bdl_poisson *bdl_poisson_create_solver(const bdl_grid *g, const int dirichlet[6],
+                                       bdl_pressure_solver solver)
+{
+    if (!bdl_pressure_solver_available(solver))
+        return NULL;
     bdl_poisson *p = calloc(1, sizeof *p);
     if (!p)
         return NULL;
@@ -128,6 +165,13 @@ bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6])
         bdl_poisson_destroy(p);
         return NULL;
     }
+#if defined(BDL_WITH_MPI)
+    if (solver == BDL_PRESSURE_HYPRE &&
+        !(p->hypre = bdl_hypre_poisson_create(g->n, p->periodic, p->singular))) {
+        bdl_poisson_destroy(p);
+        return NULL;
+    }
+#endif
     return p;
 }
 
@@ -143,6 +187,9 @@ void bdl_poisson_destroy(bdl_poisson *p)
     free(p->xc);
     free(p->r);
     free(p->zeros);
+#if defined(BDL_WITH_MPI)
+    bdl_hypre_poisson_destroy(p->hypre);
+#endif
     free(p);
 }
 
@@ -232,6 +279,12 @@ void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
             });
     }
     build_diagonal(p, L);
+#if defined(BDL_WITH_MPI)
+    if (p->hypre) { // hypre builds its own levels
+        bdl_hypre_poisson_set(p->hypre, L->diag, L->K);
+        return;
+    }
+#endif
     for (int l = 1; l < p->level_count; ++l) {
         restrict_couplings(&p->levels[l - 1], &p->levels[l]);
         build_diagonal(p, &p->levels[l]);
@@ -502,7 +555,17 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
     double res = norm_b > 0.0 ? sqrt(dot(r, r, n)) / norm_b : 0.0;
     bdl_poisson_stats st = {0, res, res};
     int converged = res <= tol;
-    if (!converged) {
+#if defined(BDL_WITH_MPI)
+    if (!converged && p->hypre) {
+        // r = b - M x0; hypre is given b itself (a Dirichlet side's part and all).
+        right_hand_side(p, f, p_side, r);
+        if (p->singular)
+            remove_mean(r, n);
+        converged =
+            bdl_hypre_poisson_solve(p->hypre, r, xc, tol, max_iter, &st.iterations, &st.residual);
+    }
+#endif
+    if (!converged && !uses_hypre(p)) {
         precondition(p, r, p->z);
         memcpy(p->d, p->z, (size_t)n * sizeof(double));
         double rz = dot(r, p->z, n);

@@ -15,6 +15,19 @@
 #define BDL_POISSON_H
 
 #include "cfd/grid.h"
+#include "core/names.h"
+
+/// Who solves it: bedlam's own multigrid-preconditioned CG, or hypre's conjugate gradients
+/// preconditioned by its structured-grid multigrid PFMG (cfd/poisson_hypre.h; builds with MPI
+/// only).
+#define BDL_PRESSURE_SOLVERS(X)                                                                    \
+    X(PRESSURE_MGPCG, "mgpcg", "multigrid-preconditioned CG")                                      \
+    X(PRESSURE_HYPRE, "hypre", "hypre's PFMG-preconditioned CG")
+BDL_CHOICES(bdl_pressure_solver, BDL_PRESSURE_SOLVERS);
+extern const char *const bdl_pressure_solver_labels[];
+
+/// 1 when this build has `solver` (hypre: built with -DBDL_WITH_MPI=ON).
+int bdl_pressure_solver_available(bdl_pressure_solver solver);
 
 typedef struct bdl_poisson bdl_poisson;
 
@@ -27,6 +40,9 @@ typedef struct bdl_poisson_stats {
 /// `dirichlet[2a + s]` says whether side s (0 low, 1 high) of axis a holds a fixed pressure.
 /// NULL when out of memory.
 bdl_poisson *bdl_poisson_create(const bdl_grid *g, const int dirichlet[6]);
+/// The same with the solver chosen; NULL also when this build does not have it.
+bdl_poisson *bdl_poisson_create_solver(const bdl_grid *g, const int dirichlet[6],
+                                       bdl_pressure_solver solver);
 void bdl_poisson_destroy(bdl_poisson *p);
 
 /// Face coefficients c, one padded face array per axis (see grid.h), and the multigrid's coarse

@@ -230,8 +230,9 @@ typedef struct bdl_gas_scene {
     bdl_vec3 cells;   ///< cells per axis (whole numbers)
     bdl_convection convection;
     bdl_convection_step convection_step;
-    double tolerance;              ///< relative residual of the pressure solver
-    bdl_gas_side_type side[6];     ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
+    double tolerance;                    ///< relative residual of the pressure solver
+    bdl_pressure_solver pressure_solver; ///< bedlam's MG-PCG, or hypre's (MPI builds)
+    bdl_gas_side_type side[6];           ///< xmin xmax ymin ymax zmin zmax (periodic axes: ignored)
     double inlet_velocity;         ///< superficial velocity into the domain through inlets [m/s]
     double outlet_pressure;        ///< [Pa]
     double distributor_resistance; ///< inlets as porous plates [Pa s/m]; 0: uniform inflow

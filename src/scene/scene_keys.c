@@ -646,6 +646,10 @@ const bdl_scene_key bdl_scene_keys[] = {
             "above a Courant number of 1: no Courant limit on the gas's step; with [solids] only)"},
     {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
      .doc = "relative residual at which the pressure solver stops"},
+    {S(GAS), "pressure_solver", .type = BDL_KEY_ENUM, "-", IN_GAS(pressure_solver),
+     .def = {BDL_PRESSURE_MGPCG}, .enum_names = bdl_pressure_solver_names,
+     .doc = "mgpcg (bedlam's multigrid-preconditioned conjugate gradients) or hypre (hypre's CG "
+            "preconditioned by its PFMG multigrid; builds with -DBDL_WITH_MPI=ON)"},
     GAS_SIDE("xmin", 0),
     GAS_SIDE("xmax", 1),
     GAS_SIDE("ymin", 2),

@@ -521,6 +521,12 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
             return;
         }
     }
+    if (!bdl_pressure_solver_available(g->pressure_solver)) {
+        fail_at_key(p, gas, "pressure_solver", 0,
+                    "this build has no hypre: configure with -DBDL_WITH_MPI=ON (OpenMPI and "
+                    "libhypre-dev), or use mgpcg");
+        return;
+    }
     int inlets = 0;
     for (int side = 0; side < 6; ++side)
         inlets += !p->scene->periodic[side / 2] && g->side[side] == BDL_SIDE_INLET;

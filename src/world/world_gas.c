@@ -55,6 +55,7 @@ static bdl_gas_def gas_def(bdl_world *w)
     d.convection = gs->convection;
     d.convection_step = gs->convection_step;
     d.tolerance = gs->tolerance;
+    d.pressure_solver = gs->pressure_solver;
     d.pressure_share = s->parcels.enabled || s->solids.enabled; // their elimination's hooks
     return d;
 }
@@ -258,10 +259,14 @@ void bdl_world_gas_describe(const bdl_world *w, char *buf, size_t size)
     char conv[64];
     snprintf(conv, sizeof conv, "%s%s", bdl_convection_labels[w->gas->def.convection],
              w->gas->def.convection_step == BDL_CONVECTION_POINT_IMPLICIT ? " point-implicit" : "");
-    char plate[80] = "";
+    char plate[160] = "";
+    int at = 0;
     if (w->scene.gas.distributor_resistance > 0.0)
-        snprintf(plate, sizeof plate, "; inlets through a porous plate of %.4g Pa s/m",
-                 w->scene.gas.distributor_resistance);
+        at = snprintf(plate, sizeof plate, "; inlets through a porous plate of %.4g Pa s/m",
+                      w->scene.gas.distributor_resistance);
+    if (w->gas->def.pressure_solver != BDL_PRESSURE_MGPCG && at >= 0 && at < (int)sizeof plate)
+        snprintf(plate + at, sizeof plate - (size_t)at, "; pressure by %s",
+                 bdl_pressure_solver_labels[w->gas->def.pressure_solver]);
     if (w->solids) {
         snprintf(buf, size,
                  "%d x %d x %d cells of %.3g x %.3g x %.3g mm, %s convection; one step with the "
