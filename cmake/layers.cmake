@@ -14,7 +14,7 @@
 #   app      the command line
 
 set(BDL_LAYERS solver output render run app)
-set(BDL_LAYER_solver core dem cfd couple parcels solids analysis scene world)
+set(BDL_LAYER_solver core dem dist cfd couple parcels solids analysis scene world)
 set(BDL_LAYER_output io output)
 set(BDL_LAYER_render render dia)
 set(BDL_LAYER_run run verify)
@@ -24,6 +24,7 @@ set(BDL_LAYER_app app)
 # a folder uses only folders before it.
 set(BDL_USES_core "")
 set(BDL_USES_dem core)
+set(BDL_USES_dist core dem)
 set(BDL_USES_cfd core)
 set(BDL_USES_couple core dem cfd)
 # The next solvers have their places before their folders exist (docs/architecture.md).
@@ -31,13 +32,13 @@ set(BDL_USES_parcels core dem cfd couple)
 set(BDL_USES_solids core cfd couple)
 set(BDL_USES_analysis core)
 set(BDL_USES_scene core dem cfd couple parcels solids)
-set(BDL_USES_world core dem cfd couple parcels solids analysis scene)
+set(BDL_USES_world core dem dist cfd couple parcels solids analysis scene)
 set(BDL_USES_io core)
-set(BDL_USES_output core dem cfd couple parcels solids analysis scene world io)
+set(BDL_USES_output core dem dist cfd couple parcels solids analysis scene world io)
 set(BDL_USES_render core analysis scene io)
 set(BDL_USES_dia core scene io)
-set(BDL_USES_run core dem cfd couple parcels solids analysis scene world io output render dia)
-set(BDL_USES_verify core dem cfd couple parcels solids analysis scene world io output render dia
+set(BDL_USES_run core dem dist cfd couple parcels solids analysis scene world io output render dia)
+set(BDL_USES_verify core dem dist cfd couple parcels solids analysis scene world io output render dia
     run)
-set(BDL_USES_app core dem cfd couple parcels solids analysis scene world io output render dia run
+set(BDL_USES_app core dem dist cfd couple parcels solids analysis scene world io output render dia run
     verify)

@@ -119,6 +119,8 @@ void bdl_neighbor_free(bdl_neighbor *nb)
                       nb->old_wall_spring_work,
                       nb->perm,
                       nb->pcell,
+                      nb->ghost_head,
+                      nb->ghost_next,
                       nb->scratch};
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; ++k)
         free(arrays[k]);
@@ -200,6 +202,13 @@ static int32_t scan_pairs(const bdl_neighbor *nb, const bdl_particles *p, long i
                         ++n;
                     }
                 }
+                for (int32_t j = nb->ghosted ? nb->ghost_head[r] : -1; j >= 0;
+                     j = nb->ghost_next[j - nb->owned])
+                    if (j > i && listed(nb, p, i, j, bdl_neighbor_delta(nb, xi, p->pos[j]))) {
+                        if (out)
+                            out[n] = j;
+                        ++n;
+                    }
             }
         }
     }
@@ -288,7 +297,7 @@ static bdl_result stash_history(bdl_neighbor *nb)
 /// The stash entry of the pair of old indices oi and oj, or -1.
 static int32_t find_stashed(const bdl_neighbor *nb, long old_count, int32_t oi, int32_t oj)
 {
-    if (oi >= old_count || oj >= old_count)
+    if (oi < 0 || oj < 0 || oi >= old_count || oj >= old_count)
         return -1;
     int32_t a = oi < oj ? oi : oj, b = oi < oj ? oj : oi;
     for (int32_t k = nb->stash_start[a]; k < nb->stash_start[a + 1]; ++k)
@@ -463,7 +472,7 @@ static void list_walls(bdl_neighbor *nb, const bdl_particles *p, const bdl_walls
         if (nb->mindlin)
             nb->wall_spring_work[k] = 0.0;
         nb->wall_touching[k] = 0;
-        if (oi >= old_count || !nb->old_wall_prim)
+        if (oi < 0 || oi >= old_count || !nb->old_wall_prim)
             continue;
         for (int32_t m = nb->old_wall_start[oi]; m < nb->old_wall_start[oi + 1]; ++m)
             if (nb->old_wall_prim[m] == nb->wall_prim[k]) {
@@ -514,33 +523,20 @@ static bdl_result build_walls(bdl_neighbor *nb, const bdl_particles *p, const bd
     return BDL_OK;
 }
 
-bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
-                              const uint8_t *drop)
+/// The lists of the p->count particles in their places (nb->perm: where each was at the last
+/// build, for the history; old_count particles then, 0 to start afresh).
+static bdl_result build_lists(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
+                              long old_count)
 {
-    long n = p->count;
-    long old_count = nb->count;
-    bdl_result r = reserve_particles(nb, n);
-    if (r != BDL_OK)
-        return r;
-    if (nb->friction && old_count > 0) {
-        r = stash_history(nb);
-        if (r != BDL_OK)
-            return r;
-    } else {
-        old_count = 0;
-    }
-    wrap_periodic(nb, p);
-    sort_particles(nb, p, drop);
-    n = p->count;
+    const long n = p->count;
     for (long i = 0; i < n; ++i)
         p->pos_at_build[i] = p->pos[i];
     if (p->rods)
         for (long i = 0; i < n; ++i)
             p->axis_at_build[i] = bdl_particle_half_axis(p, i);
-    r = build_pairs(nb, p, old_count);
-    if (r != BDL_OK)
-        return r;
-    r = build_walls(nb, p, walls, nb->builds > 0 ? nb->count : 0);
+    bdl_result r = build_pairs(nb, p, old_count);
+    if (r == BDL_OK)
+        r = build_walls(nb, p, walls, nb->builds > 0 ? nb->count : 0);
     if (r != BDL_OK)
         return r;
     nb->count = n;
@@ -548,6 +544,83 @@ bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_wall
     nb->builds++;
     nb->version++;
     return BDL_OK;
+}
+
+/// Room for n particles, and the history of the lists being replaced stashed; `old_count` gets
+/// the particles those lists had (0 when no history is carried).
+static bdl_result prepare(bdl_neighbor *nb, long n, long *old_count)
+{
+    *old_count = nb->count;
+    bdl_result r = reserve_particles(nb, n);
+    if (r != BDL_OK)
+        return r;
+    if (nb->friction && *old_count > 0)
+        return stash_history(nb);
+    *old_count = 0;
+    return BDL_OK;
+}
+
+bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
+                              const uint8_t *drop)
+{
+    long old_count;
+    bdl_result r = prepare(nb, p->count, &old_count);
+    if (r != BDL_OK)
+        return r;
+    wrap_periodic(nb, p);
+    sort_particles(nb, p, drop);
+    nb->ghosted = 0;
+    return build_lists(nb, p, walls, old_count);
+}
+
+bdl_result bdl_neighbor_sort(bdl_neighbor *nb, bdl_particles *p)
+{
+    bdl_result r = reserve_particles(nb, p->count);
+    if (r != BDL_OK)
+        return r;
+    wrap_periodic(nb, p);
+    sort_particles(nb, p, NULL);
+    return BDL_OK;
+}
+
+/// The ghosts [owned, p->count) into their cells' lists, each list in the ghosts' order.
+static bdl_result list_ghosts(bdl_neighbor *nb, const bdl_particles *p, long owned)
+{
+    const long ghosts = p->count - owned;
+    if (!nb->ghost_head && !bdl_grow((void **)&nb->ghost_head, nb->cell_count, sizeof(int32_t)))
+        return BDL_ERR_NOMEM;
+    if (ghosts > nb->ghost_capacity) {
+        const long cap = ghosts + ghosts / 8 + 64;
+        if (!bdl_grow((void **)&nb->ghost_next, cap, sizeof(int32_t)))
+            return BDL_ERR_NOMEM;
+        nb->ghost_capacity = cap;
+    }
+    for (long c = 0; c < nb->cell_count; ++c)
+        nb->ghost_head[c] = -1;
+    for (long g = p->count - 1; g >= owned; --g) { // backwards: each list runs forwards
+        int c[3];
+        cell_of(nb, p->pos[g], c);
+        const int32_t r =
+            nb->cell_rank[c[0] + (long)nb->dims[0] * (c[1] + (long)nb->dims[1] * c[2])];
+        nb->ghost_next[g - owned] = nb->ghost_head[r];
+        nb->ghost_head[r] = (int32_t)g;
+    }
+    nb->owned = owned;
+    nb->ghosted = 1;
+    return BDL_OK;
+}
+
+bdl_result bdl_neighbor_build_from(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
+                                   const int32_t *origin, long owned)
+{
+    long old_count;
+    bdl_result r = prepare(nb, p->count, &old_count);
+    if (r == BDL_OK)
+        r = list_ghosts(nb, p, owned);
+    if (r != BDL_OK)
+        return r;
+    memcpy(nb->perm, origin, (size_t)p->count * sizeof *nb->perm);
+    return build_lists(nb, p, walls, old_count);
 }
 
 int bdl_neighbor_needs_build(const bdl_neighbor *nb, const bdl_particles *p, const bdl_walls *walls,

@@ -87,7 +87,14 @@ typedef struct bdl_neighbor {
     /// The work the springs held when their contacts ended, since the start [J]: it left the
     /// bodies. Summed exactly (core/exact_sum.h): the force pass's threads add to it.
     bdl_exact_sum spring_work_left;
-    int rods;          ///< the particles are rods (bdl_particles.rods)
+    int rods; ///< the particles are rods (bdl_particles.rods)
+    // MPI ranks (bdl_neighbor_build_from): particles [0, owned) sit in the cells by cell_start,
+    // the ghosts after them in a list per ranked cell (ghost_head, ghost_next; -1 ends it).
+    int ghosted;         ///< 0: no ghosts (one process)
+    long owned;          ///< particles before the ghosts
+    int32_t *ghost_head; ///< first ghost of each ranked cell (cell_count)
+    int32_t *ghost_next; ///< the next ghost in its cell, by ghost (index - owned)
+    long ghost_capacity;
     long parallel_min; ///< fewer particles than this: builds on one thread (core/parallel.h)
     long builds;       ///< rebuilds so far
 
@@ -115,6 +122,17 @@ bdl_result bdl_neighbor_none(bdl_neighbor *nb, long n);
 /// carries contact history over. Particles with drop[i] set are removed (drop may be NULL).
 bdl_result bdl_neighbor_build(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
                               const uint8_t *drop);
+
+/// A process of an MPI run (dist/exchange.h), the build in two halves. First the p->count
+/// particles it owns are wrapped into the periodic axes and sorted as bdl_neighbor_build does;
+/// nb->perm then says where each came from.
+bdl_result bdl_neighbor_sort(bdl_neighbor *nb, bdl_particles *p);
+/// Then, with the ghosts appended after the `owned` sorted ones, the lists of all p->count
+/// particles (the ghosts are not moved: they are put in their cells' lists): origin[i] is the
+/// index particle i had when the lists were last built (-1: it was not here), which carries its
+/// contact history over.
+bdl_result bdl_neighbor_build_from(bdl_neighbor *nb, bdl_particles *p, const bdl_walls *walls,
+                                   const int32_t *origin, long owned);
 
 /// True when the lists may have missed a contact: 2 max|x - x_build| > skin, or a particle and a
 /// wall together moved more than the skin (x: the centre, or with rods either tip). `max_move2`

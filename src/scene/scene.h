@@ -314,6 +314,7 @@ typedef struct bdl_scene {
     int periodic[3];                 ///< periodic flags per axis
     bdl_outside outside;             ///< a particle crossing a non-periodic face
     double shear_rate;               ///< Lees–Edwards shear rate du_x/dz [1/s]; 0 = none
+    bdl_vec3 decomposition;          ///< [parallel]: MPI ranks per axis; 0 0 0 automatic
 
     // [contact]
     bdl_normal_law law;

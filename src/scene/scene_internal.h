@@ -30,7 +30,8 @@ typedef enum bdl_section_kind {
     BDL_SECTION_CREATE,
     BDL_SECTION_DIA, ///< [camera NAME]: the same word as [camera], with a name
     BDL_SECTION_SINK,
-    BDL_SECTION_PHASE, ///< [phase NAME]: a phase of a [solids] mixture
+    BDL_SECTION_PHASE,    ///< [phase NAME]: a phase of a [solids] mixture
+    BDL_SECTION_PARALLEL, ///< [parallel]: how a run is divided between MPI ranks
     BDL_SECTION_KIND_COUNT
 } bdl_section_kind;
 

@@ -53,6 +53,7 @@ const bdl_section_info bdl_section_infos[BDL_SECTION_KIND_COUNT] = {
     [BDL_SECTION_DIA] = {"camera", "camera NAME", 1, BDL_MAX_DIA},
     [BDL_SECTION_SINK] = {"sink", "sink NAME", 1, BDL_MAX_SINKS},
     [BDL_SECTION_PHASE] = {"phase", "phase NAME", 1, BDL_SOLIDS_PHASES},
+    [BDL_SECTION_PARALLEL] = {"parallel", "parallel", 0, 1},
 };
 
 // Words of the choices that are the scene's own (the solver modules define theirs beside their
@@ -646,6 +647,10 @@ const bdl_scene_key bdl_scene_keys[] = {
             "above a Courant number of 1: no Courant limit on the gas's step; with [solids] only)"},
     {S(GAS), "tolerance", NUM, "-", IN_GAS(tolerance), .def = {1e-8}, GT(0), LT(1),
      .doc = "relative residual at which the pressure solver stops"},
+    {S(PARALLEL), "decomposition", VEC, "-", IN_SCENE(decomposition), .def = {0, 0, 0},
+     .default_text = "0 0 0 (automatic)", GE(0), LE(4096),
+     .doc = "MPI ranks along x, y, z (whole numbers whose product is the rank count); 0 0 0 "
+            "chooses the division that balances the particles, then the least cut area"},
     {S(GAS), "pressure_solver", .type = BDL_KEY_ENUM, "-", IN_GAS(pressure_solver),
      .def = {BDL_PRESSURE_MGPCG}, .enum_names = bdl_pressure_solver_names,
      .doc = "mgpcg (bedlam's multigrid-preconditioned conjugate gradients) or hypre (hypre's CG "

@@ -3,6 +3,7 @@
 
 #include "cfd/gas.h"
 #include "core/memory.h"
+#include "core/comm.h"
 #include "core/parallel.h"
 
 #include <math.h>
@@ -16,6 +17,7 @@
 #include "dem/contact_force.h"
 #include "dem/rod_force.h"
 #include "dem/integrate.h"
+#include "dist/exchange.h"
 
 #define PI 3.14159265358979323846
 
@@ -214,23 +216,33 @@ int bdl_world_set_parameter(bdl_world *w, const char *key, double value)
 static bdl_result forces(bdl_world *w, double max_move2, double kick)
 {
     bdl_particles *p = &w->particles;
+    if (w->dist) {
+        bdl_result r = bdl_world_dist_lists(w, max_move2);
+        if (r != BDL_OK)
+            return r;
+        p->count += bdl_dist_ghosts(w->dist); // the force pass runs over the ghosts too
+    }
     if (w->coordination_capacity < p->capacity) {
         if (!bdl_grow((void **)&w->coordination, p->capacity, 1))
             return BDL_ERR_NOMEM;
         w->coordination_capacity = p->capacity;
     }
     w->neighbor.parallel_min = w->parallel_min;
-    if (bdl_neighbor_needs_build(&w->neighbor, p, &w->walls, max_move2)) {
+    if (!w->dist && bdl_neighbor_needs_build(&w->neighbor, p, &w->walls, max_move2)) {
         bdl_result r = bdl_neighbor_build(&w->neighbor, p, &w->walls, NULL);
         if (r != BDL_OK)
             return r;
     }
     bdl_force_def def = force_def(w);
     def.loads_cleared = kick > 0.0;
+    bdl_result r;
     if (p->rods)
-        return bdl_rod_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination,
-                              kick);
-    return bdl_dem_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination, kick);
+        r = bdl_rod_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination, kick);
+    else
+        r = bdl_dem_forces(p, &w->neighbor, &w->walls, &def, &w->force_work, w->coordination, kick);
+    if (w->dist)
+        p->count = bdl_dist_owned(w->dist);
+    return r;
 }
 
 bdl_result bdl_world_compute_forces(bdl_world *w) { return forces(w, -1.0, 0.0); }
@@ -317,6 +329,10 @@ static bdl_result remove_outflow(bdl_world *w, double *max_move2)
         }
     }
     w->removed += leaving;
+    if (w->dist) { // the ranks rebuild together in the force pass
+        *max_move2 = INFINITY;
+        return bdl_dist_remove(w->dist, p, w->drop);
+    }
     *max_move2 = 0.0;
     w->neighbor.parallel_min = w->parallel_min;
     return bdl_neighbor_build(&w->neighbor, p, &w->walls, w->drop);
@@ -578,8 +594,7 @@ static void build_contacts(bdl_world *w)
         w->background_damping[k] = scene->species[k].background_damping;
 }
 
-/// The largest particle's extent (a diameter, or a rod's length) plus the neighbour skin [m].
-static double contact_reach(const bdl_scene *scene, double *skin)
+double bdl_world_contact_reach(const bdl_scene *scene, double *skin)
 {
     double d_max = max_diameter(scene), extent = d_max;
     for (int k = 0; k < scene->species_count; ++k)
@@ -635,12 +650,13 @@ static bdl_result build_walls(bdl_world *w, bdl_scene_error *err)
     w->live.inlet_scale = 1.0;
     double skin;
     char why[600];
-    bdl_result r = bdl_walls_build(scene->walls, scene->wall_count, contact_reach(scene, &skin),
-                                   &w->walls, why, sizeof why);
+    bdl_result r =
+        bdl_walls_build(scene->walls, scene->wall_count, bdl_world_contact_reach(scene, &skin),
+                        &w->walls, why, sizeof why);
     if (r != BDL_OK)
         snprintf(err->message, sizeof err->message, "%s: [wall] %s", scene->path, why);
     else
-        r = wrap_walls(w, contact_reach(scene, &skin), err);
+        r = wrap_walls(w, bdl_world_contact_reach(scene, &skin), err);
     w->container = -1;
     for (int k = 0; k < scene->wall_count; ++k)
         if (scene->walls[k].motion == BDL_MOTION_VIBRATE &&
@@ -689,7 +705,7 @@ static bdl_result create_particles(bdl_world *w, long *first_id, long *expected,
 static bdl_result build_neighbor(bdl_world *w, long expected, bdl_scene_error *err)
 {
     const bdl_scene *scene = &w->scene;
-    double skin, reach = contact_reach(scene, &skin), extent = reach - skin;
+    double skin, reach = bdl_world_contact_reach(scene, &skin), extent = reach - skin;
     bdl_result r = bdl_neighbor_init(&w->neighbor, scene->domain_min, scene->domain_max,
                                      scene->periodic, reach, skin, expected, w->friction, w->hertz,
                                      w->rolling, w->particles.rods);
@@ -753,7 +769,7 @@ static bdl_result build_contact_solver(bdl_world *w, long expected, bdl_scene_er
     return r;
 }
 
-bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
+static bdl_result create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err, int divide)
 {
     *out = NULL;
     bdl_world *w = calloc(1, sizeof *w);
@@ -781,12 +797,24 @@ bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_e
         w->outflow[f] |= !scene->periodic[f / 2] && scene->outside == BDL_OUTSIDE_REMOVE;
     if (r == BDL_OK)
         r = check_initial(w, first_id, err);
+    if (r == BDL_OK && divide && bdl_comm_size() > 1)
+        r = bdl_world_dist_init(w, err);
     if (r != BDL_OK) {
         bdl_world_destroy(w);
         return r;
     }
     *out = w;
     return BDL_OK;
+}
+
+bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
+{
+    return create(scene, out, err, 1);
+}
+
+bdl_result bdl_world_create_whole(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err)
+{
+    return create(scene, out, err, 0);
 }
 
 void bdl_world_destroy(bdl_world *w)
@@ -796,6 +824,7 @@ void bdl_world_destroy(bdl_world *w)
     bdl_world_parcels_free(w);
     bdl_world_solids_free(w);
     bdl_world_gas_free(w);
+    bdl_dist_destroy(w->dist);
     bdl_particles_free(&w->particles);
     bdl_neighbor_free(&w->neighbor);
     bdl_walls_free(&w->walls);

@@ -26,6 +26,7 @@
 
 struct bdl_gas;
 struct bdl_coupling;
+struct bdl_dist;
 struct bdl_parcels;
 struct bdl_solids;
 
@@ -115,6 +116,10 @@ typedef struct bdl_world {
     // per step of the world; there are no particles. max_solids holds its largest fraction.
     struct bdl_solids *solids;
 
+    // MPI ranks (dist/exchange.h; NULL in one process): `particles` holds this rank's own
+    // particles (count of them) and, after them, its ghosts.
+    struct bdl_dist *dist;
+
     /// Why the last bdl_world_step failed, for the caller to report (the world prints nothing).
     char failure[512];
 } bdl_world;
@@ -123,6 +128,9 @@ typedef struct bdl_world {
 /// conditions (overlaps, particles outside the domain, a random fill that cannot be placed) fail
 /// with BDL_ERR_SCENE and a message in `err` naming the [create] section and its line.
 bdl_result bdl_world_create(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err);
+/// Under MPI (more than one rank) bdl_world_create divides the particles between the ranks
+/// (world_dist.c); this builds the whole world on this rank instead (a reference, a tool).
+bdl_result bdl_world_create_whole(const bdl_scene *scene, bdl_world **out, bdl_scene_error *err);
 void bdl_world_destroy(bdl_world *world);
 
 /// Advances the world by one time step dt (velocity Verlet). On a failure (BDL_ERR_UNSTABLE: the
@@ -198,6 +206,20 @@ typedef struct bdl_parcels_census {
 
 /// The census of the parcels where they are now; BDL_ERR_NOMEM.
 bdl_result bdl_world_parcels_census(const bdl_world *world, bdl_parcels_census *out);
+
+/// The largest particle's extent (a diameter, or a rod's length) plus the neighbour skin, which
+/// goes to `skin` [m].
+double bdl_world_contact_reach(const bdl_scene *scene, double *skin);
+
+/// MPI ranks (world_dist.c): divides the particles of a world built on every rank between the
+/// ranks (world_create calls it when there is more than one). BDL_ERR_SCENE, with the reason in
+/// err, for a scene the ranks cannot share yet (a gas, parcels, a solids phase, rods, pouring,
+/// sinks or outlets, Lees–Edwards boundaries) or a domain too small for the rank count.
+bdl_result bdl_world_dist_init(bdl_world *world, bdl_scene_error *err);
+
+/// MPI ranks: before a force pass, the ghosts from their owners and, when any rank's lists need
+/// it, the collective rebuild (world.c's force pass calls it).
+bdl_result bdl_world_dist_lists(bdl_world *world, double max_move2);
 
 /// One line naming the active modules and their models, for run.log.
 void bdl_world_describe(const bdl_world *world, char *buf, size_t size);

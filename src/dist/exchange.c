@@ -1,0 +1,549 @@
+#include "dist/exchange.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/memory.h"
+
+#if defined(BDL_WITH_MPI)
+#include <mpi.h>
+
+typedef struct id_slot {
+    uint32_t id;
+    int32_t index;
+} id_slot;
+
+/// Doubles per ghost in a refresh: position, velocity, spin.
+#define REFRESH 9
+
+struct bdl_dist {
+    bdl_decomp d;
+    long owned, ghosts;
+    long migrated, rebuilds;
+    // The ghosts this rank sends at each refresh, grouped by rank: its own particle and the shift.
+    int32_t *send_index;
+    bdl_vec3 *send_shift;
+    long send_capacity;
+    int *send_count, *send_displ, *recv_count, *recv_displ; ///< per rank, in entries
+    int *byte_count, *byte_displ, *rbyte_count, *rbyte_displ;
+    double *send_buf, *recv_buf;
+    long send_buf_capacity, recv_buf_capacity;
+    // The ids of the particles the lists were built for, by their index then: the contact
+    // history is found by them however the particles were moved since.
+    id_slot *built;
+    long built_count;
+};
+
+bdl_result bdl_dist_create(const bdl_decomp *d, bdl_dist **out)
+{
+    bdl_dist *dd = calloc(1, sizeof *dd);
+    if (!dd)
+        return BDL_ERR_NOMEM;
+    dd->d = *d;
+    const size_t n = (size_t)d->size;
+    dd->send_count = calloc(n, sizeof(int));
+    dd->send_displ = calloc(n + 1, sizeof(int));
+    dd->recv_count = calloc(n, sizeof(int));
+    dd->recv_displ = calloc(n + 1, sizeof(int));
+    dd->byte_count = calloc(n, sizeof(int));
+    dd->byte_displ = calloc(n + 1, sizeof(int));
+    dd->rbyte_count = calloc(n, sizeof(int));
+    dd->rbyte_displ = calloc(n + 1, sizeof(int));
+    if (!dd->send_count || !dd->send_displ || !dd->recv_count || !dd->recv_displ ||
+        !dd->byte_count || !dd->byte_displ || !dd->rbyte_count || !dd->rbyte_displ) {
+        bdl_dist_destroy(dd);
+        return BDL_ERR_NOMEM;
+    }
+    *out = dd;
+    return BDL_OK;
+}
+
+void bdl_dist_destroy(bdl_dist *dd)
+{
+    if (!dd)
+        return;
+    free(dd->send_index);
+    free(dd->send_shift);
+    free(dd->send_count);
+    free(dd->send_displ);
+    free(dd->recv_count);
+    free(dd->recv_displ);
+    free(dd->byte_count);
+    free(dd->byte_displ);
+    free(dd->rbyte_count);
+    free(dd->rbyte_displ);
+    free(dd->send_buf);
+    free(dd->recv_buf);
+    free(dd->built);
+    free(dd);
+}
+
+const bdl_decomp *bdl_dist_decomp(const bdl_dist *dd) { return &dd->d; }
+long bdl_dist_owned(const bdl_dist *dd) { return dd->owned; }
+long bdl_dist_ghosts(const bdl_dist *dd) { return dd->ghosts; }
+long bdl_dist_migrated(const bdl_dist *dd) { return dd->migrated; }
+long bdl_dist_rebuilds(const bdl_dist *dd) { return dd->rebuilds; }
+
+int bdl_dist_any(int mine)
+{
+    int any = mine;
+    MPI_Allreduce(&mine, &any, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    return any;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Whole particles: every array of the table, packed one particle after the other.
+
+static int all_arrays(const bdl_particles *p, bdl_particle_array *arrays, size_t *bytes)
+{
+    const int n = bdl_particles_arrays(
+        p, BDL_ARRAYS_ALWAYS | BDL_ARRAYS_WITH_GAS | BDL_ARRAYS_WITH_RODS | BDL_ARRAYS_WITH_PARCELS,
+        arrays);
+    *bytes = 0;
+    for (int a = 0; a < n; ++a)
+        *bytes += arrays[a].element;
+    return n;
+}
+
+static void pack(const bdl_particles *p, long i, bdl_vec3 shift, char *out)
+{
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    const int n = all_arrays(p, arrays, &bytes);
+    for (int a = 0; a < n; ++a) {
+        memcpy(out, (const char *)arrays[a].data + (size_t)i * arrays[a].element,
+               arrays[a].element);
+        out += arrays[a].element;
+    }
+    bdl_vec3 x = p->pos[i];
+    x = bdl_v3_add(x, shift);
+    memcpy(out - bytes, &x, sizeof x); // pos is the table's first array
+}
+
+static void unpack(bdl_particles *p, long i, const char *in)
+{
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    const int n = all_arrays(p, arrays, &bytes);
+    for (int a = 0; a < n; ++a) {
+        memcpy((char *)arrays[a].data + (size_t)i * arrays[a].element, in, arrays[a].element);
+        in += arrays[a].element;
+    }
+}
+
+/// Sends, per rank, the particles listed (index and shift, grouped by rank: counts[r] of them
+/// from displ[r]), and appends what arrives after slot `at`; returns the count received (or -1
+/// when out of memory). recv_count and recv_displ get the counts received per rank.
+static long send_particles(bdl_dist *dd, bdl_particles *p, const int32_t *index,
+                           const bdl_vec3 *shift, const int *counts, const int *displ, long at,
+                           int *recv_count, int *recv_displ)
+{
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    all_arrays(p, arrays, &bytes);
+    const int size = dd->d.size;
+    MPI_Alltoall(counts, 1, MPI_INT, recv_count, 1, MPI_INT, MPI_COMM_WORLD);
+    long sent = 0, got = 0;
+    for (int r = 0; r < size; ++r) {
+        dd->byte_count[r] = counts[r] * (int)bytes;
+        dd->byte_displ[r] = displ[r] * (int)bytes;
+        recv_displ[r] = (int)got;
+        dd->rbyte_count[r] = recv_count[r] * (int)bytes;
+        dd->rbyte_displ[r] = (int)(got * (long)bytes);
+        sent += counts[r];
+        got += recv_count[r];
+    }
+    recv_displ[size] = (int)got;
+    char *out = malloc((size_t)(sent > 0 ? sent : 1) * bytes);
+    char *in = malloc((size_t)(got > 0 ? got : 1) * bytes);
+    if (!out || !in || bdl_particles_reserve(p, at + got + 16) != BDL_OK) {
+        free(out);
+        free(in);
+        return -1;
+    }
+    for (long e = 0; e < sent; ++e)
+        pack(p, index[e], shift ? shift[e] : bdl_v3_zero(), out + (size_t)e * bytes);
+    MPI_Alltoallv(out, dd->byte_count, dd->byte_displ, MPI_BYTE, in, dd->rbyte_count,
+                  dd->rbyte_displ, MPI_BYTE, MPI_COMM_WORLD);
+    for (long e = 0; e < got; ++e)
+        unpack(p, at + e, in + (size_t)e * bytes);
+    free(out);
+    free(in);
+    return got;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Old indices by id, for the contact history.
+
+static int compare_id(const void *a, const void *b)
+{
+    const uint32_t x = ((const id_slot *)a)->id, y = ((const id_slot *)b)->id;
+    return (x > y) - (x < y);
+}
+
+static id_slot *index_ids(const bdl_particles *p, long n)
+{
+    id_slot *slots = malloc((size_t)(n > 0 ? n : 1) * sizeof *slots);
+    if (!slots)
+        return NULL;
+    for (long i = 0; i < n; ++i)
+        slots[i] = (id_slot){p->id[i], (int32_t)i};
+    qsort(slots, (size_t)n, sizeof *slots, compare_id);
+    return slots;
+}
+
+static int32_t old_index(const id_slot *slots, long n, uint32_t id)
+{
+    const id_slot key = {id, 0};
+    const id_slot *hit = bsearch(&key, slots, (size_t)n, sizeof *slots, compare_id);
+    return hit ? hit->index : -1;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Ghosts and lists.
+
+/// The ghosts' send list from this rank's (sorted) particles: those near its faces, per rank.
+static bdl_result list_ghosts(bdl_dist *dd, const bdl_particles *p)
+{
+    const int size = dd->d.size;
+    memset(dd->send_count, 0, (size_t)size * sizeof(int));
+    int ranks[BDL_DECOMP_MAX_TARGETS];
+    bdl_vec3 shifts[BDL_DECOMP_MAX_TARGETS];
+    long total = 0;
+    for (long i = 0; i < dd->owned; ++i) {
+        const int n = bdl_decomp_ghost_targets(&dd->d, p->pos[i], ranks, shifts);
+        for (int t = 0; t < n; ++t)
+            dd->send_count[ranks[t]]++;
+        total += n;
+    }
+    if (total > dd->send_capacity) {
+        const long cap = total + total / 4 + 64;
+        if (!bdl_grow((void **)&dd->send_index, cap, sizeof(int32_t)) ||
+            !bdl_grow((void **)&dd->send_shift, cap, sizeof(bdl_vec3)))
+            return BDL_ERR_NOMEM;
+        dd->send_capacity = cap;
+    }
+    dd->send_displ[0] = 0;
+    for (int r = 0; r < size; ++r)
+        dd->send_displ[r + 1] = dd->send_displ[r] + dd->send_count[r];
+    int *cursor = malloc((size_t)size * sizeof *cursor);
+    if (!cursor)
+        return BDL_ERR_NOMEM;
+    memcpy(cursor, dd->send_displ, (size_t)size * sizeof *cursor);
+    for (long i = 0; i < dd->owned; ++i) {
+        const int n = bdl_decomp_ghost_targets(&dd->d, p->pos[i], ranks, shifts);
+        for (int t = 0; t < n; ++t) {
+            const int e = cursor[ranks[t]]++;
+            dd->send_index[e] = (int32_t)i;
+            dd->send_shift[e] = shifts[t];
+        }
+    }
+    free(cursor);
+    return BDL_OK;
+}
+
+/// After the owned particles are in place (p->count = owned): sorts them, takes the ghosts and
+/// builds the lists, carrying history from the `old` slots (old_count of them, by id).
+static bdl_result settle(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls)
+{
+    const id_slot *old = dd->built;
+    const long old_count = dd->built_count;
+    p->count = dd->owned;
+    bdl_result r = bdl_neighbor_sort(nb, p);
+    if (r == BDL_OK)
+        r = list_ghosts(dd, p);
+    if (r != BDL_OK)
+        return r;
+    const long got = send_particles(dd, p, dd->send_index, dd->send_shift, dd->send_count,
+                                    dd->send_displ, dd->owned, dd->recv_count, dd->recv_displ);
+    if (got < 0)
+        return BDL_ERR_NOMEM;
+    dd->ghosts = got;
+    const long total = dd->owned + dd->ghosts;
+    int32_t *origin = malloc((size_t)(total > 0 ? total : 1) * sizeof *origin);
+    if (!origin)
+        return BDL_ERR_NOMEM;
+    for (long i = 0; i < total; ++i)
+        origin[i] = old_index(old, old_count, p->id[i]);
+    p->count = total;
+    r = bdl_neighbor_build_from(nb, p, walls, origin, dd->owned);
+    free(origin);
+    if (r == BDL_OK) {
+        free(dd->built);
+        dd->built = index_ids(p, total);
+        dd->built_count = total;
+        r = dd->built ? BDL_OK : BDL_ERR_NOMEM;
+    }
+    p->count = dd->owned;
+    dd->rebuilds++;
+    return r;
+}
+
+bdl_result bdl_dist_start(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls)
+{
+    const long all = p->count;
+    free(dd->built);
+    dd->built = index_ids(p, all); // the whole run's lists, built on every rank
+    dd->built_count = all;
+    if (!dd->built)
+        return BDL_ERR_NOMEM;
+    // Every rank has every particle: each keeps its own, in their order (no message).
+    long kept = 0;
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    const int n = all_arrays(p, arrays, &bytes);
+    for (long i = 0; i < all; ++i) {
+        const bdl_vec3 x = bdl_decomp_wrap(&dd->d, p->pos[i]);
+        if (bdl_decomp_owner(&dd->d, x) != dd->d.rank)
+            continue;
+        for (int a = 0; a < n && kept != i; ++a)
+            memcpy((char *)arrays[a].data + (size_t)kept * arrays[a].element,
+                   (const char *)arrays[a].data + (size_t)i * arrays[a].element, arrays[a].element);
+        p->pos[kept] = x;
+        ++kept;
+    }
+    dd->owned = kept;
+    return settle(dd, p, nb, walls);
+}
+
+bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
+                            const bdl_walls *walls)
+{
+    const int size = dd->d.size;
+    const long old_count = dd->owned + dd->ghosts;
+    int32_t *leave = malloc((size_t)(dd->owned > 0 ? dd->owned : 1) * sizeof *leave);
+    int *dest = malloc((size_t)(dd->owned > 0 ? dd->owned : 1) * sizeof *dest);
+    int *counts = calloc((size_t)size, sizeof *counts),
+        *displ = calloc((size_t)size + 1, sizeof *displ);
+    int *rc = calloc((size_t)size, sizeof *rc), *rd = calloc((size_t)size + 1, sizeof *rd);
+    bdl_result r = leave && dest && counts && displ && rc && rd ? BDL_OK : BDL_ERR_NOMEM;
+    long leaving = 0;
+    for (long i = 0; r == BDL_OK && i < dd->owned; ++i) {
+        p->pos[i] = bdl_decomp_wrap(&dd->d, p->pos[i]);
+        dest[i] = bdl_decomp_owner(&dd->d, p->pos[i]);
+        if (dest[i] != dd->d.rank)
+            counts[dest[i]]++, ++leaving;
+    }
+    if (r == BDL_OK) {
+        for (int q = 0; q < size; ++q)
+            displ[q + 1] = displ[q] + counts[q];
+        memcpy(rc, displ, (size_t)size * sizeof *rc); // a cursor for now
+        for (long i = 0; i < dd->owned; ++i)
+            if (dest[i] != dd->d.rank)
+                leave[rc[dest[i]]++] = (int32_t)i;
+        // The old ghosts are dropped: the arrivals go after the own particles.
+        const long got = send_particles(dd, p, leave, NULL, counts, displ, old_count, rc, rd);
+        if (got < 0) {
+            r = BDL_ERR_NOMEM;
+        } else {
+            // Keep the own that stay, then the arrivals (parked after the old ghosts).
+            bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+            size_t bytes;
+            const int n = all_arrays(p, arrays, &bytes);
+            long kept = 0;
+            for (long i = 0; i < dd->owned + got; ++i) {
+                const long from = i < dd->owned ? i : old_count + (i - dd->owned);
+                if (i < dd->owned && dest[i] != dd->d.rank)
+                    continue;
+                for (int a = 0; a < n && kept != from; ++a)
+                    memcpy((char *)arrays[a].data + (size_t)kept * arrays[a].element,
+                           (const char *)arrays[a].data + (size_t)from * arrays[a].element,
+                           arrays[a].element);
+                ++kept;
+            }
+            dd->owned = kept;
+            dd->migrated += leaving;
+            r = settle(dd, p, nb, walls);
+        }
+    }
+    free(leave);
+    free(dest);
+    free(counts);
+    free(displ);
+    free(rc);
+    free(rd);
+    return r;
+}
+
+bdl_result bdl_dist_remove(bdl_dist *dd, bdl_particles *p, const uint8_t *drop)
+{
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    const int n = all_arrays(p, arrays, &bytes);
+    long kept = 0;
+    for (long i = 0; i < dd->owned; ++i) {
+        if (drop[i])
+            continue;
+        for (int a = 0; a < n && kept != i; ++a)
+            memcpy((char *)arrays[a].data + (size_t)kept * arrays[a].element,
+                   (const char *)arrays[a].data + (size_t)i * arrays[a].element, arrays[a].element);
+        ++kept;
+    }
+    // The exchange plan stays as it is until the rebuild: a refresh before it moves stale values
+    // between the slots after the own particles, which the rebuild then replaces.
+    dd->owned = kept;
+    p->count = kept;
+    return BDL_OK;
+}
+
+bdl_result bdl_dist_refresh(bdl_dist *dd, bdl_particles *p)
+{
+    const int size = dd->d.size;
+    const long sent = dd->send_displ[size], got = dd->ghosts;
+    if (sent * REFRESH > dd->send_buf_capacity) {
+        if (!bdl_grow((void **)&dd->send_buf, sent * REFRESH + 64, sizeof(double)))
+            return BDL_ERR_NOMEM;
+        dd->send_buf_capacity = sent * REFRESH + 64;
+    }
+    if (got * REFRESH > dd->recv_buf_capacity) {
+        if (!bdl_grow((void **)&dd->recv_buf, got * REFRESH + 64, sizeof(double)))
+            return BDL_ERR_NOMEM;
+        dd->recv_buf_capacity = got * REFRESH + 64;
+    }
+    for (long e = 0; e < sent; ++e) {
+        const long i = dd->send_index[e];
+        const bdl_vec3 x = bdl_v3_add(p->pos[i], dd->send_shift[e]);
+        double *b = dd->send_buf + e * REFRESH;
+        b[0] = x.x, b[1] = x.y, b[2] = x.z;
+        b[3] = p->vel[i].x, b[4] = p->vel[i].y, b[5] = p->vel[i].z;
+        b[6] = p->omega[i].x, b[7] = p->omega[i].y, b[8] = p->omega[i].z;
+    }
+    for (int r = 0; r < size; ++r) {
+        dd->byte_count[r] = dd->send_count[r] * REFRESH;
+        dd->byte_displ[r] = dd->send_displ[r] * REFRESH;
+        dd->rbyte_count[r] = dd->recv_count[r] * REFRESH;
+        dd->rbyte_displ[r] = dd->recv_displ[r] * REFRESH;
+    }
+    MPI_Alltoallv(dd->send_buf, dd->byte_count, dd->byte_displ, MPI_DOUBLE, dd->recv_buf,
+                  dd->rbyte_count, dd->rbyte_displ, MPI_DOUBLE, MPI_COMM_WORLD);
+    for (long e = 0; e < got; ++e) {
+        const long i = dd->owned + e;
+        const double *b = dd->recv_buf + e * REFRESH;
+        p->pos[i] = bdl_v3(b[0], b[1], b[2]);
+        p->vel[i] = bdl_v3(b[3], b[4], b[5]);
+        p->omega[i] = bdl_v3(b[6], b[7], b[8]);
+        p->load[i] = (bdl_wrench){bdl_v3_zero(), bdl_v3_zero()};
+    }
+    return BDL_OK;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Gathering.
+
+typedef struct gathered_row {
+    double pos[3], vel[3], omega[3];
+    uint32_t id, pad;
+} gathered_row;
+
+static int compare_row(const void *a, const void *b)
+{
+    const uint32_t x = ((const gathered_row *)a)->id, y = ((const gathered_row *)b)->id;
+    return (x > y) - (x < y);
+}
+
+bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *out)
+{
+    memset(out, 0, sizeof *out);
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int mine = (int)p->count * (int)sizeof(gathered_row);
+    int *counts = rank == root ? calloc((size_t)size, sizeof *counts) : NULL;
+    int *displ = rank == root ? calloc((size_t)size, sizeof *displ) : NULL;
+    gathered_row *rows = malloc((size_t)(p->count > 0 ? p->count : 1) * sizeof *rows);
+    for (long i = 0; rows && i < p->count; ++i) {
+        const bdl_vec3 x = p->pos[i], v = p->vel[i], w = p->omega[i];
+        rows[i] = (gathered_row){{x.x, x.y, x.z}, {v.x, v.y, v.z}, {w.x, w.y, w.z}, p->id[i], 0};
+    }
+    MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, root, MPI_COMM_WORLD);
+    long total = 0;
+    if (rank == root)
+        for (int r = 0; r < size; ++r)
+            displ[r] = (int)total, total += counts[r];
+    gathered_row *all = rank == root ? malloc((size_t)(total > 0 ? total : 1)) : NULL;
+    MPI_Gatherv(rows, mine, MPI_BYTE, all, counts, displ, MPI_BYTE, root, MPI_COMM_WORLD);
+    bdl_result r = rows ? BDL_OK : BDL_ERR_NOMEM;
+    if (rank == root && all) {
+        const long n = total / (long)sizeof(gathered_row);
+        qsort(all, (size_t)n, sizeof *all, compare_row);
+        out->count = n;
+        out->id = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->id);
+        out->pos = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->pos);
+        out->vel = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->vel);
+        out->omega = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->omega);
+        if (!out->id || !out->pos || !out->vel || !out->omega)
+            r = BDL_ERR_NOMEM;
+        for (long i = 0; r == BDL_OK && i < n; ++i) {
+            out->id[i] = all[i].id;
+            out->pos[i] = bdl_v3(all[i].pos[0], all[i].pos[1], all[i].pos[2]);
+            out->vel[i] = bdl_v3(all[i].vel[0], all[i].vel[1], all[i].vel[2]);
+            out->omega[i] = bdl_v3(all[i].omega[0], all[i].omega[1], all[i].omega[2]);
+        }
+    } else if (rank == root) {
+        r = BDL_ERR_NOMEM;
+    }
+    free(all);
+    free(rows);
+    free(counts);
+    free(displ);
+    return r;
+}
+
+void bdl_dist_gathered_free(bdl_dist_gathered *g)
+{
+    free(g->id);
+    free(g->pos);
+    free(g->vel);
+    free(g->omega);
+    memset(g, 0, sizeof *g);
+}
+
+#else // one process: nothing to divide
+
+struct bdl_dist {
+    bdl_decomp d;
+};
+
+bdl_result bdl_dist_create(const bdl_decomp *d, bdl_dist **out)
+{
+    (void)d;
+    *out = NULL;
+    return BDL_ERR_ARGS;
+}
+void bdl_dist_destroy(bdl_dist *dd) { free(dd); }
+const bdl_decomp *bdl_dist_decomp(const bdl_dist *dd) { return &dd->d; }
+long bdl_dist_owned(const bdl_dist *dd) { return dd ? 0 : 0; }
+long bdl_dist_ghosts(const bdl_dist *dd) { return dd ? 0 : 0; }
+long bdl_dist_migrated(const bdl_dist *dd) { return dd ? 0 : 0; }
+long bdl_dist_rebuilds(const bdl_dist *dd) { return dd ? 0 : 0; }
+bdl_result bdl_dist_start(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, const bdl_walls *walls)
+{
+    (void)dd, (void)p, (void)nb, (void)walls;
+    return BDL_ERR_ARGS;
+}
+int bdl_dist_any(int mine) { return mine; }
+bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
+                            const bdl_walls *walls)
+{
+    (void)dd, (void)p, (void)nb, (void)walls;
+    return BDL_ERR_ARGS;
+}
+bdl_result bdl_dist_remove(bdl_dist *dd, bdl_particles *p, const uint8_t *drop)
+{
+    (void)dd, (void)p, (void)drop;
+    return BDL_ERR_ARGS;
+}
+bdl_result bdl_dist_refresh(bdl_dist *dd, bdl_particles *p)
+{
+    (void)dd, (void)p;
+    return BDL_ERR_ARGS;
+}
+bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *out)
+{
+    (void)p, (void)root;
+    memset(out, 0, sizeof *out);
+    return BDL_ERR_ARGS;
+}
+void bdl_dist_gathered_free(bdl_dist_gathered *g) { (void)g; }
+
+#endif
