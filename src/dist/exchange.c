@@ -489,6 +489,152 @@ bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *
     return r;
 }
 
+/// Gathers `mine` bytes from every rank on root; *all (malloc'ed on root) gets them in rank
+/// order, *total their size.
+static bdl_result gather_bytes(const void *mine, long bytes, int root, char **all, long *total)
+{
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int n = (int)bytes;
+    int *counts = calloc((size_t)size, sizeof *counts),
+        *displ = calloc((size_t)size, sizeof *displ);
+    bdl_result r = counts && displ ? BDL_OK : BDL_ERR_NOMEM;
+    MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, root, MPI_COMM_WORLD);
+    *total = 0;
+    *all = NULL;
+    if (rank == root && counts && displ) {
+        for (int q = 0; q < size; ++q)
+            displ[q] = (int)*total, *total += counts[q];
+        *all = malloc((size_t)(*total > 0 ? *total : 1));
+        if (!*all)
+            r = BDL_ERR_NOMEM;
+    }
+    MPI_Gatherv(mine, n, MPI_BYTE, *all, counts, displ, MPI_BYTE, root, MPI_COMM_WORLD);
+    free(counts);
+    free(displ);
+    return r;
+}
+
+typedef struct order_key {
+    uint32_t id;
+    int32_t at;
+} order_key;
+
+static int compare_key(const void *x, const void *y)
+{
+    const uint32_t a = ((const order_key *)x)->id, b = ((const order_key *)y)->id;
+    return (a > b) - (a < b);
+}
+
+bdl_result bdl_dist_gather_whole(const bdl_particles *p, const uint8_t *coordination, int root,
+                                 bdl_particles *out, uint8_t *coordination_out)
+{
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    all_arrays(p, arrays, &bytes);
+    const size_t record = bytes + 1; // and the coordination
+    char *mine = malloc((size_t)(p->count > 0 ? p->count : 1) * record);
+    if (!mine)
+        return BDL_ERR_NOMEM;
+    for (long i = 0; i < p->count; ++i) {
+        pack(p, i, bdl_v3_zero(), mine + (size_t)i * record);
+        mine[(size_t)i * record + bytes] = (char)(coordination ? coordination[i] : 0);
+    }
+    char *all = NULL;
+    long total = 0;
+    bdl_result r = gather_bytes(mine, p->count * (long)record, root, &all, &total);
+    free(mine);
+    if (r != BDL_OK || !all) {
+        free(all);
+        return r;
+    }
+    const long n = total / (long)record;
+    order_key *keys = malloc((size_t)(n > 0 ? n : 1) * sizeof *keys);
+    if (!keys || bdl_particles_reserve(out, n) != BDL_OK) {
+        free(keys);
+        free(all);
+        return BDL_ERR_NOMEM;
+    }
+    // The id is the table's ninth array: read it through a particle unpacked in place.
+    for (long k = 0; k < n; ++k) {
+        unpack(out, k, all + (size_t)k * record);
+        keys[k] = (order_key){out->id[k], (int32_t)k};
+    }
+    qsort(keys, (size_t)n, sizeof *keys, compare_key);
+    for (long k = 0; k < n; ++k) {
+        unpack(out, k, all + (size_t)keys[k].at * record);
+        if (coordination_out)
+            coordination_out[k] = (uint8_t)all[(size_t)keys[k].at * record + bytes];
+    }
+    out->count = n;
+    free(keys);
+    free(all);
+    return BDL_OK;
+}
+
+int bdl_dist_spring_order(const void *x, const void *y)
+{
+    const bdl_dist_spring *a = x, *b = y;
+    if (a->a != b->a)
+        return a->a < b->a ? -1 : 1;
+    if (a->b != b->b)
+        return a->b < b->b ? -1 : 1;
+    return (a->wall > b->wall) - (a->wall < b->wall);
+}
+
+bdl_result bdl_dist_gather_springs(const bdl_neighbor *nb, const bdl_particles *p, long owned,
+                                   int root, bdl_dist_spring **out, long *count)
+{
+    *out = NULL;
+    *count = 0;
+    long n = 0;
+    for (long k = 0; nb->history && k < nb->pair_count; ++k)
+        n += nb->touching[k];
+    for (long k = 0; nb->history && k < nb->wall_pair_count; ++k)
+        n += nb->wall_touching[k];
+    bdl_dist_spring *mine = malloc((size_t)(n > 0 ? n : 1) * sizeof *mine);
+    if (!mine)
+        return BDL_ERR_NOMEM;
+    long m = 0;
+    for (long i = 0; nb->history && i < nb->count; ++i) {
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            const long j = nb->partner[k];
+            const uint32_t ii = p->id[i], jj = p->id[j];
+            // Each pair once: by the rank that owns its particle of the lower id.
+            if (!nb->touching[k] || (ii < jj ? i : j) >= owned)
+                continue;
+            const bdl_vec3 u = nb->history[k]; // as seen from i, the lower index
+            mine[m++] = (bdl_dist_spring){ii < jj ? ii : jj,
+                                          ii < jj ? jj : ii,
+                                          -1,
+                                          0,
+                                          ii < jj ? u : bdl_v3_neg(u),
+                                          nb->spring_work ? nb->spring_work[k] : 0.0};
+        }
+        for (int32_t k = nb->wall_start[i]; i < owned && k < nb->wall_start[i + 1]; ++k)
+            if (nb->wall_touching[k])
+                mine[m++] = (bdl_dist_spring){p->id[i],
+                                              0,
+                                              nb->wall_prim[k],
+                                              0,
+                                              nb->wall_history[k],
+                                              nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};
+    }
+    char *all = NULL;
+    long total = 0;
+    bdl_result r = gather_bytes(mine, m * (long)sizeof *mine, root, &all, &total);
+    free(mine);
+    if (r == BDL_OK && all) {
+        *out = (bdl_dist_spring *)all;
+        *count = total / (long)sizeof **out;
+        qsort(*out, (size_t)*count, sizeof **out, bdl_dist_spring_order);
+    } else {
+        free(all);
+    }
+    return r;
+}
+
 void bdl_dist_gathered_free(bdl_dist_gathered *g)
 {
     free(g->id);
@@ -545,5 +691,24 @@ bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *
     return BDL_ERR_ARGS;
 }
 void bdl_dist_gathered_free(bdl_dist_gathered *g) { (void)g; }
+bdl_result bdl_dist_gather_whole(const bdl_particles *p, const uint8_t *coordination, int root,
+                                 bdl_particles *out, uint8_t *coordination_out)
+{
+    (void)p, (void)coordination, (void)root, (void)out, (void)coordination_out;
+    return BDL_ERR_ARGS;
+}
+int bdl_dist_spring_order(const void *x, const void *y)
+{
+    (void)x, (void)y;
+    return 0;
+}
+bdl_result bdl_dist_gather_springs(const bdl_neighbor *nb, const bdl_particles *p, long owned,
+                                   int root, bdl_dist_spring **out, long *count)
+{
+    (void)nb, (void)p, (void)owned, (void)root;
+    *out = NULL;
+    *count = 0;
+    return BDL_ERR_ARGS;
+}
 
 #endif

@@ -71,6 +71,30 @@ typedef struct bdl_dist_gathered {
     bdl_vec3 *pos, *vel, *omega;
 } bdl_dist_gathered;
 
+/// Collective: every rank's own particles, whole (every array of the table) and in the order
+/// of their ids, into `out` on rank `root` (its count set; reserved as needed), with their
+/// `coordination` (one byte each, local order) into `coordination_out` (room for them all).
+bdl_result bdl_dist_gather_whole(const bdl_particles *p, const uint8_t *coordination, int root,
+                                 bdl_particles *out, uint8_t *coordination_out);
+
+/// A contact's spring: between the particles of ids a < b (u as seen from a), or, with wall >= 0,
+/// between particle a and that wall primitive.
+typedef struct bdl_dist_spring {
+    uint32_t a, b;
+    int32_t wall;
+    int32_t pad;
+    bdl_vec3 u;
+    double work; ///< the work it holds (Hertz-Mindlin)
+} bdl_dist_spring;
+
+/// Collective: the springs of every touching contact of every rank's own particles (each once)
+/// on rank `root`, sorted by (a, b, wall); *out is malloc'ed there (NULL elsewhere).
+bdl_result bdl_dist_gather_springs(const bdl_neighbor *nb, const bdl_particles *p, long owned,
+                                   int root, bdl_dist_spring **out, long *count);
+
+/// Orders springs by (a, b, wall), for bsearch.
+int bdl_dist_spring_order(const void *x, const void *y);
+
 /// Collective: the owned particles of every rank on rank `root` (out->count 0 elsewhere).
 bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *out);
 void bdl_dist_gathered_free(bdl_dist_gathered *g);

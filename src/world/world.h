@@ -221,6 +221,13 @@ bdl_result bdl_world_dist_init(bdl_world *world, bdl_scene_error *err);
 /// it, the collective rebuild (world.c's force pass calls it).
 bdl_result bdl_world_dist_lists(bdl_world *world, double max_move2);
 
+/// MPI ranks, collective: the divided world `w` copied whole into `mirror` on rank `root` (a
+/// world built whole from the same scene; NULL elsewhere): its particles in the order of their
+/// ids with every array and their coordination, the time and the walls, the energy booked
+/// (summed over the ranks), and lists built for them with every touching contact's spring. A
+/// checkpoint of the mirror is the run's whole state, to resume on any number of ranks.
+bdl_result bdl_world_dist_mirror(bdl_world *w, bdl_world *mirror, int root);
+
 /// One line naming the active modules and their models, for run.log.
 void bdl_world_describe(const bdl_world *world, char *buf, size_t size);
 

@@ -3,6 +3,7 @@
 #include "world/world.h"
 
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "core/comm.h"
 #include "dist/exchange.h"
@@ -81,5 +82,91 @@ bdl_result bdl_world_dist_lists(bdl_world *w, double max_move2)
     p->count = bdl_dist_owned(w->dist);
     if (bdl_dist_any(mine))
         r = bdl_dist_rebuild(w->dist, p, &w->neighbor, &w->walls);
+    return r;
+}
+
+/// The springs gathered from the ranks given to the mirror's lists (built just now): each listed
+/// pair and wall contact that touches on its rank gets its history.
+static void restore_springs(bdl_world *m, const bdl_dist_spring *springs, long count)
+{
+    bdl_neighbor *nb = &m->neighbor;
+    const bdl_particles *p = &m->particles;
+    if (!nb->history)
+        return;
+    for (long i = 0; i < nb->count; ++i) {
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {
+            const uint32_t a = p->id[i], b = p->id[nb->partner[k]];
+            const bdl_dist_spring key = {a < b ? a : b, a < b ? b : a, -1, 0, {0, 0, 0}, 0.0};
+            const bdl_dist_spring *s =
+                bsearch(&key, springs, (size_t)count, sizeof *springs, bdl_dist_spring_order);
+            nb->touching[k] = s != NULL;
+            nb->history[k] = !s ? bdl_v3_zero() : a < b ? s->u : bdl_v3_neg(s->u);
+            if (nb->spring_work)
+                nb->spring_work[k] = s ? s->work : 0.0;
+        }
+        for (int32_t k = nb->wall_start[i]; k < nb->wall_start[i + 1]; ++k) {
+            const bdl_dist_spring key = {p->id[i], 0, nb->wall_prim[k], 0, {0, 0, 0}, 0.0};
+            const bdl_dist_spring *s =
+                bsearch(&key, springs, (size_t)count, sizeof *springs, bdl_dist_spring_order);
+            nb->wall_touching[k] = s != NULL;
+            nb->wall_history[k] = s ? s->u : bdl_v3_zero();
+            if (nb->wall_spring_work)
+                nb->wall_spring_work[k] = s ? s->work : 0.0;
+        }
+    }
+}
+
+/// Collective: the mirror's clock, walls and the energy it books, from the divided world (the
+/// sums over the ranks); m is NULL but on the mirror's rank.
+static void mirror_counters(const bdl_world *w, bdl_world *m)
+{
+    double sums[6] = {w->wall_work,      w->damping_work,    w->inserted_energy,
+                      w->removed_energy, (double)w->removed, w->removed_mass};
+    bdl_comm_sum(sums, 6);
+    if (!m)
+        return;
+    m->wall_work = sums[0];
+    m->damping_work = sums[1];
+    m->inserted_energy = sums[2];
+    m->removed_energy = sums[3];
+    m->removed = (long)sums[4];
+    m->removed_mass = sums[5];
+    m->time = w->time;
+    m->step = w->step;
+    m->dt = w->dt;
+    m->live = w->live;
+    for (int k = 0; k < BDL_MAX_WALLS; ++k) {
+        m->walls.angle[k] = w->walls.angle[k];
+        m->walls.turned[k] = w->walls.turned[k];
+        m->walls.spin[k] = w->walls.spin[k];
+    }
+    bdl_walls_update(&m->walls, m->time);
+}
+
+bdl_result bdl_world_dist_mirror(bdl_world *w, bdl_world *mirror, int root)
+{
+    const int here = bdl_comm_rank() == root;
+    bdl_particles *mp = here ? &mirror->particles : NULL;
+    uint8_t *coordination = NULL;
+    if (here && !(coordination = malloc((size_t)(mirror->particles.capacity + 1))))
+        return BDL_ERR_NOMEM;
+    bdl_result r = bdl_dist_gather_whole(&w->particles, w->coordination, root, mp, coordination);
+    bdl_dist_spring *springs = NULL;
+    long count = 0;
+    if (r == BDL_OK)
+        r = bdl_dist_gather_springs(&w->neighbor, &w->particles, bdl_dist_owned(w->dist), root,
+                                    &springs, &count);
+    mirror_counters(w, here ? mirror : NULL);
+    if (r == BDL_OK && here) {
+        // Lists for the state (the pairs' springs restored), the coordination in their order.
+        r = bdl_neighbor_build(&mirror->neighbor, mp, &mirror->walls, NULL);
+        if (r == BDL_OK && mirror->coordination_capacity >= mp->count)
+            for (long i = 0; i < mp->count; ++i)
+                mirror->coordination[i] = coordination[mirror->neighbor.perm[i]];
+        if (r == BDL_OK)
+            restore_springs(mirror, springs, count);
+    }
+    free(springs);
+    free(coordination);
     return r;
 }
