@@ -15,3 +15,12 @@ if(BDL_WITH_MPI)
       ENVIRONMENT "OMP_NUM_THREADS=1;OMP_WAIT_POLICY=passive")
   endforeach()
 endif()
+
+# bedlam run under mpirun: a checkpoint written on 2 ranks resumed on 1, 2 and 4.
+if(BDL_WITH_MPI)
+  add_test(NAME test_mpi_resume
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/scripts/mpi_resume.sh ${MPIEXEC_EXECUTABLE}
+                   $<TARGET_FILE:bedlam> ${CMAKE_CURRENT_SOURCE_DIR}/scenes/mpi_periodic_bed.ini
+                   ${CMAKE_CURRENT_BINARY_DIR}/mpi_resume)
+  set_tests_properties(test_mpi_resume PROPERTIES LABELS "mpi" TIMEOUT 600)
+endif()

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "app/app.h"
+#include "core/comm.h"
 #include "render/context.h"
 #include "run/run.h"
 
@@ -171,7 +172,7 @@ bdl_result bdl_cmd_run(int argc, char **argv)
     r = bdl_run(&def, &report);
     signal(SIGINT, SIG_DFL);
     signal(SIGTERM, SIG_DFL);
-    if (r == BDL_OK && !o.quiet)
+    if (r == BDL_OK && !o.quiet && bdl_comm_rank() == 0) // under MPI the first rank speaks
         fprintf(stderr, "done: t = %g s, %ld steps in %.2f s; outputs in %s\n", report.time,
                 report.step, report.wall_seconds, out);
     return r;

@@ -7,6 +7,7 @@
 
 #include "app/app.h"
 #include "core/comm.h"
+#include "core/log.h"
 
 static const char usage[] =
     "bedlam " BDL_VERSION " — interactive simulator of gas–solid and granular flows\n"
@@ -68,8 +69,9 @@ static void passive_wait(char **argv)
 }
 
 /// Runs a command between the start and the end of MPI (when built with it). Under mpirun every
-/// rank runs it; the commands do not divide their work between ranks yet, so more than one rank
-/// is refused rather than run N times over.
+/// rank runs it: `run` divides its particles between them and the first rank speaks and writes;
+/// the other commands do not divide their work, so more than one rank is refused for them
+/// rather than run N times over.
 static int run_command(const command *c, int argc, char **argv)
 {
     if (bdl_comm_init(&argc, &argv) != 0) {
@@ -77,7 +79,8 @@ static int run_command(const command *c, int argc, char **argv)
         return 1;
     }
     int code = 2;
-    if (bdl_comm_size() > 1) {
+    bdl_log_set_quiet(bdl_comm_rank() > 0);
+    if (bdl_comm_size() > 1 && strcmp(c->name, "run") != 0) {
         if (bdl_comm_rank() == 0)
             fprintf(stderr,
                     "error: bedlam %s runs on one rank (mpirun -np 1); this build does not "

@@ -12,8 +12,14 @@ int bdl_comm_init(int *argc, char ***argv)
     int already = 0;
     MPI_Initialized(&already);
     if (!already) {
-        if (MPI_Init(argc, argv) != MPI_SUCCESS)
+        // The solver steps (and calls MPI) on a thread of its own, one thread at a time.
+        int provided = 0;
+        if (MPI_Init_thread(argc, argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS)
             return -1;
+        if (provided < MPI_THREAD_SERIALIZED) {
+            MPI_Finalize();
+            return -1;
+        }
         started = 1;
     }
     HYPRE_Init();
@@ -96,6 +102,25 @@ void bdl_comm_sum(double *values, int count)
     free(all);
 }
 
+bdl_exact_sum bdl_comm_sum_exact(bdl_exact_sum value)
+{
+    const int size = bdl_comm_size();
+    if (size == 1)
+        return value;
+    bdl_exact_sum *all = malloc((size_t)size * sizeof *all);
+    if (!all) {
+        MPI_Abort(MPI_COMM_WORLD, 1);
+        return value;
+    }
+    MPI_Allgather(&value, (int)sizeof value, MPI_BYTE, all, (int)sizeof value, MPI_BYTE,
+                  MPI_COMM_WORLD);
+    bdl_exact_sum sum = 0;
+    for (int r = 0; r < size; ++r)
+        sum += all[r];
+    free(all);
+    return sum;
+}
+
 void bdl_comm_broadcast(void *data, size_t bytes, int root)
 {
     if (!running() || bdl_comm_size() == 1)
@@ -113,6 +138,13 @@ void bdl_comm_barrier(void)
 {
     if (running())
         MPI_Barrier(MPI_COMM_WORLD);
+}
+
+int bdl_comm_broadcast_int(int value, int root)
+{
+    if (running() && bdl_comm_size() > 1)
+        MPI_Bcast(&value, 1, MPI_INT, root, MPI_COMM_WORLD);
+    return value;
 }
 
 #else
@@ -150,5 +182,13 @@ void bdl_comm_broadcast(void *data, size_t bytes, int root)
 }
 
 void bdl_comm_barrier(void) {}
+
+bdl_exact_sum bdl_comm_sum_exact(bdl_exact_sum value) { return value; }
+
+int bdl_comm_broadcast_int(int value, int root)
+{
+    (void)root;
+    return value;
+}
 
 #endif

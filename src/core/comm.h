@@ -10,6 +10,8 @@
 
 #include <stddef.h>
 
+#include "core/exact_sum.h"
+
 /// Starts MPI (and hypre) when built with it; a no-op otherwise. Returns 0, or -1 when MPI could
 /// not be started.
 int bdl_comm_init(int *argc, char ***argv);
@@ -28,8 +30,12 @@ double bdl_comm_min(double value);
 /// Collective: the sum of every rank's `count` values, in place (rank order: the same bits on
 /// every rank, for a given rank count).
 void bdl_comm_sum(double *values, int count);
+/// Collective: every rank's exact sum added (exactly: the same bits for any rank count).
+bdl_exact_sum bdl_comm_sum_exact(bdl_exact_sum value);
 /// Collective: `bytes` of `data` from rank `root` to every rank.
 void bdl_comm_broadcast(void *data, size_t bytes, int root);
+/// Collective: rank `root`'s value on every rank.
+int bdl_comm_broadcast_int(int value, int root);
 /// Collective: stops every rank until all have reached it.
 void bdl_comm_barrier(void);
 

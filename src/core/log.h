@@ -15,6 +15,8 @@ typedef enum bdl_log_level {
 /// run.log).
 void bdl_log_set_file(FILE *file);
 FILE *bdl_log_file(void);
+/// Nothing is logged while on (the MPI ranks but the first, which say what it says).
+void bdl_log_set_quiet(int on);
 
 #if defined(__GNUC__)
 __attribute__((format(printf, 2, 3)))

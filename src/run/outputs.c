@@ -735,6 +735,14 @@ static due_now what_is_due(const bdl_run_outputs *o, const bdl_world *w)
     return d;
 }
 
+int bdl_run_outputs_due(const bdl_run_outputs *o, const bdl_world *w)
+{
+    const due_now d = what_is_due(o, w);
+    return d.row || d.check || d.vtk || d.contacts || d.orientation || d.rheology || d.frame ||
+           d.camera || d.fields || d.checkpoint || w->step == o->kill_at_step ||
+           (o->stop && *o->stop);
+}
+
 /// The guards: all of them every check_interval steps, those of the state before a checkpoint,
 /// the finite check before any other output; the diagnostics row when one is due; the error figures
 /// for the progress line.

@@ -81,6 +81,10 @@ typedef struct bdl_run_outputs {
 bdl_result bdl_run_outputs_open(bdl_run_outputs *o, bdl_world *w, const char *out, int resume,
                                 int gl_backend);
 
+/// Whether anything (a row, a check, a file, a checkpoint) falls due at w's time and step: an
+/// MPI run gathers its state for bdl_run_outputs_step only then.
+int bdl_run_outputs_due(const bdl_run_outputs *o, const bdl_world *w);
+
 /// The solver thread's per-step callback (bdl_loop_def.on_step): guards, and what is due.
 bdl_result bdl_run_outputs_step(void *user, bdl_world *w);
 

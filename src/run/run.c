@@ -3,16 +3,19 @@
 #include "run/run.h"
 
 #include <errno.h>
+#include <math.h>
 #include <omp.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 
+#include "core/comm.h"
 #include "core/file.h"
 #include "core/log.h"
 #include "core/timer.h"
 #include "output/capture.h"
+#include "dist/exchange.h"
 #include "output/checkpoint.h"
 #include "run/guards.h"
 #include "run/loop.h"
@@ -22,12 +25,20 @@
 /// One run as it goes through its phases.
 typedef struct run {
     const bdl_run_def *def;
-    bdl_scene *scene; ///< read from the file; freed once the world holds a copy
-    int threads;      ///< solver threads
-    FILE *log;        ///< run.log
-    bdl_world *world;
+    bdl_scene *scene;   ///< read from the file; freed once the world holds a copy
+    int threads;        ///< solver threads
+    FILE *log;          ///< run.log
+    bdl_world *world;   ///< what the outputs read: under MPI on the first rank a whole mirror
+    bdl_world *divided; ///< under MPI (more than one rank): this rank's part, which steps
+    int rank, ranks;    ///< MPI (0 and 1 in one process)
     bdl_run_outputs outputs;
 } run;
+
+/// MPI: the worst of every rank's result (each rank's own in one process).
+static bdl_result agree(const run *r, bdl_result res)
+{
+    return r->ranks > 1 ? (bdl_result)(int)bdl_comm_max((double)res) : res;
+}
 
 bdl_run_def bdl_default_run_def(void)
 {
@@ -61,17 +72,20 @@ static bdl_result read_scene(run *r)
     bdl_scene_error err;
     if (!(r->scene = calloc(1, sizeof *r->scene)))
         return BDL_ERR_NOMEM;
-    bdl_result res =
-        bdl_scene_load(def->scene_path, def->overrides, def->override_count, r->scene, &err);
-    if (res != BDL_OK) {
+    // Read on the first rank and sent to the others (a scene holds no pointers).
+    bdl_result res = BDL_OK;
+    if (r->rank == 0)
+        res = bdl_scene_load(def->scene_path, def->overrides, def->override_count, r->scene, &err);
+    if (res != BDL_OK)
         bdl_error("%s", err.message);
-        return res;
-    }
     // --until is checked as [run] end_time is: its range, and the outputs it asks for.
-    if (def->until > 0.0 && (res = bdl_scene_set_end_time(r->scene, def->until, &err)) != BDL_OK) {
+    if (res == BDL_OK && r->rank == 0 && def->until > 0.0 &&
+        (res = bdl_scene_set_end_time(r->scene, def->until, &err)) != BDL_OK)
         bdl_error("%s", err.message);
+    res = (bdl_result)bdl_comm_broadcast_int((int)res, 0);
+    if (res != BDL_OK)
         return res;
-    }
+    bdl_comm_broadcast(r->scene, sizeof *r->scene, 0);
     int threads = def->threads > 0 ? def->threads : r->scene->threads;
     if (threads > 0)
         omp_set_num_threads(threads);
@@ -88,6 +102,8 @@ static bdl_result read_scene(run *r)
 static bdl_result open_folder(run *r)
 {
     const char *out = r->def->out_dir;
+    if (r->rank > 0) // the first rank writes
+        return BDL_OK;
     char why[512], sub[1200];
     if (bdl_check_writable_dir(out, why, sizeof why) != BDL_OK) {
         bdl_error("output folder '%s' is not writable: %s", out, why);
@@ -264,10 +280,56 @@ static bdl_result resume(run *r)
     return BDL_OK;
 }
 
+/// Phase 3 under MPI: every rank builds the world whole (and resumes it), keeps its part; the
+/// first also builds the whole mirror its outputs read (bdl_world_dist_mirror).
+static bdl_result build_divided(run *r)
+{
+    bdl_scene_error err;
+    bdl_result res = bdl_world_create_whole(r->scene, &r->world, &err);
+    if (res == BDL_ERR_SCENE)
+        bdl_error("%s", err.message);
+    char message[1024], warning[1024] = "";
+    if (res == BDL_OK && (res = bdl_guards_check_dt(r->world, message, sizeof message, warning,
+                                                    sizeof warning)) != BDL_OK)
+        bdl_error("%s", message);
+    if (res == BDL_OK && r->def->resume)
+        res = resume(r);
+    if (res == BDL_OK && (res = bdl_world_dist_init(r->world, &err)) == BDL_ERR_SCENE)
+        bdl_error("%s", err.message);
+    r->divided = r->world;
+    r->world = NULL;
+    if (res == BDL_OK && r->rank == 0 &&
+        (res = bdl_world_create_whole(r->scene, &r->world, &err)) != BDL_OK)
+        bdl_error("cannot build the whole world on the first rank: %s", bdl_result_text(res));
+    free(r->scene);
+    r->scene = NULL;
+    if ((res = agree(r, res)) != BDL_OK)
+        return res;
+    if (r->rank == 0) // the energy the resumed run started from (set by the outputs otherwise)
+        r->world->energy0 = r->divided->energy0;
+    if (warning[0])
+        bdl_warn("%s", warning);
+    res = bdl_world_dist_mirror(r->divided, r->world, 0); // the checkpoint's state, or the start
+    const double own = (double)r->divided->particles.count, most = bdl_comm_max(own);
+    double total = own;
+    bdl_comm_sum(&total, 1);
+    if (res == BDL_OK && r->rank == 0) {
+        log_setup(r);
+        const bdl_decomp *d = bdl_dist_decomp(r->divided->dist);
+        bdl_info("ranks: %d (MPI), boxes %d x %d x %d, ghost margin %.4g m; particles per rank at "
+                 "most %.0f, on average %.1f (max/mean %.3f)",
+                 r->ranks, d->dims[0], d->dims[1], d->dims[2], d->margin, most, total / r->ranks,
+                 most * r->ranks / (total > 0.0 ? total : 1.0));
+    }
+    return agree(r, res);
+}
+
 /// Phase 3: the world, its time step checked against the contact time, and the checkpoint it
 /// resumes from.
 static bdl_result build_world(run *r)
 {
+    if (r->ranks > 1)
+        return build_divided(r);
     bdl_scene_error err;
     bdl_result res = bdl_world_create(r->scene, &r->world, &err);
     free(r->scene);
@@ -308,20 +370,42 @@ static void report_progress(run *r, bdl_loop *loop, double t0, long step0)
     r->def->progress(r->def->user, &s);
 }
 
+/// After each step of an MPI run (on every rank): when the first rank's outputs fall due (or a
+/// rank is told to stop), the whole state is gathered into its mirror and the outputs written
+/// from it; every rank goes on or stops with the first rank's result.
+static bdl_result divided_step(void *user, bdl_world *w)
+{
+    run *r = user;
+    double due = 0.0;
+    if (r->rank == 0) {
+        r->world->time = w->time;
+        r->world->step = w->step;
+        due = bdl_run_outputs_due(&r->outputs, r->world);
+    }
+    const double stop = r->def->stop && *r->def->stop;
+    if (bdl_comm_max(fmax(due, stop)) == 0.0)
+        return BDL_OK;
+    bdl_result res = bdl_world_dist_mirror(w, r->world, 0);
+    if (res == BDL_OK && r->rank == 0)
+        res = bdl_run_outputs_step(&r->outputs, r->world);
+    return (bdl_result)bdl_comm_broadcast_int((int)agree(r, res), 0);
+}
+
 /// Phase 5: the solver thread to the end, while this thread draws queued frames and reports
 /// progress.
 static bdl_result solve(run *r)
 {
+    bdl_world *stepped = r->divided ? r->divided : r->world;
     bdl_loop_def ld = bdl_default_loop_def();
-    ld.world = r->world;
-    ld.end_time = r->world->scene.end_time;
+    ld.world = stepped;
+    ld.end_time = stepped->scene.end_time;
     ld.max_steps = r->def->max_steps;
     ld.threads = r->threads;
-    ld.on_step = bdl_run_outputs_step;
-    ld.user = &r->outputs;
+    ld.on_step = r->divided ? divided_step : bdl_run_outputs_step;
+    ld.user = r->divided ? (void *)r : (void *)&r->outputs;
     // Where the run starts, read before the solver thread owns the world.
-    const double t0 = r->world->time, interval = r->world->scene.output.progress_interval;
-    const long step0 = r->world->step;
+    const double t0 = stepped->time, interval = stepped->scene.output.progress_interval;
+    const long step0 = stepped->step;
     bdl_loop *loop = bdl_loop_start(&ld);
     if (!loop) {
         bdl_error("cannot start the solver thread");
@@ -334,7 +418,7 @@ static bdl_result solve(run *r)
         int finished;
         bdl_loop_progress(loop, &t, &step, &particles, &finished);
         if (finished) {
-            if (r->def->progress)
+            if (r->def->progress && r->rank == 0)
                 report_progress(r, loop, t0, step0);
             break;
         }
@@ -342,7 +426,7 @@ static bdl_result solve(run *r)
             bdl_frames_pump(r->outputs.frames, 0.02);
         else
             bdl_sleep(0.02);
-        if (r->def->progress && bdl_wall_seconds() - last >= interval) {
+        if (r->def->progress && r->rank == 0 && bdl_wall_seconds() - last >= interval) {
             report_progress(r, loop, t0, step0);
             last = bdl_wall_seconds();
         }
@@ -374,6 +458,16 @@ static void report_stop(const run *r, int failed_written)
 /// Phase 6: the last outputs and the summary in the log, whatever the outcome.
 static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *report)
 {
+    if (r->divided) { // the last state whole on the first rank; the others are done
+        if (solved && bdl_world_dist_mirror(r->divided, r->world, 0) != BDL_OK && res == BDL_OK)
+            res = BDL_ERR_NOMEM;
+        bdl_world_destroy(r->divided);
+        r->divided = NULL;
+        if (r->rank > 0) {
+            free(r->scene);
+            return res;
+        }
+    }
     bdl_world *w = r->world;
     if (solved && !r->outputs.failure[0] && w->failure[0]) // the world's own failure
         snprintf(r->outputs.failure, sizeof r->outputs.failure, "%s", w->failure);
@@ -416,16 +510,17 @@ static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *rep
 
 bdl_result bdl_run(const bdl_run_def *def, bdl_run_report *report)
 {
-    run r = {.def = def};
+    run r = {.def = def, .rank = bdl_comm_rank(), .ranks = bdl_comm_size()};
     r.outputs.stop = def->stop;
     bdl_result res = read_scene(&r);
     if (res == BDL_OK)
-        res = open_folder(&r);
+        res = agree(&r, open_folder(&r));
     if (res == BDL_OK)
         res = build_world(&r);
-    if (res == BDL_OK)
+    if (res == BDL_OK && r.rank == 0)
         res = bdl_run_outputs_open(&r.outputs, r.world, def->out_dir, def->resume != NULL,
                                    def->gl_backend);
+    res = agree(&r, res);
     const int solved = res == BDL_OK;
     if (solved)
         res = solve(&r);

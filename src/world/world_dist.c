@@ -63,6 +63,13 @@ bdl_result bdl_world_dist_init(bdl_world *w, bdl_scene_error *err)
                  s->path, size, given ? " as [parallel] decomposition asks" : "", margin);
         return BDL_ERR_SCENE;
     }
+    // What the world booked so far (a resumed run's) is the first rank's: the ranks' sums.
+    if (bdl_comm_rank() > 0) {
+        w->wall_work = w->damping_work = w->inserted_energy = w->removed_energy = 0.0;
+        w->removed = 0;
+        w->removed_mass = 0.0;
+        w->neighbor.spring_work_left = 0;
+    }
     bdl_decomp d;
     bdl_decomp_init(&d, bdl_comm_rank(), dims, lo, hi, s->periodic, margin);
     bdl_result r = bdl_dist_create(&d, &w->dist);
@@ -123,8 +130,10 @@ static void mirror_counters(const bdl_world *w, bdl_world *m)
     double sums[6] = {w->wall_work,      w->damping_work,    w->inserted_energy,
                       w->removed_energy, (double)w->removed, w->removed_mass};
     bdl_comm_sum(sums, 6);
+    const bdl_exact_sum left = bdl_comm_sum_exact(w->neighbor.spring_work_left);
     if (!m)
         return;
+    m->neighbor.spring_work_left = left;
     m->wall_work = sums[0];
     m->damping_work = sums[1];
     m->inserted_energy = sums[2];
