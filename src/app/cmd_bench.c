@@ -19,10 +19,12 @@
 
 #include "app/app.h"
 #include "app/options.h"
+#include "core/comm.h"
 #include "core/log.h"
 #include "core/timer.h"
 #include "core/file.h"
 #include "dem/material.h"
+#include "dist/exchange.h"
 #include "output/checkpoint.h"
 #include "world/world.h"
 
@@ -226,8 +228,8 @@ static bdl_result bed_world(const char *text, bdl_world **w)
         return BDL_ERR_NOMEM;
     bdl_scene_error err;
     bdl_result r = bdl_scene_load_string(text, "bench-dem", NULL, 0, scene, &err);
-    if (r == BDL_OK)
-        r = bdl_world_create(scene, w, &err);
+    if (r == BDL_OK) // settled whole on every rank (or loaded), divided afterwards (make_bed)
+        r = bdl_world_create_whole(scene, w, &err);
     if (r != BDL_OK)
         fprintf(stderr, "bench: %s\n", r == BDL_ERR_SCENE ? err.message : bdl_result_text(r));
     free(scene);
@@ -274,7 +276,8 @@ static bdl_result settle_or_load(bdl_world **wp, const char *text, long n, const
         return BDL_OK;
     }
     bdl_result r = settle(w, n, o, tc, mgd);
-    if (r == BDL_OK && cached[0] && bdl_checkpoint_save(w, cached) != BDL_OK)
+    if (r == BDL_OK && cached[0] && bdl_comm_rank() == 0 &&
+        bdl_checkpoint_save(w, cached) != BDL_OK)
         fprintf(stderr, "bench: cannot save the settled bed to %s (timing goes on)\n", cached);
     return r;
 }
@@ -324,6 +327,22 @@ static bdl_result make_bed(long n, const bench_opts *o, bed_info *info, bdl_worl
         return r;
     }
     describe_bed(w, side, mgd, t0, info);
+    if (bdl_comm_size() > 1) { // under mpirun: each rank keeps its part of the settled bed
+        bdl_scene_error err;
+        if ((r = bdl_world_dist_init(w, &err)) != BDL_OK) {
+            fprintf(stderr, "bench: %s\n", r == BDL_ERR_SCENE ? err.message : bdl_result_text(r));
+            bdl_world_destroy(w);
+            return r;
+        }
+        double most = (double)w->particles.count, total = most;
+        most = bdl_comm_max(most);
+        bdl_comm_sum(&total, 1);
+        const bdl_decomp *d = bdl_dist_decomp(w->dist);
+        printf("ranks: %d, boxes %d x %d x %d; particles per rank at most %.0f, on average %.1f "
+               "(max/mean %.3f)\n",
+               bdl_comm_size(), d->dims[0], d->dims[1], d->dims[2], most, total / bdl_comm_size(),
+               most * bdl_comm_size() / total);
+    }
     *out = w;
     return BDL_OK;
 }
@@ -365,22 +384,29 @@ static bench_result time_steps(bdl_world *w, int threads, long count, int repeat
     if (repeat > 64)
         repeat = 64;
     for (int r = 0; r < repeat; ++r) {
+        bdl_comm_barrier(); // under mpirun: the slowest rank's time
         double t0 = bdl_wall_seconds();
         steps(w, count);
-        seconds[r] = bdl_wall_seconds() - t0;
+        seconds[r] = bdl_comm_max(bdl_wall_seconds() - t0);
     }
     qsort(seconds, (size_t)repeat, sizeof seconds[0], compare_double);
     bench_result res;
-    long n = w->particles.count;
+    // Under mpirun the figures of every rank together (per particle: the sums over them).
+    double sums[4] = {(double)w->particles.count, (double)w->neighbor.pair_count, 0.0,
+                      (double)(bdl_particles_bytes(&w->particles) +
+                               bdl_neighbor_bytes(&w->neighbor) +
+                               bdl_force_work_bytes(&w->force_work) + w->coordination_capacity)};
+    for (long i = 0; i < w->particles.count; ++i)
+        sums[2] += w->coordination[i];
+    bdl_comm_sum(sums, 4);
+    long n = (long)sums[0];
     res.particles = n;
     res.threads = threads;
     res.rate = (double)n * (double)count / seconds[0];
     res.rate_median = (double)n * (double)count / seconds[repeat / 2];
-    res.bytes = (double)(bdl_particles_bytes(&w->particles) + bdl_neighbor_bytes(&w->neighbor) +
-                         bdl_force_work_bytes(&w->force_work) + w->coordination_capacity) /
-                (double)n;
-    res.contacts = mean_coordination(w);
-    res.pairs = (double)w->neighbor.pair_count / (double)n;
+    res.bytes = sums[3] / (double)n;
+    res.contacts = sums[2] / (double)n;
+    res.pairs = sums[1] / (double)n;
     res.rebuilds = 1000.0 * (double)(w->neighbor.builds - builds) / ((double)count * repeat);
     return res;
 }
@@ -522,6 +548,10 @@ bdl_result bdl_cmd_bench(int argc, char **argv)
 {
     bench_opts o = {50000, 0, 3, {1, 2}, 2, 0, 0, 12.0, 0.0, 0.5, NULL, NULL, "sphere", 0};
     int k = 1, help;
+    if (bdl_comm_size() > 1 && k < argc && argv[k][0] != '-' && strcmp(argv[k], "dem") != 0) {
+        fprintf(stderr, "error: under mpirun only bench dem divides its work between ranks\n");
+        return BDL_ERR_ARGS;
+    }
     if (k < argc && strcmp(argv[k], "render") == 0)
         return bdl_bench_render(argc - 1, argv + 1);
     if (k < argc && strcmp(argv[k], "coupled") == 0)

@@ -69,9 +69,9 @@ static void passive_wait(char **argv)
 }
 
 /// Runs a command between the start and the end of MPI (when built with it). Under mpirun every
-/// rank runs it: `run` divides its particles between them and the first rank speaks and writes;
-/// the other commands do not divide their work, so more than one rank is refused for them
-/// rather than run N times over.
+/// rank runs it: `run` and `bench dem` divide their particles between them and the first rank
+/// speaks and writes; the other commands do not divide their work, so more than one rank is
+/// refused for them rather than run N times over.
 static int run_command(const command *c, int argc, char **argv)
 {
     if (bdl_comm_init(&argc, &argv) != 0) {
@@ -80,7 +80,10 @@ static int run_command(const command *c, int argc, char **argv)
     }
     int code = 2;
     bdl_log_set_quiet(bdl_comm_rank() > 0);
-    if (bdl_comm_size() > 1 && strcmp(c->name, "run") != 0) {
+    const int divides = strcmp(c->name, "run") == 0 || strcmp(c->name, "bench") == 0;
+    if (bdl_comm_rank() > 0 && divides && !freopen("/dev/null", "w", stdout))
+        return 1; // the first rank prints the tables
+    if (bdl_comm_size() > 1 && !divides) {
         if (bdl_comm_rank() == 0)
             fprintf(stderr,
                     "error: bedlam %s runs on one rank (mpirun -np 1); this build does not "
