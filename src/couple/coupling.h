@@ -111,8 +111,12 @@ typedef struct bdl_coupling {
     double reach[3];     ///< half-width in cells per axis
     double inv_reach[3]; ///< 1 / reach
     long parallel_min;   ///< per-particle loops go parallel from this many particles
-    double *grad[3];     ///< scratch: cell-centred pressure gradient (padded grid fields)
-    double *mean[7];     ///< with def.mean_drag: the cells' solids volume, mean v and mean A
+    /// MPI ranks (world/world_dist.c): each holds part of the particles and the whole gas, so
+    /// every deposit is summed over the ranks (in rank order) before the gas, the same on each,
+    /// steps: the gas grid is replicated, not divided.
+    int divided;
+    double *grad[3]; ///< scratch: cell-centred pressure gradient (padded grid fields)
+    double *mean[7]; ///< with def.mean_drag: the cells' solids volume, mean v and mean A
     // Per particle, for one coupling step:
     bdl_vec3 *accel;    ///< acceleration other than the drag over the last step [m/s^2]
     bdl_vec3 *drag;     ///< drag force for the coming step [N]

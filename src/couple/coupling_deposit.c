@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/comm.h"
 #include "core/memory.h"
 
 /// How many chunks `count` particles go in: 0 (one pass) when def.chunk is 0 or they fit in
@@ -110,7 +111,6 @@ void bdl_coupling_deposit(const bdl_coupling *c, const bdl_grid *g, long count, 
             memset(out[f], 0, (size_t)g->size * sizeof(double));
         for (long i = 0; i < count; ++i)
             fn(c, ctx, i, 0, out);
-        return;
     }
     BDL_PARALLEL_FOR(
         count >= c->parallel_min, for (long k = 0; k < c->chunks; ++k) {
@@ -122,5 +122,8 @@ void bdl_coupling_deposit(const bdl_coupling *c, const bdl_grid *g, long count, 
             for (long i = from; i < to; ++i)
                 fn(c, ctx, i, c->chunk_lo[k], sums);
         });
-    combine(c, g->size, nf, out);
+    if (c->chunks > 0)
+        combine(c, g->size, nf, out);
+    for (int f = 0; f < nf && c->divided; ++f) // every rank's particles
+        bdl_comm_sum(out[f], (int)g->size);
 }

@@ -1,5 +1,6 @@
 // bedlam — one gas step with its coupling (the four steps of coupling.h), on the particle store.
 #include "couple/coupling.h"
+#include "core/comm.h"
 
 #include <string.h>
 
@@ -10,7 +11,8 @@
 /// the gas, -V G on each particle), as a container's base would; the box then neither falls nor
 /// rises as a whole. Returns G (zero when the gravity axis has a boundary), and sets the gas's
 /// body force.
-static bdl_vec3 periodic_column(bdl_gas *gas, const bdl_particles *p, bdl_vec3 gravity)
+static bdl_vec3 periodic_column(const bdl_coupling *c, bdl_gas *gas, const bdl_particles *p,
+                                bdl_vec3 gravity)
 {
     const bdl_grid *g = &gas->grid;
     const int axis = bdl_v3_major_axis(gravity);
@@ -20,6 +22,8 @@ static bdl_vec3 periodic_column(bdl_gas *gas, const bdl_particles *p, bdl_vec3 g
     double mass = 0.0, volume = vc * g->n[0] * g->n[1] * g->n[2];
     for (long i = 0; i < p->count; ++i)
         mass += 1.0 / p->inv_mass[i];
+    if (c->divided) // every rank's particles
+        bdl_comm_sum(&mass, 1);
     for (int k = 0; k < g->n[2]; ++k)
         for (int j = 0; j < g->n[1]; ++j)
             for (int i = 0; i < g->n[0]; ++i)
@@ -102,7 +106,7 @@ bdl_result bdl_coupling_step(bdl_coupling *c, bdl_gas *gas, bdl_particles *p,
     bdl_coupling_voidage(c, gas, p);
     if (def->dt_last == 0.0) // the first step: the voidage had no earlier value
         memcpy(gas->eps_old, gas->eps, (size_t)gas->grid.size * sizeof(double));
-    const bdl_vec3 mean_gradient = periodic_column(gas, p, def->gravity);
+    const bdl_vec3 mean_gradient = periodic_column(c, gas, p, def->gravity);
     bdl_coupling_drag_setup(c, gas, p, c->accel, NULL, dt);
     const double t1 = bdl_wall_seconds();
     bdl_result r = bdl_gas_step(gas, dt);

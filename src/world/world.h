@@ -213,8 +213,9 @@ double bdl_world_contact_reach(const bdl_scene *scene, double *skin);
 
 /// MPI ranks (world_dist.c): divides the particles of a world built on every rank between the
 /// ranks (world_create calls it when there is more than one). BDL_ERR_SCENE, with the reason in
-/// err, for a scene the ranks cannot share yet (a gas, parcels, a solids phase, rods, pouring,
-/// sinks or outlets, Lees–Edwards boundaries) or a domain too small for the rank count.
+/// err, for a scene the ranks cannot share yet (parcels, a solids phase, rods, pouring,
+/// Lees–Edwards boundaries) or a domain too small for the rank count. A gas is replicated: each
+/// rank steps the whole grid with the deposits of every rank's particles.
 bdl_result bdl_world_dist_init(bdl_world *world, bdl_scene_error *err);
 
 /// MPI ranks: before a force pass, the ghosts from their owners and, when any rank's lists need

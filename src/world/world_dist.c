@@ -4,6 +4,10 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+
+#include "cfd/gas.h"
+#include "couple/coupling.h"
 
 #include "core/comm.h"
 #include "dist/exchange.h"
@@ -12,8 +16,6 @@
 static const char *unshared(const bdl_world *w)
 {
     const bdl_scene *s = &w->scene;
-    if (s->gas.enabled)
-        return "a gas ([gas]): the gas grid is not divided between ranks yet";
     if (s->parcels.enabled || s->solids.enabled || w->particles.parcels)
         return "parcels or a solids phase: only DEM particles are divided between ranks yet";
     if (w->particles.rods)
@@ -69,9 +71,12 @@ bdl_result bdl_world_dist_init(bdl_world *w, bdl_scene_error *err)
         w->removed = 0;
         w->removed_mass = 0.0;
         w->neighbor.spring_work_left = 0;
+        w->gas_work = 0.0;
     }
     bdl_decomp d;
     bdl_decomp_init(&d, bdl_comm_rank(), dims, lo, hi, s->periodic, margin);
+    if (w->coupling) // the gas is replicated: each rank's deposits are summed over the ranks
+        w->coupling->divided = 1;
     bdl_result r = bdl_dist_create(&d, &w->dist);
     if (r == BDL_OK)
         r = bdl_dist_start(w->dist, &w->particles, &w->neighbor, &w->walls);
@@ -123,13 +128,38 @@ static void restore_springs(bdl_world *m, const bdl_dist_spring *springs, long c
     }
 }
 
+/// The gas's state and schedule, the same on every rank, into the mirror.
+static void mirror_gas(const bdl_world *w, bdl_world *m)
+{
+    const bdl_gas *g = w->gas;
+    bdl_gas *h = m->gas;
+    const size_t cells = (size_t)g->grid.size * sizeof(double);
+    m->gas_every = w->gas_every;
+    m->gas_next = w->gas_next;
+    m->gas_steps = w->gas_steps;
+    m->gas_stable = w->gas_stable;
+    m->gas_inflow_raised = w->gas_inflow_raised;
+    memcpy(m->gas_drag, w->gas_drag, sizeof m->gas_drag);
+    h->time = g->time;
+    h->steps = g->steps;
+    h->last_solve = g->last_solve;
+    h->mass_imbalance = g->mass_imbalance;
+    for (int a = 0; a < 3; ++a)
+        memcpy(h->u[a], g->u[a], cells);
+    memcpy(h->p, g->p, cells);
+    memcpy(h->eps, g->eps, cells);
+    memcpy(h->eps_old, g->eps_old, cells);
+}
+
 /// Collective: the mirror's clock, walls and the energy it books, from the divided world (the
 /// sums over the ranks); m is NULL but on the mirror's rank.
 static void mirror_counters(const bdl_world *w, bdl_world *m)
 {
-    double sums[6] = {w->wall_work,      w->damping_work,    w->inserted_energy,
-                      w->removed_energy, (double)w->removed, w->removed_mass};
-    bdl_comm_sum(sums, 6);
+    double sums[10] = {w->wall_work,       w->damping_work,     w->inserted_energy,
+                       w->removed_energy,  (double)w->removed,  w->removed_mass,
+                       w->gas_work,        w->particle_drag[0], w->particle_drag[1],
+                       w->particle_drag[2]};
+    bdl_comm_sum(sums, 10);
     const bdl_exact_sum left = bdl_comm_sum_exact(w->neighbor.spring_work_left);
     if (!m)
         return;
@@ -140,6 +170,11 @@ static void mirror_counters(const bdl_world *w, bdl_world *m)
     m->removed_energy = sums[3];
     m->removed = (long)sums[4];
     m->removed_mass = sums[5];
+    m->gas_work = sums[6];
+    for (int a = 0; a < 3; ++a)
+        m->particle_drag[a] = sums[7 + a];
+    if (w->gas && m->gas) // the gas, the same on every rank
+        mirror_gas(w, m);
     m->time = w->time;
     m->step = w->step;
     m->dt = w->dt;
