@@ -105,6 +105,19 @@ static int all_arrays(const bdl_particles *p, bdl_particle_array *arrays, size_t
     return n;
 }
 
+/// Particle `from` copied to slot `to` in every array (a compaction: to <= from).
+static void move_particle(bdl_particles *p, long from, long to)
+{
+    if (from == to)
+        return;
+    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
+    size_t bytes;
+    const int n = all_arrays(p, arrays, &bytes);
+    for (int a = 0; a < n; ++a)
+        memcpy((char *)arrays[a].data + (size_t)to * arrays[a].element,
+               (const char *)arrays[a].data + (size_t)from * arrays[a].element, arrays[a].element);
+}
+
 static void pack(const bdl_particles *p, long i, bdl_vec3 shift, char *out)
 {
     bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
@@ -289,16 +302,11 @@ bdl_result bdl_dist_start(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, cons
         return BDL_ERR_NOMEM;
     // Every rank has every particle: each keeps its own, in their order (no message).
     long kept = 0;
-    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
-    size_t bytes;
-    const int n = all_arrays(p, arrays, &bytes);
     for (long i = 0; i < all; ++i) {
         const bdl_vec3 x = bdl_decomp_wrap(&dd->d, p->pos[i]);
         if (bdl_decomp_owner(&dd->d, x) != dd->d.rank)
             continue;
-        for (int a = 0; a < n && kept != i; ++a)
-            memcpy((char *)arrays[a].data + (size_t)kept * arrays[a].element,
-                   (const char *)arrays[a].data + (size_t)i * arrays[a].element, arrays[a].element);
+        move_particle(p, i, kept);
         p->pos[kept] = x;
         ++kept;
     }
@@ -337,19 +345,11 @@ bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
             r = BDL_ERR_NOMEM;
         } else {
             // Keep the own that stay, then the arrivals (parked after the old ghosts).
-            bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
-            size_t bytes;
-            const int n = all_arrays(p, arrays, &bytes);
             long kept = 0;
             for (long i = 0; i < dd->owned + got; ++i) {
-                const long from = i < dd->owned ? i : old_count + (i - dd->owned);
                 if (i < dd->owned && dest[i] != dd->d.rank)
                     continue;
-                for (int a = 0; a < n && kept != from; ++a)
-                    memcpy((char *)arrays[a].data + (size_t)kept * arrays[a].element,
-                           (const char *)arrays[a].data + (size_t)from * arrays[a].element,
-                           arrays[a].element);
-                ++kept;
+                move_particle(p, i < dd->owned ? i : old_count + (i - dd->owned), kept++);
             }
             dd->owned = kept;
             dd->migrated += leaving;
@@ -367,18 +367,10 @@ bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
 
 bdl_result bdl_dist_remove(bdl_dist *dd, bdl_particles *p, const uint8_t *drop)
 {
-    bdl_particle_array arrays[BDL_PARTICLE_ARRAYS];
-    size_t bytes;
-    const int n = all_arrays(p, arrays, &bytes);
     long kept = 0;
-    for (long i = 0; i < dd->owned; ++i) {
-        if (drop[i])
-            continue;
-        for (int a = 0; a < n && kept != i; ++a)
-            memcpy((char *)arrays[a].data + (size_t)kept * arrays[a].element,
-                   (const char *)arrays[a].data + (size_t)i * arrays[a].element, arrays[a].element);
-        ++kept;
-    }
+    for (long i = 0; i < dd->owned; ++i)
+        if (!drop[i])
+            move_particle(p, i, kept++);
     // The exchange plan stays as it is until the rebuild: a refresh before it moves stale values
     // between the slots after the own particles, which the rebuild then replaces.
     dd->owned = kept;
@@ -441,54 +433,6 @@ static int compare_row(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *out)
-{
-    memset(out, 0, sizeof *out);
-    int rank = 0, size = 1;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    const int mine = (int)p->count * (int)sizeof(gathered_row);
-    int *counts = rank == root ? calloc((size_t)size, sizeof *counts) : NULL;
-    int *displ = rank == root ? calloc((size_t)size, sizeof *displ) : NULL;
-    gathered_row *rows = malloc((size_t)(p->count > 0 ? p->count : 1) * sizeof *rows);
-    for (long i = 0; rows && i < p->count; ++i) {
-        const bdl_vec3 x = p->pos[i], v = p->vel[i], w = p->omega[i];
-        rows[i] = (gathered_row){{x.x, x.y, x.z}, {v.x, v.y, v.z}, {w.x, w.y, w.z}, p->id[i], 0};
-    }
-    MPI_Gather(&mine, 1, MPI_INT, counts, 1, MPI_INT, root, MPI_COMM_WORLD);
-    long total = 0;
-    if (rank == root)
-        for (int r = 0; r < size; ++r)
-            displ[r] = (int)total, total += counts[r];
-    gathered_row *all = rank == root ? malloc((size_t)(total > 0 ? total : 1)) : NULL;
-    MPI_Gatherv(rows, mine, MPI_BYTE, all, counts, displ, MPI_BYTE, root, MPI_COMM_WORLD);
-    bdl_result r = rows ? BDL_OK : BDL_ERR_NOMEM;
-    if (rank == root && all) {
-        const long n = total / (long)sizeof(gathered_row);
-        qsort(all, (size_t)n, sizeof *all, compare_row);
-        out->count = n;
-        out->id = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->id);
-        out->pos = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->pos);
-        out->vel = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->vel);
-        out->omega = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->omega);
-        if (!out->id || !out->pos || !out->vel || !out->omega)
-            r = BDL_ERR_NOMEM;
-        for (long i = 0; r == BDL_OK && i < n; ++i) {
-            out->id[i] = all[i].id;
-            out->pos[i] = bdl_v3(all[i].pos[0], all[i].pos[1], all[i].pos[2]);
-            out->vel[i] = bdl_v3(all[i].vel[0], all[i].vel[1], all[i].vel[2]);
-            out->omega[i] = bdl_v3(all[i].omega[0], all[i].omega[1], all[i].omega[2]);
-        }
-    } else if (rank == root) {
-        r = BDL_ERR_NOMEM;
-    }
-    free(all);
-    free(rows);
-    free(counts);
-    free(displ);
-    return r;
-}
-
 /// Gathers `mine` bytes from every rank on root; *all (malloc'ed on root) gets them in rank
 /// order, *total their size.
 static bdl_result gather_bytes(const void *mine, long bytes, int root, char **all, long *total)
@@ -514,6 +458,41 @@ static bdl_result gather_bytes(const void *mine, long bytes, int root, char **al
     free(counts);
     free(displ);
     return r;
+}
+
+bdl_result bdl_dist_gather(const bdl_particles *p, int root, bdl_dist_gathered *out)
+{
+    memset(out, 0, sizeof *out);
+    gathered_row *rows = malloc((size_t)(p->count > 0 ? p->count : 1) * sizeof *rows);
+    for (long i = 0; rows && i < p->count; ++i) {
+        const bdl_vec3 x = p->pos[i], v = p->vel[i], w = p->omega[i];
+        rows[i] = (gathered_row){{x.x, x.y, x.z}, {v.x, v.y, v.z}, {w.x, w.y, w.z}, p->id[i], 0};
+    }
+    char *bytes = NULL;
+    long total = 0;
+    bdl_result r =
+        gather_bytes(rows, rows ? p->count * (long)sizeof *rows : 0, root, &bytes, &total);
+    gathered_row *all = (gathered_row *)bytes;
+    const long n = total / (long)sizeof(gathered_row);
+    if (r == BDL_OK && all) {
+        qsort(all, (size_t)n, sizeof *all, compare_row);
+        out->count = n;
+        out->id = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->id);
+        out->pos = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->pos);
+        out->vel = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->vel);
+        out->omega = malloc((size_t)(n > 0 ? n : 1) * sizeof *out->omega);
+        if (!out->id || !out->pos || !out->vel || !out->omega)
+            r = BDL_ERR_NOMEM;
+        for (long i = 0; r == BDL_OK && i < n; ++i) {
+            out->id[i] = all[i].id;
+            out->pos[i] = bdl_v3(all[i].pos[0], all[i].pos[1], all[i].pos[2]);
+            out->vel[i] = bdl_v3(all[i].vel[0], all[i].vel[1], all[i].vel[2]);
+            out->omega[i] = bdl_v3(all[i].omega[0], all[i].omega[1], all[i].omega[2]);
+        }
+    }
+    free(all);
+    free(rows);
+    return rows ? r : BDL_ERR_NOMEM;
 }
 
 typedef struct order_key {
