@@ -567,8 +567,9 @@ bdl_result bdl_cmd_bench(int argc, char **argv)
         fprintf(stderr, "error: --bed-dir: cannot create the folder '%s'\n", o.bed_dir);
         return BDL_ERR_OUTPUT_DIR;
     }
-    FILE *csv = o.csv ? fopen(o.csv, "a") : NULL;
-    if (o.csv && !csv) {
+    // Under mpirun the first rank writes the rows; every rank learns whether it could.
+    FILE *csv = o.csv && bdl_comm_rank() == 0 ? fopen(o.csv, "a") : NULL;
+    if (bdl_comm_broadcast_int(o.csv && bdl_comm_rank() == 0 && !csv, 0)) {
         fprintf(stderr, "error: cannot open '%s'\n", o.csv);
         return BDL_ERR_OUTPUT_DIR;
     }

@@ -563,6 +563,11 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
             remove_mean(r, n);
         converged =
             bdl_hypre_poisson_solve(p->hypre, r, xc, tol, max_iter, &st.iterations, &st.residual);
+        // The residual of the system itself (hypre's is its pinned one when singular).
+        apply(p, L, xc, p->q);
+        for (long i = 0; i < n; ++i)
+            p->q[i] = r[i] - p->q[i];
+        st.residual = norm_b > 0.0 ? sqrt(dot(p->q, p->q, n)) / norm_b : 0.0;
     }
 #endif
     if (!converged && !uses_hypre(p)) {

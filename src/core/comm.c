@@ -3,6 +3,7 @@
 #if defined(BDL_WITH_MPI)
 #include <HYPRE_utilities.h>
 #include <mpi.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 static int started; ///< MPI_Init was called here (not before, by a test's harness)
@@ -140,6 +141,16 @@ void bdl_comm_barrier(void)
         MPI_Barrier(MPI_COMM_WORLD);
 }
 
+_Noreturn void bdl_comm_abort(const char *why)
+{
+    fprintf(stderr, "error: rank %d of %d: %s; the job is stopped\n", bdl_comm_rank(),
+            bdl_comm_size(), why);
+    fflush(stderr);
+    if (running())
+        MPI_Abort(MPI_COMM_WORLD, 1);
+    exit(1);
+}
+
 int bdl_comm_broadcast_int(int value, int root)
 {
     if (running() && bdl_comm_size() > 1)
@@ -148,6 +159,9 @@ int bdl_comm_broadcast_int(int value, int root)
 }
 
 #else
+
+#include <stdio.h>
+#include <stdlib.h>
 
 int bdl_comm_init(int *argc, char ***argv)
 {
@@ -184,6 +198,12 @@ void bdl_comm_broadcast(void *data, size_t bytes, int root)
 void bdl_comm_barrier(void) {}
 
 bdl_exact_sum bdl_comm_sum_exact(bdl_exact_sum value) { return value; }
+
+_Noreturn void bdl_comm_abort(const char *why)
+{
+    fprintf(stderr, "error: %s\n", why);
+    exit(1);
+}
 
 int bdl_comm_broadcast_int(int value, int root)
 {

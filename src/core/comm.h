@@ -34,6 +34,11 @@ void bdl_comm_sum(double *values, int count);
 bdl_exact_sum bdl_comm_sum_exact(bdl_exact_sum value);
 /// Collective: `bytes` of `data` from rank `root` to every rank.
 void bdl_comm_broadcast(void *data, size_t bytes, int root);
+/// Ends every rank of the job at once (MPI_Abort), after printing `why` with this rank's number
+/// to stderr: for a failure on one rank in the middle of an exchange the others wait in. Without
+/// MPI it exits the process (code 1).
+_Noreturn void bdl_comm_abort(const char *why);
+
 /// Collective: rank `root`'s value on every rank.
 int bdl_comm_broadcast_int(int value, int root);
 /// Collective: stops every rank until all have reached it.

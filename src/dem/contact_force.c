@@ -89,6 +89,10 @@ typedef struct gather_view {
     bdl_exact_sum *released; ///< this thread's: what springs held when their contacts ended
     double len[3], half[3];  ///< per axis; a closed axis has len 0 and half infinite
     double shift, jump;      ///< Lees–Edwards: the image above's x offset and x velocity
+    /// MPI ranks (nb->ghosted): a pair's released work is booked by the rank that owns its
+    /// particle of the lower id (the others hold copies of the pair); NULL in one process.
+    const uint32_t *id;
+    long owned;
     int ns;
     double cut; ///< r_i + r_j when uniform
 } gather_view;
@@ -115,6 +119,8 @@ static gather_view make_view(const bdl_particles *p, bdl_neighbor *nb, const bdl
     }
     v.shift = nb->shear_shift;
     v.jump = nb->shear_velocity;
+    v.id = nb->ghosted ? p->id : NULL;
+    v.owned = nb->owned;
     v.ns = def->species_count;
     v.cut = fw->radius + fw->radius;
     return v;
@@ -181,7 +187,9 @@ static BDL_FORCE_INLINE int gather_pair(pair_batch *restrict b, int m, const gat
     if (v->history && (was & !touching)) { // the contact has ended
         v->history[k] = bdl_v3_zero();
         if (v->spring_work) { // what the spring still holds leaves the bodies
-            *v->released += bdl_exact_term(v->spring_work[k]);
+            const long lower = !v->id ? 0 : v->id[pi->i] < v->id[j] ? pi->i : j;
+            if (lower < v->owned || !v->id)
+                *v->released += bdl_exact_term(v->spring_work[k]);
             v->spring_work[k] = 0.0;
         }
     }
@@ -452,8 +460,9 @@ static void wall_contacts(bdl_particles *p, bdl_neighbor *nb, const bdl_walls *w
             nb->wall_touching[k] = 0;
             nb->wall_force[k] = bdl_v3_zero();
             nb->wall_history[k] = bdl_v3_zero();
-            if (nb->wall_spring_work) { // what the spring still holds leaves the bodies
-                *released += bdl_exact_term(nb->wall_spring_work[k]);
+            if (nb->wall_spring_work) {            // what the spring still holds leaves the bodies
+                if (!nb->ghosted || i < nb->owned) // a ghost's is booked by its owner
+                    *released += bdl_exact_term(nb->wall_spring_work[k]);
                 nb->wall_spring_work[k] = 0.0;
             }
             continue;

@@ -123,7 +123,7 @@ int bdl_decomp_owner(const bdl_decomp *d, bdl_vec3 x)
     for (int a = 0; a < 3; ++a) {
         const double w = (d->hi[a] - d->lo[a]) / d->dims[a];
         const double at = floor((bdl_v3_comp(x, a) - d->lo[a]) / w);
-        c[a] = at < 0.0 ? 0 : at >= d->dims[a] ? d->dims[a] - 1 : (int)at;
+        c[a] = !(at >= 0.0) ? 0 : at >= d->dims[a] ? d->dims[a] - 1 : (int)at; // NaN: box 0
     }
     return c[0] + d->dims[0] * (c[1] + d->dims[1] * c[2]);
 }

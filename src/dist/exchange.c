@@ -1,8 +1,10 @@
 #include "dist/exchange.h"
 
+#include <limits.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/comm.h"
 #include "core/memory.h"
 
 #if defined(BDL_WITH_MPI)
@@ -167,13 +169,12 @@ static long send_particles(bdl_dist *dd, bdl_particles *p, const int32_t *index,
         got += recv_count[r];
     }
     recv_displ[size] = (int)got;
+    if ((double)sent * (double)bytes > INT_MAX || (double)got * (double)bytes > INT_MAX)
+        bdl_comm_abort("more than 2 GB of particles to send between two exchanges: use more ranks");
     char *out = malloc((size_t)(sent > 0 ? sent : 1) * bytes);
     char *in = malloc((size_t)(got > 0 ? got : 1) * bytes);
-    if (!out || !in || bdl_particles_reserve(p, at + got + 16) != BDL_OK) {
-        free(out);
-        free(in);
-        return -1;
-    }
+    if (!out || !in || bdl_particles_reserve(p, at + got + 16) != BDL_OK)
+        bdl_comm_abort("out of memory in a particle exchange"); // the others wait in it
     for (long e = 0; e < sent; ++e)
         pack(p, index[e], shift ? shift[e] : bdl_v3_zero(), out + (size_t)e * bytes);
     MPI_Alltoallv(out, dd->byte_count, dd->byte_displ, MPI_BYTE, in, dd->rbyte_count,
@@ -440,19 +441,27 @@ static bdl_result gather_bytes(const void *mine, long bytes, int root, char **al
     int rank = 0, size = 1;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     MPI_Comm_size(MPI_COMM_WORLD, &size);
+    if (bytes > INT_MAX)
+        bdl_comm_abort("a rank's part of the gathered state is above 2 GB: use more ranks");
     const int n = (int)bytes;
     int *counts = calloc((size_t)size, sizeof *counts),
         *displ = calloc((size_t)size, sizeof *displ);
-    bdl_result r = counts && displ ? BDL_OK : BDL_ERR_NOMEM;
+    if (!counts || !displ)
+        bdl_comm_abort("out of memory gathering the state"); // the others wait in the gather
+    bdl_result r = BDL_OK;
     MPI_Gather(&n, 1, MPI_INT, counts, 1, MPI_INT, root, MPI_COMM_WORLD);
     *total = 0;
     *all = NULL;
-    if (rank == root && counts && displ) {
-        for (int q = 0; q < size; ++q)
+    if (rank == root) {
+        for (int q = 0; q < size; ++q) {
+            if (*total + counts[q] > INT_MAX) // MPI's displacements are ints
+                bdl_comm_abort("the gathered state is above 2 GB: the first rank cannot hold it "
+                               "for the outputs (a run this large needs parallel output)");
             displ[q] = (int)*total, *total += counts[q];
+        }
         *all = malloc((size_t)(*total > 0 ? *total : 1));
         if (!*all)
-            r = BDL_ERR_NOMEM;
+            bdl_comm_abort("out of memory gathering the state on the first rank");
     }
     MPI_Gatherv(mine, n, MPI_BYTE, *all, counts, displ, MPI_BYTE, root, MPI_COMM_WORLD);
     free(counts);

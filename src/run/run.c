@@ -5,6 +5,7 @@
 #include <errno.h>
 #include <math.h>
 #include <omp.h>
+#include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,6 +32,8 @@ typedef struct run {
     bdl_world *world;   ///< what the outputs read: under MPI on the first rank a whole mirror
     bdl_world *divided; ///< under MPI (more than one rank): this rank's part, which steps
     int rank, ranks;    ///< MPI (0 and 1 in one process)
+    volatile sig_atomic_t stop_now; ///< MPI: a stop told to any rank (the outputs read it)
+    atomic_long particles;          ///< MPI: every rank's particles at the last gather
     bdl_run_outputs outputs;
 } run;
 
@@ -294,8 +297,9 @@ static bdl_result build_divided(run *r)
         bdl_error("%s", message);
     if (res == BDL_OK && r->def->resume)
         res = resume(r);
-    if (res == BDL_OK && (res = bdl_world_dist_init(r->world, &err)) == BDL_ERR_SCENE)
-        bdl_error("%s", err.message);
+    // The division is an exchange between all ranks: only when every rank got this far.
+    if ((res = agree(r, res)) == BDL_OK && (res = bdl_world_dist_init(r->world, &err)) != BDL_OK)
+        bdl_error("%s", res == BDL_ERR_SCENE ? err.message : bdl_result_text(res));
     r->divided = r->world;
     r->world = NULL;
     if (res == BDL_OK && r->rank == 0 &&
@@ -360,6 +364,8 @@ static void report_progress(run *r, bdl_loop *loop, double t0, long step0)
 {
     bdl_run_status s = {0};
     bdl_loop_progress(loop, &s.time, &s.step, &s.particles, &s.finished);
+    if (r->divided) // the loop counts this rank's own
+        s.particles = atomic_load(&r->particles);
     s.start_time = t0;
     s.start_step = step0;
     s.end_time = r->world->scene.end_time;
@@ -382,12 +388,16 @@ static bdl_result divided_step(void *user, bdl_world *w)
         r->world->step = w->step;
         due = bdl_run_outputs_due(&r->outputs, r->world);
     }
-    const double stop = r->def->stop && *r->def->stop;
-    if (bdl_comm_max(fmax(due, stop)) == 0.0)
+    double flags[2] = {due, r->def->stop && *r->def->stop}; // a stop told to any rank
+    bdl_comm_sum(flags, 2);
+    if (flags[0] == 0.0 && flags[1] == 0.0)
         return BDL_OK;
+    r->stop_now = flags[1] > 0.0; // what the first rank's outputs read
     bdl_result res = bdl_world_dist_mirror(w, r->world, 0);
-    if (res == BDL_OK && r->rank == 0)
+    if (res == BDL_OK && r->rank == 0) {
+        atomic_store(&r->particles, r->world->particles.count);
         res = bdl_run_outputs_step(&r->outputs, r->world);
+    }
     return (bdl_result)bdl_comm_broadcast_int((int)agree(r, res), 0);
 }
 
@@ -459,8 +469,12 @@ static void report_stop(const run *r, int failed_written)
 static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *report)
 {
     if (r->divided) { // the last state whole on the first rank; the others are done
-        if (solved && bdl_world_dist_mirror(r->divided, r->world, 0) != BDL_OK && res == BDL_OK)
-            res = BDL_ERR_NOMEM;
+        if (solved) {
+            const bdl_result gathered = bdl_world_dist_mirror(r->divided, r->world, 0);
+            res = res == BDL_OK ? gathered : res;
+        }
+        if (r->world && r->divided->failure[0]) // why a step failed (the same on every rank)
+            snprintf(r->world->failure, sizeof r->world->failure, "%s", r->divided->failure);
         bdl_world_destroy(r->divided);
         r->divided = NULL;
         if (r->rank > 0) {
@@ -511,7 +525,7 @@ static bdl_result finish(run *r, bdl_result res, int solved, bdl_run_report *rep
 bdl_result bdl_run(const bdl_run_def *def, bdl_run_report *report)
 {
     run r = {.def = def, .rank = bdl_comm_rank(), .ranks = bdl_comm_size()};
-    r.outputs.stop = def->stop;
+    r.outputs.stop = r.ranks > 1 ? &r.stop_now : def->stop;
     bdl_result res = read_scene(&r);
     if (res == BDL_OK)
         res = agree(&r, open_folder(&r));

@@ -365,12 +365,9 @@ static double container_momentum(const bdl_world *w)
     return sum;
 }
 
-bdl_result bdl_world_step(bdl_world *w)
+/// One step of the particles (and the gas when one starts here).
+static bdl_result particles_step(bdl_world *w)
 {
-    if (w->parcels)
-        return bdl_world_parcels_step(w);
-    if (w->solids)
-        return bdl_world_solids_step(w);
     bdl_particles *p = &w->particles;
     // In a container's frame the inertial force does the work the container's walls would:
     // its acceleration at mid-step times the mean momentum along it over the step.
@@ -407,6 +404,17 @@ bdl_result bdl_world_step(bdl_world *w)
             w->dt * 0.5 * (momentum0 + container_momentum(w)) *
             bdl_v3_dot(bdl_v3_sub(g_mid, w->scene.gravity), w->scene.walls[w->container].direction);
     return BDL_OK;
+}
+
+bdl_result bdl_world_step(bdl_world *w)
+{
+    if (w->parcels)
+        return bdl_world_parcels_step(w);
+    if (w->solids)
+        return bdl_world_solids_step(w);
+    const bdl_result r = particles_step(w);
+    // Divided between ranks: they all go on or all stop, with the same result.
+    return w->dist ? bdl_world_dist_agree(w, r) : r;
 }
 
 uint64_t bdl_world_hash(const bdl_world *w)

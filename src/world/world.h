@@ -222,6 +222,10 @@ bdl_result bdl_world_dist_init(bdl_world *world, bdl_scene_error *err);
 /// it, the collective rebuild (world.c's force pass calls it).
 bdl_result bdl_world_dist_lists(bdl_world *world, double max_move2);
 
+/// MPI ranks, collective: the worst of every rank's result `r` of a step (so that they all go on
+/// or all stop); a rank whose own step went well but another's did not says so in its failure.
+bdl_result bdl_world_dist_agree(bdl_world *w, bdl_result r);
+
 /// MPI ranks, collective: the divided world `w` copied whole into `mirror` on rank `root` (a
 /// world built whole from the same scene; NULL elsewhere): its particles in the order of their
 /// ids with every array and their coordination, the time and the walls, the energy booked

@@ -72,6 +72,7 @@ bdl_result bdl_world_dist_init(bdl_world *w, bdl_scene_error *err)
         w->removed_mass = 0.0;
         w->neighbor.spring_work_left = 0;
         w->gas_work = 0.0;
+        w->particle_drag[0] = w->particle_drag[1] = w->particle_drag[2] = 0.0;
     }
     bdl_decomp d;
     bdl_decomp_init(&d, bdl_comm_rank(), dims, lo, hi, s->periodic, margin);
@@ -81,6 +82,16 @@ bdl_result bdl_world_dist_init(bdl_world *w, bdl_scene_error *err)
     if (r == BDL_OK)
         r = bdl_dist_start(w->dist, &w->particles, &w->neighbor, &w->walls);
     return r;
+}
+
+bdl_result bdl_world_dist_agree(bdl_world *w, bdl_result r)
+{
+    const bdl_result all = (bdl_result)(int)bdl_comm_max((double)r);
+    if (all != BDL_OK && r == BDL_OK)
+        snprintf(w->failure, sizeof w->failure,
+                 "a step failed on another rank at t = %.6g s (step %ld): %s", w->time, w->step,
+                 bdl_result_text(all));
+    return all;
 }
 
 bdl_result bdl_world_dist_lists(bdl_world *w, double max_move2)
@@ -193,7 +204,7 @@ bdl_result bdl_world_dist_mirror(bdl_world *w, bdl_world *mirror, int root)
     bdl_particles *mp = here ? &mirror->particles : NULL;
     uint8_t *coordination = NULL;
     if (here && !(coordination = malloc((size_t)(mirror->particles.capacity + 1))))
-        return BDL_ERR_NOMEM;
+        bdl_comm_abort("out of memory for the whole state on the first rank");
     bdl_result r = bdl_dist_gather_whole(&w->particles, w->coordination, root, mp, coordination);
     bdl_dist_spring *springs = NULL;
     long count = 0;
