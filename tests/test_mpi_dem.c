@@ -1,7 +1,8 @@
 // DEM divided between MPI ranks (dist/exchange.h) against the same scene whole on one rank: run
 // under mpirun with 1, 2 and 4 ranks (tests/mpi.cmake), every rank also runs the whole scene as
-// the reference: a periodic bed, a closed box, particles leaving through a face, a vibrating
-// container and a turning drum. After the steps rank 0 gathers the particles: none lost or
+// the reference: a periodic bed, a closed box, particles leaving through a face, a layer sliding
+// through the borders with lasting contacts, a vibrating container, a turning drum and a
+// fluidized bed. After the steps rank 0 gathers the particles: none lost or
 // duplicated (the ids one by one), the same positions within 1e-10 of the box and velocities within
 // 1e-8 of their scale. Frictional contacts slide across the borders, so a contact history lost or
 // turned the wrong way at a migration shows at once (a force off by its tangential part).
@@ -128,6 +129,8 @@ int main(int argc, char **argv)
     run_case("scenes/mpi_periodic_bed.ini", 1000, 1);
     run_case("scenes/mpi_closed_gas.ini", 1000, 1);
     run_case("scenes/mpi_outflow.ini", 1000, 1); // particles removed on the rank that owns them
+    // Lasting contacts crossing the borders: springs that must come with their particles.
+    run_case("scenes/mpi_sliding_layer.ini", 1000, 1);
     // Walls that move: a vibrating container, a turning cylinder (slow: few cross in 1000 steps).
     run_case("../scenes/vibrated_bed.ini", 1000, 0);
     run_case("../scenes/rotating_drum.ini", 1000, 0);

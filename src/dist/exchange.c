@@ -315,6 +315,143 @@ bdl_result bdl_dist_start(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, cons
     return settle(dd, p, nb, walls);
 }
 
+/// The springs of the touching contacts of the own particles that leave (dest[i] != this rank),
+/// per destination: its pairs (with any partner) and its walls. They go with the particle: the
+/// rank it goes to may hold a pair of two of its ghosts whose copy began after the contact did
+/// (when the two came into its margin touching); the owner's copy is the one that counts.
+static bdl_dist_spring *leaving_springs(const bdl_dist *dd, const bdl_particles *p,
+                                        const bdl_neighbor *nb, const int *dest, int *counts,
+                                        long *total)
+{
+    const int me = dd->d.rank, size = dd->d.size;
+    const long owned = dd->owned;
+    memset(counts, 0, (size_t)size * sizeof *counts);
+    long n = 0;
+    for (int pass = 0; pass < 2; ++pass) { // count, then fill grouped by destination
+        bdl_dist_spring *out = NULL;
+        int *cursor = NULL;
+        if (pass == 1) {
+            out = malloc((size_t)(n > 0 ? n : 1) * sizeof *out);
+            cursor = calloc((size_t)size + 1, sizeof *cursor);
+            if (!out || !cursor)
+                bdl_comm_abort("out of memory sending the springs of migrating particles");
+            for (int q = 0; q < size; ++q)
+                cursor[q + 1] = cursor[q] + counts[q];
+        }
+        for (long f = 0; nb->history && f < nb->count; ++f) {
+            const int leaves_f = f < owned && dest[f] != me;
+            for (int32_t k = nb->start[f]; k < nb->start[f + 1]; ++k) {
+                const long j = nb->partner[k];
+                const int leaves_j = j < owned && dest[j] != me;
+                if (!nb->touching[k] || (!leaves_f && !leaves_j))
+                    continue;
+                const uint32_t a = p->id[f], b = p->id[j];
+                const bdl_dist_spring sp = {a < b ? a : b,
+                                            a < b ? b : a,
+                                            -1,
+                                            0,
+                                            a < b ? nb->history[k] : bdl_v3_neg(nb->history[k]),
+                                            nb->spring_work ? nb->spring_work[k] : 0.0};
+                for (int side = 0; side < 2; ++side) {
+                    const long i = side ? j : f;
+                    if (!(side ? leaves_j : leaves_f))
+                        continue;
+                    if (pass == 0)
+                        counts[dest[i]]++, ++n;
+                    else
+                        out[cursor[dest[i]]++] = sp;
+                }
+            }
+            for (int32_t k = nb->wall_start[f]; leaves_f && k < nb->wall_start[f + 1]; ++k) {
+                if (!nb->wall_touching[k])
+                    continue;
+                if (pass == 0) {
+                    counts[dest[f]]++, ++n;
+                    continue;
+                }
+                out[cursor[dest[f]]++] =
+                    (bdl_dist_spring){p->id[f],
+                                      0,
+                                      nb->wall_prim[k],
+                                      0,
+                                      nb->wall_history[k],
+                                      nb->wall_spring_work ? nb->wall_spring_work[k] : 0.0};
+            }
+        }
+        if (pass == 1) {
+            free(cursor);
+            *total = n;
+            return out;
+        }
+    }
+    return NULL;
+}
+
+/// Sends the springs (counts[r] of them to rank r, grouped by rank); returns those received,
+/// sorted by (a, b, wall), their number in *got.
+static bdl_dist_spring *send_springs(const bdl_dist *dd, const bdl_dist_spring *springs,
+                                     const int *counts, long *got)
+{
+    const int size = dd->d.size, record = (int)sizeof *springs;
+    int *rc = calloc((size_t)size, sizeof *rc), *sb = calloc((size_t)size, sizeof *sb),
+        *sd = calloc((size_t)size, sizeof *sd), *rb = calloc((size_t)size, sizeof *rb),
+        *rdp = calloc((size_t)size, sizeof *rdp);
+    if (!rc || !sb || !sd || !rb || !rdp)
+        bdl_comm_abort("out of memory sending springs");
+    MPI_Alltoall(counts, 1, MPI_INT, rc, 1, MPI_INT, MPI_COMM_WORLD);
+    long sent = 0, in = 0;
+    for (int q = 0; q < size; ++q) {
+        sb[q] = counts[q] * record, sd[q] = (int)(sent * record), sent += counts[q];
+        rb[q] = rc[q] * record, rdp[q] = (int)(in * record), in += rc[q];
+    }
+    bdl_dist_spring *recv = malloc((size_t)(in > 0 ? in : 1) * sizeof *recv);
+    if (!recv)
+        bdl_comm_abort("out of memory receiving springs");
+    MPI_Alltoallv(springs, sb, sd, MPI_BYTE, recv, rb, rdp, MPI_BYTE, MPI_COMM_WORLD);
+    qsort(recv, (size_t)in, sizeof *recv, bdl_dist_spring_order);
+    free(rc), free(sb), free(sd), free(rb), free(rdp);
+    *got = in;
+    return recv;
+}
+
+/// The springs that came with the arrivals put into the new lists: each listed pair or wall
+/// contact they name gets the owner's spring (turned to be seen from the lower index).
+static void apply_springs(const bdl_particles *p, long count, bdl_neighbor *nb,
+                          const bdl_dist_spring *springs, long n)
+{
+    if (n == 0 || !nb->history)
+        return;
+    id_slot *at = index_ids(p, count);
+    if (!at)
+        bdl_comm_abort("out of memory placing springs");
+    for (long e = 0; e < n; ++e) {
+        const bdl_dist_spring *sp = &springs[e];
+        const int32_t ia = old_index(at, count, sp->a);
+        const int32_t ib = sp->wall < 0 ? old_index(at, count, sp->b) : -1;
+        if (ia < 0 || (sp->wall < 0 && ib < 0))
+            continue;
+        if (sp->wall >= 0) {
+            for (int32_t k = nb->wall_start[ia]; k < nb->wall_start[ia + 1]; ++k)
+                if (nb->wall_prim[k] == sp->wall) {
+                    nb->wall_history[k] = sp->u;
+                    nb->wall_touching[k] = 1;
+                    if (nb->wall_spring_work)
+                        nb->wall_spring_work[k] = sp->work;
+                }
+            continue;
+        }
+        const int32_t lo = ia < ib ? ia : ib, hi = ia < ib ? ib : ia;
+        for (int32_t k = nb->start[lo]; k < nb->start[lo + 1]; ++k)
+            if (nb->partner[k] == hi) {
+                nb->history[k] = ia < ib ? sp->u : bdl_v3_neg(sp->u); // a has the lower id
+                nb->touching[k] = 1;
+                if (nb->spring_work)
+                    nb->spring_work[k] = sp->work;
+            }
+    }
+    free(at);
+}
+
 bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
                             const bdl_walls *walls)
 {
@@ -325,7 +462,9 @@ bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
     int *counts = calloc((size_t)size, sizeof *counts),
         *displ = calloc((size_t)size + 1, sizeof *displ);
     int *rc = calloc((size_t)size, sizeof *rc), *rd = calloc((size_t)size + 1, sizeof *rd);
-    bdl_result r = leave && dest && counts && displ && rc && rd ? BDL_OK : BDL_ERR_NOMEM;
+    if (!leave || !dest || !counts || !displ || !rc || !rd)
+        bdl_comm_abort("out of memory at a rebuild"); // the others go on to its exchanges
+    bdl_result r = BDL_OK;
     long leaving = 0;
     for (long i = 0; r == BDL_OK && i < dd->owned; ++i) {
         p->pos[i] = bdl_decomp_wrap(&dd->d, p->pos[i]);
@@ -333,6 +472,11 @@ bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
         if (dest[i] != dd->d.rank)
             counts[dest[i]]++, ++leaving;
     }
+    // The springs of the leaving particles first: the old lists still index them.
+    long spring_count = 0, springs_got = 0;
+    bdl_dist_spring *springs_out = leaving_springs(dd, p, nb, dest, rc, &spring_count);
+    bdl_dist_spring *springs_in = send_springs(dd, springs_out, rc, &springs_got);
+    free(springs_out);
     if (r == BDL_OK) {
         for (int q = 0; q < size; ++q)
             displ[q + 1] = displ[q] + counts[q];
@@ -355,8 +499,11 @@ bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
             dd->owned = kept;
             dd->migrated += leaving;
             r = settle(dd, p, nb, walls);
+            if (r == BDL_OK)
+                apply_springs(p, dd->owned + dd->ghosts, nb, springs_in, springs_got);
         }
     }
+    free(springs_in);
     free(leave);
     free(dest);
     free(counts);

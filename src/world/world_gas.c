@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "cfd/gas.h"
+#include "core/comm.h"
 #include "core/timer.h"
 #include "couple/coupling.h"
 #include "world/world.h"
@@ -235,6 +236,8 @@ bdl_result bdl_world_gas_step(bdl_world *w)
     bdl_coupling_report report;
     bdl_result r = bdl_coupling_step(w->coupling, w->gas, &w->particles, &def, &report);
     w->gas_seconds += report.gas_seconds;
+    if (w->dist) // the gas is the same on every rank; its schedule must be too
+        report.stable_dt = bdl_comm_min(report.stable_dt);
     if (report.stable_dt > 0.0)
         w->gas_stable = report.stable_dt;
     if (r == BDL_ERR_UNSTABLE)
