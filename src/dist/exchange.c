@@ -52,10 +52,8 @@ bdl_result bdl_dist_create(const bdl_decomp *d, bdl_dist **out)
     dd->rbyte_count = calloc(n, sizeof(int));
     dd->rbyte_displ = calloc(n + 1, sizeof(int));
     if (!dd->send_count || !dd->send_displ || !dd->recv_count || !dd->recv_displ ||
-        !dd->byte_count || !dd->byte_displ || !dd->rbyte_count || !dd->rbyte_displ) {
-        bdl_dist_destroy(dd);
-        return BDL_ERR_NOMEM;
-    }
+        !dd->byte_count || !dd->byte_displ || !dd->rbyte_count || !dd->rbyte_displ)
+        bdl_comm_abort("out of memory dividing the particles"); // the others go on to exchange
     *out = dd;
     return BDL_OK;
 }
@@ -159,18 +157,20 @@ static long send_particles(bdl_dist *dd, bdl_particles *p, const int32_t *index,
     const int size = dd->d.size;
     MPI_Alltoall(counts, 1, MPI_INT, recv_count, 1, MPI_INT, MPI_COMM_WORLD);
     long sent = 0, got = 0;
-    for (int r = 0; r < size; ++r) {
-        dd->byte_count[r] = counts[r] * (int)bytes;
-        dd->byte_displ[r] = displ[r] * (int)bytes;
+    for (int r = 0; r < size; ++r)
+        sent += counts[r], got += recv_count[r];
+    if ((double)sent * (double)bytes > INT_MAX || (double)got * (double)bytes > INT_MAX)
+        bdl_comm_abort("more than 2 GB of particles to send between two exchanges: use more ranks");
+    got = 0;
+    for (int r = 0; r < size; ++r) { // in bytes: below 2^31 (checked above)
+        dd->byte_count[r] = (int)((long)counts[r] * (long)bytes);
+        dd->byte_displ[r] = (int)((long)displ[r] * (long)bytes);
         recv_displ[r] = (int)got;
-        dd->rbyte_count[r] = recv_count[r] * (int)bytes;
+        dd->rbyte_count[r] = (int)((long)recv_count[r] * (long)bytes);
         dd->rbyte_displ[r] = (int)(got * (long)bytes);
-        sent += counts[r];
         got += recv_count[r];
     }
     recv_displ[size] = (int)got;
-    if ((double)sent * (double)bytes > INT_MAX || (double)got * (double)bytes > INT_MAX)
-        bdl_comm_abort("more than 2 GB of particles to send between two exchanges: use more ranks");
     char *out = malloc((size_t)(sent > 0 ? sent : 1) * bytes);
     char *in = malloc((size_t)(got > 0 ? got : 1) * bytes);
     if (!out || !in || bdl_particles_reserve(p, at + got + 16) != BDL_OK)
@@ -234,7 +234,7 @@ static bdl_result list_ghosts(bdl_dist *dd, const bdl_particles *p)
         const long cap = total + total / 4 + 64;
         if (!bdl_grow((void **)&dd->send_index, cap, sizeof(int32_t)) ||
             !bdl_grow((void **)&dd->send_shift, cap, sizeof(bdl_vec3)))
-            return BDL_ERR_NOMEM;
+            bdl_comm_abort("out of memory listing ghosts"); // the others go on to exchange
         dd->send_capacity = cap;
     }
     dd->send_displ[0] = 0;
@@ -242,7 +242,7 @@ static bdl_result list_ghosts(bdl_dist *dd, const bdl_particles *p)
         dd->send_displ[r + 1] = dd->send_displ[r] + dd->send_count[r];
     int *cursor = malloc((size_t)size * sizeof *cursor);
     if (!cursor)
-        return BDL_ERR_NOMEM;
+        bdl_comm_abort("out of memory listing ghosts");
     memcpy(cursor, dd->send_displ, (size_t)size * sizeof *cursor);
     for (long i = 0; i < dd->owned; ++i) {
         const int n = bdl_decomp_ghost_targets(&dd->d, p->pos[i], ranks, shifts);
@@ -266,8 +266,8 @@ static bdl_result settle(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, const
     bdl_result r = bdl_neighbor_sort(nb, p);
     if (r == BDL_OK)
         r = list_ghosts(dd, p);
-    if (r != BDL_OK)
-        return r;
+    if (r != BDL_OK) // the others go on to the exchange below
+        bdl_comm_abort("out of memory sorting the particles at a rebuild");
     const long got = send_particles(dd, p, dd->send_index, dd->send_shift, dd->send_count,
                                     dd->send_displ, dd->owned, dd->recv_count, dd->recv_displ);
     if (got < 0)
@@ -276,7 +276,7 @@ static bdl_result settle(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, const
     const long total = dd->owned + dd->ghosts;
     int32_t *origin = malloc((size_t)(total > 0 ? total : 1) * sizeof *origin);
     if (!origin)
-        return BDL_ERR_NOMEM;
+        bdl_comm_abort("out of memory at a rebuild");
     for (long i = 0; i < total; ++i)
         origin[i] = old_index(old, old_count, p->id[i]);
     p->count = total;
@@ -300,7 +300,7 @@ bdl_result bdl_dist_start(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, cons
     dd->built = index_ids(p, all); // the whole run's lists, built on every rank
     dd->built_count = all;
     if (!dd->built)
-        return BDL_ERR_NOMEM;
+        bdl_comm_abort("out of memory dividing the particles");
     // Every rank has every particle: each keeps its own, in their order (no message).
     long kept = 0;
     for (long i = 0; i < all; ++i) {
@@ -532,12 +532,12 @@ bdl_result bdl_dist_refresh(bdl_dist *dd, bdl_particles *p)
     const long sent = dd->send_displ[size], got = dd->ghosts;
     if (sent * REFRESH > dd->send_buf_capacity) {
         if (!bdl_grow((void **)&dd->send_buf, sent * REFRESH + 64, sizeof(double)))
-            return BDL_ERR_NOMEM;
+            bdl_comm_abort("out of memory refreshing ghosts");
         dd->send_buf_capacity = sent * REFRESH + 64;
     }
     if (got * REFRESH > dd->recv_buf_capacity) {
         if (!bdl_grow((void **)&dd->recv_buf, got * REFRESH + 64, sizeof(double)))
-            return BDL_ERR_NOMEM;
+            bdl_comm_abort("out of memory refreshing ghosts");
         dd->recv_buf_capacity = got * REFRESH + 64;
     }
     for (long e = 0; e < sent; ++e) {
@@ -671,7 +671,7 @@ bdl_result bdl_dist_gather_whole(const bdl_particles *p, const uint8_t *coordina
     const size_t record = bytes + 1; // and the coordination
     char *mine = malloc((size_t)(p->count > 0 ? p->count : 1) * record);
     if (!mine)
-        return BDL_ERR_NOMEM;
+        bdl_comm_abort("out of memory gathering the state");
     for (long i = 0; i < p->count; ++i) {
         pack(p, i, bdl_v3_zero(), mine + (size_t)i * record);
         mine[(size_t)i * record + bytes] = (char)(coordination ? coordination[i] : 0);
@@ -686,11 +686,8 @@ bdl_result bdl_dist_gather_whole(const bdl_particles *p, const uint8_t *coordina
     }
     const long n = total / (long)record;
     order_key *keys = malloc((size_t)(n > 0 ? n : 1) * sizeof *keys);
-    if (!keys || bdl_particles_reserve(out, n) != BDL_OK) {
-        free(keys);
-        free(all);
-        return BDL_ERR_NOMEM;
-    }
+    if (!keys || bdl_particles_reserve(out, n) != BDL_OK)
+        bdl_comm_abort("out of memory for the whole state on the first rank");
     // The id is the table's ninth array: read it through a particle unpacked in place.
     for (long k = 0; k < n; ++k) {
         unpack(out, k, all + (size_t)k * record);
@@ -730,7 +727,7 @@ bdl_result bdl_dist_gather_springs(const bdl_neighbor *nb, const bdl_particles *
         n += nb->wall_touching[k];
     bdl_dist_spring *mine = malloc((size_t)(n > 0 ? n : 1) * sizeof *mine);
     if (!mine)
-        return BDL_ERR_NOMEM;
+        bdl_comm_abort("out of memory gathering springs");
     long m = 0;
     for (long i = 0; nb->history && i < nb->count; ++i) {
         for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k) {

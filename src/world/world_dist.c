@@ -10,6 +10,7 @@
 #include "couple/coupling.h"
 
 #include "core/comm.h"
+#include "core/memory.h"
 #include "dist/exchange.h"
 
 /// What a scene has that the ranks cannot share yet; NULL when nothing.
@@ -26,6 +27,27 @@ static const char *unshared(const bdl_world *w)
         if (s->creates[c].kind == BDL_CREATE_POUR)
             return "pouring ([create] type = pour): particles added during a run";
     return NULL;
+}
+
+/// Each particle's touching pairs, from the lists as the division left them (the force pass
+/// counts them every step; the particles moved since the last one).
+static bdl_result recount_contacts(bdl_world *w)
+{
+    const bdl_neighbor *nb = &w->neighbor;
+    if (w->coordination_capacity < w->particles.capacity) {
+        if (!bdl_grow((void **)&w->coordination, w->particles.capacity, 1))
+            return BDL_ERR_NOMEM;
+        w->coordination_capacity = w->particles.capacity;
+    }
+    memset(w->coordination, 0, (size_t)w->coordination_capacity);
+    for (long i = 0; i < nb->count; ++i)
+        for (int32_t k = nb->start[i]; k < nb->start[i + 1]; ++k)
+            if (nb->touching[k]) {
+                uint8_t *a = &w->coordination[i], *b = &w->coordination[nb->partner[k]];
+                *a = (uint8_t)(*a < 255 ? *a + 1 : 255);
+                *b = (uint8_t)(*b < 255 ? *b + 1 : 255);
+            }
+    return BDL_OK;
 }
 
 bdl_result bdl_world_dist_init(bdl_world *w, bdl_scene_error *err)
@@ -81,6 +103,8 @@ bdl_result bdl_world_dist_init(bdl_world *w, bdl_scene_error *err)
     bdl_result r = bdl_dist_create(&d, &w->dist);
     if (r == BDL_OK)
         r = bdl_dist_start(w->dist, &w->particles, &w->neighbor, &w->walls);
+    if (r == BDL_OK)
+        r = recount_contacts(w);
     return r;
 }
 
@@ -203,7 +227,9 @@ bdl_result bdl_world_dist_mirror(bdl_world *w, bdl_world *mirror, int root)
     const int here = bdl_comm_rank() == root;
     bdl_particles *mp = here ? &mirror->particles : NULL;
     uint8_t *coordination = NULL;
-    if (here && !(coordination = malloc((size_t)(mirror->particles.capacity + 1))))
+    double total = (double)w->particles.count; // what the first rank will hold
+    bdl_comm_sum(&total, 1);
+    if (here && !(coordination = malloc((size_t)total + 1)))
         bdl_comm_abort("out of memory for the whole state on the first rank");
     bdl_result r = bdl_dist_gather_whole(&w->particles, w->coordination, root, mp, coordination);
     bdl_dist_spring *springs = NULL;
