@@ -89,10 +89,8 @@ void bdl_comm_sum(double *values, int count)
         return;
     // Gathered and added in rank order on every rank: MPI_Allreduce may add in any order.
     double *all = malloc((size_t)size * (size_t)count * sizeof *all);
-    if (!all) {
-        MPI_Abort(MPI_COMM_WORLD, 1);
-        return;
-    }
+    if (!all)
+        bdl_comm_abort("out of memory summing over the ranks");
     MPI_Allgather(values, count, MPI_DOUBLE, all, count, MPI_DOUBLE, MPI_COMM_WORLD);
     for (int c = 0; c < count; ++c) {
         double sum = 0.0;
@@ -109,10 +107,8 @@ bdl_exact_sum bdl_comm_sum_exact(bdl_exact_sum value)
     if (size == 1)
         return value;
     bdl_exact_sum *all = malloc((size_t)size * sizeof *all);
-    if (!all) {
-        MPI_Abort(MPI_COMM_WORLD, 1);
-        return value;
-    }
+    if (!all)
+        bdl_comm_abort("out of memory summing over the ranks");
     MPI_Allgather(&value, (int)sizeof value, MPI_BYTE, all, (int)sizeof value, MPI_BYTE,
                   MPI_COMM_WORLD);
     bdl_exact_sum sum = 0;

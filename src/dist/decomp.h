@@ -5,8 +5,8 @@
 // rank owns the particles whose centres lie in its box and keeps copies (ghosts) of the
 // particles of the boxes around it that lie within `margin` of its own: with the margin at least
 // the reach of a contact (the largest particle plus the neighbour skin) and the skin again, every
-// pair a rank's particles can touch before the next rebuild is on the rank, and so is the pair's
-// contact history when one of them moves over (dist/exchange.h).
+// pair a rank's own particles can touch before the next rebuild is on the rank, listed before the
+// two can touch (so the rank owning either holds the pair's spring; dist/exchange.h).
 //
 // Along a periodic axis that is cut, the boxes at its two ends are neighbours, and a ghost
 // across the period sits at its image (shifted by the axis's length). Along an axis that is not

@@ -8,12 +8,13 @@
 //
 // At a rebuild of the neighbour lists (every rank rebuilds when any needs to, so the ranks keep
 // in step), particles whose centres left the box move to the rank that owns them now, with every
-// per-particle array the table in dem/particles.c lists. Then each rank sorts its own, sends
-// copies of those near its faces to the ranks across them (at their images across a period),
-// and builds its lists over its own particles and the ghosts. A pair of two ghosts is listed
-// too: its contact history then evolves on every rank that holds both, exactly as on the owner
-// (the same inputs), and is there when one of them moves over — so no history is ever sent.
-// Histories are found again by the particles' stable ids.
+// per-particle array the table in dem/particles.c lists and the springs of their touching
+// contacts. Then each rank sorts its own, sends copies of those near its faces to the ranks
+// across them (at their images across a period), and builds its lists over its own particles and
+// the ghosts. A pair of two ghosts is listed too: its spring evolves on every rank that holds both
+// exactly as on the owner's, from the rebuild where both came into the margin — but if they came
+// in touching, that copy began late, which is why a particle that moves over brings its springs
+// (they replace the copies). Springs are found again by the particles' stable ids.
 //
 // Between rebuilds the set of ghosts is fixed; after the opening kick and drift of each step
 // their positions, velocities and spins are sent again (bdl_dist_refresh). Forces on ghosts
