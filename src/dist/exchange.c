@@ -145,8 +145,9 @@ static void unpack(bdl_particles *p, long i, const char *in)
 }
 
 /// Sends, per rank, the particles listed (index and shift, grouped by rank: counts[r] of them
-/// from displ[r]), and appends what arrives after slot `at`; returns the count received (or -1
-/// when out of memory). recv_count and recv_displ get the counts received per rank.
+/// from displ[r]), and appends what arrives after slot `at`; returns the count received (out of
+/// memory ends the job: the others wait in the exchange). recv_count and recv_displ get the
+/// counts received per rank.
 static long send_particles(bdl_dist *dd, bdl_particles *p, const int32_t *index,
                            const bdl_vec3 *shift, const int *counts, const int *displ, long at,
                            int *recv_count, int *recv_displ)
@@ -270,8 +271,6 @@ static bdl_result settle(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb, const
         bdl_comm_abort("out of memory sorting the particles at a rebuild");
     const long got = send_particles(dd, p, dd->send_index, dd->send_shift, dd->send_count,
                                     dd->send_displ, dd->owned, dd->recv_count, dd->recv_displ);
-    if (got < 0)
-        return BDL_ERR_NOMEM;
     dd->ghosts = got;
     const long total = dd->owned + dd->ghosts;
     int32_t *origin = malloc((size_t)(total > 0 ? total : 1) * sizeof *origin);
@@ -486,22 +485,18 @@ bdl_result bdl_dist_rebuild(bdl_dist *dd, bdl_particles *p, bdl_neighbor *nb,
                 leave[rc[dest[i]]++] = (int32_t)i;
         // The old ghosts are dropped: the arrivals go after the own particles.
         const long got = send_particles(dd, p, leave, NULL, counts, displ, old_count, rc, rd);
-        if (got < 0) {
-            r = BDL_ERR_NOMEM;
-        } else {
-            // Keep the own that stay, then the arrivals (parked after the old ghosts).
-            long kept = 0;
-            for (long i = 0; i < dd->owned + got; ++i) {
-                if (i < dd->owned && dest[i] != dd->d.rank)
-                    continue;
-                move_particle(p, i < dd->owned ? i : old_count + (i - dd->owned), kept++);
-            }
-            dd->owned = kept;
-            dd->migrated += leaving;
-            r = settle(dd, p, nb, walls);
-            if (r == BDL_OK)
-                apply_springs(p, dd->owned + dd->ghosts, nb, springs_in, springs_got);
+        // Keep the own that stay, then the arrivals (parked after the old ghosts).
+        long kept = 0;
+        for (long i = 0; i < dd->owned + got; ++i) {
+            if (i < dd->owned && dest[i] != dd->d.rank)
+                continue;
+            move_particle(p, i < dd->owned ? i : old_count + (i - dd->owned), kept++);
         }
+        dd->owned = kept;
+        dd->migrated += leaving;
+        r = settle(dd, p, nb, walls);
+        if (r == BDL_OK)
+            apply_springs(p, dd->owned + dd->ghosts, nb, springs_in, springs_got);
     }
     free(springs_in);
     free(leave);
