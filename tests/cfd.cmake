@@ -2,6 +2,7 @@
 # rest, plug flow, volume conservation, the pressure solver, and the lid-driven cavity against
 # Ghia et al. (1982).
 bdl_add_test(test_poisson SOURCES test_poisson.c LABELS cfd)
+bdl_add_test(test_poisson_direct SOURCES test_poisson_direct.c LABELS cfd)
 bdl_add_test(test_gas SOURCES test_gas.c LABELS "cfd;verification")
 bdl_add_test(test_cavity SOURCES test_cavity.c LABELS "cfd;verification" TIMEOUT 900)
 bdl_add_test(test_drag SOURCES test_drag.c LABELS cfd)

@@ -462,6 +462,11 @@ static const bad_scene bad_scenes[] = {
      "bad.ini:13:", "distributor_resistance", ">= 0 (Pa s/m)", NULL},
     {MINIMAL "[gas]\ncells = 2 2 2\nprobe_low = 0.1\n", "bad.ini:13:", "probe_low", "come in pairs",
      NULL},
+    {"[run]\nend_time = 1\n[domain]\nmin = 0 0 0\nmax = 1 1 1\nperiodic = x\n[gas]\n"
+     "cells = 4 1 4\npressure_solver = direct\n",
+     "bad.ini:9:", "pressure_solver", "no periodic axis of more than one cell", NULL},
+    {MINIMAL "[gas]\ncells = 40 40 2\npressure_solver = direct\n", "bad.ini:13:", "pressure_solver",
+     "a band of 1600 cells", NULL},
     {MINIMAL, "--set:", "densty", "did you mean 'density'?", "species.glass.densty=3"},
     {MINIMAL, "--set:", "end_time", "out of range", "run.end_time=-1"},
     {MINIMAL, "--set:", "specis", "did you mean 'species'?", "specis.glass.density=3"},

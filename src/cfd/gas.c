@@ -375,12 +375,14 @@ static void face_fluxes(bdl_gas *g, double *q[3])
 }
 
 /// Predictor u* with the drag implicit, and d = eps / (rho eps / dt + beta), on the unknown faces.
-static void predict(bdl_gas *g, double *const q[3], double dt)
+static void predict(bdl_gas *g, double *const q[3], const int active[3], double dt)
 {
     const bdl_grid *gr = &g->grid;
     const double rho = g->def.density, mu = g->def.viscosity;
     const int implicit = g->def.convection_step == BDL_CONVECTION_POINT_IMPLICIT;
     for (int a = 0; a < 3; ++a) {
+        if (!active[a])
+            continue;
         int flo, fhi;
         unknown_faces(g, a, &flo, &fhi);
         const double *u = g->u[a];
@@ -478,10 +480,12 @@ static int solve_pressure(bdl_gas *g, double dt, const double p_side[6])
 }
 
 /// u = u* - d grad p on the unknown faces; prescribed boundary faces keep u*.
-static void correct(bdl_gas *g, const double p_side[6])
+static void correct(bdl_gas *g, const int active[3], const double p_side[6])
 {
     const bdl_grid *gr = &g->grid;
     for (int a = 0; a < 3; ++a) {
+        if (!active[a])
+            continue;
         int flo, fhi;
         unknown_faces(g, a, &flo, &fhi);
         if (!periodic_axis(g, a)) { // a plate's faces follow from the pressure as an outlet's do
@@ -547,21 +551,38 @@ static double plenum_pressure(bdl_gas *g, int side)
     return g->plenum[side];
 }
 
+int bdl_gas_axis_inert(const bdl_gas *g, int a)
+{
+    const bdl_grid *gr = &g->grid;
+    if (gr->n[a] != 1 || !gr->periodic[a] || g->def.gravity[a] != 0.0)
+        return 0;
+    for (int s = 0; s < 6; ++s)
+        if (g->def.side[s].wall_velocity[a] != 0.0)
+            return 0;
+    const double *u = g->u[a], *bv = g->bv[a], *f = g->source[a];
+    for (long i = 0; i < gr->size; ++i)
+        if (u[i] != 0.0 || bv[i] != 0.0 || f[i] != 0.0)
+            return 0;
+    return 1;
+}
+
 bdl_result bdl_gas_step(bdl_gas *g, double dt)
 {
     bdl_grid_extend_cells(&g->grid, g->eps);
     bdl_grid_extend_cells(&g->grid, g->eps_old);
+    int active[3]; // the axes whose velocities are stepped (bdl_gas_axis_inert: the others stay 0)
     for (int a = 0; a < 3; ++a)
-        velocity_ghosts(g, a, g->u[a], g->eps_old);
+        if ((active[a] = !bdl_gas_axis_inert(g, a)))
+            velocity_ghosts(g, a, g->u[a], g->eps_old);
     double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
     face_fluxes(g, q);
-    predict(g, q, dt);
+    predict(g, q, active, dt);
     boundary_faces(g, dt);
     double p_side[6];
     for (int s = 0; s < 6; ++s)
         p_side[s] = distributor(&g->def.side[s]) ? plenum_pressure(g, s) : g->def.side[s].pressure;
     const int converged = solve_pressure(g, dt, p_side);
-    correct(g, p_side);
+    correct(g, active, p_side);
     const int finite = check_balance(g, dt);
     memcpy(g->eps_old, g->eps, (size_t)g->grid.size * sizeof(double));
     g->time += dt;

@@ -158,6 +158,12 @@ void bdl_gas_set_gravity(bdl_gas *g, const double gravity[3]);
 /// viscous limit.
 double bdl_gas_stable_dt(const bdl_gas *g);
 
+/// Whether the gas's velocity along axis a is zero and stays so through the next step: one
+/// cell along a, periodic (no gradient along it), no gravity, wall motion, drag source or extra
+/// force along it, and every u_a zero. Such an axis (the depth of a two-dimensional run) is
+/// left out of the step: its equations would give zero.
+int bdl_gas_axis_inert(const bdl_gas *g, int a);
+
 /// Velocity component a interpolated to the cell centre (i, j, k).
 double bdl_gas_cell_velocity(const bdl_gas *g, int a, int i, int j, int k);
 

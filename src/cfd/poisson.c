@@ -10,6 +10,7 @@
 #include "cfd/poisson_hypre.h"
 #endif
 
+#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -39,6 +40,11 @@ struct bdl_poisson {
     double *d, *q, *z; ///< CG vectors on the finest level
     double *xc, *r;    ///< solution and residual on the finest level
     double *zeros;     ///< a row of zero couplings (n[0] + 1)
+    /// The direct solver: M's lower band (LAPACK's band storage, kd + 1 rows a cell), factored
+    /// by the last bdl_poisson_set_coefficients when `factored` (otherwise the multigrid's
+    /// levels are built and CG solves).
+    double *band;
+    int kd, factored;
 #if defined(BDL_WITH_MPI)
     bdl_hypre_poisson *hypre; ///< NULL: bedlam's own solver
 #endif
@@ -50,10 +56,21 @@ const char *const bdl_pressure_solver_labels[] = {BDL_PRESSURE_SOLVERS(BDL_ENUM_
 int bdl_pressure_solver_available(bdl_pressure_solver solver)
 {
 #if defined(BDL_WITH_MPI)
-    return solver == BDL_PRESSURE_MGPCG || solver == BDL_PRESSURE_HYPRE;
+    return solver == BDL_PRESSURE_MGPCG || solver == BDL_PRESSURE_HYPRE ||
+           solver == BDL_PRESSURE_DIRECT;
 #else
-    return solver == BDL_PRESSURE_MGPCG;
+    return solver == BDL_PRESSURE_MGPCG || solver == BDL_PRESSURE_DIRECT;
 #endif
+}
+
+int bdl_poisson_direct_band(const bdl_grid *g)
+{
+    for (int a = 0; a < 3; ++a)
+        if (g->periodic[a] && g->n[a] > 1)
+            return -1;
+    if (g->n[2] > 1)
+        return g->n[0] * g->n[1];
+    return g->n[1] > 1 ? g->n[0] : g->n[0] > 1 ? 1 : 0;
 }
 
 /// With hypre, the solver's own (1) or bedlam's (0).
@@ -161,6 +178,14 @@ bdl_poisson *bdl_poisson_create_solver(const bdl_grid *g, const int dirichlet[6]
     p->xc = calloc((size_t)cells, sizeof(double));
     p->r = calloc((size_t)cells, sizeof(double));
     p->zeros = calloc((size_t)g->n[0] + 1, sizeof(double));
+    if (solver == BDL_PRESSURE_DIRECT) {
+        p->kd = bdl_poisson_direct_band(g);
+        if (p->kd < 0 || p->kd > BDL_POISSON_DIRECT_BAND_MAX ||
+            !(p->band = malloc((size_t)cells * (size_t)(p->kd + 1) * sizeof(double)))) {
+            bdl_poisson_destroy(p);
+            return NULL;
+        }
+    }
     if (!p->d || !p->q || !p->z || !p->xc || !p->r || !p->zeros) {
         bdl_poisson_destroy(p);
         return NULL;
@@ -187,6 +212,7 @@ void bdl_poisson_destroy(bdl_poisson *p)
     free(p->xc);
     free(p->r);
     free(p->zeros);
+    free(p->band);
 #if defined(BDL_WITH_MPI)
     bdl_hypre_poisson_destroy(p->hypre);
 #endif
@@ -254,6 +280,37 @@ static void restrict_couplings(const level *F, level *C)
     }
 }
 
+/// M of the finest level into the band (column c holds rows c to c + kd) and its Cholesky
+/// factors; returns whether M was positive definite. Without a Dirichlet side cell 0 is pinned
+/// (its row and column the identity's): the rest of the system holds the solution that is zero
+/// there, and the mean is removed afterwards.
+static int factor_band(bdl_poisson *p)
+{
+    const level *L = &p->levels[0];
+    const int ld = p->kd + 1;
+    const long stride[3] = {1, L->n[0], (long)L->n[0] * L->n[1]};
+    memset(p->band, 0, (size_t)L->cells * (size_t)ld * sizeof(double));
+    for (int k = 0; k < L->n[2]; ++k)
+        for (int j = 0; j < L->n[1]; ++j)
+            for (int i = 0; i < L->n[0]; ++i) {
+                const long c = cell_of(L, i, j, k);
+                const int at[3] = {i, j, k};
+                double *col = p->band + c * ld;
+                col[0] = L->diag[c];
+                for (int a = 0; a < 3; ++a) {
+                    if (at[a] + 1 >= L->n[a]) // (no periodic axis of more than one cell here)
+                        continue;
+                    const int hi[3] = {i + (a == 0), j + (a == 1), k + (a == 2)};
+                    col[stride[a]] = -L->K[a][face_of(L, a, hi[0], hi[1], hi[2])];
+                }
+            }
+    if (p->singular) {
+        memset(p->band, 0, (size_t)ld * sizeof(double));
+        p->band[0] = 1.0;
+    }
+    return LAPACKE_dpbtrf(LAPACK_COL_MAJOR, 'L', (lapack_int)L->cells, p->kd, p->band, ld) == 0;
+}
+
 void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
 {
     const bdl_grid *g = &p->grid;
@@ -279,6 +336,9 @@ void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
             });
     }
     build_diagonal(p, L);
+    p->factored = p->band && factor_band(p);
+    if (p->factored)
+        return;
 #if defined(BDL_WITH_MPI)
     if (p->hypre) { // hypre builds its own levels
         bdl_hypre_poisson_set(p->hypre, L->diag, L->K);
@@ -322,6 +382,21 @@ static row_link link_rows(const bdl_poisson *p, const level *L, int a, int j, in
     return r;
 }
 
+/// The couplings of cell i of a row to its neighbours along y and z, sum K x. An axis of one cell
+/// couples through rows of zeros (link_rows), left out here when `y` or `z` is 0: the same sum to
+/// the bit (0 x added to a finite sum leaves it unchanged), without the loads.
+static inline double off_diagonal(const row_link *y, const row_link *z, int i, int ylink, int zlink)
+{
+    if (ylink && zlink)
+        return y->K_lo[i] * y->x_lo[i] + y->K_hi[i] * y->x_hi[i] + z->K_lo[i] * z->x_lo[i] +
+               z->K_hi[i] * z->x_hi[i];
+    if (zlink)
+        return z->K_lo[i] * z->x_lo[i] + z->K_hi[i] * z->x_hi[i];
+    if (ylink)
+        return y->K_lo[i] * y->x_lo[i] + y->K_hi[i] * y->x_hi[i];
+    return 0.0;
+}
+
 /// out = M x on level L.
 static void apply(const bdl_poisson *p, const level *L, const double *x, double *out)
 {
@@ -333,9 +408,9 @@ static void apply(const bdl_poisson *p, const level *L, const double *x, double 
             const double *xr = x + c0, *dg = L->diag + c0;
             double *o = out + c0;
             const row_link y = link_rows(p, L, 1, j, k, x), z = link_rows(p, L, 2, j, k, x);
+            const int ylink = n1 > 1, zlink = n2 > 1;
             for (int i = 0; i < n0; ++i)
-                o[i] = dg[i] * xr[i] - (y.K_lo[i] * y.x_lo[i] + y.K_hi[i] * y.x_hi[i] +
-                                        z.K_lo[i] * z.x_lo[i] + z.K_hi[i] * z.x_hi[i]);
+                o[i] = dg[i] * xr[i] - off_diagonal(&y, &z, i, ylink, zlink);
             if (n0 == 1)
                 continue;
             const double *Kx = L->K[0] + face_of(L, 0, 0, j, k);
@@ -402,10 +477,9 @@ static void colour_sweep(const bdl_poisson *p, level *L, int color)
             const double *dg = L->diag + c0, *b = L->b + c0;
             const row_link y = link_rows(p, L, 1, j, k, x), z = link_rows(p, L, 2, j, k, x);
             const double *Kx = L->K[0] + face_of(L, 0, 0, j, k);
-            const int wrap = p->periodic[0] && n0 > 1;
+            const int wrap = p->periodic[0] && n0 > 1, ylink = n1 > 1, zlink = n2 > 1;
             for (int i = (j + k + color) & 1; i < n0; i += 2) {
-                double off = y.K_lo[i] * y.x_lo[i] + y.K_hi[i] * y.x_hi[i] + z.K_lo[i] * z.x_lo[i] +
-                             z.K_hi[i] * z.x_hi[i];
+                double off = off_diagonal(&y, &z, i, ylink, zlink);
                 if (n0 > 1) {
                     off += i > 0 ? Kx[i] * xr[i - 1] : wrap ? Kx[0] * xr[n0 - 1] : 0.0;
                     off += i < n0 - 1 ? Kx[i + 1] * xr[i + 1] : wrap ? Kx[0] * xr[0] : 0.0;
@@ -539,6 +613,35 @@ void bdl_poisson_residual(bdl_poisson *p, const double *x, const double *f, cons
     to_padded(p, mx, r);
 }
 
+/// The direct solve: x += M^-1 r from the band's factors, r then the new residual; again on
+/// that residual (iterative refinement) while it is above tol, at most three times in all.
+/// Returns whether the residual ends at or below tol.
+static int solve_band(bdl_poisson *p, double *r, double *x, double norm_b, double tol,
+                      bdl_poisson_stats *st)
+{
+    const level *L = &p->levels[0];
+    const long n = L->cells;
+    double *dx = p->d;
+    for (int pass = 1; pass <= 3; ++pass) {
+        memcpy(dx, r, (size_t)n * sizeof(double));
+        if (p->singular)
+            dx[0] = 0.0;
+        if (LAPACKE_dpbtrs(LAPACK_COL_MAJOR, 'L', (lapack_int)n, p->kd, 1, p->band, p->kd + 1, dx,
+                           (lapack_int)n) != 0)
+            return 0;
+        for (long i = 0; i < n; ++i)
+            x[i] += dx[i];
+        apply(p, L, dx, p->q);
+        for (long i = 0; i < n; ++i)
+            r[i] -= p->q[i];
+        st->iterations = pass;
+        st->residual = norm_b > 0.0 ? sqrt(dot(r, r, n)) / norm_b : 0.0;
+        if (st->residual <= tol)
+            return 1;
+    }
+    return 0;
+}
+
 int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p_side[6],
                       double tol, int max_iter, bdl_poisson_stats *stats)
 {
@@ -570,7 +673,9 @@ int bdl_poisson_solve(bdl_poisson *p, double *x, const double *f, const double p
         st.residual = norm_b > 0.0 ? sqrt(dot(p->q, p->q, n)) / norm_b : 0.0;
     }
 #endif
-    if (!converged && !uses_hypre(p)) {
+    if (!converged && p->factored)
+        converged = solve_band(p, r, xc, norm_b, tol, &st);
+    if (!converged && !uses_hypre(p) && !p->factored) {
         precondition(p, r, p->z);
         memcpy(p->d, p->z, (size_t)n * sizeof(double));
         double rz = dot(r, p->z, n);

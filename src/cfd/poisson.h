@@ -17,12 +17,15 @@
 #include "cfd/grid.h"
 #include "core/names.h"
 
-/// Who solves it: bedlam's own multigrid-preconditioned CG, or hypre's conjugate gradients
+/// Who solves it: bedlam's own multigrid-preconditioned CG, hypre's conjugate gradients
 /// preconditioned by its structured-grid multigrid PFMG (cfd/poisson_hypre.h; builds with MPI
-/// only).
+/// only), or LAPACK's Cholesky factorisation of the banded matrix (dpbtrf / dpbtrs; cells
+/// numbered x fastest, so the band is the cells of an x row, or of an x-y layer in three
+/// dimensions: for grids that are narrow across x and y).
 #define BDL_PRESSURE_SOLVERS(X)                                                                    \
     X(PRESSURE_MGPCG, "mgpcg", "multigrid-preconditioned CG")                                      \
-    X(PRESSURE_HYPRE, "hypre", "hypre's PFMG-preconditioned CG")
+    X(PRESSURE_HYPRE, "hypre", "hypre's PFMG-preconditioned CG")                                   \
+    X(PRESSURE_DIRECT, "direct", "LAPACK's banded Cholesky")
 BDL_CHOICES(bdl_pressure_solver, BDL_PRESSURE_SOLVERS);
 extern const char *const bdl_pressure_solver_labels[];
 
@@ -30,6 +33,14 @@ extern const char *const bdl_pressure_solver_labels[];
 int bdl_pressure_solver_available(bdl_pressure_solver solver);
 
 typedef struct bdl_poisson bdl_poisson;
+
+/// The largest half-bandwidth the direct solver takes (it costs cells x band^2 a step).
+#define BDL_POISSON_DIRECT_BAND_MAX 1024
+
+/// The half-bandwidth of the direct solver's matrix on grid g: the cells of an x row, or of an
+/// x-y layer where there is more than one cell along z (1 for a single column). -1 where it
+/// cannot be banded: a periodic axis with more than one cell couples the first and last cells.
+int bdl_poisson_direct_band(const bdl_grid *g);
 
 typedef struct bdl_poisson_stats {
     int iterations;

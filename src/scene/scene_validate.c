@@ -499,6 +499,29 @@ static void check_jet(bdl_scene_parser *p, bdl_scene_section *gas)
     }
 }
 
+/// `pressure_solver = direct` on a grid it can band (bdl_poisson_direct_band); says why not.
+static int direct_solver_fits(bdl_scene_parser *p, bdl_scene_section *gas)
+{
+    const bdl_gas_scene *g = &p->scene->gas;
+    if (g->pressure_solver != BDL_PRESSURE_DIRECT)
+        return 1;
+    bdl_grid grid;
+    const int n[3] = {(int)g->cells.x, (int)g->cells.y, (int)g->cells.z};
+    const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {1.0, 1.0, 1.0};
+    bdl_grid_init(&grid, n, lo, hi, p->scene->periodic);
+    const int band = bdl_poisson_direct_band(&grid);
+    if (band >= 0 && band <= BDL_POISSON_DIRECT_BAND_MAX)
+        return 1;
+    char why[160];
+    snprintf(why, sizeof why,
+             band < 0 ? "direct needs no periodic axis of more than one cell; use mgpcg"
+                      : "direct factors a band of %d cells (an x row, or an x-y layer); at most "
+                        "%d: use mgpcg",
+             band, BDL_POISSON_DIRECT_BAND_MAX);
+    fail_at_key(p, gas, "pressure_solver", 0, why);
+    return 0;
+}
+
 /// [gas] and [coupling]: present or not; whole cell counts; inlets with a velocity.
 static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_section *coupling)
 {
@@ -527,6 +550,8 @@ static void check_gas(bdl_scene_parser *p, bdl_scene_section *gas, bdl_scene_sec
                     "libhypre-dev), or use mgpcg");
         return;
     }
+    if (!direct_solver_fits(p, gas))
+        return;
     int inlets = 0;
     for (int side = 0; side < 6; ++side)
         inlets += !p->scene->periodic[side / 2] && g->side[side] == BDL_SIDE_INLET;

@@ -129,6 +129,7 @@ bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, cons
     }
     for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         ok = ok && (s->work[w] = bdl_grid_alloc(gr));
+    ok = ok && (s->free_cells = malloc((size_t)gr->n[0] * gr->n[1] * gr->n[2] * sizeof(long)));
     if (!ok || !s->eps) {
         bdl_solids_destroy(s);
         return BDL_ERR_NOMEM;
@@ -161,6 +162,7 @@ void bdl_solids_destroy(bdl_solids *s)
         free(s->rel[q]);
     for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         free(s->work[w]);
+    free(s->free_cells);
     free(s->kept);
     free(s);
 }
@@ -911,80 +913,84 @@ static double plastic_chord(const bdl_solids *s, long idx, double p, double q)
     return slope;
 }
 
-/// y = M z on the free cells (M the matrix above; slope the cells' chords, w on the faces).
-static void plastic_apply(const bdl_solids *s, const double *slope, const double *z, double *y)
+/// (M z) of the free cell idx (M the matrix above; slope the cells' chords, c the face weights).
+static inline double plastic_row(const bdl_solids *s, const double *slope, const double *z,
+                                 long idx)
 {
     const bdl_grid *gr = &s->grid;
-    FOR_CELLS(gr, {
-        if (!(slope[idx] > 0.0))
+    double sum = z[idx] / slope[idx];
+    for (int a = 0; a < 3; ++a) {
+        if (gr->n[a] == 1) // a period of one cell, or walls on both sides: no flux
             continue;
-        double sum = z[idx] / slope[idx];
-        for (int a = 0; a < 3; ++a) {
-            if (gr->n[a] == 1) // a period of one cell, or walls on both sides: no flux
-                continue;
-            const long sa = gr->stride[a];
-            sum +=
-                s->c[a][idx] * (z[idx] - z[idx - sa]) + s->c[a][idx + sa] * (z[idx] - z[idx + sa]);
-        }
-        y[idx] = sum;
-    });
-}
-
-static double plastic_dot(const bdl_solids *s, const double *slope, const double *x,
-                          const double *y)
-{
-    const bdl_grid *gr = &s->grid;
-    double sum = 0.0;
-    FOR_CELLS(gr, {
-        if (slope[idx] > 0.0)
-            sum += x[idx] * y[idx];
-    });
+        const long sa = gr->stride[a];
+        sum += s->c[a][idx] * (z[idx] - z[idx - sa]) + s->c[a][idx + sa] * (z[idx] - z[idx + sa]);
+    }
     return sum;
 }
 
+/// The free cells (slope > 0) into s->free_cells in the grid's order; returns their count.
+static long list_free_cells(bdl_solids *s, const double *slope)
+{
+    long count = 0;
+    FOR_CELLS(&s->grid, {
+        if (slope[idx] > 0.0)
+            s->free_cells[count++] = idx;
+    });
+    return count;
+}
+
 /// Solves M dz = r on the free cells (slope > 0; dz = 0 on the others) by preconditioned
-/// conjugate gradients and adds dz to z; returns the iterations taken.
+/// conjugate gradients and adds dz to z; returns the iterations taken. The loops run over the
+/// list of free cells, each sum in the grid's order.
 static int plastic_solve(bdl_solids *s, const double *slope, const double *r, double *z)
 {
     const bdl_grid *gr = &s->grid;
     double *res = s->work[4], *pre = s->work[5], *dir = s->work[6], *q = s->work[7];
     double *dz = s->work[10];
+    const long *list = s->free_cells, count = list_free_cells(s, slope);
     memset(dz, 0, (size_t)gr->size * sizeof *dz);
     memset(dir, 0, (size_t)gr->size * sizeof *dir);
-    FOR_CELLS(gr, {
-        const int on = slope[idx] > 0.0;
-        double diag = on ? 1.0 / slope[idx] : 0.0;
+    double rr = 0.0, rz = 0.0;
+    for (long n = 0; n < count; ++n) {
+        const long idx = list[n];
+        double diag = 1.0 / slope[idx];
         for (int a = 0; a < 3; ++a)
-            diag += s->c[a][idx] + s->c[a][idx + gr->stride[a]];
-        pre[idx] = on ? 1.0 / diag : 0.0;
-        res[idx] = on ? r[idx] : 0.0;
+            if (gr->n[a] > 1) // (as plastic_row: no flux along an axis of one cell)
+                diag += s->c[a][idx] + s->c[a][idx + gr->stride[a]];
+        pre[idx] = 1.0 / diag;
+        res[idx] = r[idx];
         dir[idx] = pre[idx] * res[idx];
-    });
-    const double norm0 = sqrt(plastic_dot(s, slope, res, res));
+        rr += res[idx] * res[idx];
+        rz += res[idx] * dir[idx];
+    }
+    const double norm0 = sqrt(rr);
     int it = 0;
-    double rz = plastic_dot(s, slope, res, dir);
     while (norm0 > 0.0 && it < s->def.max_iterations) {
         bdl_grid_wrap_cells_wide(gr, dir);
-        plastic_apply(s, slope, dir, q);
-        const double alpha = rz / plastic_dot(s, slope, dir, q);
-        FOR_CELLS(gr, {
-            if (slope[idx] > 0.0)
-                dz[idx] += alpha * dir[idx], res[idx] -= alpha * q[idx];
-        });
-        ++it;
-        if (sqrt(plastic_dot(s, slope, res, res)) <= s->def.tolerance * norm0)
-            break;
+        double dq = 0.0;
+        for (long n = 0; n < count; ++n) {
+            const long idx = list[n];
+            q[idx] = plastic_row(s, slope, dir, idx);
+            dq += dir[idx] * q[idx];
+        }
+        const double alpha = rz / dq;
         double rz_new = 0.0;
-        FOR_CELLS(gr, {
-            if (slope[idx] > 0.0)
-                rz_new += res[idx] * pre[idx] * res[idx];
-        });
+        rr = 0.0;
+        for (long n = 0; n < count; ++n) {
+            const long idx = list[n];
+            dz[idx] += alpha * dir[idx], res[idx] -= alpha * q[idx];
+            rr += res[idx] * res[idx];
+            rz_new += res[idx] * pre[idx] * res[idx];
+        }
+        ++it;
+        if (sqrt(rr) <= s->def.tolerance * norm0)
+            break;
         const double ratio = rz_new / rz;
         rz = rz_new;
-        FOR_CELLS(gr, {
-            if (slope[idx] > 0.0)
-                dir[idx] = pre[idx] * res[idx] + ratio * dir[idx];
-        });
+        for (long n = 0; n < count; ++n) {
+            const long idx = list[n];
+            dir[idx] = pre[idx] * res[idx] + ratio * dir[idx];
+        }
     }
     FOR_CELLS(gr, z[idx] += dz[idx]);
     bdl_grid_wrap_cells(gr, z);
@@ -999,6 +1005,8 @@ static void plastic_result(bdl_solids *s, const double *star, const double *z, d
     for (int a = 0; a < 3; ++a) {
         const long sa = gr->stride[a];
         memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
+        if (!s->active[a])
+            continue;
         FOR_INNER_FACES(gr, a, s->c[a][idx] = -(z[idx] - z[idx - sa]) / (gr->h[a] * s->a[a][idx]));
         wrap_face(gr, a, s->c[a]);
     }
@@ -1050,11 +1058,12 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
     const int implicit = d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT;
     for (int a = 0; a < 3; ++a) {
         memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
+        if (!s->active[a])
+            continue;
         FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
         wrap_face(gr, a, s->c[a]);
     }
-    plastic_apply(s, slope, z, res);
-    FOR_CELLS(gr, res[idx] = slope[idx] > 0.0 ? r[idx] - res[idx] : 0.0);
+    FOR_CELLS(gr, res[idx] = slope[idx] > 0.0 ? r[idx] - plastic_row(s, slope, z, idx) : 0.0);
     s->stats.iterations += plastic_solve(s, slope, res, z);
     plastic_result(s, star, z, dt, x);
     int changed = 0;
@@ -1153,6 +1162,8 @@ static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt)
         bdl_grid_wrap_cells(gr, s->phase[m].star);
     for (int a = 0; a < 3; ++a) {
         const long sa = gr->stride[a];
+        if (!s->active[a]) // (no correction along it: c is zero)
+            continue;
         for (int m = 0; m < n && n > 1; ++m)
             memset(s->phase[m].cflux[a], 0, (size_t)gr->size * sizeof(double));
         FOR_INNER_FACES(gr, a, {
@@ -1193,17 +1204,37 @@ static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt)
 // ---------------------------------------------------------------------------------------------
 // The step.
 
+/// Whether axis a is inert for the solids and the gas (bdl_gas_axis_inert): its solids
+/// velocities all zero too. Such an axis (the depth of a two-dimensional run) is left out of the
+/// step; its faces' velocities, fluxes and corrections stay zero, as its equations would give.
+static int axis_inert(const bdl_solids *s, const bdl_gas *gas, int a)
+{
+    if (!bdl_gas_axis_inert(gas, a))
+        return 0;
+    for (int m = 0; m < s->count; ++m)
+        for (long i = 0; i < s->grid.size; ++i)
+            if (s->phase[m].v[a][i] != 0.0)
+                return 0;
+    return 1;
+}
+
 bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 {
     const bdl_grid *gr = &s->grid;
+    for (int a = 0; a < 3; ++a)
+        s->active[a] = !axis_inert(s, gas, a);
     for (int m = 0; m < s->count; ++m)
         for (int a = 0; a < 3; ++a) { // the fluxes' images too: the transport reads a period
+            if (!s->active[a])
+                continue;
             velocity_ghosts(gr, a, s->phase[m].v[a]);
             velocity_ghosts(gr, a, s->phase[m].flux[a]);
         }
     bdl_solids_share_voidage(s, gas);
     closures(s, gas, dt);
     for (int a = 0; a < 3; ++a) {
+        if (!s->active[a])
+            continue;
         reset_hooks(s, gas, a);
         for (int m = 0; m < s->count; ++m)
             momentum(s, m, gas, a, dt);
@@ -1212,7 +1243,7 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
     }
     const bdl_result r = bdl_gas_step(gas, dt);
     for (int a = 0; a < 3; ++a)
-        for (int m = 0; m < s->count; ++m)
+        for (int m = 0; m < s->count && s->active[a]; ++m)
             new_velocity(s, m, gas, a);
     for (int m = 0; m < s->count; ++m)
         limit_outflow(s, m, gas, dt);

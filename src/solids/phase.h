@@ -132,7 +132,9 @@ typedef struct bdl_solids {
     /// phase's A with one phase); the correction's weights and then its flux.
     double *a[3], *c[3];
     double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
-    double *kept; ///< the state bdl_solids_keep saved (NULL until it is first called)
+    long *free_cells; ///< the plastic correction's unknowns: their indices, in the grid's order
+    int active[3];    ///< the axes the step moves solids along (the others are inert: all zero)
+    double *kept;     ///< the state bdl_solids_keep saved (NULL until it is first called)
     /// NULL, or a source of granular energy in each cell [W/m^3] with the transport equation
     /// (verification: manufactured solutions).
     double *theta_source;
