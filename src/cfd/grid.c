@@ -3,6 +3,7 @@
 
 #include <limits.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "core/memory.h"
 
@@ -34,26 +35,32 @@ int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double 
 
 double *bdl_grid_alloc(const bdl_grid *g) { return calloc((size_t)g->size, sizeof(double)); }
 
+/// The ghost layers of f along every periodic axis of at least `fewest` cells, from their
+/// images. Along y and z, rows along x are copied whole (the rows are contiguous); each ghost
+/// plane l is filled after plane l - 1, which it reads when the axis has fewer cells than ghosts.
 static void wrap_cells(const bdl_grid *g, double *f, int fewest)
 {
     const int G = BDL_GRID_GHOST;
     for (int a = 0; a < 3; ++a) {
         if (!g->periodic[a] || g->n[a] < fewest)
             continue;
-        const int b = (a + 1) % 3, c = (a + 2) % 3;
         const long sa = g->stride[a];
-        for (int jc = -G; jc < g->n[c] + G; ++jc)
-            for (int jb = -G; jb < g->n[b] + G; ++jb) {
-                int idx[3];
-                idx[a] = 0;
-                idx[b] = jb;
-                idx[c] = jc;
-                long base = bdl_grid_index(g, idx[0], idx[1], idx[2]);
-                for (int l = 1; l <= G; ++l) {
-                    f[base - l * sa] = f[base + (g->n[a] - l) * sa];
-                    f[base + (g->n[a] - 1 + l) * sa] = f[base + (l - 1) * sa];
+        const int n = g->n[a];
+        int lo[3], hi[3]; // the padded positions of the plane at 0 along a (hi exclusive)
+        for (int b = 0; b < 3; ++b)
+            lo[b] = -G, hi[b] = g->n[b] + G;
+        lo[a] = 0, hi[a] = 1;
+        const long row = a == 0 ? 1 : hi[0] - lo[0]; // positions copied at a time
+        for (int k = lo[2]; k < hi[2]; ++k)
+            for (int j = lo[1]; j < hi[1]; ++j)
+                for (int i = lo[0]; i < hi[0]; i += (int)row) {
+                    const long base = bdl_grid_index(g, i, j, k);
+                    const size_t bytes = (size_t)row * sizeof(double);
+                    for (int l = 1; l <= G; ++l) {
+                        memcpy(f + base - l * sa, f + base + (n - l) * sa, bytes);
+                        memcpy(f + base + (n - 1 + l) * sa, f + base + (l - 1) * sa, bytes);
+                    }
                 }
-            }
     }
 }
 
