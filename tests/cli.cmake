@@ -259,3 +259,9 @@ bdl_cli_expect(cli_point_implicit_particles 2
   check ${PROJECT_SOURCE_DIR}/scenes/parcels_bubbling_bed.ini --set gas.convection_step=point_implicit)
 bdl_cli_expect(cli_tfm_elastic 2 "\\[solids\\] restitution = 1: out of range; allowed: \\(0, 1\\)"
   check ${TFM} --set solids.restitution=1)
+bdl_cli_expect(cli_tfm_wave_weight 2
+  "\\[solids\\] wave_weight = 0.3: weighs the pressure waves in the step of kinetic_pressure = implicit"
+  check ${TFM} --set solids.kinetic_pressure=explicit)
+bdl_cli_expect(cli_direct_periodic 2
+  "\\[gas\\] pressure_solver = direct: direct needs no periodic axis of more than one cell"
+  check ${TFM} --set "domain.periodic=x y")

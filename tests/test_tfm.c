@@ -353,7 +353,8 @@ static void test_outflow_limit(void)
 
 /// The stable step of a dense, agitated phase at rest: 0.5 / (c (1/h_x + 1/h_z)), c the speed of
 /// the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) = 2 (1 + e) theta (2 eps
-/// g0 + eps^2 g0'), g0 Carnahan & Starling's.
+/// g0 + eps^2 g0'), g0 Carnahan & Starling's; with the kinetic pressure implicit, c weighted by
+/// wave_weight (none by default).
 static void test_sound_speed(void)
 {
     const bdl_solids_def sd = bdl_default_solids_def();
@@ -372,6 +373,11 @@ static void test_sound_speed(void)
            "(expected %.6g s)\n",
            eps, theta, speed, bdl_solids_stable_dt(c.solids), expect);
     CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect, 1e-5); // (a difference of 1e-6)
+    // The kinetic pressure implicit: the waves count with the weight given (0: not at all).
+    c.solids->def.kinetic_pressure = BDL_KINETIC_PRESSURE_IMPLICIT;
+    CHECK(isinf(bdl_solids_stable_dt(c.solids)));
+    c.solids->def.wave_weight = 0.3;
+    CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect / 0.3, 1e-5);
     column_destroy(&c);
 }
 
@@ -411,17 +417,18 @@ static void test_keep_undo(void)
 /// step finished; with the kinetic pressure implicit fewer than 100 steps retaken (the count is
 /// chaotic: 9 to 57 at Courant numbers 0.47 to 0.53, against 434 when the correction re-chorded
 /// any push). Returns the mean step.
-static double adaptive_bed(bdl_kinetic_pressure kinetic)
+static double adaptive_bed(bdl_kinetic_pressure kinetic, const char *step)
 {
     bdl_world *w = bdl_test_world(
-        "[run]\nend_time = 3\ndt = 5e-3\ngravity = 0 0 -9.81\n"
+        "[run]\nend_time = 3\ngravity = 0 0 -9.81\n%s\n"
         "[domain]\nmin = 0 0 0\nmax = 0.15 0.01 0.45\nperiodic = y\n"
         "[gas]\ncells = 15 1 45\nxmin = wall\nxmax = wall\nzmin = inlet\nzmax = outlet\n"
         "inlet_velocity = 2.56\nconvection = superbee\nconvection_step = point_implicit\n"
         "[solids]\ndiameter = 2.49e-3\ndensity = 2526\nrestitution = 0.97\nbed_height = 0.15\n"
-        "fraction = 0.583\ncourant = 0.5\nkinetic_pressure = %s\n"
+        "fraction = 0.583\nkinetic_pressure = %s\n%s\n"
         "[output]\ndiagnostics_interval = 0.01\n",
-        bdl_kinetic_pressure_names[kinetic]);
+        strstr(step, "wave_weight") ? "dt = 1e-2" : "dt = 5e-3",
+        bdl_kinetic_pressure_names[kinetic], step);
     const double volume = bdl_solids_volume(w->solids, -1);
     double lo = 1.0, hi = 0.0;
     int ok = 1;
@@ -432,10 +439,14 @@ static double adaptive_bed(bdl_kinetic_pressure kinetic)
     }
     const double drift = bdl_solids_volume(w->solids, -1) / volume - 1.0;
     const double mean = w->time / (double)w->step;
-    printf("Goldschmidt bed, 3 s adaptive, kinetic pressure %s: %ld steps of %.3g ms on average, "
-           "%ld retaken, solids fraction %.3g to %.4f, volume drift %.2e\n",
-           bdl_kinetic_pressure_names[kinetic], w->step, 1e3 * mean, w->solids_retakes, lo, hi,
-           drift);
+    char keys[128];
+    snprintf(keys, sizeof keys, "%s", step);
+    for (char *c = keys; *c; ++c)
+        *c = *c == '\n' ? ',' : *c;
+    printf("Goldschmidt bed, 3 s adaptive, kinetic pressure %s (%s): %ld steps of %.3g ms on "
+           "average, %ld retaken, solids fraction %.3g to %.4f, volume drift %.2e\n",
+           bdl_kinetic_pressure_names[kinetic], keys, w->step, 1e3 * mean, w->solids_retakes, lo,
+           hi, drift);
     CHECK(ok);
     CHECK(lo >= -1e-12);
     CHECK(hi <= 0.595);
@@ -450,11 +461,17 @@ static double adaptive_bed(bdl_kinetic_pressure kinetic)
 /// outflow allows: at least 1.5 times the explicit one's mean step (2.14 measured).
 static void test_adaptive_kinetic_pressure(void)
 {
-    const double explicit_step = adaptive_bed(BDL_KINETIC_PRESSURE_EXPLICIT);
-    const double implicit_step = adaptive_bed(BDL_KINETIC_PRESSURE_IMPLICIT);
+    const double explicit_step = adaptive_bed(BDL_KINETIC_PRESSURE_EXPLICIT, "courant = 0.5");
+    const double implicit_step = adaptive_bed(BDL_KINETIC_PRESSURE_IMPLICIT, "courant = 0.5");
     printf("mean step, implicit over explicit kinetic pressure: %.3f\n",
            implicit_step / explicit_step);
     CHECK(implicit_step > 1.5 * explicit_step);
+    // The scene's: the waves weighted 0.3 in a step of Courant number 0.8 and at most 10 ms.
+    const double weighted =
+        adaptive_bed(BDL_KINETIC_PRESSURE_IMPLICIT, "courant = 0.8\nwave_weight = 0.3");
+    printf("mean step, the waves weighted 0.3 at Courant 0.8 over Courant 0.5: %.3f\n",
+           weighted / implicit_step);
+    CHECK(weighted > 1.2 * implicit_step);
 }
 
 int main(void)

@@ -832,6 +832,13 @@ const bdl_scene_key bdl_scene_keys[] = {
             "waves limit the step, dt c / h); implicit: its change over the step solved with the "
             "plastic regime's (backward Euler at the step's temperature), so that only the "
             "solids' outflow limits the step (one phase only)"},
+    {S(SOLIDS), "wave_weight", NUM, "-", IN_SOLIDS(def.wave_weight), .def = {0}, GE(0), LE(1),
+     .doc = "with kinetic_pressure = implicit: the weight w of the kinetic pressure's wave speed "
+            "c beside the outflow in the solids' Courant number dt (v_out + w c) / h, which the "
+            "adaptive step (courant) keeps and a fixed step is checked against (0: left out; 1: "
+            "as with the explicit pressure). The waves are implicit in the fraction, but their "
+            "temperature is the step's start's: a small weight keeps long steps from heating "
+            "dense cells beside bubbles (retakes)"},
     {S(SOLIDS), "wall_restitution", NUM, "-", IN_SOLIDS(def.wall_restitution), .def = {0.6}, GE(0),
      LE(1),
      .doc = "Johnson & Jackson's particle-wall restitution e_w of the walls' energy flux "

@@ -846,7 +846,13 @@ static void check_solids(bdl_scene_parser *p)
                 fail_at_key(p, &p->sections[i], "fields_interval", 0,
                             "the field files average particles, and a solids phase has none (its "
                             "voidage is in the pictures' slice): remove the key");
-    } else
+    } else if (scene->solids.def.wave_weight > 0.0 &&
+               scene->solids.def.kinetic_pressure != BDL_KINETIC_PRESSURE_IMPLICIT)
+        fail_at_key(p, s, "wave_weight", 0,
+                    "weighs the pressure waves in the step of kinetic_pressure = implicit (the "
+                    "explicit pressure counts them whole): set kinetic_pressure = implicit, or "
+                    "remove the key");
+    else
         check_phases(p, s);
 }
 

@@ -43,7 +43,8 @@ static int valid_def(const bdl_solids_def *d)
            d->dilute > 0.0 && d->tolerance > 0.0 && d->max_iterations > 0 &&
            d->phase_friction >= 0.0 && d->specularity >= 0.0 && d->specularity <= 1.0 &&
            d->hindrance >= 0.0 && (unsigned)d->drag < BDL_DRAG_LAW_COUNT &&
-           d->wall_restitution >= 0.0 && d->wall_restitution <= 1.0 &&
+           d->wall_restitution >= 0.0 && d->wall_restitution <= 1.0 && d->wave_weight >= 0.0 &&
+           d->wave_weight <= 1.0 &&
            (d->granular_energy == BDL_GRANULAR_ENERGY_LOCAL ||
             d->granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT) &&
            (d->kinetic_pressure == BDL_KINETIC_PRESSURE_EXPLICIT ||
@@ -1304,7 +1305,9 @@ double bdl_solids_stable_dt(const bdl_solids *s)
     for (int a = 0; a < 3; ++a)
         inv_h += gr->n[a] > 1 ? 1.0 / gr->h[a] : 0.0;
     double out = 0.0; // the largest rate at which a cell's faces carry its solids out [1/s]
-    const int implicit = s->def.kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT;
+    const double waves = s->def.kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT
+                             ? s->def.wave_weight
+                             : 1.0; // the weight of the pressure waves' speed
     for (int m = 0; m < s->count; ++m) {
         const bdl_solids_phase *p = &s->phase[m];
         FOR_CELLS(gr, {
@@ -1313,8 +1316,9 @@ double bdl_solids_stable_dt(const bdl_solids *s)
                 for (int a = 0; a < 3; ++a)
                     rate += (fmax(p->v[a][idx + gr->stride[a]], 0.0) + fmax(-p->v[a][idx], 0.0)) /
                             gr->h[a];
-                if (p->theta[idx] > 0.0 && !implicit)
-                    rate += sound_speed(&p->def, p->eps[idx], s->eps[idx], p->theta[idx]) * inv_h;
+                if (p->theta[idx] > 0.0 && waves > 0.0)
+                    rate += waves * sound_speed(&p->def, p->eps[idx], s->eps[idx], p->theta[idx]) *
+                            inv_h;
                 out = fmax(out, rate);
             }
         });

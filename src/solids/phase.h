@@ -79,6 +79,9 @@ typedef struct bdl_solids_def {
     double wall_restitution; ///< Johnson & Jackson's e_w of the walls' energy flux (transport)
     double hindrance; ///< Gera et al.'s (2004) C1: the drag between phases gains C1 P_plastic
                       ///< [s/m^2] (0: Syamlal's alone)
+    /// With the kinetic pressure implicit, the weight of its waves' speed in the stable step
+    /// (bdl_solids_stable_dt): 0 leaves them out, 1 counts them as the explicit pressure does.
+    double wave_weight;
 } bdl_solids_def;
 
 /// Glass beads of 2.49 mm (Goldschmidt's large particles, Sun 2007 table 5.1), e 0.97,
@@ -188,7 +191,8 @@ void bdl_solids_undo(bdl_solids *s, bdl_gas *gas);
 /// of the faces a cell's solids leave by (the upwind transport keeps eps >= 0 up to twice this)
 /// and c the speed of the viscous regime's pressure waves, c^2 = theta d(k1 eps^2)/d(eps) / rho_s
 /// (the momentum step takes -grad P explicitly; with def.kinetic_pressure implicit the correction
-/// takes its change implicitly, and c is left out). The viscous term and the transport of
+/// takes its change implicitly at the step's temperature, and c counts with def.wave_weight,
+/// 0 by default). The viscous term and the transport of
 /// momentum are point-implicit, the plastic pressure implicit. Cells below the dilute limit do not
 /// count: a step limits their outflow to what they hold (the gas takes the difference). INFINITY
 /// with no such cell.

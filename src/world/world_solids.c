@@ -219,6 +219,13 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
                                m ? "; " : "", 1e3 * p->diameter, p->density, p->restitution,
                                rotation ? " (Jenkins & Zhang's effective)" : "");
     }
+    char pressure[96] = "explicit";
+    if (d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT && d->wave_weight > 0.0)
+        snprintf(pressure, sizeof pressure,
+                 "implicit (with the plastic correction; its waves weighted in the step by %.3g)",
+                 d->wave_weight);
+    else if (d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT)
+        snprintf(pressure, sizeof pressure, "implicit (with the plastic correction)");
     char between[160] = "";
     if (s->count > 1)
         snprintf(between, sizeof between,
@@ -232,9 +239,6 @@ void bdl_world_solids_describe(const bdl_world *w, char *buf, size_t size)
              bdl_drag_law_names[d->drag], between,
              d->granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT ? "by its transport equation"
                                                                  : "balanced in each cell",
-             d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT
-                 ? "implicit (with the plastic correction)"
-                 : "explicit",
-             d->eps_star, d->schaeffer_a, d->schaeffer_n, d->friction_angle, d->mu_max,
+             pressure, d->eps_star, d->schaeffer_a, d->schaeffer_n, d->friction_angle, d->mu_max,
              d->specularity > 0.0 ? "Johnson & Jackson's" : "free-slip", d->specularity, w->dt);
 }
