@@ -131,6 +131,10 @@ static void test_band(void)
     bdl_grid_init(&g, n, lo, hi, walls);
     CHECK(bdl_poisson_direct_band(&g) > BDL_POISSON_DIRECT_BAND_MAX);
     CHECK(bdl_poisson_create_solver(&g, none, BDL_PRESSURE_DIRECT) == NULL);
+    const int deep[3] = {30, 30, 1200}; // a band of 900 over 1.08e6 cells: 8.7e11 a step
+    bdl_grid_init(&g, deep, lo, hi, walls);
+    CHECK_CLOSE(bdl_poisson_direct_cost(&g), 1.08e6 * 900.0 * 900.0, 1.0);
+    CHECK(bdl_poisson_create_solver(&g, none, BDL_PRESSURE_DIRECT) == NULL);
 }
 
 int main(void)

@@ -467,6 +467,8 @@ static const bad_scene bad_scenes[] = {
      "bad.ini:9:", "pressure_solver", "no periodic axis of more than one cell", NULL},
     {MINIMAL "[gas]\ncells = 40 40 2\npressure_solver = direct\n", "bad.ini:13:", "pressure_solver",
      "a band of 1600 cells", NULL},
+    {MINIMAL "[gas]\ncells = 30 30 1200\npressure_solver = direct\n", "bad.ini:13:",
+     "pressure_solver", "a band of 900 cells over 1080000 cells each step, 8.7e+11", NULL},
     {MINIMAL, "--set:", "densty", "did you mean 'density'?", "species.glass.densty=3"},
     {MINIMAL, "--set:", "end_time", "out of range", "run.end_time=-1"},
     {MINIMAL, "--set:", "specis", "did you mean 'species'?", "specis.glass.density=3"},

@@ -73,6 +73,12 @@ int bdl_poisson_direct_band(const bdl_grid *g)
     return g->n[1] > 1 ? g->n[0] : g->n[0] > 1 ? 1 : 0;
 }
 
+double bdl_poisson_direct_cost(const bdl_grid *g)
+{
+    const double band = bdl_poisson_direct_band(g);
+    return (double)g->n[0] * g->n[1] * g->n[2] * band * band;
+}
+
 /// With hypre, the solver's own (1) or bedlam's (0).
 static int uses_hypre(const bdl_poisson *p)
 {
@@ -181,6 +187,7 @@ bdl_poisson *bdl_poisson_create_solver(const bdl_grid *g, const int dirichlet[6]
     if (solver == BDL_PRESSURE_DIRECT) {
         p->kd = bdl_poisson_direct_band(g);
         if (p->kd < 0 || p->kd > BDL_POISSON_DIRECT_BAND_MAX ||
+            bdl_poisson_direct_cost(g) > BDL_POISSON_DIRECT_COST_MAX ||
             !(p->band = malloc((size_t)cells * (size_t)(p->kd + 1) * sizeof(double)))) {
             bdl_poisson_destroy(p);
             return NULL;

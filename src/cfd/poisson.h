@@ -34,13 +34,19 @@ int bdl_pressure_solver_available(bdl_pressure_solver solver);
 
 typedef struct bdl_poisson bdl_poisson;
 
-/// The largest half-bandwidth the direct solver takes (it costs cells x band^2 a step).
+/// The largest half-bandwidth the direct solver takes, and the largest cost of its factorisation
+/// (cells x band^2 multiply-adds, about a second a step at the most; the band's memory, cells x
+/// (band + 1) doubles, stays below 0.1 GB at the largest band).
 #define BDL_POISSON_DIRECT_BAND_MAX 1024
+#define BDL_POISSON_DIRECT_COST_MAX 1e9
 
 /// The half-bandwidth of the direct solver's matrix on grid g: the cells of an x row, or of an
 /// x-y layer where there is more than one cell along z (1 for a single column). -1 where it
 /// cannot be banded: a periodic axis with more than one cell couples the first and last cells.
 int bdl_poisson_direct_band(const bdl_grid *g);
+
+/// The direct solver's factorisation on grid g: cells x band^2 multiply-adds (when it bands).
+double bdl_poisson_direct_cost(const bdl_grid *g);
 
 typedef struct bdl_poisson_stats {
     int iterations;

@@ -657,7 +657,7 @@ const bdl_scene_key bdl_scene_keys[] = {
             "preconditioned by its PFMG multigrid; builds with -DBDL_WITH_MPI=ON) or direct "
             "(LAPACK's banded Cholesky, refactored every step: fastest on narrow grids such as "
             "pseudo-2D beds; no periodic axis of more than one cell, an x row or x-y layer of "
-            "at most 1024 cells)"},
+            "at most 1024 cells, cells x band^2 at most 1e9)"},
     GAS_SIDE("xmin", 0),
     GAS_SIDE("xmax", 1),
     GAS_SIDE("ymin", 2),

@@ -510,14 +510,22 @@ static int direct_solver_fits(bdl_scene_parser *p, bdl_scene_section *gas)
     const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {1.0, 1.0, 1.0};
     bdl_grid_init(&grid, n, lo, hi, p->scene->periodic);
     const int band = bdl_poisson_direct_band(&grid);
-    if (band >= 0 && band <= BDL_POISSON_DIRECT_BAND_MAX)
+    const double cost = bdl_poisson_direct_cost(&grid);
+    if (band >= 0 && band <= BDL_POISSON_DIRECT_BAND_MAX && cost <= BDL_POISSON_DIRECT_COST_MAX)
         return 1;
-    char why[160];
-    snprintf(why, sizeof why,
-             band < 0 ? "direct needs no periodic axis of more than one cell; use mgpcg"
-                      : "direct factors a band of %d cells (an x row, or an x-y layer); at most "
-                        "%d: use mgpcg",
-             band, BDL_POISSON_DIRECT_BAND_MAX);
+    char why[200];
+    if (band < 0)
+        snprintf(why, sizeof why, "direct needs no periodic axis of more than one cell; use mgpcg");
+    else if (band > BDL_POISSON_DIRECT_BAND_MAX)
+        snprintf(why, sizeof why,
+                 "direct factors a band of %d cells (an x row, or an x-y layer); at most %d: use "
+                 "mgpcg",
+                 band, BDL_POISSON_DIRECT_BAND_MAX);
+    else
+        snprintf(why, sizeof why,
+                 "direct factors a band of %d cells over %.0f cells each step, %.2g "
+                 "multiply-adds; at most %.0e: use mgpcg",
+                 band, cost / ((double)band * band), cost, BDL_POISSON_DIRECT_COST_MAX);
     fail_at_key(p, gas, "pressure_solver", 0, why);
     return 0;
 }
