@@ -315,7 +315,9 @@ static int factor_band(bdl_poisson *p)
         memset(p->band, 0, (size_t)ld * sizeof(double));
         p->band[0] = 1.0;
     }
-    return LAPACKE_dpbtrf(LAPACK_COL_MAJOR, 'L', (lapack_int)L->cells, p->kd, p->band, ld) == 0;
+    // (the _work forms: LAPACKE's others scan the whole band for NaN first, every call)
+    return LAPACKE_dpbtrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)L->cells, p->kd, p->band, ld) ==
+           0;
 }
 
 void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
@@ -633,8 +635,8 @@ static int solve_band(bdl_poisson *p, double *r, double *x, double norm_b, doubl
         memcpy(dx, r, (size_t)n * sizeof(double));
         if (p->singular)
             dx[0] = 0.0;
-        if (LAPACKE_dpbtrs(LAPACK_COL_MAJOR, 'L', (lapack_int)n, p->kd, 1, p->band, p->kd + 1, dx,
-                           (lapack_int)n) != 0)
+        if (LAPACKE_dpbtrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, p->kd, 1, p->band, p->kd + 1,
+                                dx, (lapack_int)n) != 0)
             return 0;
         for (long i = 0; i < n; ++i)
             x[i] += dx[i];

@@ -6,6 +6,7 @@
 
 #include "analysis/fields.h"
 #include "cfd/grid.h"
+#include "cfd/poisson.h"
 #include "core/memory.h"
 #include "couple/coupling.h"
 #include "dem/create.h"
@@ -64,6 +65,16 @@ static double gas_cells(const bdl_scene *s)
     for (int a = 0; a < 3; ++a)
         cells *= bdl_v3_comp(s->gas.cells, a) + 2 * BDL_GRID_GHOST + 1;
     return cells;
+}
+
+/// The direct pressure solver's band: band + 1 doubles a cell (cfd/poisson.h).
+static double direct_band_bytes(const bdl_scene *s)
+{
+    if (!s->gas.enabled || s->gas.pressure_solver != BDL_PRESSURE_DIRECT)
+        return 0.0;
+    const bdl_vec3 n = s->gas.cells;
+    const double band = n.z > 1.0 ? n.x * n.y : n.y > 1.0 ? n.x : n.x > 1.0 ? 1.0 : 0.0;
+    return n.x * n.y * n.z * (band + 1.0) * sizeof(double);
 }
 
 /// Frames: three RGB buffers, the multisampled colour and depth, and the resolved image.
@@ -125,7 +136,7 @@ void bdl_budget_estimate(const bdl_world *w, bdl_budget *b)
         b->particle_bytes += creator_bytes(s, b, c);
     }
     b->gas_cells = gas_cells(s);
-    b->gas_bytes = b->gas_cells * BUDGET_GAS_CELL;
+    b->gas_bytes = b->gas_cells * BUDGET_GAS_CELL + direct_band_bytes(s);
     b->image_bytes = frame_bytes(&s->output);
     for (int k = 0; k < s->dia_count; ++k)
         b->image_bytes += camera_bytes(&s->dias[k]);
