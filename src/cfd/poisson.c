@@ -63,20 +63,20 @@ int bdl_pressure_solver_available(bdl_pressure_solver solver)
 #endif
 }
 
-int bdl_poisson_direct_band(const bdl_grid *g)
+int bdl_poisson_direct_band(const int n[3], const int periodic[3])
 {
     for (int a = 0; a < 3; ++a)
-        if (g->periodic[a] && g->n[a] > 1)
+        if (periodic[a] && n[a] > 1)
             return -1;
-    if (g->n[2] > 1)
-        return g->n[0] * g->n[1];
-    return g->n[1] > 1 ? g->n[0] : g->n[0] > 1 ? 1 : 0;
+    if (n[2] > 1)
+        return n[0] * n[1];
+    return n[1] > 1 ? n[0] : n[0] > 1 ? 1 : 0;
 }
 
-double bdl_poisson_direct_cost(const bdl_grid *g)
+double bdl_poisson_direct_cost(const int n[3], const int periodic[3])
 {
-    const double band = bdl_poisson_direct_band(g);
-    return (double)g->n[0] * g->n[1] * g->n[2] * band * band;
+    const double band = bdl_poisson_direct_band(n, periodic);
+    return (double)n[0] * n[1] * n[2] * band * band;
 }
 
 /// With hypre, the solver's own (1) or bedlam's (0).
@@ -185,9 +185,9 @@ bdl_poisson *bdl_poisson_create_solver(const bdl_grid *g, const int dirichlet[6]
     p->r = calloc((size_t)cells, sizeof(double));
     p->zeros = calloc((size_t)g->n[0] + 1, sizeof(double));
     if (solver == BDL_PRESSURE_DIRECT) {
-        p->kd = bdl_poisson_direct_band(g);
+        p->kd = bdl_poisson_direct_band(g->n, g->periodic);
         if (p->kd < 0 || p->kd > BDL_POISSON_DIRECT_BAND_MAX ||
-            bdl_poisson_direct_cost(g) > BDL_POISSON_DIRECT_COST_MAX ||
+            bdl_poisson_direct_cost(g->n, g->periodic) > BDL_POISSON_DIRECT_COST_MAX ||
             !(p->band = malloc((size_t)cells * (size_t)(p->kd + 1) * sizeof(double)))) {
             bdl_poisson_destroy(p);
             return NULL;

@@ -40,13 +40,14 @@ typedef struct bdl_poisson bdl_poisson;
 #define BDL_POISSON_DIRECT_BAND_MAX 1024
 #define BDL_POISSON_DIRECT_COST_MAX 1e9
 
-/// The half-bandwidth of the direct solver's matrix on grid g: the cells of an x row, or of an
-/// x-y layer where there is more than one cell along z (1 for a single column). -1 where it
-/// cannot be banded: a periodic axis with more than one cell couples the first and last cells.
-int bdl_poisson_direct_band(const bdl_grid *g);
+/// The half-bandwidth of the direct solver's matrix on a grid of n cells: the cells of an x row,
+/// or of an x-y layer where there is more than one cell along z (1 for a single column). -1
+/// where it cannot be banded: a periodic axis with more than one cell couples the first and last
+/// cells.
+int bdl_poisson_direct_band(const int n[3], const int periodic[3]);
 
-/// The direct solver's factorisation on grid g: cells x band^2 multiply-adds (when it bands).
-double bdl_poisson_direct_cost(const bdl_grid *g);
+/// The direct solver's factorisation: cells x band^2 multiply-adds (when it bands).
+double bdl_poisson_direct_cost(const int n[3], const int periodic[3]);
 
 typedef struct bdl_poisson_stats {
     int iterations;

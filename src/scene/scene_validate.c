@@ -505,12 +505,9 @@ static int direct_solver_fits(bdl_scene_parser *p, bdl_scene_section *gas)
     const bdl_gas_scene *g = &p->scene->gas;
     if (g->pressure_solver != BDL_PRESSURE_DIRECT)
         return 1;
-    bdl_grid grid;
     const int n[3] = {(int)g->cells.x, (int)g->cells.y, (int)g->cells.z};
-    const double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {1.0, 1.0, 1.0};
-    bdl_grid_init(&grid, n, lo, hi, p->scene->periodic);
-    const int band = bdl_poisson_direct_band(&grid);
-    const double cost = bdl_poisson_direct_cost(&grid);
+    const int band = bdl_poisson_direct_band(n, p->scene->periodic);
+    const double cost = bdl_poisson_direct_cost(n, p->scene->periodic);
     if (band >= 0 && band <= BDL_POISSON_DIRECT_BAND_MAX && cost <= BDL_POISSON_DIRECT_COST_MAX)
         return 1;
     char why[200];

@@ -72,9 +72,9 @@ static double direct_band_bytes(const bdl_scene *s)
 {
     if (!s->gas.enabled || s->gas.pressure_solver != BDL_PRESSURE_DIRECT)
         return 0.0;
-    const bdl_vec3 n = s->gas.cells;
-    const double band = n.z > 1.0 ? n.x * n.y : n.y > 1.0 ? n.x : n.x > 1.0 ? 1.0 : 0.0;
-    return n.x * n.y * n.z * (band + 1.0) * sizeof(double);
+    const int n[3] = {(int)s->gas.cells.x, (int)s->gas.cells.y, (int)s->gas.cells.z};
+    const int band = bdl_poisson_direct_band(n, s->periodic);
+    return band < 0 ? 0.0 : (double)n[0] * n[1] * n[2] * (band + 1.0) * sizeof(double);
 }
 
 /// Frames: three RGB buffers, the multisampled colour and depth, and the resolved image.
