@@ -10,67 +10,10 @@
 
 #include "cfd/gas.h"
 #include "check.h"
+#include "poisson_known.h"
 #include "core/comm.h"
 #include "scene/scene.h"
 #include "world/world.h"
-
-/// Solves a problem of known solution with `solver`; returns max |x - exact| / max |exact| (the
-/// means removed when singular) and the iterations.
-static double recover(const int n[3], const int periodic[3], const int dirichlet[6], int singular,
-                      bdl_pressure_solver solver, double *x_out, int *iterations)
-{
-    const double lo[3] = {0, 0, 0}, hi[3] = {1.0, 0.7, 0.4};
-    const double p_side[6] = {0, 0, 0, 0, 0.5, 1.5};
-    bdl_grid g;
-    bdl_grid_init(&g, n, lo, hi, periodic);
-    bdl_poisson *p = bdl_poisson_create_solver(&g, dirichlet, solver);
-    CHECK(p != NULL);
-    double *c[3], *x = bdl_grid_alloc(&g), *f = bdl_grid_alloc(&g), *exact = bdl_grid_alloc(&g),
-                  *r = bdl_grid_alloc(&g);
-    for (int a = 0; a < 3; ++a) {
-        c[a] = bdl_grid_alloc(&g);
-        for (long i = 0; i < g.size; ++i) // a factor of 20, as eps^2 dt / rho across a bed
-            c[a][i] = 0.05 + 0.95 * (0.5 + 0.5 * sin(0.37 * (double)i + a));
-    }
-    bdl_poisson_set_coefficients(p, c);
-    double mean_exact = 0.0, mean_x = 0.0, cells = (double)n[0] * n[1] * n[2];
-    for (int k = 0; k < n[2]; ++k)
-        for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i) {
-                const long idx = bdl_grid_index(&g, i, j, k);
-                exact[idx] = cos(2.1 * i / n[0]) * sin(3.3 * j / n[1] + 0.2) + 0.3 * k / n[2];
-                mean_exact += exact[idx] / cells;
-            }
-    bdl_poisson_residual(p, exact, f, p_side, r); // f = 0 here: r = -div(c grad exact)
-    for (long i = 0; i < g.size; ++i)
-        f[i] = -r[i];
-    bdl_poisson_stats st;
-    CHECK(bdl_poisson_solve(p, x, f, p_side, 1e-12, 500, &st));
-    *iterations = st.iterations;
-    for (int k = 0; k < n[2]; ++k)
-        for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i)
-                mean_x += x[bdl_grid_index(&g, i, j, k)] / cells;
-    double err = 0.0, scale = 0.0;
-    long m = 0;
-    for (int k = 0; k < n[2]; ++k)
-        for (int j = 0; j < n[1]; ++j)
-            for (int i = 0; i < n[0]; ++i, ++m) {
-                const long idx = bdl_grid_index(&g, i, j, k);
-                const double xi = singular ? x[idx] - mean_x + mean_exact : x[idx];
-                err = fmax(err, fabs(xi - exact[idx]));
-                scale = fmax(scale, fabs(exact[idx]));
-                x_out[m] = xi;
-            }
-    bdl_poisson_destroy(p);
-    for (int a = 0; a < 3; ++a)
-        free(c[a]);
-    free(x);
-    free(f);
-    free(exact);
-    free(r);
-    return err / scale;
-}
 
 static void known_solutions(void)
 {
@@ -88,11 +31,12 @@ static void known_solutions(void)
         const int *n = cases[c].n;
         const long cells = (long)n[0] * n[1] * n[2];
         double *xm = malloc((size_t)cells * sizeof *xm), *xh = malloc((size_t)cells * sizeof *xh);
-        int im = 0, ih = 0;
-        const double em = recover(n, cases[c].periodic, cases[c].dirichlet, cases[c].singular,
-                                  BDL_PRESSURE_MGPCG, xm, &im);
-        const double eh = recover(n, cases[c].periodic, cases[c].dirichlet, cases[c].singular,
-                                  BDL_PRESSURE_HYPRE, xh, &ih);
+        bdl_poisson_stats sm = {0}, sh = {0};
+        const double em = poisson_known_solution(n, cases[c].periodic, cases[c].dirichlet,
+                                                 cases[c].singular, BDL_PRESSURE_MGPCG, xm, &sm);
+        const double eh = poisson_known_solution(n, cases[c].periodic, cases[c].dirichlet,
+                                                 cases[c].singular, BDL_PRESSURE_HYPRE, xh, &sh);
+        const int im = sm.iterations, ih = sh.iterations;
         double diff = 0.0;
         for (long i = 0; i < cells; ++i)
             diff = fmax(diff, fabs(xm[i] - xh[i]));
