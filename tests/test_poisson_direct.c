@@ -1,4 +1,4 @@
-// The direct pressure solver (`[gas] pressure_solver = direct`, LAPACK's banded Cholesky) on
+// The direct pressure solver (`[gas] pressure_solver = direct`, a banded Cholesky) on
 // known discrete solutions: Dirichlet and Neumann (singular) sides, a grid one cell deep across a
 // period, a column, a three-dimensional grid, beside bedlam's multigrid CG on the same matrix;
 // then its band and the grids it refuses.

@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake pkg-config libinih-dev libsdl2-dev libegl-dev libosmesa6-dev
-          libpng-dev libcglm-dev libfftw3-dev liblapacke-dev libfreetype-dev fonts-dejavu-core xvfb xauth
+          libpng-dev libcglm-dev libfftw3-dev libfreetype-dev fonts-dejavu-core xvfb xauth
           gnuplot-nox python3)
 missing=()
 for p in "${packages[@]}"; do

@@ -10,7 +10,6 @@
 #include "cfd/poisson_hypre.h"
 #endif
 
-#include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,7 +39,7 @@ struct bdl_poisson {
     double *d, *q, *z; ///< CG vectors on the finest level
     double *xc, *r;    ///< solution and residual on the finest level
     double *zeros;     ///< a row of zero couplings (n[0] + 1)
-    /// The direct solver: M's lower band (LAPACK's band storage, kd + 1 rows a cell), factored
+    /// The direct solver: M's lower band (band_cholesky's storage, kd + 1 rows a cell), factored
     /// by the last bdl_poisson_set_coefficients when `factored` (otherwise the multigrid's
     /// levels are built and CG solves).
     double *band;
@@ -287,6 +286,54 @@ static void restrict_couplings(const level *F, level *C)
     }
 }
 
+/// The Cholesky factor L (M = L L^T) of the symmetric band matrix of n rows and half-bandwidth
+/// kd in place, lower band storage: column j holds rows j to j + kd, entry (i, j) at
+/// a[j (kd + 1) + i - j] (LAPACK's layout for dpbtrf). Column by column: its diagonal's square
+/// root, the column scaled by it, and its outer product taken from the columns to its right.
+/// Returns 0 when a pivot is not positive (M not positive definite).
+static int band_cholesky(double *a, long n, int kd)
+{
+    const int ld = kd + 1;
+    for (long j = 0; j < n; ++j) {
+        double *cj = a + j * ld;
+        if (!(cj[0] > 0.0))
+            return 0;
+        const double d = sqrt(cj[0]), inv = 1.0 / d;
+        cj[0] = d;
+        const int m = (int)(kd < n - 1 - j ? kd : n - 1 - j);
+        for (int i = 1; i <= m; ++i)
+            cj[i] *= inv;
+        for (int i = 1; i <= m; ++i) {
+            double *ci = a + (j + i) * ld; // column j + i: rows j + i to j + m here
+            const double f = cj[i];
+            for (int l = i; l <= m; ++l)
+                ci[l - i] -= f * cj[l];
+        }
+    }
+    return 1;
+}
+
+/// Solves L L^T x = b in place with the factor of band_cholesky.
+static void band_solve(const double *a, long n, int kd, double *b)
+{
+    const int ld = kd + 1;
+    for (long j = 0; j < n; ++j) { // L y = b
+        const double *cj = a + j * ld;
+        const int m = (int)(kd < n - 1 - j ? kd : n - 1 - j);
+        b[j] /= cj[0];
+        for (int i = 1; i <= m; ++i)
+            b[j + i] -= cj[i] * b[j];
+    }
+    for (long j = n - 1; j >= 0; --j) { // L^T x = y
+        const double *cj = a + j * ld;
+        const int m = (int)(kd < n - 1 - j ? kd : n - 1 - j);
+        double sum = b[j];
+        for (int i = 1; i <= m; ++i)
+            sum -= cj[i] * b[j + i];
+        b[j] = sum / cj[0];
+    }
+}
+
 /// M of the finest level into the band (column c holds rows c to c + kd) and its Cholesky
 /// factors; returns whether M was positive definite. Without a Dirichlet side cell 0 is pinned
 /// (its row and column the identity's): the rest of the system holds the solution that is zero
@@ -315,9 +362,7 @@ static int factor_band(bdl_poisson *p)
         memset(p->band, 0, (size_t)ld * sizeof(double));
         p->band[0] = 1.0;
     }
-    // (the _work forms: LAPACKE's others scan the whole band for NaN first, every call)
-    return LAPACKE_dpbtrf_work(LAPACK_COL_MAJOR, 'L', (lapack_int)L->cells, p->kd, p->band, ld) ==
-           0;
+    return band_cholesky(p->band, L->cells, p->kd);
 }
 
 void bdl_poisson_set_coefficients(bdl_poisson *p, double *const c[3])
@@ -635,9 +680,7 @@ static int solve_band(bdl_poisson *p, double *r, double *x, double norm_b, doubl
         memcpy(dx, r, (size_t)n * sizeof(double));
         if (p->singular)
             dx[0] = 0.0;
-        if (LAPACKE_dpbtrs_work(LAPACK_COL_MAJOR, 'L', (lapack_int)n, p->kd, 1, p->band, p->kd + 1,
-                                dx, (lapack_int)n) != 0)
-            return 0;
+        band_solve(p->band, n, p->kd, dx);
         for (long i = 0; i < n; ++i)
             x[i] += dx[i];
         apply(p, L, dx, p->q);

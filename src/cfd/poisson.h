@@ -19,13 +19,13 @@
 
 /// Who solves it: bedlam's own multigrid-preconditioned CG, hypre's conjugate gradients
 /// preconditioned by its structured-grid multigrid PFMG (cfd/poisson_hypre.h; builds with MPI
-/// only), or LAPACK's Cholesky factorisation of the banded matrix (dpbtrf / dpbtrs; cells
-/// numbered x fastest, so the band is the cells of an x row, or of an x-y layer in three
-/// dimensions: for grids that are narrow across x and y).
+/// only), or the Cholesky factorisation of the banded matrix (cells numbered x fastest, so the
+/// band is the cells of an x row, or of an x-y layer in three dimensions: for grids that are
+/// narrow across x and y).
 #define BDL_PRESSURE_SOLVERS(X)                                                                    \
     X(PRESSURE_MGPCG, "mgpcg", "multigrid-preconditioned CG")                                      \
     X(PRESSURE_HYPRE, "hypre", "hypre's PFMG-preconditioned CG")                                   \
-    X(PRESSURE_DIRECT, "direct", "LAPACK's banded Cholesky")
+    X(PRESSURE_DIRECT, "direct", "banded Cholesky")
 BDL_CHOICES(bdl_pressure_solver, BDL_PRESSURE_SOLVERS);
 extern const char *const bdl_pressure_solver_labels[];
 

@@ -653,11 +653,12 @@ const bdl_scene_key bdl_scene_keys[] = {
             "chooses the division that balances the particles, then the least cut area"},
     {S(GAS), "pressure_solver", .type = BDL_KEY_ENUM, "-", IN_GAS(pressure_solver),
      .def = {BDL_PRESSURE_MGPCG}, .enum_names = bdl_pressure_solver_names,
-     .doc = "mgpcg (bedlam's multigrid-preconditioned conjugate gradients), hypre (hypre's CG "
-            "preconditioned by its PFMG multigrid; builds with -DBDL_WITH_MPI=ON) or direct "
-            "(LAPACK's banded Cholesky, refactored every step: fastest on narrow grids such as "
-            "pseudo-2D beds; no periodic axis of more than one cell, an x row or x-y layer of "
-            "at most 1024 cells, cells x band^2 at most 1e9)"},
+     .doc =
+         "mgpcg (bedlam's multigrid-preconditioned conjugate gradients), hypre (hypre's CG "
+         "preconditioned by its PFMG multigrid; builds with -DBDL_WITH_MPI=ON) or direct "
+         "(a banded Cholesky factorisation, refactored every step: fastest on narrow grids such as "
+         "pseudo-2D beds; no periodic axis of more than one cell, an x row or x-y layer of "
+         "at most 1024 cells, cells x band^2 at most 1e9)"},
     GAS_SIDE("xmin", 0),
     GAS_SIDE("xmax", 1),
     GAS_SIDE("ymin", 2),
