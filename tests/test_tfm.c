@@ -372,12 +372,12 @@ static void test_sound_speed(void)
     printf("pressure waves at eps %.2f, theta %.2f m^2/s^2: c = %.4f m/s, stable step %.6g s "
            "(expected %.6g s)\n",
            eps, theta, speed, bdl_solids_stable_dt(c.solids), expect);
-    CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect, 1e-5); // (a difference of 1e-6)
+    CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect, 1e-12);
     // The kinetic pressure implicit: the waves count with the weight given (0: not at all).
     c.solids->def.kinetic_pressure = BDL_KINETIC_PRESSURE_IMPLICIT;
     CHECK(isinf(bdl_solids_stable_dt(c.solids)));
     c.solids->def.wave_weight = 0.3;
-    CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect / 0.3, 1e-5);
+    CHECK_CLOSE(bdl_solids_stable_dt(c.solids), expect / 0.3, 1e-12);
     column_destroy(&c);
 }
 
@@ -451,8 +451,10 @@ static double adaptive_bed(bdl_kinetic_pressure kinetic, const char *step)
     CHECK(lo >= -1e-12);
     CHECK(hi <= 0.595);
     CHECK(fabs(drift) < 1e-12);
-    // the implicit correction settles: 9 to 57 steps retaken (434 when it re-chorded any push)
-    CHECK(kinetic == BDL_KINETIC_PRESSURE_EXPLICIT || w->solids_retakes < 80);
+    // The implicit correction settles. The count of retaken steps is chaotic: 34 to 113 of about
+    // 1000 (up to 11 %) over changes at round-off level (the temperature's root found to 1e-7,
+    // 1e-9 and 1e-11); 434 when the correction re-chorded any push.
+    CHECK(kinetic == BDL_KINETIC_PRESSURE_EXPLICIT || w->solids_retakes < 0.15 * w->step);
     bdl_world_destroy(w);
     return mean;
 }

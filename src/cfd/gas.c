@@ -1,4 +1,5 @@
 // bedlam — gas solver: boundary ghosts, TVD convection, projection with implicit drag.
+#include "core/minmax.h"
 #include "core/parallel.h"
 #include "cfd/gas.h"
 
@@ -171,21 +172,12 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
         const long s = gr->stride[b];
         const int n = gr->n[b];
         if (gr->periodic[b]) {
-            if (b == a) {
-                BDL_GRID_FOR_PLANE(gr, b, 0, {
-                    u[idx + n * s] = u[idx];
-                    for (int l = 1; l <= G; ++l) {
-                        u[idx - l * s] = u[idx + (n - l) * s];
-                        u[idx + (n + l) * s] = u[idx + l * s];
-                    }
-                });
-            } else {
-                BDL_GRID_FOR_PLANE(gr, b, 0, {
-                    for (int l = 1; l <= G; ++l) {
-                        u[idx - l * s] = u[idx + (n - l) * s];
-                        u[idx + (n - 1 + l) * s] = u[idx + (l - 1) * s];
-                    }
-                });
+            const int last = b == a ? n : n - 1; // the plane holding the image of plane 0
+            if (b == a)
+                bdl_grid_copy_plane(gr, u, b, n, 0);
+            for (int l = 1; l <= G; ++l) {
+                bdl_grid_copy_plane(gr, u, b, -l, n - l);
+                bdl_grid_copy_plane(gr, u, b, last + l, last + l - n);
             }
             continue;
         }
@@ -252,7 +244,7 @@ static double face_value(bdl_convection scheme, double q, double m2, double m1, 
         return c;
     double r = (c - up) / delta, psi;
     if (scheme == BDL_CONVECTION_SUPERBEE)
-        psi = fmax(0.0, fmax(fmin(2.0 * r, 1.0), fmin(r, 2.0)));
+        psi = bdl_max(0.0, bdl_max(bdl_min(2.0 * r, 1.0), bdl_min(r, 2.0)));
     else
         psi = (r + fabs(r)) / (1.0 + fabs(r));
     return c + 0.5 * psi * delta;
@@ -291,7 +283,7 @@ static convection_terms convection(const bdl_gas *g, int a, long idx, const doub
         double flo = qlo * face_value(sc, qlo, u[idx - 2 * s], um, u0, up);
         t.value += (fhi - flo) / gr->h[b];
         t.upwind += (qhi * (qhi >= 0.0 ? u0 : up) - qlo * (qlo >= 0.0 ? um : u0)) / gr->h[b];
-        t.out += (fmax(qhi, 0.0) + fmax(-qlo, 0.0)) / gr->h[b];
+        t.out += (bdl_max(qhi, 0.0) + bdl_max(-qlo, 0.0)) / gr->h[b];
     }
     return t;
 }
@@ -395,7 +387,7 @@ static void predict(bdl_gas *g, double *const q[3], const int active[3], double 
             if (implicit) { // out u* - inflows, the correction explicit (gas.h)
                 const double c = dt * ct.out / e1;
                 A += rho * ct.out;
-                conv = ct.upwind - ct.out * u[idx] + (ct.value - ct.upwind) * fmin(1.0, 1.0 / c);
+                conv = ct.upwind - ct.out * u[idx] + (ct.value - ct.upwind) * bdl_min(1.0, 1.0 / c);
             }
             double r = rho * e0 * u[idx] / dt - rho * conv + mu * e0 * laplacian(gr, idx, u) +
                        e1 * rho * g->def.gravity[a] + bv + g->source[a][idx];
@@ -415,15 +407,13 @@ static void boundary_faces(bdl_gas *g, double dt)
         const int n = gr->n[a];
         const double h = gr->h[a];
         if (periodic_axis(g, a)) {
-            BDL_GRID_FOR_PLANE(gr, a, 0, {
-                g->ustar[a][idx + n * s] = g->ustar[a][idx];
-                g->d[a][idx + n * s] = g->d[a][idx];
-                if (g->flux_u[a]) {
-                    g->flux_u[a][idx + n * s] = g->flux_u[a][idx];
-                    g->flux_p[a][idx + n * s] = g->flux_p[a][idx];
-                    g->flux_0[a][idx + n * s] = g->flux_0[a][idx];
-                }
-            });
+            bdl_grid_copy_plane(gr, g->ustar[a], a, n, 0);
+            bdl_grid_copy_plane(gr, g->d[a], a, n, 0);
+            if (g->flux_u[a]) {
+                bdl_grid_copy_plane(gr, g->flux_u[a], a, n, 0);
+                bdl_grid_copy_plane(gr, g->flux_p[a], a, n, 0);
+                bdl_grid_copy_plane(gr, g->flux_0[a], a, n, 0);
+            }
             continue;
         }
         for (int side = 0; side < 2; ++side) {
@@ -512,12 +502,11 @@ static void correct(bdl_gas *g, const int active[3], const double p_side[6])
             if (g->grad_p[a])
                 g->grad_p[a][idx] = grad;
         });
-        if (periodic)
-            BDL_GRID_FOR_PLANE(gr, a, 0, {
-                u[idx + n * s] = u[idx];
-                if (g->grad_p[a])
-                    g->grad_p[a][idx + n * s] = g->grad_p[a][idx];
-            });
+        if (periodic) {
+            bdl_grid_copy_plane(gr, u, a, n, 0);
+            if (g->grad_p[a])
+                bdl_grid_copy_plane(gr, g->grad_p[a], a, n, 0);
+        }
     }
 }
 
@@ -568,11 +557,18 @@ int bdl_gas_axis_inert(const bdl_gas *g, int a)
 
 bdl_result bdl_gas_step(bdl_gas *g, double dt)
 {
-    bdl_grid_extend_cells(&g->grid, g->eps);
-    bdl_grid_extend_cells(&g->grid, g->eps_old);
     int active[3]; // the axes whose velocities are stepped (bdl_gas_axis_inert: the others stay 0)
     for (int a = 0; a < 3; ++a)
-        if ((active[a] = !bdl_gas_axis_inert(g, a)))
+        active[a] = !bdl_gas_axis_inert(g, a);
+    return bdl_gas_step_axes(g, dt, active);
+}
+
+bdl_result bdl_gas_step_axes(bdl_gas *g, double dt, const int active[3])
+{
+    bdl_grid_extend_cells(&g->grid, g->eps);
+    bdl_grid_extend_cells(&g->grid, g->eps_old);
+    for (int a = 0; a < 3; ++a)
+        if (active[a])
             velocity_ghosts(g, a, g->u[a], g->eps_old);
     double *q[3] = {g->coef[0], g->coef[1], g->coef[2]};
     face_fluxes(g, q);

@@ -146,6 +146,11 @@ void bdl_gas_destroy(bdl_gas *g);
 /// pressure solver did not converge or a velocity is not finite.
 bdl_result bdl_gas_step(bdl_gas *g, double dt);
 
+/// bdl_gas_step with the axes whose velocities are stepped given: active[a] may be 0 only where
+/// bdl_gas_axis_inert(g, a) holds (1 is always safe: an inert axis's equations give zero). For
+/// a caller that has checked the axes already.
+bdl_result bdl_gas_step_axes(bdl_gas *g, double dt, const int active[3]);
+
 /// Sets the superficial velocity of every inlet side and of its jet patch [m/s] (live changes:
 /// a velocity sweep, a command).
 void bdl_gas_set_inflow(bdl_gas *g, double inflow, double jet_inflow);

@@ -68,6 +68,23 @@ void bdl_grid_wrap_cells(const bdl_grid *g, double *f) { wrap_cells(g, f, 1); }
 
 void bdl_grid_wrap_cells_wide(const bdl_grid *g, double *f) { wrap_cells(g, f, 2); }
 
+void bdl_grid_copy_plane(const bdl_grid *g, double *f, int a, int to, int from)
+{
+    const int G = BDL_GRID_GHOST;
+    const long shift = (long)(to - from) * g->stride[a];
+    int lo[3], hi[3]; // the padded positions of the plane at `from` (hi inclusive)
+    for (int b = 0; b < 3; ++b)
+        lo[b] = -G, hi[b] = g->n[b] + G;
+    lo[a] = hi[a] = from;
+    const int row = a == 0 ? 1 : hi[0] - lo[0] + 1; // positions copied at a time
+    for (int k = lo[2]; k <= hi[2]; ++k)
+        for (int j = lo[1]; j <= hi[1]; ++j)
+            for (int i = lo[0]; i <= hi[0]; i += row) {
+                const long at = bdl_grid_index(g, i, j, k);
+                memcpy(f + at + shift, f + at, (size_t)row * sizeof(double));
+            }
+}
+
 double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m)
 {
     const int b = (a + 1) % 3, c = (a + 2) % 3;

@@ -67,6 +67,10 @@ void bdl_grid_wrap_cells_wide(const bdl_grid *g, double *f);
 /// nearest cell's value (zero gradient) on the others.
 void bdl_grid_extend_cells(const bdl_grid *g, double *f);
 
+/// Copies the whole padded plane at index `from` along axis a onto the one at `to` (ghosts of
+/// the other axes included): rows along x at a time unless a is x.
+void bdl_grid_copy_plane(const bdl_grid *g, double *f, int a, int to, int from);
+
 /// Mean of a cell field over the layer of cells m normal to axis a.
 double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m);
 

@@ -64,8 +64,9 @@ static double syamlal_obrien(const bdl_drag_params *p, double eps, double d, dou
                              double rho, double mu)
 {
     double re = rho * d * slip / mu;
-    double A = pow(eps, 4.14);
-    double B = eps <= 0.85 ? p->syamlal_c * pow(eps, 1.28) : pow(eps, p->syamlal_d);
+    const double log_eps = log(eps); // (two exponentials of one logarithm: half the cost of pow)
+    double A = exp(4.14 * log_eps);
+    double B = eps <= 0.85 ? p->syamlal_c * exp(1.28 * log_eps) : exp(p->syamlal_d * log_eps);
     double vr = 0.5 * (A - 0.06 * re + sqrt(0.0036 * re * re + 0.12 * re * (2.0 * B - A) + A * A));
     // Cds |u - v| = (0.63 sqrt|u - v| + 4.8 sqrt(Vr mu / (rho d)))^2, finite at zero slip.
     double root = 0.63 * sqrt(slip) + 4.8 * sqrt(vr * mu / (rho * d));

@@ -62,26 +62,30 @@ double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, do
 }
 
 /// The root x = sqrt(theta) >= 0 of f(x) = a3 x^3 + a2 x^2 - a1 x - a0 with a3 > 0 and a0 >= 0
-/// (f(0) <= 0, f -> +inf): bracketed upwards from `guess` (the last step's root, which is near),
-/// then Newton steps from the bracket's right end, kept inside it.
+/// (f(0) <= 0, f -> +inf; the signs of the coefficients change once: it is the only positive
+/// root). Newton's steps from `guess` (the last step's root, which is near), kept inside the
+/// bracket [lo, hi] their signs of f give (bisected, or doubled while no f > 0 is known, where a
+/// step would leave it). Newton's error squares each step, so a Newton step below 10^-9 of x
+/// leaves one of the order of 10^-18: it is the last.
 static double cubic_root(double a3, double a2, double a1, double a0, double guess)
 {
     if (!(a0 > 0.0) && !(a1 > 0.0) && a2 >= 0.0)
         return 0.0; // f > 0 for every x > 0
-    double lo = 0.0, hi = guess > 1e-12 ? guess : 1.0;
-    for (int k = 0; k < 200 && a3 * hi * hi * hi + a2 * hi * hi - a1 * hi - a0 <= 0.0; ++k)
-        lo = hi, hi *= 2.0;
-    double x = hi; // from the right: where f is convex Newton's steps fall monotonically
-    for (int k = 0; k < 100; ++k) {
+    double lo = 0.0, hi = INFINITY, x = guess > 1e-12 ? guess : 1.0;
+    for (int k = 0; k < 200; ++k) {
         const double f = ((a3 * x + a2) * x - a1) * x - a0, df = (3.0 * a3 * x + 2.0 * a2) * x - a1;
         if (f > 0.0)
             hi = x;
-        else
+        else if (f < 0.0)
             lo = x;
-        double next = df > 0.0 ? x - f / df : 0.5 * (lo + hi);
-        if (!(next > lo && next < hi))
-            next = 0.5 * (lo + hi);
-        if (fabs(next - x) <= 1e-14 * fmax(x, 1e-300))
+        else
+            return f == 0.0 ? x : NAN; // NaN coefficients give NaN
+        const double next = df > 0.0 ? x - f / df : NAN;
+        if (!(next > lo && next < hi)) {
+            x = hi < INFINITY ? 0.5 * (lo + hi) : 2.0 * x;
+            continue;
+        }
+        if (fabs(next - x) <= 1e-9 * next)
             return next;
         x = next;
     }

@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/minmax.h"
 #include "solids/energy.h"
 #include "solids/kinetic.h"
 
@@ -274,9 +275,7 @@ static void wrap_face(const bdl_grid *gr, int a, double *f)
 {
     if (!gr->periodic[a])
         return;
-    const long s = gr->stride[a];
-    const int n = gr->n[a];
-    BDL_GRID_FOR_PLANE(gr, a, 0, f[idx + n * s] = f[idx]);
+    bdl_grid_copy_plane(gr, f, a, gr->n[a], 0);
 }
 
 /// Ghosts of the velocity component a: free-slip walls on every side that is not periodic (the
@@ -289,14 +288,12 @@ static void velocity_ghosts(const bdl_grid *gr, int a, double *v)
         const int n = gr->n[b];
         if (gr->periodic[b]) {
             const int last = b == a ? n : n - 1; // the plane holding the image of plane 0
-            BDL_GRID_FOR_PLANE(gr, b, 0, {
-                if (b == a)
-                    v[idx + n * s] = v[idx];
-                for (int l = 1; l <= G; ++l) {
-                    v[idx - l * s] = v[idx + (n - l) * s];
-                    v[idx + (last + l) * s] = v[idx + (last + l - n) * s];
-                }
-            });
+            if (b == a)
+                bdl_grid_copy_plane(gr, v, b, n, 0);
+            for (int l = 1; l <= G; ++l) {
+                bdl_grid_copy_plane(gr, v, b, -l, n - l);
+                bdl_grid_copy_plane(gr, v, b, last + l, last + l - n);
+            }
         } else if (b == a) {
             BDL_GRID_FOR_PLANE(gr, b, 0, {
                 v[idx] = v[idx + n * s] = 0.0;
@@ -466,7 +463,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
                                                      d->schaeffer_a, d->schaeffer_n);
             p = pt * (eps / total);
             mu = bdl_schaeffer_viscosity(p, phi, i2d, d->mu_max);
-            pmax = fmax(pmax, pt);
+            pmax = bdl_max(pmax, pt);
             if (s->plastic)
                 s->plastic[idx] = pt;
         } else if (eps > d->dilute) {
@@ -479,7 +476,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
             }
             viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, e, &theta, &p, &mu);
             wall = wall_coefficient(d, eps, g0, theta);
-            pmax = fmax(pmax, p);
+            pmax = bdl_max(pmax, p);
         }
         ph->theta[idx] = theta;
         ph->pressure[idx] = p;
@@ -560,7 +557,7 @@ static face_terms transport(const bdl_grid *gr, const bdl_solids_phase *p, int a
             hi = 0.5 * (fb[idx + sb] + fb[idx + sb - sa]);
             lo = 0.5 * (fb[idx] + fb[idx - sa]);
         }
-        const double in_hi = fmax(-hi, 0.0) / gr->h[b], in_lo = fmax(lo, 0.0) / gr->h[b];
+        const double in_hi = bdl_max(-hi, 0.0) / gr->h[b], in_lo = bdl_max(lo, 0.0) / gr->h[b];
         t.diag += in_hi + in_lo;
         t.nb += in_hi * va[idx + sb] + in_lo * va[idx - sb];
     }
@@ -804,10 +801,10 @@ static void limit_outflow(bdl_solids *s, int m, bdl_gas *gas, double dt)
     FOR_CELLS(gr, {
         double out = 0.0;
         for (int a = 0; a < 3; ++a)
-            out += (fmax(p->flux[a][idx + gr->stride[a]], 0.0) - fmin(p->flux[a][idx], 0.0)) /
+            out += (bdl_max(p->flux[a][idx + gr->stride[a]], 0.0) - bdl_min(p->flux[a][idx], 0.0)) /
                    gr->h[a];
         out *= dt;
-        const double held = fmax(p->eps[idx], 0.0); // (round-off may leave a cell below zero)
+        const double held = bdl_max(p->eps[idx], 0.0); // (round-off may leave a cell below zero)
         scale[idx] = out > held ? held / out : 1.0;
         any = any || scale[idx] < 1.0;
     });
@@ -1146,7 +1143,7 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
     s->stats.unsettled = changed;
     plastic_result(s, star, z, dt, x);
     double worst = 0.0;
-    FOR_CELLS(gr, worst = fmax(worst, fabs(x[idx] - star[idx])));
+    FOR_CELLS(gr, worst = bdl_max(worst, fabs(x[idx] - star[idx])));
     s->stats.correction = worst;
     distribute(s, gas, x, dt);
 }
@@ -1242,7 +1239,7 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
         if (s->count > 1)
             couple(s, gas, a);
     }
-    const bdl_result r = bdl_gas_step(gas, dt);
+    const bdl_result r = bdl_gas_step_axes(gas, dt, s->active); // (an inert axis is the gas's)
     for (int a = 0; a < 3; ++a)
         for (int m = 0; m < s->count && s->active[a]; ++m)
             new_velocity(s, m, gas, a);
@@ -1264,9 +1261,9 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
     double lo = INFINITY, hi = -INFINITY;
     int finite = 1;
     FOR_CELLS(gr, {
-        hi = fmax(hi, s->eps[idx]);
+        hi = bdl_max(hi, s->eps[idx]);
         for (int m = 0; m < s->count; ++m) {
-            lo = fmin(lo, s->phase[m].eps[idx]);
+            lo = bdl_min(lo, s->phase[m].eps[idx]);
             for (int a = 0; a < 3; ++a)
                 finite = finite && isfinite(s->phase[m].v[a][idx]);
         }
@@ -1282,20 +1279,16 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 
 /// The speed of the viscous regime's pressure waves in a cell of phase fraction eps (the
 /// mixture's `total`, for the radial distribution) at temperature theta: c^2 = dP/d(eps) / rho at
-/// fixed theta, P = k1 eps^2 theta with Carnahan & Starling's g0 of the total fraction (a
-/// mixture's Lebowitz g0_mm is of its size), by a difference of one part in 10^6. The momentum
-/// step takes -grad P explicitly: a step above h / c would let the waves grow.
+/// fixed theta, P = k1 eps^2 theta, k1 = 2 (1 + e) rho g0 with Carnahan & Starling's g0 of the
+/// total fraction (a mixture's Lebowitz g0_mm is of its size), the total moving with eps:
+/// c^2 = 2 (1 + e) theta (2 eps g0 + eps^2 g0'), g0' = (5/2 - total) / (1 - total)^4. The
+/// momentum step takes -grad P explicitly: a step above h / c would let the waves grow.
 static double sound_speed(const bdl_solids_def *d, double eps, double total, double theta)
 {
-    const double de = 1e-6 * eps;
-    const double k = bdl_ktgf_syamlal_g0(eps, bdl_g0_carnahan_starling(total), d->diameter,
-                                         d->density, d->restitution)
-                         .k1,
-                 k2 = bdl_ktgf_syamlal_g0(eps + de, bdl_g0_carnahan_starling(total + de),
-                                          d->diameter, d->density, d->restitution)
-                          .k1;
-    const double slope = theta * (k2 * (eps + de) * (eps + de) - k * eps * eps) / de;
-    return sqrt(fmax(slope, 0.0) / d->density);
+    const double q = 1.0 - total, q3 = q * q * q;
+    const double g0 = (1.0 - 0.5 * total) / q3, slope = (2.5 - total) / (q3 * q);
+    const double c2 = 2.0 * (1.0 + d->restitution) * theta * eps * (2.0 * g0 + eps * slope);
+    return sqrt(bdl_max(c2, 0.0));
 }
 
 double bdl_solids_stable_dt(const bdl_solids *s)
@@ -1314,12 +1307,13 @@ double bdl_solids_stable_dt(const bdl_solids *s)
             if (p->eps[idx] > s->def.dilute) {
                 double rate = 0.0;
                 for (int a = 0; a < 3; ++a)
-                    rate += (fmax(p->v[a][idx + gr->stride[a]], 0.0) + fmax(-p->v[a][idx], 0.0)) /
-                            gr->h[a];
+                    rate +=
+                        (bdl_max(p->v[a][idx + gr->stride[a]], 0.0) + bdl_max(-p->v[a][idx], 0.0)) /
+                        gr->h[a];
                 if (p->theta[idx] > 0.0 && waves > 0.0)
                     rate += waves * sound_speed(&p->def, p->eps[idx], s->eps[idx], p->theta[idx]) *
                             inv_h;
-                out = fmax(out, rate);
+                out = bdl_max(out, rate);
             }
         });
     }
