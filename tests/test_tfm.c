@@ -414,9 +414,10 @@ static void test_keep_undo(void)
 /// from rest with the kinetic pressure `kinetic`: the solids volume conserved, the fraction in
 /// [0, 0.595] (round-off of 10^-12 below zero allowed: a cell the correction empties; 0.5888 and
 /// 0.5885 measured, 0.598 when the implicit correction's chords fell short of the pressure), every
-/// step finished; with the kinetic pressure implicit fewer than 80 steps retaken (the count is
-/// chaotic: 9 to 57 at Courant numbers 0.47 to 0.53, against 434 when the correction re-chorded
-/// any push). Returns the mean step.
+/// step finished; with the kinetic pressure implicit fewer than 15 % of the steps retaken (the
+/// count is chaotic: 9 to 57 at Courant numbers 0.47 to 0.53, 34 to 113 of about 1000 over
+/// round-off-level changes, against 434 when the correction re-chorded any push). Returns the
+/// mean step.
 static double adaptive_bed(bdl_kinetic_pressure kinetic, const char *step)
 {
     bdl_world *w = bdl_test_world(
