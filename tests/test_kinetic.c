@@ -165,8 +165,34 @@ static void test_conductivity(void)
            eps, theta, k * bracket, reduced * bracket, beta);
 }
 
+/// The coefficients from the particles' factors (the form the cell loops use) are Syamlal's to
+/// round-off, from dilute to dense, for elastic and inelastic spheres.
+static void test_factors(void)
+{
+    const double d = 2.49e-3, rho = 2526.0, e[3] = {1.0, 0.97, 0.7};
+    double worst = 0.0;
+    for (int q = 0; q < 3; ++q) {
+        const bdl_ktgf_factors f = bdl_ktgf_syamlal_factors(d, rho, e[q]);
+        for (double eps = 1e-4; eps < 0.63; eps += 0.0137) {
+            const double g0 = bdl_g0_carnahan_starling(eps);
+            const bdl_ktgf_coefficients a = bdl_ktgf_syamlal_at(&f, eps, g0),
+                                        b = bdl_ktgf_syamlal_g0(eps, g0, d, rho, e[q]);
+            const double got[5] = {a.g0, a.k1, a.k2, a.k3, a.k4},
+                         want[5] = {b.g0, b.k1, b.k2, b.k3, b.k4};
+            for (int k = 0; k < 5; ++k) {
+                CHECK_CLOSE(got[k], want[k], 1e-13);
+                if (want[k] != 0.0)
+                    worst = fmax(worst, fabs(got[k] / want[k] - 1.0));
+            }
+        }
+    }
+    printf("Syamlal's coefficients from the particles' factors: worst relative difference %.2g\n",
+           worst);
+}
+
 int main(void)
 {
+    test_factors();
     test_conductivity();
     test_jenkins_zhang();
     test_g0();

@@ -290,7 +290,8 @@ static void restrict_couplings(const level *F, level *C)
 /// kd in place, lower band storage: column j holds rows j to j + kd, entry (i, j) at
 /// a[j (kd + 1) + i - j] (LAPACK's layout for dpbtrf). Column by column: its diagonal's square
 /// root, the column scaled by it, and its outer product taken from the columns to its right.
-/// Returns 0 when a pivot is not positive (M not positive definite).
+/// The diagonal is left as its reciprocal 1 / L_jj, for band_solve to multiply by. Returns 0
+/// when a pivot is not positive (M not positive definite).
 static int band_cholesky(double *a, long n, int kd)
 {
     const int ld = kd + 1;
@@ -298,8 +299,8 @@ static int band_cholesky(double *a, long n, int kd)
         double *cj = a + j * ld;
         if (!(cj[0] > 0.0))
             return 0;
-        const double d = sqrt(cj[0]), inv = 1.0 / d;
-        cj[0] = d;
+        const double inv = 1.0 / sqrt(cj[0]);
+        cj[0] = inv;
         const int m = (int)(kd < n - 1 - j ? kd : n - 1 - j);
         for (int i = 1; i <= m; ++i)
             cj[i] *= inv;
@@ -313,14 +314,14 @@ static int band_cholesky(double *a, long n, int kd)
     return 1;
 }
 
-/// Solves L L^T x = b in place with the factor of band_cholesky.
+/// Solves L L^T x = b in place with the factor of band_cholesky (its diagonal inverted).
 static void band_solve(const double *a, long n, int kd, double *b)
 {
     const int ld = kd + 1;
     for (long j = 0; j < n; ++j) { // L y = b
         const double *cj = a + j * ld;
         const int m = (int)(kd < n - 1 - j ? kd : n - 1 - j);
-        b[j] /= cj[0];
+        b[j] *= cj[0];
         for (int i = 1; i <= m; ++i)
             b[j + i] -= cj[i] * b[j];
     }
@@ -330,7 +331,7 @@ static void band_solve(const double *a, long n, int kd, double *b)
         double sum = b[j];
         for (int i = 1; i <= m; ++i)
             sum -= cj[i] * b[j + i];
-        b[j] = sum / cj[0];
+        b[j] = sum * cj[0];
     }
 }
 

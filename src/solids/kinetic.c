@@ -41,6 +41,19 @@ bdl_ktgf_coefficients bdl_ktgf_syamlal_g0(double eps, double g0, double d, doubl
     return c;
 }
 
+bdl_ktgf_factors bdl_ktgf_syamlal_factors(double d, double rho, double e)
+{
+    const double sqrt_pi = sqrt(pi), dilute = sqrt_pi / (3.0 * (3.0 - e));
+    bdl_ktgf_factors f;
+    f.k1 = 2.0 * (1.0 + e) * rho;
+    f.k3 = 0.5 * d * rho * dilute;
+    f.k3_dense = 0.5 * d * rho *
+                 (dilute * 0.4 * (1.0 + e) * (3.0 * e - 1.0) + 8.0 * (1.0 + e) / (5.0 * sqrt_pi));
+    f.k2_dense = 4.0 * d * rho * (1.0 + e) / (3.0 * sqrt_pi);
+    f.k4 = 12.0 * (1.0 - e * e) * rho / (sqrt_pi * d);
+    return f;
+}
+
 double bdl_ktgf_conductivity(double eps, double g0, double d, double rho, double e, double theta,
                              double beta)
 {

@@ -35,6 +35,27 @@ bdl_ktgf_coefficients bdl_ktgf_syamlal(double eps, double d, double rho, double 
 /// The same with the radial distribution g0 given (a phase of a mixture: Lebowitz's g0_mm).
 bdl_ktgf_coefficients bdl_ktgf_syamlal_g0(double eps, double g0, double d, double rho, double e);
 
+/// Syamlal's coefficients split into what depends on the particles only, for loops over cells:
+/// k1 = f.k1 g0, k3 = f.k3 + f.k3_dense eps g0, k2 = f.k2_dense eps g0 - 2/3 k3, k4 = f.k4 g0.
+typedef struct bdl_ktgf_factors {
+    double k1, k3, k3_dense, k2_dense, k4;
+} bdl_ktgf_factors;
+bdl_ktgf_factors bdl_ktgf_syamlal_factors(double d, double rho, double e);
+
+/// bdl_ktgf_syamlal_g0 from the factors (the same to round-off).
+static inline bdl_ktgf_coefficients bdl_ktgf_syamlal_at(const bdl_ktgf_factors *f, double eps,
+                                                        double g0)
+{
+    const double eg = eps * g0;
+    bdl_ktgf_coefficients c;
+    c.g0 = g0;
+    c.k1 = f->k1 * g0;
+    c.k3 = f->k3 + f->k3_dense * eg;
+    c.k2 = f->k2_dense * eg - 2.0 / 3.0 * c.k3;
+    c.k4 = f->k4 * g0;
+    return c;
+}
+
 /// Syamlal's (1987) drag between solids phases l and m (Sun 2007, eq. 3.18) divided by the two
 /// fractions: F_lm / (eps_l eps_m) = 3 (1 + e) (pi/2 + cf pi^2/8) rho_l rho_m (d_l + d_m)^2 g0
 /// |v_l - v_m| / (2 pi (rho_l d_l^3 + rho_m d_m^3)), e the restitution between the phases, cf

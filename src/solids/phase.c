@@ -127,7 +127,7 @@ bdl_result bdl_solids_create_mixture(const bdl_solids_def *defs, int count, cons
     ok = ok && (!mixture || (s->plastic = bdl_grid_alloc(gr)));
     for (int a = 0; a < 3; ++a) {
         s->a[a] = mixture ? bdl_grid_alloc(gr) : s->phase[0].a[a];
-        ok = ok && s->a[a] && (s->c[a] = bdl_grid_alloc(gr));
+        ok = ok && s->a[a] && (s->c[a] = bdl_grid_alloc(gr)) && (s->weight[a] = bdl_grid_alloc(gr));
     }
     for (int w = 0; w < BDL_SOLIDS_WORK; ++w)
         ok = ok && (s->work[w] = bdl_grid_alloc(gr));
@@ -157,6 +157,7 @@ void bdl_solids_destroy(bdl_solids *s)
         if (mixture)
             free(s->a[a]);
         free(s->c[a]);
+        free(s->weight[a]);
     }
     for (int m = 0; m < s->count; ++m)
         phase_free(&s->phase[m]);
@@ -381,11 +382,11 @@ static void strain_rate(const bdl_grid *gr, const bdl_solids_phase *p, long idx,
 /// g0_mm for a phase of a mixture (which balances its own collisions only). With the transport
 /// terms e (solids/energy.h; NULL: none) the time term gains e->diag, the old energy e->nb and
 /// the dissipation e->k4: the same cubic.
-static void viscous_regime(const bdl_solids_def *d, double eps, double g0, double trace,
-                           double ddot, double theta_old, double dt, const bdl_energy_terms *e,
-                           double *theta, double *p, double *mu)
+static void viscous_regime(const bdl_solids_def *d, const bdl_ktgf_factors *f, double eps,
+                           double g0, double trace, double ddot, double theta_old, double dt,
+                           const bdl_energy_terms *e, double *theta, double *p, double *mu)
 {
-    bdl_ktgf_coefficients c = bdl_ktgf_syamlal_g0(eps, g0, d->diameter, d->density, d->restitution);
+    bdl_ktgf_coefficients c = bdl_ktgf_syamlal_at(f, eps, g0);
     if (e) { // 3/2 rho eps / dt' = 3/2 rho eps / dt + diag, theta_old' its weighted mean
         const double rate = 1.5 * d->density * eps / dt;
         theta_old = (rate * theta_old + e->nb) / (rate + e->diag);
@@ -446,6 +447,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
     const int transport = s->def.granular_energy == BDL_GRANULAR_ENERGY_TRANSPORT;
     if (transport)
         bdl_solids_energy_prepare(s, m, gas);
+    const bdl_ktgf_factors f = bdl_ktgf_syamlal_factors(d->diameter, d->density, d->restitution);
     FOR_CELLS(gr, {
         const double eps = ph->eps[idx], total = s->eps[idx];
         double D[3][3], theta = 0.0, p = 0.0, mu = 0.0, wall = 0.0;
@@ -474,7 +476,7 @@ static void phase_closures(bdl_solids *s, int m, const bdl_gas *gas, double dt)
                 terms = bdl_solids_energy_terms(s, m, gas, idx, at, g0);
                 e = &terms;
             }
-            viscous_regime(d, eps, g0, trace, ddot, ph->theta[idx], dt, e, &theta, &p, &mu);
+            viscous_regime(d, &f, eps, g0, trace, ddot, ph->theta[idx], dt, e, &theta, &p, &mu);
             wall = wall_coefficient(d, eps, g0, theta);
             pmax = bdl_max(pmax, p);
         }
@@ -878,11 +880,13 @@ static double kinetic_pressure(const bdl_solids *s, long idx, double eps)
     const double theta = s->phase[0].theta[idx];
     if (d->kinetic_pressure != BDL_KINETIC_PRESSURE_IMPLICIT || !(theta > 0.0) || !(eps > 0.0))
         return 0.0;
-    const double e = fmin(eps, 0.9); // (g0 grows without bound towards 1)
-    const bdl_ktgf_coefficients c = bdl_ktgf_syamlal_g0(e, bdl_g0_carnahan_starling(e), d->diameter,
-                                                        d->density, d->restitution);
-    return c.k1 * e * e * theta;
+    const double e = bdl_min(eps, 0.9); // (g0 grows without bound towards 1)
+    const double k1 = 2.0 * (1.0 + d->restitution) * d->density * bdl_g0_carnahan_starling(e);
+    return k1 * e * e * theta; // (k1 as bdl_ktgf_syamlal_g0 has it)
 }
+
+/// The work array holding each cell's modelled pressure at the step's start, P(eps^n).
+enum { BASE_PRESSURE = 13 };
 
 /// The pressure the correction models in cell idx as a function of its fraction.
 static double cell_pressure(const bdl_solids *s, long idx, double eps)
@@ -902,7 +906,7 @@ static double plastic_chord(const bdl_solids *s, long idx, double p, double q)
             slope = (schaeffer(d, q) - schaeffer(d, p)) / (q - p);
         return slope + (kinetic_pressure(s, idx, q) - kinetic_pressure(s, idx, p)) / (q - p);
     }
-    const double e = fmax(p, q);
+    const double e = bdl_max(p, q);
     slope = plastic_slope(d, e);
     if (d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT && e > d->dilute) {
         const double de = 1e-6 * e; // the tangent by a difference
@@ -921,7 +925,8 @@ static inline double plastic_row(const bdl_solids *s, const double *slope, const
         if (gr->n[a] == 1) // a period of one cell, or walls on both sides: no flux
             continue;
         const long sa = gr->stride[a];
-        sum += s->c[a][idx] * (z[idx] - z[idx - sa]) + s->c[a][idx + sa] * (z[idx] - z[idx + sa]);
+        const double *w = s->weight[a];
+        sum += w[idx] * (z[idx] - z[idx - sa]) + w[idx + sa] * (z[idx] - z[idx + sa]);
     }
     return sum;
 }
@@ -954,7 +959,7 @@ static int plastic_solve(bdl_solids *s, const double *slope, const double *r, do
         double diag = 1.0 / slope[idx];
         for (int a = 0; a < 3; ++a)
             if (gr->n[a] > 1) // (as plastic_row: no flux along an axis of one cell)
-                diag += s->c[a][idx] + s->c[a][idx + gr->stride[a]];
+                diag += s->weight[a][idx] + s->weight[a][idx + gr->stride[a]];
         pre[idx] = 1.0 / diag;
         res[idx] = r[idx];
         dir[idx] = pre[idx] * res[idx];
@@ -1036,7 +1041,7 @@ static int short_of_pressure(const bdl_solids *s, long idx, double slope, double
     const double eps = s->eps[idx];
     if (!(fabs(x - eps) > 1e-9))
         return 0;
-    const double dp = cell_pressure(s, idx, x) - cell_pressure(s, idx, eps);
+    const double dp = cell_pressure(s, idx, x) - s->work[BASE_PRESSURE][idx];
     const double model = slope > 0.0 ? slope * (x - eps) : slope < 0.0 ? lo : 0.0;
     return dp - model > 1e-2 * fabs(dp) + 1e-3;
 }
@@ -1054,13 +1059,6 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
     double *z = s->work[1], *r = s->work[2], *x = s->work[9], *end = s->work[8];
     double *lo = s->work[11], *res = s->work[12];
     const int implicit = d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT;
-    for (int a = 0; a < 3; ++a) {
-        memset(s->c[a], 0, (size_t)gr->size * sizeof(double));
-        if (!s->active[a])
-            continue;
-        FOR_INNER_FACES(gr, a, s->c[a][idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
-        wrap_face(gr, a, s->c[a]);
-    }
     FOR_CELLS(gr, res[idx] = slope[idx] > 0.0 ? r[idx] - plastic_row(s, slope, z, idx) : 0.0);
     s->stats.iterations += plastic_solve(s, slope, res, z);
     plastic_result(s, star, z, dt, x);
@@ -1081,7 +1079,7 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
         }
     });
     FOR_CELLS(gr, {
-        if (slope[idx] > 0.0 && z[idx] < lo[idx] - 1e-9 * fmax(-lo[idx], 1.0)) {
+        if (slope[idx] > 0.0 && z[idx] < lo[idx] - 1e-9 * bdl_max(-lo[idx], 1.0)) {
             z[idx] = lo[idx];
             slope[idx] = lo[idx] < 0.0 ? -1.0 : 0.0; // held (at zero pressure: as outside)
             changed = 1;
@@ -1117,14 +1115,15 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
 {
     const bdl_grid *gr = &s->grid;
     double *slope = s->work[0], *z = s->work[1], *r = s->work[2], *end = s->work[8];
-    double *x = s->work[9], *lo = s->work[11];
+    double *x = s->work[9], *lo = s->work[11], *base = s->work[BASE_PRESSURE];
     memset(slope, 0, (size_t)gr->size * sizeof *slope);
     memset(z, 0, (size_t)gr->size * sizeof *z);
     int any = 0;
     FOR_CELLS(gr, {
         end[idx] = star[idx];
         slope[idx] = plastic_chord(s, idx, s->eps[idx], star[idx]);
-        lo[idx] = -cell_pressure(s, idx, s->eps[idx]);
+        base[idx] = cell_pressure(s, idx, s->eps[idx]);
+        lo[idx] = -base[idx];
         r[idx] = star[idx] - s->eps[idx];
         any = any || slope[idx] > 0.0;
     });
@@ -1136,6 +1135,14 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         FOR_CELLS(gr, x[idx] = star[idx]);
         distribute(s, gas, x, dt); // no fluxes: each phase at its eps*
         return;
+    }
+    for (int a = 0; a < 3; ++a) {
+        double *w = s->weight[a];
+        memset(w, 0, (size_t)gr->size * sizeof *w);
+        if (!s->active[a])
+            continue;
+        FOR_INNER_FACES(gr, a, w[idx] = dt / (s->a[a][idx] * gr->h[a] * gr->h[a]));
+        wrap_face(gr, a, w);
     }
     int changed = 1;
     for (s->stats.passes = 0; changed && s->stats.passes < 10; ++s->stats.passes)
@@ -1173,7 +1180,7 @@ static void distribute(bdl_solids *s, bdl_gas *gas, const double *x, double dt)
                 total += s->phase[m].star[from];
             for (int m = 0; m < n; ++m) {
                 bdl_solids_phase *p = &s->phase[m];
-                p->v[a][idx] += df / fmax(es, s->def.dilute);
+                p->v[a][idx] += df / bdl_max(es, s->def.dilute);
                 if (n > 1)
                     p->cflux[a][idx] = df * (total > 0.0 ? p->star[from] / total : 1.0 / n);
             }

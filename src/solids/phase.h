@@ -101,7 +101,7 @@ typedef struct bdl_solids_stats {
     double pressure_max; ///< largest solids pressure [Pa]
 } bdl_solids_stats;
 
-#define BDL_SOLIDS_WORK   13
+#define BDL_SOLIDS_WORK   14
 #define BDL_SOLIDS_PHASES 4 ///< most phases of a mixture
 #define BDL_SOLIDS_PAIRS  (BDL_SOLIDS_PHASES * (BDL_SOLIDS_PHASES - 1) / 2)
 
@@ -132,8 +132,8 @@ typedef struct bdl_solids {
     double *rel[BDL_SOLIDS_PAIRS]; ///< |v_l - v_m| of each pair of phases in the cells [m/s]
     double *plastic; ///< the mixture's plastic pressure in the cells [Pa] (several phases)
     /// Per face: A of the mixture's correction, 1/A = sum_m (eps_m / eps_s) gamma_m (the first
-    /// phase's A with one phase); the correction's weights and then its flux.
-    double *a[3], *c[3];
+    /// phase's A with one phase); the correction's flux; its weights dt / (A h^2).
+    double *a[3], *c[3], *weight[3];
     double *work[BDL_SOLIDS_WORK]; ///< cell arrays of the step and the plastic correction
     long *free_cells; ///< the plastic correction's unknowns: their indices, in the grid's order
     int active[3];    ///< the axes the step moves solids along (the others are inert: all zero)
