@@ -885,8 +885,9 @@ static double kinetic_pressure(const bdl_solids *s, long idx, double eps)
     return k1 * e * e * theta; // (k1 as bdl_ktgf_syamlal_g0 has it)
 }
 
-/// The work array holding each cell's modelled pressure at the step's start, P(eps^n).
-enum { BASE_PRESSURE = 13 };
+/// The work arrays holding each cell's modelled pressure at the step's start, P(eps^n), and the
+/// correction's diagonal in its solve.
+enum { BASE_PRESSURE = 13, DIAGONAL = 14 };
 
 /// The pressure the correction models in cell idx as a function of its fraction.
 static double cell_pressure(const bdl_solids *s, long idx, double eps)
@@ -931,6 +932,22 @@ static inline double plastic_row(const bdl_solids *s, const double *slope, const
     return sum;
 }
 
+/// plastic_row from the row's diagonal (1/slope and the face weights): without a division.
+static inline double plastic_apply(const bdl_solids *s, const double *diag, const double *z,
+                                   long idx)
+{
+    const bdl_grid *gr = &s->grid;
+    double sum = diag[idx] * z[idx];
+    for (int a = 0; a < 3; ++a) {
+        if (gr->n[a] == 1)
+            continue;
+        const long sa = gr->stride[a];
+        const double *w = s->weight[a];
+        sum -= w[idx] * z[idx - sa] + w[idx + sa] * z[idx + sa];
+    }
+    return sum;
+}
+
 /// The free cells (slope > 0) into s->free_cells in the grid's order; returns their count.
 static long list_free_cells(bdl_solids *s, const double *slope)
 {
@@ -944,12 +961,15 @@ static long list_free_cells(bdl_solids *s, const double *slope)
 
 /// Solves M dz = r on the free cells (slope > 0; dz = 0 on the others) by preconditioned
 /// conjugate gradients and adds dz to z; returns the iterations taken. The loops run over the
-/// list of free cells, each sum in the grid's order.
-static int plastic_solve(bdl_solids *s, const double *slope, const double *r, double *z)
+/// list of free cells, each sum in the grid's order. The residual is taken down to the tolerance
+/// times the larger of |r| and *reference, the first pass's |r| (set by the first pass): a later
+/// pass's increment needs the accuracy of the whole, not more.
+static int plastic_solve(bdl_solids *s, const double *slope, const double *r, double *z,
+                         double *reference)
 {
     const bdl_grid *gr = &s->grid;
     double *res = s->work[4], *pre = s->work[5], *dir = s->work[6], *q = s->work[7];
-    double *dz = s->work[10];
+    double *dz = s->work[10], *diagonal = s->work[DIAGONAL];
     const long *list = s->free_cells, count = list_free_cells(s, slope);
     memset(dz, 0, (size_t)gr->size * sizeof *dz);
     memset(dir, 0, (size_t)gr->size * sizeof *dir);
@@ -960,20 +980,23 @@ static int plastic_solve(bdl_solids *s, const double *slope, const double *r, do
         for (int a = 0; a < 3; ++a)
             if (gr->n[a] > 1) // (as plastic_row: no flux along an axis of one cell)
                 diag += s->weight[a][idx] + s->weight[a][idx + gr->stride[a]];
+        diagonal[idx] = diag;
         pre[idx] = 1.0 / diag;
         res[idx] = r[idx];
         dir[idx] = pre[idx] * res[idx];
         rr += res[idx] * res[idx];
         rz += res[idx] * dir[idx];
     }
-    const double norm0 = sqrt(rr);
+    const double norm0 = sqrt(rr), goal = s->def.tolerance * bdl_max(norm0, *reference);
+    if (!(*reference > 0.0))
+        *reference = norm0;
     int it = 0;
-    while (norm0 > 0.0 && it < s->def.max_iterations) {
+    while (norm0 > goal && it < s->def.max_iterations) {
         bdl_grid_wrap_cells_wide(gr, dir);
         double dq = 0.0;
         for (long n = 0; n < count; ++n) {
             const long idx = list[n];
-            q[idx] = plastic_row(s, slope, dir, idx);
+            q[idx] = plastic_apply(s, diagonal, dir, idx);
             dq += dir[idx] * q[idx];
         }
         const double alpha = rz / dq;
@@ -986,7 +1009,7 @@ static int plastic_solve(bdl_solids *s, const double *slope, const double *r, do
             rz_new += res[idx] * pre[idx] * res[idx];
         }
         ++it;
-        if (sqrt(rr) <= s->def.tolerance * norm0)
+        if (sqrt(rr) <= goal)
             break;
         const double ratio = rz_new / rz;
         rz = rz_new;
@@ -1052,7 +1075,8 @@ static int short_of_pressure(const bdl_solids *s, long idx, double slope, double
 /// held there (z = lo: they leave the free set); the cells pushed past their end point given the
 /// chord to where they were pushed (stiffer; a held cell or one outside the regime joins again
 /// if that is above eps_star). Returns whether anything changed (another pass is needed).
-static int plastic_pass(bdl_solids *s, double *slope, const double *star, double dt)
+static int plastic_pass(bdl_solids *s, double *slope, const double *star, double dt,
+                        double *reference)
 {
     const bdl_grid *gr = &s->grid;
     const bdl_solids_def *d = &s->def;
@@ -1060,7 +1084,7 @@ static int plastic_pass(bdl_solids *s, double *slope, const double *star, double
     double *lo = s->work[11], *res = s->work[12];
     const int implicit = d->kinetic_pressure == BDL_KINETIC_PRESSURE_IMPLICIT;
     FOR_CELLS(gr, res[idx] = slope[idx] > 0.0 ? r[idx] - plastic_row(s, slope, z, idx) : 0.0);
-    s->stats.iterations += plastic_solve(s, slope, res, z);
+    s->stats.iterations += plastic_solve(s, slope, res, z, reference);
     plastic_result(s, star, z, dt, x);
     int changed = 0;
     FOR_CELLS(gr, { // a cell emptied below zero: its neighbours with z < 0 draw nothing more
@@ -1145,8 +1169,9 @@ static void plastic_correction(bdl_solids *s, bdl_gas *gas, const double *star, 
         wrap_face(gr, a, w);
     }
     int changed = 1;
+    double reference = 0.0; // the first pass's residual
     for (s->stats.passes = 0; changed && s->stats.passes < 10; ++s->stats.passes)
-        changed = plastic_pass(s, slope, star, dt);
+        changed = plastic_pass(s, slope, star, dt, &reference);
     s->stats.unsettled = changed;
     plastic_result(s, star, z, dt, x);
     double worst = 0.0;

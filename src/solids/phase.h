@@ -101,7 +101,7 @@ typedef struct bdl_solids_stats {
     double pressure_max; ///< largest solids pressure [Pa]
 } bdl_solids_stats;
 
-#define BDL_SOLIDS_WORK   14
+#define BDL_SOLIDS_WORK   15
 #define BDL_SOLIDS_PHASES 4 ///< most phases of a mixture
 #define BDL_SOLIDS_PAIRS  (BDL_SOLIDS_PHASES * (BDL_SOLIDS_PHASES - 1) / 2)
 
