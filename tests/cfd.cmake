@@ -1,6 +1,7 @@
-# Gas solver verification (docs/verification-gas.md): Poiseuille convergence order, hydrostatic
-# rest, plug flow, volume conservation, the pressure solver, and the lid-driven cavity against
-# Ghia et al. (1982).
+# The grid's layout, and the gas solver's verification (docs/verification-gas.md): Poiseuille
+# convergence order, hydrostatic rest, plug flow, volume conservation, the pressure solver, and
+# the lid-driven cavity against Ghia et al. (1982).
+bdl_add_test(test_grid SOURCES test_grid.c LABELS cfd)
 bdl_add_test(test_poisson SOURCES test_poisson.c LABELS cfd)
 bdl_add_test(test_poisson_direct SOURCES test_poisson_direct.c LABELS cfd)
 bdl_add_test(test_gas SOURCES test_gas.c LABELS "cfd;verification")

@@ -142,12 +142,8 @@ static double inflow_at(const bdl_gas *g, int side, long idx)
         return sd->inflow;
     const bdl_grid *gr = &g->grid;
     const int a = side / 2;
-    long rest = idx;
     int ix[3];
-    for (int b = 2; b >= 0; --b) {
-        ix[b] = (int)(rest / gr->stride[b]) - G;
-        rest %= gr->stride[b];
-    }
+    bdl_grid_position(gr, idx, ix);
     for (int b = 0; b < 3; ++b) {
         if (b == a)
             continue;

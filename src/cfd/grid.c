@@ -20,15 +20,20 @@ int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double 
         g->periodic[a] = periodic ? periodic[a] != 0 : 0;
     }
     const int G = BDL_GRID_GHOST;
-    size_t sy = (size_t)g->n[0] + 2 * G + 1, sz, size, bytes;
+    int flat[3] = {0, 0, 0}; // a periodic y or z axis of one cell (grid.h)
+    size_t extent[3];        // padded positions per axis
+    for (int a = 0; a < 3; ++a) {
+        flat[a] = a > 0 && g->periodic[a] && g->n[a] == 1;
+        extent[a] = flat[a] ? 1 : (size_t)g->n[a] + 2 * G + 1;
+    }
+    size_t sy = extent[0], sz, size, bytes;
     // Sizes checked: the padded layout of n^3 cells, and its bytes, must fit.
-    if (!bdl_size_mul(sy, (size_t)g->n[1] + 2 * G + 1, &sz) ||
-        !bdl_size_mul(sz, (size_t)g->n[2] + 2 * G + 1, &size) ||
+    if (!bdl_size_mul(sy, extent[1], &sz) || !bdl_size_mul(sz, extent[2], &size) ||
         !bdl_size_mul(size, sizeof(double), &bytes) || size > (size_t)LONG_MAX)
         return 0;
     g->stride[0] = 1;
-    g->stride[1] = (long)sy;
-    g->stride[2] = (long)sz;
+    g->stride[1] = flat[1] ? 0 : (long)sy;
+    g->stride[2] = flat[2] ? 0 : (long)sz;
     g->size = (long)size;
     return 1;
 }
@@ -42,13 +47,13 @@ static void wrap_cells(const bdl_grid *g, double *f, int fewest)
 {
     const int G = BDL_GRID_GHOST;
     for (int a = 0; a < 3; ++a) {
-        if (!g->periodic[a] || g->n[a] < fewest)
+        if (!g->periodic[a] || g->n[a] < fewest || g->stride[a] == 0) // (flat: no images)
             continue;
         const long sa = g->stride[a];
         const int n = g->n[a];
         int lo[3], hi[3]; // the padded positions of the plane at 0 along a (hi exclusive)
         for (int b = 0; b < 3; ++b)
-            lo[b] = -G, hi[b] = g->n[b] + G;
+            lo[b] = bdl_grid_pad_lo(g, b), hi[b] = g->stride[b] == 0 ? 1 : g->n[b] + G;
         lo[a] = 0, hi[a] = 1;
         const long row = a == 0 ? 1 : hi[0] - lo[0]; // positions copied at a time
         for (int k = lo[2]; k < hi[2]; ++k)
@@ -70,11 +75,12 @@ void bdl_grid_wrap_cells_wide(const bdl_grid *g, double *f) { wrap_cells(g, f, 2
 
 void bdl_grid_copy_plane(const bdl_grid *g, double *f, int a, int to, int from)
 {
-    const int G = BDL_GRID_GHOST;
     const long shift = (long)(to - from) * g->stride[a];
+    if (shift == 0) // (along a flat axis every plane is the one)
+        return;
     int lo[3], hi[3]; // the padded positions of the plane at `from` (hi inclusive)
     for (int b = 0; b < 3; ++b)
-        lo[b] = -G, hi[b] = g->n[b] + G;
+        lo[b] = bdl_grid_pad_lo(g, b), hi[b] = bdl_grid_pad_hi(g, b);
     lo[a] = hi[a] = from;
     const int row = a == 0 ? 1 : hi[0] - lo[0] + 1; // positions copied at a time
     for (int k = lo[2]; k <= hi[2]; ++k)
@@ -83,6 +89,18 @@ void bdl_grid_copy_plane(const bdl_grid *g, double *f, int a, int to, int from)
                 const long at = bdl_grid_index(g, i, j, k);
                 memcpy(f + at + shift, f + at, (size_t)row * sizeof(double));
             }
+}
+
+void bdl_grid_position(const bdl_grid *g, long idx, int ix[3])
+{
+    for (int a = 2; a >= 0; --a) {
+        if (g->stride[a] == 0) {
+            ix[a] = 0;
+            continue;
+        }
+        ix[a] = (int)(idx / g->stride[a]) - BDL_GRID_GHOST;
+        idx %= g->stride[a];
+    }
 }
 
 double bdl_grid_layer_mean(const bdl_grid *g, const double *field, int a, int m)

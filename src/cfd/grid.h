@@ -6,6 +6,9 @@
 // padded layout with BDL_GRID_GHOST ghost layers on each side and one extra plane on the high
 // side, so cell (i, j, k) and the low faces of that cell share one index:
 //     index = (k + G) * sz + (j + G) * sy + (i + G),   -G <= i < nx + G + 1, ...
+// A periodic y or z axis of one cell (the depth of a two-dimensional bed) is flat: its stride is
+// 0 and it has no padding, so every ghost, image and face along it is the cell itself, as the
+// period makes them (a third of the memory and of every whole-array loop in such a bed).
 #ifndef BDL_GRID_H
 #define BDL_GRID_H
 
@@ -22,7 +25,7 @@ typedef struct bdl_grid {
     double h[3];      ///< cell size per axis [m]
     double origin[3]; ///< low corner of the domain [m]
     int periodic[3];  ///< periodic axes
-    long stride[3];   ///< index step per axis in the padded layout (1, sy, sz)
+    long stride[3];   ///< index step per axis in the padded layout (1, sy, sz; 0 if flat)
     long size;        ///< padded array length
 } bdl_grid;
 
@@ -37,13 +40,26 @@ static inline long bdl_grid_index(const bdl_grid *g, int i, int j, int k)
            (i + BDL_GRID_GHOST);
 }
 
+/// The lowest and highest padded coordinates along axis a: -G and n + G, 0 and 0 if it is flat.
+static inline int bdl_grid_pad_lo(const bdl_grid *g, int a)
+{
+    return g->stride[a] == 0 ? 0 : -BDL_GRID_GHOST;
+}
+static inline int bdl_grid_pad_hi(const bdl_grid *g, int a)
+{
+    return g->stride[a] == 0 ? 0 : g->n[a] + BDL_GRID_GHOST;
+}
+
+/// The cell (or low faces) of padded index idx: ix[a] from -G to n[a] + G (0 along a flat axis).
+void bdl_grid_position(const bdl_grid *g, long idx, int ix[3]);
+
 /// Runs the statements given for every padded position (index `idx`) whose coordinate along
-/// `axis` is `at`: a plane of cells or faces, ghosts included.
+/// `axis` is `at`: a plane of cells or faces, ghosts included (each position once).
 #define BDL_GRID_FOR_PLANE(gr, axis, at, ...)                                                      \
     do {                                                                                           \
         const int b_ = ((axis) + 1) % 3, c_ = ((axis) + 2) % 3;                                    \
-        for (int jc_ = -BDL_GRID_GHOST; jc_ <= (gr)->n[c_] + BDL_GRID_GHOST; ++jc_)                \
-            for (int jb_ = -BDL_GRID_GHOST; jb_ <= (gr)->n[b_] + BDL_GRID_GHOST; ++jb_) {          \
+        for (int jc_ = bdl_grid_pad_lo(gr, c_); jc_ <= bdl_grid_pad_hi(gr, c_); ++jc_)             \
+            for (int jb_ = bdl_grid_pad_lo(gr, b_); jb_ <= bdl_grid_pad_hi(gr, b_); ++jb_) {       \
                 int ix_[3];                                                                        \
                 ix_[axis] = (at);                                                                  \
                 ix_[b_] = jb_;                                                                     \

@@ -32,7 +32,7 @@
 // turned angles (now and at the last list build); 9 how far the Lees–Edwards images had slid at
 // the last list build; 10 a solids phase's fields; 11 the solids phases in the scene's record.
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
-enum { VERSION = 11, HEADER_BYTES = 32 };
+enum { VERSION = 12, HEADER_BYTES = 32 };
 
 void bdl_ckpt_put(bdl_ckpt_writer *out, const void *data, size_t size)
 {

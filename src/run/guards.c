@@ -167,11 +167,10 @@ static int gas_finite(const bdl_world *w, char *what, size_t len)
         for (long m = 0; m < grid->size; ++m) {
             if (isfinite(fields[f].v[m]))
                 continue;
-            // The padded index back to the cell (ghost layers have indices outside 0..n-1).
-            const long k = m / grid->stride[2], j = (m % grid->stride[2]) / grid->stride[1],
-                       i = m % grid->stride[1];
-            snprintf(what, len, "the %s in cell (%ld, %ld, %ld) is %g", fields[f].name,
-                     i - BDL_GRID_GHOST, j - BDL_GRID_GHOST, k - BDL_GRID_GHOST, fields[f].v[m]);
+            int ix[3]; // the padded index back to the cell (ghosts: outside 0..n-1)
+            bdl_grid_position(grid, m, ix);
+            snprintf(what, len, "the %s in cell (%d, %d, %d) is %g", fields[f].name, ix[0], ix[1],
+                     ix[2], fields[f].v[m]);
             return 0;
         }
     return 1;

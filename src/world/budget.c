@@ -56,14 +56,17 @@ static double creator_bytes(const bdl_scene *s, const bdl_budget *b, int c)
     return b->create_particles[c] * particle_bytes(s, &s->species[s->creates[c].species]);
 }
 
-/// Cells of the padded gas grid (cfd/grid.h: ghost layers and one more plane on each axis).
+/// Cells of the padded gas grid (cfd/grid.h: ghost layers and one more plane on each axis; none
+/// on a flat axis, a periodic y or z of one cell).
 static double gas_cells(const bdl_scene *s)
 {
     if (!s->gas.enabled)
         return 0.0;
     double cells = 1.0;
-    for (int a = 0; a < 3; ++a)
-        cells *= bdl_v3_comp(s->gas.cells, a) + 2 * BDL_GRID_GHOST + 1;
+    for (int a = 0; a < 3; ++a) {
+        const double n = bdl_v3_comp(s->gas.cells, a);
+        cells *= a > 0 && s->periodic[a] && n == 1.0 ? 1.0 : n + 2 * BDL_GRID_GHOST + 1;
+    }
     return cells;
 }
 
