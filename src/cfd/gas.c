@@ -284,12 +284,15 @@ static convection_terms convection(const bdl_gas *g, int a, long idx, const doub
     return t;
 }
 
-static double laplacian(const bdl_grid *gr, long idx, const double *u)
+/// The Laplacian of u at idx, inv_h2[b] = 1 / h_b^2 (a flat axis adds nothing: its neighbours
+/// are the cell itself).
+static double laplacian(const bdl_grid *gr, long idx, const double *u, const double inv_h2[3])
 {
     double sum = 0.0;
     for (int b = 0; b < 3; ++b) {
         const long s = gr->stride[b];
-        sum += (u[idx + s] - 2.0 * u[idx] + u[idx - s]) / (gr->h[b] * gr->h[b]);
+        if (s != 0)
+            sum += (u[idx + s] - 2.0 * u[idx] + u[idx - s]) * inv_h2[b];
     }
     return sum;
 }
@@ -366,8 +369,11 @@ static void face_fluxes(bdl_gas *g, double *q[3])
 static void predict(bdl_gas *g, double *const q[3], const int active[3], double dt)
 {
     const bdl_grid *gr = &g->grid;
-    const double rho = g->def.density, mu = g->def.viscosity;
+    const double rho = g->def.density, mu = g->def.viscosity, rho_dt = rho / dt;
     const int implicit = g->def.convection_step == BDL_CONVECTION_POINT_IMPLICIT;
+    double inv_h2[3];
+    for (int b = 0; b < 3; ++b)
+        inv_h2[b] = 1.0 / (gr->h[b] * gr->h[b]);
     for (int a = 0; a < 3; ++a) {
         if (!active[a])
             continue;
@@ -379,16 +385,18 @@ static void predict(bdl_gas *g, double *const q[3], const int active[3], double 
             const double e0 = face_eps(g, g->eps_old, a, idx), e1 = face_eps(g, g->eps, a, idx);
             const double beta = g->beta[a][idx], bv = g->bv[a][idx];
             const convection_terms ct = convection(g, a, idx, u, q);
-            double A = rho * e1 / dt + beta, conv = ct.value;
-            if (implicit) { // out u* - inflows, the correction explicit (gas.h)
-                const double c = dt * ct.out / e1;
-                A += rho * ct.out;
-                conv = ct.upwind - ct.out * u[idx] + (ct.value - ct.upwind) * bdl_min(1.0, 1.0 / c);
+            double A = rho_dt * e1 + beta, conv = ct.value;
+            if (implicit) { // out u* - inflows, the correction explicit (gas.h): the correction
+                A += rho * ct.out; // weighted by 1 / Courant number, at most 1
+                const double weight = bdl_min(1.0, e1 / (dt * ct.out));
+                conv = ct.upwind - ct.out * u[idx] + (ct.value - ct.upwind) * weight;
             }
-            double r = rho * e0 * u[idx] / dt - rho * conv + mu * e0 * laplacian(gr, idx, u) +
-                       e1 * rho * g->def.gravity[a] + bv + g->source[a][idx];
-            us[idx] = r / A;
-            d[idx] = (g->share[a] ? g->share[a][idx] : e1) / A;
+            const double r = rho_dt * e0 * u[idx] - rho * conv +
+                             mu * e0 * laplacian(gr, idx, u, inv_h2) +
+                             e1 * rho * g->def.gravity[a] + bv + g->source[a][idx];
+            const double inv_A = 1.0 / A;
+            us[idx] = r * inv_A;
+            d[idx] = (g->share[a] ? g->share[a][idx] : e1) * inv_A;
         });
     }
 }
