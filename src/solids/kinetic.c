@@ -78,8 +78,8 @@ double bdl_ktgf_shear_temperature(double eps, double d, double rho, double e, do
 /// (f(0) <= 0, f -> +inf; the signs of the coefficients change once: it is the only positive
 /// root). Newton's steps from `guess` (the last step's root, which is near), kept inside the
 /// bracket [lo, hi] their signs of f give (bisected, or doubled while no f > 0 is known, where a
-/// step would leave it). Newton's error squares each step, so a Newton step below 10^-9 of x
-/// leaves one of the order of 10^-18: it is the last.
+/// step would leave it). Newton's error squares each step, so a Newton step below 10^-7 of x
+/// leaves one of the order of 10^-14: it is the last.
 static double cubic_root(double a3, double a2, double a1, double a0, double guess)
 {
     if (!(a0 > 0.0) && !(a1 > 0.0) && a2 >= 0.0)
@@ -98,7 +98,7 @@ static double cubic_root(double a3, double a2, double a1, double a0, double gues
             x = hi < INFINITY ? 0.5 * (lo + hi) : 2.0 * x;
             continue;
         }
-        if (fabs(next - x) <= 1e-9 * next)
+        if (fabs(next - x) <= 1e-7 * next)
             return next;
         x = next;
     }
