@@ -8,7 +8,7 @@
 //     index = (k + G) * sz + (j + G) * sy + (i + G),   -G <= i < nx + G + 1, ...
 // A periodic y or z axis of one cell (the depth of a two-dimensional bed) is flat: its stride is
 // 0 and it has no padding, so every ghost, image and face along it is the cell itself, as the
-// period makes them (a third of the memory and of every whole-array loop in such a bed).
+// period makes them (a sixth of the memory and of every whole-array loop in such a bed).
 #ifndef BDL_GRID_H
 #define BDL_GRID_H
 

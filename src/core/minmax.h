@@ -3,8 +3,9 @@
 // fmax and fmin are library calls on x86-64 unless NaNs and signed zeros are ruled out for the
 // whole program, and written as comparisons compilers often branch (mispredicted in a limiter
 // whose ratio changes sign from face to face). These are a > b ? a : b and a < b ? a : b, on
-// x86-64 as one SSE2 instruction that means exactly that: with a NaN in either they return b,
-// so a NaN in the value a loop folds in (b) is kept, where fmax would drop it.
+// x86-64 as one SSE2 instruction that means exactly that: with a NaN in either they return b
+// (fmax and fmin return the other argument). A loop folding values in as b keeps a NaN only
+// until the next number: check finiteness where it matters.
 #ifndef BDL_MINMAX_H
 #define BDL_MINMAX_H
 

@@ -30,7 +30,8 @@
 // work in the Hertz-Mindlin springs (held, and left by ended contacts) and, with a gas, whether
 // the live inflow rose since the last gas step (the next gas step starts short); 8 the walls'
 // turned angles (now and at the last list build); 9 how far the Lees–Edwards images had slid at
-// the last list build; 10 a solids phase's fields; 11 the solids phases in the scene's record.
+// the last list build; 10 a solids phase's fields; 11 the solids phases in the scene's record;
+// 12 a grid without padding along a periodic y or z of one cell (cfd/grid.h).
 static const char magic[8] = {'B', 'D', 'L', 'C', 'K', 'P', 'T', '7'};
 enum { VERSION = 12, HEADER_BYTES = 32 };
 

@@ -1296,6 +1296,7 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
         hi = bdl_max(hi, s->eps[idx]);
         for (int m = 0; m < s->count; ++m) {
             lo = bdl_min(lo, s->phase[m].eps[idx]);
+            finite = finite && isfinite(s->phase[m].eps[idx]);
             for (int a = 0; a < 3; ++a)
                 finite = finite && isfinite(s->phase[m].v[a][idx]);
         }
