@@ -168,13 +168,7 @@ static void velocity_ghosts(const bdl_gas *g, int a, double *u, const double *ep
         const long s = gr->stride[b];
         const int n = gr->n[b];
         if (gr->periodic[b]) {
-            const int last = b == a ? n : n - 1; // the plane holding the image of plane 0
-            if (b == a)
-                bdl_grid_copy_plane(gr, u, b, n, 0);
-            for (int l = 1; l <= G; ++l) {
-                bdl_grid_copy_plane(gr, u, b, -l, n - l);
-                bdl_grid_copy_plane(gr, u, b, last + l, last + l - n);
-            }
+            bdl_grid_wrap_axis(gr, u, b, b == a);
             continue;
         }
         for (int side = 0; side < 2; ++side) {

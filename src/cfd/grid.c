@@ -91,6 +91,17 @@ void bdl_grid_copy_plane(const bdl_grid *g, double *f, int a, int to, int from)
             }
 }
 
+void bdl_grid_wrap_axis(const bdl_grid *g, double *f, int a, int faces)
+{
+    const int n = g->n[a], last = faces ? n : n - 1; // the plane holding the image of plane 0
+    if (faces)
+        bdl_grid_copy_plane(g, f, a, n, 0);
+    for (int l = 1; l <= BDL_GRID_GHOST; ++l) {
+        bdl_grid_copy_plane(g, f, a, -l, n - l);
+        bdl_grid_copy_plane(g, f, a, last + l, last + l - n);
+    }
+}
+
 void bdl_grid_position(const bdl_grid *g, long idx, int ix[3])
 {
     for (int a = 2; a >= 0; --a) {

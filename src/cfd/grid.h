@@ -50,6 +50,11 @@ static inline int bdl_grid_pad_hi(const bdl_grid *g, int a)
     return g->stride[a] == 0 ? 0 : g->n[a] + BDL_GRID_GHOST;
 }
 
+/// The ghost planes of f along the periodic axis a from their images (the whole planes, ghosts of
+/// the other axes included); `faces`: f lives on the faces normal to a, and its plane n, the
+/// image of plane 0, is filled too.
+void bdl_grid_wrap_axis(const bdl_grid *g, double *f, int a, int faces);
+
 /// The cell (or low faces) of padded index idx: ix[a] from -G to n[a] + G (0 along a flat axis).
 void bdl_grid_position(const bdl_grid *g, long idx, int ix[3]);
 

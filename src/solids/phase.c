@@ -288,13 +288,7 @@ static void velocity_ghosts(const bdl_grid *gr, int a, double *v)
         const long s = gr->stride[b];
         const int n = gr->n[b];
         if (gr->periodic[b]) {
-            const int last = b == a ? n : n - 1; // the plane holding the image of plane 0
-            if (b == a)
-                bdl_grid_copy_plane(gr, v, b, n, 0);
-            for (int l = 1; l <= G; ++l) {
-                bdl_grid_copy_plane(gr, v, b, -l, n - l);
-                bdl_grid_copy_plane(gr, v, b, last + l, last + l - n);
-            }
+            bdl_grid_wrap_axis(gr, v, b, b == a);
         } else if (b == a) {
             BDL_GRID_FOR_PLANE(gr, b, 0, {
                 v[idx] = v[idx + n * s] = 0.0;
