@@ -380,9 +380,9 @@ static void predict(bdl_gas *g, double *const q[3], const int active[3], double 
             const double beta = g->beta[a][idx], bv = g->bv[a][idx];
             const convection_terms ct = convection(g, a, idx, u, q);
             double A = rho_dt * e1 + beta, conv = ct.value;
-            if (implicit) { // out u* - inflows, the correction explicit (gas.h): the correction
-                A += rho * ct.out; // weighted by 1 / Courant number, at most 1
-                const double weight = bdl_min(1.0, e1 / (dt * ct.out));
+            if (implicit) { // out u* - inflows, the correction explicit (gas.h)
+                A += rho * ct.out;
+                const double weight = bdl_min(1.0, e1 / (dt * ct.out)); // 1 / Courant, at most 1
                 conv = ct.upwind - ct.out * u[idx] + (ct.value - ct.upwind) * weight;
             }
             const double r = rho_dt * e0 * u[idx] - rho * conv +

@@ -910,7 +910,8 @@ static double plastic_chord(const bdl_solids *s, long idx, double p, double q)
     return slope;
 }
 
-/// (M z) of the free cell idx (M the matrix above; slope the cells' chords, c the face weights).
+/// (M z) of the free cell idx (M the matrix above; slope the cells' chords, s->weight the face
+/// weights).
 static inline double plastic_row(const bdl_solids *s, const double *slope, const double *z,
                                  long idx)
 {
