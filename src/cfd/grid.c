@@ -23,7 +23,7 @@ int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double 
     int flat[3] = {0, 0, 0}; // a periodic y or z axis of one cell (grid.h)
     size_t extent[3];        // padded positions per axis
     for (int a = 0; a < 3; ++a) {
-        flat[a] = a > 0 && g->periodic[a] && g->n[a] == 1;
+        flat[a] = bdl_grid_flat(a, g->n[a], g->periodic[a]);
         extent[a] = flat[a] ? 1 : (size_t)g->n[a] + 2 * G + 1;
     }
     size_t sy = extent[0], sz, size, bytes;

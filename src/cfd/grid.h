@@ -29,6 +29,10 @@ typedef struct bdl_grid {
     long size;        ///< padded array length
 } bdl_grid;
 
+/// Whether axis a of n cells, periodic or not, is flat (stride 0, no padding): a periodic y or z
+/// of one cell.
+static inline int bdl_grid_flat(int a, int n, int periodic) { return a > 0 && periodic && n == 1; }
+
 /// Sets up a grid of n cells spanning lo..hi. Returns 0 when a count is below 1.
 int bdl_grid_init(bdl_grid *g, const int n[3], const double lo[3], const double hi[3],
                   const int periodic[3]);

@@ -1313,8 +1313,8 @@ bdl_result bdl_solids_step(bdl_solids *s, bdl_gas *gas, double dt)
 /// momentum step takes -grad P explicitly: a step above h / c would let the waves grow.
 static double sound_speed(const bdl_solids_def *d, double eps, double total, double theta)
 {
-    const double q = 1.0 - total, q3 = q * q * q;
-    const double g0 = (1.0 - 0.5 * total) / q3, slope = (2.5 - total) / (q3 * q);
+    const double q = 1.0 - total;
+    const double g0 = bdl_g0_carnahan_starling(total), slope = (2.5 - total) / (q * q * q * q);
     const double c2 = 2.0 * (1.0 + d->restitution) * theta * eps * (2.0 * g0 + eps * slope);
     return sqrt(bdl_max(c2, 0.0));
 }

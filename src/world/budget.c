@@ -65,7 +65,7 @@ static double gas_cells(const bdl_scene *s)
     double cells = 1.0;
     for (int a = 0; a < 3; ++a) {
         const double n = bdl_v3_comp(s->gas.cells, a);
-        cells *= a > 0 && s->periodic[a] && n == 1.0 ? 1.0 : n + 2 * BDL_GRID_GHOST + 1;
+        cells *= bdl_grid_flat(a, (int)n, s->periodic[a]) ? 1.0 : n + 2 * BDL_GRID_GHOST + 1;
     }
     return cells;
 }
