@@ -228,10 +228,49 @@ static void test_jamming_soft(void)
     CHECK(isnan(near));
 }
 
+/// Grad's dilute solution: the three balances it solves, re-checked from its outputs; the elastic
+/// gas's viscosity as e -> 1; and its ratios to Lun et al.'s dilute limit, 18/23 and (18/23)^1.5
+/// at e = 0.7 (zeta/beta = 0.2125/0.9775 = 5/23).
+static void test_grad(void)
+{
+    const double d = 0.0053, rho = 1395.0, g = 100.0, nu = 0.01;
+    for (double e = 0.5; e < 0.95; e += 0.2) {
+        const bdl_grad_shear s = bdl_grad_dilute_shear(nu, e, d, rho, g);
+        const double zeta = 5.0 / 12.0 * (1 - e * e), beta = (1 + e) * (3 - e) / 4;
+        const double nu0 = 96.0 / 5.0 * nu * sqrt(s.temperature) / (d * sqrt(pi));
+        const double pyy = s.pressure - s.n1 / 3.0; // P_xx = P_yy + N1, P_zz = P_yy
+        CHECK_CLOSE(s.shear_stress * g, 1.5 * zeta * nu0 * s.pressure, 1e-12);
+        CHECK_CLOSE(s.shear_stress, g / nu0 * pyy / beta, 1e-12);
+        CHECK_CLOSE(pyy, s.pressure * (1 - zeta / beta), 1e-12);
+        CHECK_CLOSE(s.reduced_rate, g / nu0, 1e-12);
+    }
+    CHECK_CLOSE(bdl_grad_dilute_shear(nu, 1.0 - 1e-9, d, rho, g).viscosity, 1.0, 1e-8);
+    const bdl_grad_shear s = bdl_grad_dilute_shear(1e-7, 0.7, d, rho, g);
+    const bdl_lun_state l = bdl_lun_simple_shear(1e-7, 0.7, d, rho, g);
+    CHECK_CLOSE(s.temperature / l.temperature, 18.0 / 23.0, 1e-5);
+    CHECK_CLOSE(s.pressure / l.pressure, 18.0 / 23.0, 1e-5);
+    CHECK_CLOSE(s.shear_stress / l.shear_stress, pow(18.0 / 23.0, 1.5), 1e-5);
+    CHECK_CLOSE(s.n1 / s.pressure, 15.0 / 23.0, 1e-12);
+    // The reduced viscosity and shear rate read back from each theory's own state: Grad's, and
+    // Lun et al.'s dilute limit, 1/beta and sqrt((3/2) zeta beta) (beta 0.9775, zeta 0.2125).
+    double visc, rate;
+    bdl_rheology_reduced(1e-7, d, rho, s.temperature, s.shear_stress, g, &visc, &rate);
+    CHECK_CLOSE(visc, s.viscosity, 1e-12);
+    CHECK_CLOSE(rate, s.reduced_rate, 1e-12);
+    bdl_rheology_reduced(1e-7, d, rho, l.temperature, l.shear_stress, g, &visc, &rate);
+    CHECK_CLOSE(visc, 1.0 / 0.9775, 1e-5);
+    CHECK_CLOSE(rate, sqrt(1.5 * 0.2125 * 0.9775), 1e-5);
+    printf("Grad, dilute, e 0.7: a* %.4f, eta/eta0 %.4f; of Lun et al.: T %.4f, tau %.4f; N1/p "
+           "%.4f\n",
+           s.reduced_rate, s.viscosity, s.temperature / l.temperature,
+           s.shear_stress / l.shear_stress, s.n1 / s.pressure);
+}
+
 int main(void)
 {
     test_stress();
     test_lun();
+    test_grad();
     test_jamming();
     test_jamming_soft();
     return bdl_test_summary("test_rheology");

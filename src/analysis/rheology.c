@@ -175,6 +175,31 @@ bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, do
     return s;
 }
 
+bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, double g)
+{
+    bdl_grad_shear s;
+    const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
+    // Steady P_yy = p (1 - zeta/beta) (its own relaxation against the cooling), P_xy = -a P_yy /
+    // beta (the shear turning P_yy into P_xy), and -P_xy g = (3/2) zeta nu0 p (heating = cooling).
+    s.reduced_rate = sqrt(1.5 * zeta * beta * beta / (beta - zeta));
+    s.viscosity = (beta - zeta) / (beta * beta);
+    // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = g / a
+    const double root_t = 5.0 * sqrt(pi) * d * fabs(g) / (96.0 * nu * s.reduced_rate);
+    s.temperature = root_t * root_t;
+    s.pressure = rho * nu * s.temperature;
+    s.shear_stress = s.viscosity * 5.0 / 96.0 * rho * d * sqrt(pi) * root_t * fabs(g);
+    s.n1 = 3.0 * zeta / beta * s.pressure;
+    return s;
+}
+
+void bdl_rheology_reduced(double nu, double d, double rho, double t, double tau, double g,
+                          double *viscosity, double *rate)
+{
+    const double eta0 = 5.0 / 96.0 * rho * d * sqrt(pi * t);
+    *viscosity = tau / (eta0 * fabs(g));
+    *rate = fabs(g) * eta0 / (rho * nu * t);
+}
+
 /// The residual of log y = log A - exponent log(nu_cr - nu) for one nu_cr, with log A its best.
 static double jamming_residual(const double *nu, const double *y, int n, double exponent,
                                double nu_cr, double *log_a)

@@ -70,6 +70,32 @@ typedef struct bdl_lun_state {
 } bdl_lun_state;
 bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, double g);
 
+/// The same flow in the dilute limit, solved from the Boltzmann equation by Grad's method
+/// (Montanero, Garzó, Santos & Brey 1999; Santos, Garzó & Dufty 2004): the distribution a
+/// Maxwellian times one plus a quadratic form in the stress's traceless part, the collision
+/// integrals linear in it. With nu0 = p / eta0 (eta0 = (5/96) rho d sqrt(pi T), the elastic
+/// gas's viscosity) the traceless stress relaxes at beta nu0, beta = (1 + e)(3 - e)/4, and the
+/// temperature falls at zeta nu0, zeta = (5/12)(1 - e^2). The steady balances of the stress
+/// components in shear fix the reduced shear rate a = g / nu0, a^2 = (3/2) zeta beta^2 /
+/// (beta - zeta); the viscosity is (beta - zeta)/beta^2 of eta0, and the normal stress along the
+/// flow exceeds the other two, which are equal, by 3 zeta/beta of p. Lun et al.'s theory has the
+/// same beta and zeta but is first order in the shear: its dilute limit is a^2 = (3/2) zeta beta
+/// and a viscosity 1/beta of eta0, so that at one shear rate T and p are 1 - zeta/beta of Lun
+/// et al.'s and tau is (1 - zeta/beta)^(3/2) of theirs (0.783 and 0.692 at e = 0.7). The
+/// limit nu -> 0: g0 = 1, no collisional transfer.
+typedef struct bdl_grad_shear {
+    double reduced_rate;                        ///< a = g / nu0
+    double viscosity;                           ///< eta / eta0
+    double temperature, pressure, shear_stress; ///< [m^2/s^2], [Pa], [Pa]
+    double n1;                                  ///< sigma_xx - sigma_zz, flow minus gradient [Pa]
+} bdl_grad_shear;
+bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, double g);
+/// A shear flow's reduced viscosity eta/eta0 and reduced shear rate g/nu0 at its own temperature
+/// t: eta0 = (5/96) rho d sqrt(pi t), the elastic gas's viscosity, nu0 = rho nu t / eta0. In the
+/// dilute limit both depend on e alone (Grad: reduced_rate and viscosity above).
+void bdl_rheology_reduced(double nu, double d, double rho, double t, double tau, double g,
+                          double *viscosity, double *rate);
+
 /// The distance to jamming from a sweep of solids fractions (Chialvo, Sun & Sundaresan 2012;
 /// Mahajan 2019, §6.3): in the inertial regime the contact pressure scaled by rho d^2 (shear
 /// rate)^2 grows as y = A (nu_cr - nu)^-exponent (4 for AR-4 rods, from the thesis's a1 = 2/3 and

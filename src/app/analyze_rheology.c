@@ -114,7 +114,7 @@ static const char header[] =
     "shear_stress,shear_stress_se,friction,friction_se,inertial_number,n1,n2,alignment,"
     "pressure_scaled,shear_stress_scaled,lun_temperature,lun_pressure,lun_shear_stress,"
     "lun_pressure_at_temperature,lun_shear_stress_at_temperature,pressure_contact,shear_contact,"
-    "contact_friction,contact_pressure_scaled";
+    "contact_friction,contact_pressure_scaled,reduced_viscosity,reduced_shear_rate";
 
 /// rho d^2 (shear rate)^2 of a run's means: the scale of its stresses.
 static double stress_scale(const double *v)
@@ -140,7 +140,10 @@ static void write_row(FILE *f, const char *run, const run_mean *m, double e)
         fprintf(f, ",%.6g,%.6g,%.6g,%.6g,%.6g", l.at_rate.temperature, l.at_rate.pressure,
                 l.at_rate.shear_stress, l.p_at_t, l.tau_at_t);
     }
-    fprintf(f, ",%.6g,%.6g,%.6g,%.6g\n", v[C_PC], v[C_TC], v[C_TC] / v[C_PC], v[C_PC] / scale);
+    double visc, rate;
+    bdl_rheology_reduced(v[C_NU], v[C_D], v[C_RHO], v[C_T], v[C_TAU], v[C_RATE], &visc, &rate);
+    fprintf(f, ",%.6g,%.6g,%.6g,%.6g,%.6g,%.6g\n", v[C_PC], v[C_TC], v[C_TC] / v[C_PC],
+            v[C_PC] / scale, visc, rate);
 }
 
 static void print_row(const char *run, const run_mean *m, double e)
@@ -161,6 +164,18 @@ static void print_row(const char *run, const run_mean *m, double e)
            e, l.at_rate.temperature, l.at_rate.pressure, l.at_rate.shear_stress,
            v[C_T] / l.at_rate.temperature, v[C_P] / l.at_rate.pressure,
            v[C_TAU] / l.at_rate.shear_stress, v[C_P] / l.p_at_t, v[C_TAU] / l.tau_at_t);
+    // Lun et al.'s theory is first order in the shear; where the flow is dilute the reduced shear
+    // rate is not small, and Grad's solution of the Boltzmann equation gives the limit nu -> 0.
+    const double nu = v[C_NU], d = v[C_D], rho = v[C_RHO], g = v[C_RATE];
+    const bdl_grad_shear gr = bdl_grad_dilute_shear(nu, e, d, rho, g);
+    double visc, rate, visc_lun, rate_lun;
+    bdl_rheology_reduced(nu, d, rho, v[C_T], v[C_TAU], g, &visc, &rate);
+    bdl_rheology_reduced(nu, d, rho, l.at_rate.temperature, l.at_rate.shear_stress, g, &visc_lun,
+                         &rate_lun);
+    printf("  reduced (eta0, nu0 at T): eta/eta0 %.4f  rate/nu0 %.4f  N1/p %.3f; Lun et al. %.4f  "
+           "%.4f  0; nu -> 0 (Boltzmann by Grad's method) %.4f  %.4f  %.3f\n",
+           visc, rate, v[C_N1] / v[C_P], visc_lun, rate_lun, gr.viscosity, gr.reduced_rate,
+           gr.n1 / gr.pressure);
 }
 
 static void plot_rheology(const bdl_analyze_opts *o)

@@ -360,19 +360,25 @@ typedef struct bdl_verify_janssen {
 bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out);
 
 /// A shear cell of frictionless spheres (scenes/shear_cell.ini: 5.3 mm, 1395 kg/m^3, k_n = 6e5
-/// N/m, restitution e; 72 x 48 x 48 mm): with `walls` 0 between Lees–Edwards images at 100/s,
-/// else between the corrugated plates of scenes/shear_cell_walls.ini moving at -+2.4 m/s (the
-/// bulk 12 mm from each). The bulk's rheology.csv quantities averaged every 2 ms from a strain of
-/// 10 (0.1 s) to t_end, beside Lun et al. (1984) at its solids fraction and shear rate, and their
-/// pressure and shear stress at its own temperature.
+/// N/m, restitution e): with `walls` 0 between Lees–Edwards images at 100/s in `box` (0: the
+/// thesis's 72 x 48 x 48 mm), else in that box between the corrugated plates of
+/// scenes/shear_cell_walls.ini moving at -+2.4 m/s (the bulk 12 mm from each). The bulk's
+/// rheology.csv quantities averaged every 2 ms from `from` to `to`, beside Lun et al. (1984) at
+/// its solids fraction and shear rate, and their pressure and shear stress at its own
+/// temperature.
+typedef struct bdl_verify_shear_setup {
+    double solids_fraction, restitution;
+    int walls;
+    double box[3]; ///< Lees–Edwards only [m]; zeros: 72 x 48 x 48 mm
+    double from, to;
+} bdl_verify_shear_setup;
 typedef struct bdl_verify_shear {
-    double solids_fraction, shear_rate, temperature, pressure, shear_stress;
+    double solids_fraction, shear_rate, temperature, pressure, shear_stress, n1;
     double lun_temperature, lun_pressure, lun_shear_stress; ///< at the run's nu and shear rate
     double lun_pressure_at_t, lun_shear_stress_at_t;        ///< at the run's nu, rate and T
     long samples, steps;
 } bdl_verify_shear;
-bdl_result bdl_verify_shear_cell(double solids_fraction, double restitution, int walls,
-                                 double t_end, bdl_verify_shear *out);
+bdl_result bdl_verify_shear_cell(const bdl_verify_shear_setup *set, bdl_verify_shear *out);
 /// Janssen's floor mass for a fill of height H [kg].
 double bdl_verify_janssen_mass(double bulk_density, double radius, double mu_wall, double k,
                                double height);

@@ -40,23 +40,27 @@ static int write_plate(const char *path)
     return fclose(f) == 0;
 }
 
-/// The cell for solids fraction nu of the 72 x 48 x 48 mm box: random fills up to 0.3, a
-/// lattice of 5.33 mm above (random insertion jams near 0.38).
-static bdl_world *shear_world(double nu, double e, const char *plate, double t_end)
+/// The cell of `set` (Lees–Edwards in its box, or the thesis's box between plates): random fills
+/// up to solids fraction 0.3, a lattice of 5.33 mm above (random insertion jams near 0.38).
+static bdl_world *shear_world(const bdl_verify_shear_setup *set, const char *plate)
 {
-    const long count = lround(nu * 0.072 * 0.048 * 0.048 / sphere_volume);
+    const double nu = set->solids_fraction, e = set->restitution, t_end = set->to;
+    const int thesis = !(set->box[0] > 0.0) || plate;
+    const double lx = thesis ? 0.072 : set->box[0], ly = thesis ? 0.048 : set->box[1],
+                 lz = thesis ? 0.048 : set->box[2];
+    const long count = lround(nu * lx * ly * lz / sphere_volume);
     const char *fill = nu > 0.33 ? "type = lattice\nspacing = 0.00533\nvelocity_jitter = 0.2\n"
                                  : "type = random\n";
     if (!plate)
         return bdl_verify_world(
             "[run]\nend_time = %g\ngravity = 0 0 0\n[domain]\nmin = 0 0 0\n"
-            "max = 0.072 0.048 0.048\nperiodic = x y z\nshear_rate = 100\n"
+            "max = %.17g %.17g %.17g\nperiodic = x y z\nshear_rate = 100\n"
             "[contact]\nlaw = linear\ndamping = closed_form\n"
             "[species bead]\ndiameter = 0.0053\ndensity = 1395\nstiffness = 6e5\n"
             "restitution = %g\n[create bed]\n%sspecies = bead\ncount = %ld\n"
-            "region_min = 0 0 0\nregion_max = 0.072 0.048 0.048\n"
+            "region_min = 0 0 0\nregion_max = %.17g %.17g %.17g\n"
             "[output]\nrheology_bins = 16\n",
-            t_end, e, fill, count);
+            t_end, lx, ly, lz, e, fill, count, lx, ly, lz);
     return bdl_verify_world(
         "[run]\nend_time = %g\ngravity = 0 0 0\n[domain]\nmin = 0 0 0\n"
         "max = 0.072 0.048 0.048\nperiodic = x y\n"
@@ -72,23 +76,23 @@ static bdl_world *shear_world(double nu, double e, const char *plate, double t_e
         t_end, e, plate, plate, fill, count);
 }
 
-bdl_result bdl_verify_shear_cell(double nu, double e, int walls, double t_end,
-                                 bdl_verify_shear *out)
+bdl_result bdl_verify_shear_cell(const bdl_verify_shear_setup *set, bdl_verify_shear *out)
 {
     *out = (bdl_verify_shear){.pressure = NAN};
+    const int walls = set->walls;
+    const double e = set->restitution, t_end = set->to;
     char folder[] = "/tmp/bedlam-shear-XXXXXX", plate[64];
     if (walls && !mkdtemp(folder))
         return BDL_ERR_IO;
     snprintf(plate, sizeof plate, "%s/plate.obj", folder);
-    bdl_world *w =
-        !walls || write_plate(plate) ? shear_world(nu, e, walls ? plate : NULL, t_end) : NULL;
+    bdl_world *w = !walls || write_plate(plate) ? shear_world(set, walls ? plate : NULL) : NULL;
     if (walls) {
         unlink(plate);
         rmdir(folder);
     }
     if (!w)
         return BDL_ERR_SCENE;
-    double sum[5] = {0}, next = 0.1;
+    double sum[6] = {0}, next = set->from;
     bdl_result r = BDL_OK;
     while (r == BDL_OK && w->time < t_end - 0.5 * w->dt) {
         r = bdl_world_step(w);
@@ -97,9 +101,9 @@ bdl_result bdl_verify_shear_cell(double nu, double e, int walls, double t_end,
         next += 0.002;
         bdl_rheology_sample s;
         r = bdl_rheology_of_world(w, &s);
-        const double v[5] = {s.solids_fraction, s.shear_rate, s.temperature, s.pressure,
-                             s.shear_stress};
-        for (int k = 0; k < 5 && r == BDL_OK; ++k)
+        const double v[6] = {s.solids_fraction, s.shear_rate,   s.temperature,
+                             s.pressure,        s.shear_stress, s.n1};
+        for (int k = 0; k < 6 && r == BDL_OK; ++k)
             sum[k] += v[k];
         out->samples += r == BDL_OK;
     }
@@ -110,6 +114,7 @@ bdl_result bdl_verify_shear_cell(double nu, double e, int walls, double t_end,
     out->temperature = sum[2] / n;
     out->pressure = sum[3] / n;
     out->shear_stress = sum[4] / n;
+    out->n1 = sum[5] / n;
     const bdl_lun_state lun =
         bdl_lun_simple_shear(out->solids_fraction, e, 0.0053, 1395.0, out->shear_rate);
     out->lun_temperature = lun.temperature;
