@@ -238,10 +238,10 @@ static void test_grad(void)
         const bdl_grad_shear s = bdl_grad_dilute_shear(nu, e, d, rho, g);
         const double zeta = 5.0 / 12.0 * (1 - e * e), beta = (1 + e) * (3 - e) / 4;
         const double nu0 = 96.0 / 5.0 * nu * sqrt(s.temperature) / (d * sqrt(pi));
-        const double pyy = s.pressure - s.n1 / 3.0; // P_xx = P_yy + N1, P_zz = P_yy
+        const double pzz = s.pressure - s.n1 / 3.0; // P_xx = P_zz + N1, P_yy = P_zz
         CHECK_CLOSE(s.shear_stress * g, 1.5 * zeta * nu0 * s.pressure, 1e-12);
-        CHECK_CLOSE(s.shear_stress, g / nu0 * pyy / beta, 1e-12);
-        CHECK_CLOSE(pyy, s.pressure * (1 - zeta / beta), 1e-12);
+        CHECK_CLOSE(s.shear_stress, g / nu0 * pzz / beta, 1e-12);
+        CHECK_CLOSE(pzz, s.pressure * (1 - zeta / beta), 1e-12);
         CHECK_CLOSE(s.reduced_rate, g / nu0, 1e-12);
     }
     CHECK_CLOSE(bdl_grad_dilute_shear(nu, 1.0 - 1e-9, d, rho, g).viscosity, 1.0, 1e-8);

@@ -179,8 +179,9 @@ bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, 
 {
     bdl_grad_shear s;
     const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
-    // Steady P_yy = p (1 - zeta/beta) (its own relaxation against the cooling), P_xy = -a P_yy /
-    // beta (the shear turning P_yy into P_xy), and -P_xy g = (3/2) zeta nu0 p (heating = cooling).
+    // Flow along x, gradient along z. Steady P_zz = P_yy = p (1 - zeta/beta) (their relaxation
+    // against the cooling), P_xz = -a P_zz / beta (the shear turning P_zz into P_xz), and
+    // -P_xz g = (3/2) zeta nu0 p (heating = cooling). e = 1 has no steady state: T = inf.
     s.reduced_rate = sqrt(1.5 * zeta * beta * beta / (beta - zeta));
     s.viscosity = (beta - zeta) / (beta * beta);
     // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = g / a

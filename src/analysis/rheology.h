@@ -82,7 +82,8 @@ bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, do
 /// same beta and zeta but is first order in the shear: its dilute limit is a^2 = (3/2) zeta beta
 /// and a viscosity 1/beta of eta0, so that at one shear rate T and p are 1 - zeta/beta of Lun
 /// et al.'s and tau is (1 - zeta/beta)^(3/2) of theirs (0.783 and 0.692 at e = 0.7). The
-/// limit nu -> 0: g0 = 1, no collisional transfer.
+/// limit nu -> 0: g0 = 1, no collisional transfer; flow along x, gradient along z; 0 <= e < 1
+/// (an elastic gas has no steady shear: T = inf).
 typedef struct bdl_grad_shear {
     double reduced_rate;                        ///< a = g / nu0
     double viscosity;                           ///< eta / eta0

@@ -262,8 +262,11 @@ static void fit_jamming(const bdl_analyze_opts *o, const double (*v)[C_COUNT], i
 
 bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
 {
-    if (!isnan(o->restitution) && !(o->restitution > 0.0 && o->restitution <= 1.0)) {
-        fprintf(stderr, "error: --restitution %g: must lie in (0, 1]\n", o->restitution);
+    if (!isnan(o->restitution) && !(o->restitution > 0.0 && o->restitution < 1.0)) {
+        fprintf(stderr,
+                "error: --restitution %g: must lie in (0, 1) (an elastic gas has no steady "
+                "shear)\n",
+                o->restitution);
         return BDL_ERR_ARGS;
     }
     if (!(o->jamming >= 0.0 && isfinite(o->jamming))) {

@@ -361,7 +361,7 @@ bdl_result bdl_verify_janssen_silo(long count, bdl_verify_janssen *out);
 
 /// A shear cell of frictionless spheres (scenes/shear_cell.ini: 5.3 mm, 1395 kg/m^3, k_n = 6e5
 /// N/m, restitution e): with `walls` 0 between Lees–Edwards images at 100/s in `box` (0: the
-/// thesis's 72 x 48 x 48 mm), else in that box between the corrugated plates of
+/// thesis's 72 x 48 x 48 mm), else in the thesis's box (`box` ignored) between the plates of
 /// scenes/shear_cell_walls.ini moving at -+2.4 m/s (the bulk 12 mm from each). The bulk's
 /// rheology.csv quantities averaged every 2 ms from `from` to `to`, beside Lun et al. (1984) at
 /// its solids fraction and shear rate, and their pressure and shear stress at its own

@@ -45,7 +45,7 @@ static int write_plate(const char *path)
 static bdl_world *shear_world(const bdl_verify_shear_setup *set, const char *plate)
 {
     const double nu = set->solids_fraction, e = set->restitution, t_end = set->to;
-    const int thesis = !(set->box[0] > 0.0) || plate;
+    const int thesis = !(set->box[0] > 0.0 && set->box[1] > 0.0 && set->box[2] > 0.0) || plate;
     const double lx = thesis ? 0.072 : set->box[0], ly = thesis ? 0.048 : set->box[1],
                  lz = thesis ? 0.048 : set->box[2];
     const long count = lround(nu * lx * ly * lz / sphere_volume);

@@ -19,6 +19,11 @@ endif()
 if(NOT out MATCHES "nu 0\\.100[0-9]  rate 100/s" OR NOT out MATCHES "Lun et al\\. \\(e = 0\\.7\\)")
   message(FATAL_ERROR "unexpected summary")
 endif()
+# The run's reduced viscosity and shear rate beside Lun et al.'s and Grad's dilute limit at 0.7.
+if(NOT out MATCHES "reduced \\(eta0, nu0 at T\\): eta/eta0 0\\.[0-9]+  rate/nu0 0\\.[0-9]+"
+   OR NOT out MATCHES "Grad's method\\) 0\\.8006  0\\.6310  0\\.652")
+  message(FATAL_ERROR "no reduced viscosity and shear rate beside Grad's limit")
+endif()
 if(NOT out MATCHES "jamming fit: needs three runs or more")
   message(FATAL_ERROR "the jamming fit did not say it needs three runs")
 endif()
@@ -45,10 +50,10 @@ execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --amplitude 1e-4 --no
 if(NOT rc EQUAL 2 OR NOT err MATCHES "comes with --jamming")
   message(FATAL_ERROR "--amplitude without --jamming was not refused (${rc}): ${err}")
 endif()
-execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 1.5 --no-plots
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 1 --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 2 OR NOT err MATCHES "--restitution 1.5: must lie in \\(0, 1\\]")
-  message(FATAL_ERROR "a restitution of 1.5 was not refused (${rc}): ${err}")
+if(NOT rc EQUAL 2 OR NOT err MATCHES "--restitution 1: must lie in \\(0, 1\\) \\(an elastic gas")
+  message(FATAL_ERROR "a restitution of 1 was not refused (${rc}): ${err}")
 endif()
 execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK}/missing --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
