@@ -159,6 +159,13 @@ int bdl_rheology_measure(const bdl_rheology_input *in, bdl_rheology_sample *out)
     return 1;
 }
 
+/// The viscosity of an elastic dilute gas of spheres at temperature t, (5/96) rho d sqrt(pi t):
+/// the scale of Lun et al.'s shear stress and of the reduced viscosity.
+static double elastic_viscosity(double rho, double d, double t)
+{
+    return 5.0 / 96.0 * rho * d * sqrt(pi * t);
+}
+
 bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, double g)
 {
     bdl_lun_state s;
@@ -171,7 +178,7 @@ bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, do
     // T^(3/2) / d, with mu = (5/96) rho d sqrt(pi T) F.
     s.temperature = 5.0 * pi / 4608.0 * f * d * d * g * g / (eta * (1.0 - eta) * nu * nu * s.g0);
     s.pressure = rho * nu * s.temperature * (1.0 + 4.0 * eta * nu * s.g0);
-    s.shear_stress = 5.0 / 96.0 * rho * d * sqrt(pi * s.temperature) * f * fabs(g);
+    s.shear_stress = elastic_viscosity(rho, d, s.temperature) * f * fabs(g);
     return s;
 }
 
@@ -188,7 +195,7 @@ bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, 
     const double root_t = 5.0 * sqrt(pi) * d * fabs(g) / (96.0 * nu * s.reduced_rate);
     s.temperature = root_t * root_t;
     s.pressure = rho * nu * s.temperature;
-    s.shear_stress = s.viscosity * 5.0 / 96.0 * rho * d * sqrt(pi) * root_t * fabs(g);
+    s.shear_stress = s.viscosity * elastic_viscosity(rho, d, s.temperature) * fabs(g);
     s.n1 = 3.0 * zeta / beta * s.pressure;
     return s;
 }
@@ -196,7 +203,7 @@ bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, 
 void bdl_rheology_reduced(double nu, double d, double rho, double t, double tau, double g,
                           double *viscosity, double *rate)
 {
-    const double eta0 = 5.0 / 96.0 * rho * d * sqrt(pi * t);
+    const double eta0 = elastic_viscosity(rho, d, t);
     *viscosity = tau / (eta0 * fabs(g));
     *rate = fabs(g) * eta0 / (rho * nu * t);
 }
