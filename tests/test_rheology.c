@@ -266,11 +266,42 @@ static void test_grad(void)
            s.shear_stress / l.shear_stress, s.n1 / s.pressure);
 }
 
+/// Grad's sheared gas with a drag -b m (v - u): its four balances re-derived from its outputs,
+/// its limit b -> 0, a drag that lowers T, and no root from b = 0.166 g on (e = 0.7).
+static void test_grad_damped(void)
+{
+    const double d = 0.0053, rho = 1395.0, g = 100.0, nu = 0.01, e = 0.7;
+    const double zeta = 5.0 / 12.0 * (1 - e * e), beta = (1 + e) * (3 - e) / 4;
+    const bdl_grad_shear dry = bdl_grad_dilute_shear(nu, e, d, rho, g);
+    double t_last = dry.temperature;
+    for (double b = 1.0; b < 10.0; b *= 3.0) { // no root from b = 16.6/s on
+        const bdl_grad_shear s = bdl_grad_dilute_shear_damped(nu, e, d, rho, g, b);
+        const double nu0 = 96.0 / 5.0 * nu * sqrt(s.temperature) / (d * sqrt(pi));
+        const double pzz = s.pressure - s.n1 / 3.0, pxx = pzz + s.n1;
+        CHECK_CLOSE(s.shear_stress * g, 1.5 * zeta * nu0 * s.pressure + 3.0 * b * s.pressure,
+                    1e-10);
+        CHECK_CLOSE(s.shear_stress * (beta * nu0 + 2.0 * b), g * pzz, 1e-10);
+        CHECK_CLOSE(pzz * (beta * nu0 + 2.0 * b), s.pressure * nu0 * (beta - zeta), 1e-10);
+        CHECK_CLOSE(pxx * (beta * nu0 + 2.0 * b),
+                    s.pressure * nu0 * (beta - zeta) + 2.0 * g * s.shear_stress, 1e-10);
+        CHECK_CLOSE(s.reduced_rate, g / nu0, 1e-10);
+        CHECK(s.temperature < t_last);
+        t_last = s.temperature;
+    }
+    const bdl_grad_shear tiny = bdl_grad_dilute_shear_damped(nu, e, d, rho, g, 1e-9);
+    CHECK_CLOSE(tiny.temperature, dry.temperature, 1e-9);
+    CHECK_CLOSE(tiny.n1, dry.n1, 1e-9);
+    // No root: the least shear rate of b grows with b (0.166 g at e = 0.7).
+    CHECK(isnan(bdl_grad_dilute_shear_damped(nu, e, d, rho, g, 1e4).temperature));
+    CHECK(isnan(bdl_grad_dilute_shear_damped(nu, e, d, rho, 1.0, 100.0).pressure));
+}
+
 int main(void)
 {
     test_stress();
     test_lun();
     test_grad();
+    test_grad_damped();
     test_jamming();
     test_jamming_soft();
     return bdl_test_summary("test_rheology");

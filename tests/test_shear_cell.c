@@ -1,6 +1,7 @@
 // The shear cell's boundaries (docs/validation/rheology.md): Lees–Edwards images — separations
 // and velocities across the z faces, the pair lists against a brute force at any slide of the
-// images, a dilute gas carried on the shear profile through the faces, an inelastic collision
+// images, a dilute gas carried on the shear profile through the faces (also in a medium that
+// moves with the shear), an inelastic collision
 // across a face against the restitution — and a repeating corrugated plate that carries a bead
 // through the periodic x faces for ever.
 #include <math.h>
@@ -117,6 +118,39 @@ static void test_profile(void)
            w->particles.count, crossings, w->time, worst);
     CHECK(w->time * 0.3 > 0.05); // each bead went through the z faces at least once
     CHECK(worst < 1e-9);
+    bdl_world_destroy(w);
+}
+
+/// The same gas in a medium that moves with the shear (background damping b = 5/s): the damping
+/// acts on the velocity relative to the profile, so a bead keeps to u = v_x - rate (z - middle)
+/// = -rate w0 t e^(-b t) (du/dt = -b u - rate v_z, v_z = w0 e^(-b t)) through the faces, where
+/// damping of the lab velocity would pull every bead to rest.
+static void test_profile_damped(void)
+{
+    bdl_world *w = bdl_test_world(
+        "[run]\nend_time = 1\ngravity = 0 0 0\n[domain]\nmin = 0 0 0\nmax = 0.06 0.04 0.05\n"
+        "periodic = x y z\nshear_rate = 20\n[contact]\nlaw = linear\n"
+        "[species s]\ndiameter = 0.001\ndensity = 2500\nstiffness = 10\nrestitution = 0.9\n"
+        "background_damping = 5\n[create bed]\ntype = lattice\nspecies = s\nspacing = 0.01\n"
+        "region_min = 0 0 0\nregion_max = 0.06 0.04 0.05\nvelocity = 0 0 0.3\n");
+    const double rate = 20.0, middle = 0.025, b = 5.0, w0 = 0.3;
+    double worst_u = 0.0, worst_w = 0.0;
+    const long steps = 60000;
+    for (long s = 0; s < steps; ++s)
+        CHECK(bdl_world_step(w) == BDL_OK);
+    const double t = w->time, decay = exp(-b * t);
+    const bdl_particles *p = &w->particles;
+    for (long i = 0; i < p->count; ++i) {
+        const double u = p->vel[i].x - rate * (p->pos[i].z - middle);
+        worst_u = fmax(worst_u, fabs(u + rate * w0 * t * decay));
+        worst_w = fmax(worst_w, fabs(p->vel[i].z - w0 * decay));
+    }
+    printf("damped profile: %ld beads over %.3g s, |u - exact| %.3g of %.3g m/s, |v_z - exact| "
+           "%.3g of %.3g m/s\n",
+           p->count, t, worst_u, rate * w0 * t * decay, worst_w, w0 * decay);
+    CHECK(w0 * (1.0 - decay) / b > 0.05); // each bead went through the z faces at least once
+    CHECK(worst_u < 1e-3 * rate * w0 * t * decay);
+    CHECK(worst_w < 1e-3 * w0 * decay);
     bdl_world_destroy(w);
 }
 
@@ -249,6 +283,7 @@ int main(void)
     test_images();
     test_lists();
     test_profile();
+    test_profile_damped();
     test_collision();
     test_plate();
     return bdl_test_summary("test_shear_cell");

@@ -182,22 +182,65 @@ bdl_lun_state bdl_lun_simple_shear(double nu, double e, double d, double rho, do
     return s;
 }
 
-bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, double g)
+/// q(y) = (zeta y + 2b)(beta y + 2b)^2 / y, the damped balance's (2/3)(beta - zeta) g^2 as a
+/// function of the collision frequency y = nu0.
+static double damped_balance(double y, double zeta, double beta, double b)
+{
+    const double r = beta * y + 2.0 * b;
+    return (zeta * y + 2.0 * b) * r * r / y;
+}
+
+/// The hot root y >= the minimum of q of q(y) = target (bisection on the rising side), or NAN.
+static double damped_frequency(double target, double zeta, double beta, double b)
+{
+    // q' = 0 where beta zeta y^2 + b beta y - 2 b^2 = 0.
+    const double y_min = b * (sqrt(beta * beta + 8.0 * beta * zeta) - beta) / (2.0 * beta * zeta);
+    if (!(damped_balance(y_min, zeta, beta, b) <= target))
+        return NAN;
+    double lo = y_min, hi = 2.0 * y_min + sqrt(target / (zeta * beta * beta));
+    while (damped_balance(hi, zeta, beta, b) < target)
+        hi *= 2.0;
+    for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        *(damped_balance(mid, zeta, beta, b) < target ? &lo : &hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate)
+{
+    const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
+    // Flow along x, gradient along z. Steady P_zz = P_yy = p (beta - zeta) / (beta + 2 b*)
+    // (their relaxation against the cooling and the drag), P_xz = -a P_zz / (beta + 2 b*) (the
+    // shear turning P_zz into P_xz), and -P_xz g = (3/2)(zeta + 2 b*) nu0 p (heating = cooling
+    // and drag). e = 1 without drag has no steady state: T = inf.
+    const double r = beta + 2.0 * b_reduced;
+    *viscosity = (beta - zeta) / (r * r);
+    *rate = sqrt(1.5 * (zeta + 2.0 * b_reduced) * r * r / (beta - zeta));
+}
+
+bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, double rho, double g,
+                                            double b)
 {
     bdl_grad_shear s;
     const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
-    // Flow along x, gradient along z. Steady P_zz = P_yy = p (1 - zeta/beta) (their relaxation
-    // against the cooling), P_xz = -a P_zz / beta (the shear turning P_zz into P_xz), and
-    // -P_xz g = (3/2) zeta nu0 p (heating = cooling). e = 1 has no steady state: T = inf.
-    s.reduced_rate = sqrt(1.5 * zeta * beta * beta / (beta - zeta));
-    s.viscosity = (beta - zeta) / (beta * beta);
-    // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = g / a
-    const double root_t = 5.0 * sqrt(pi) * d * fabs(g) / (96.0 * nu * s.reduced_rate);
+    // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = y solves q(y) = (2/3)(beta - zeta) g^2
+    // (q at b = 0: zeta beta^2 y^2).
+    const double y = b > 0.0 ? damped_frequency(2.0 / 3.0 * (beta - zeta) * g * g, zeta, beta, b)
+                             : fabs(g) / sqrt(1.5 * zeta * beta * beta / (beta - zeta));
+    const double b_reduced = b > 0.0 ? b / y : 0.0;
+    bdl_grad_dilute_reduced(e, b_reduced, &s.viscosity, &s.reduced_rate);
+    const double root_t = 5.0 * sqrt(pi) * d * y / (96.0 * nu);
     s.temperature = root_t * root_t;
     s.pressure = rho * nu * s.temperature;
     s.shear_stress = s.viscosity * elastic_viscosity(rho, d, s.temperature) * fabs(g);
-    s.n1 = 3.0 * zeta / beta * s.pressure;
+    s.n1 = 3.0 * (zeta + 2.0 * b_reduced) / (beta + 2.0 * b_reduced) * s.pressure;
     return s;
+}
+
+bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, double g)
+{
+    return bdl_grad_dilute_shear_damped(nu, e, d, rho, g, 0.0);
 }
 
 void bdl_rheology_reduced(double nu, double d, double rho, double t, double tau, double g,

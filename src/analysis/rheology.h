@@ -91,6 +91,21 @@ typedef struct bdl_grad_shear {
     double n1;                                  ///< sigma_xx - sigma_zz, flow minus gradient [Pa]
 } bdl_grad_shear;
 bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, double g);
+/// The same with a drag -b m (v - u) on every sphere, u the shear profile (a medium moving with
+/// the shear: [species] background_damping in a Lees–Edwards box; the suspension model of
+/// Chamorro, Vega Reyes & Garzó 2015). The drag adds 2 b P_ij to each balance, so with
+/// b* = b / nu0: P_zz = p (beta - zeta) / (beta + 2 b*), eta / eta0 = (beta - zeta) /
+/// (beta + 2 b*)^2, N1 = 3 (zeta + 2 b*) / (beta + 2 b*) p and a^2 = (3/2) (zeta + 2 b*)
+/// (beta + 2 b*)^2 / (beta - zeta). As nu0 grows with sqrt(T), T solves a cubic: the hot root
+/// is the sheared gas. Below a least shear rate (g < b / 0.166 at e = 0.7) there is no root, and
+/// every field is NAN: the truncation fails there (a run at b = 0.2 g still shears, with N1/p
+/// 2). b = 0 is bdl_grad_dilute_shear; b >= 0.
+bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, double rho, double g,
+                                            double b);
+/// Grad's reduced viscosity eta/eta0 and shear rate g/nu0 of that flow at a reduced drag
+/// b* = b / nu0 (b* >= 0; 0: (beta - zeta)/beta^2 and sqrt((3/2) zeta beta^2/(beta - zeta))): a
+/// run's own temperature fixes nu0 and so b*, where it is compared.
+void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate);
 /// A shear flow's reduced viscosity eta/eta0 and reduced shear rate g/nu0 at its own temperature
 /// t: eta0 = (5/96) rho d sqrt(pi t), the elastic gas's viscosity, nu0 = rho nu t / eta0. In the
 /// dilute limit both depend on e alone (Grad: reduced_rate and viscosity above).

@@ -647,9 +647,9 @@ static inline void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl
 {
     if (nb->wall_start[i] < nb->wall_start[i + 1])
         wall_contacts(p, nb, walls, def, i, &f, &t, released);
-    double b = def->background_damping[p->species[i]];
+    const double b = def->background_damping[p->species[i]];
     if (b > 0.0)
-        f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
+        f = bdl_v3_madd(f, bdl_background_slip(def, p, i), -b / p->inv_mass[i]);
     p->load[i] = (bdl_wrench){f, t};
     if (kick > 0.0) {
         double im = p->inv_mass[i];

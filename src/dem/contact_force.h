@@ -14,7 +14,10 @@ typedef struct bdl_force_def {
     const bdl_contact_params *wall_params; ///< wall_count * species_count table
     int species_count;
     const double *background_damping; ///< per species [1/s]
-    bdl_vec3 gravity;                 ///< [m/s^2]
+    /// Lees–Edwards: background damping acts on the velocity relative to the imposed shear
+    /// profile u_x = shear_rate (z - shear_middle), the medium moving with the shear (0: at rest)
+    double shear_rate, shear_middle;
+    bdl_vec3 gravity; ///< [m/s^2]
     int hertz, friction, rolling;
     double dt;         ///< [s] (tangential spring increment)
     long parallel_min; ///< fewer particles than this: one thread
@@ -22,6 +25,15 @@ typedef struct bdl_force_def {
 } bdl_force_def;
 
 #define BDL_MAX_FORCE_THREADS 256
+
+/// The velocity of particle i that background damping acts on: its own, less the Lees–Edwards
+/// shear profile where the box is sheared.
+static inline bdl_vec3 bdl_background_slip(const bdl_force_def *def, const bdl_particles *p, long i)
+{
+    bdl_vec3 v = p->vel[i];
+    v.x -= def->shear_rate * (p->pos[i].z - def->shear_middle);
+    return v;
+}
 
 /// An evaluated boundary pair: a pair whose j lies in a later thread's range, kept for j's owner.
 typedef struct bdl_pair_result {

@@ -167,7 +167,7 @@ static void finish_particle(bdl_particles *p, bdl_neighbor *nb, const bdl_walls 
         wall_contact(p, nb, walls, def, i, k, &f, &t, released);
     const double b = def->background_damping[p->species[i]];
     if (b > 0.0)
-        f = bdl_v3_madd(f, p->vel[i], -b / p->inv_mass[i]);
+        f = bdl_v3_madd(f, bdl_background_slip(def, p, i), -b / p->inv_mass[i]);
     p->load[i] = (bdl_wrench){f, t};
     if (kick > 0.0) {
         const bdl_vec3 g =

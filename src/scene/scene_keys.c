@@ -217,7 +217,9 @@ const bdl_scene_key bdl_scene_keys[] = {
     {S(SPECIES), "rolling_friction", NUM, "-", IN_SPECIES(material.rolling_friction), .def = {0},
      GE(0), .doc = "rolling friction coefficient mu_r (used when rolling = constant)"},
     {S(SPECIES), "background_damping", NUM, "1/s", IN_SPECIES(background_damping), .def = {0},
-     GE(0), .doc = "force -b m v on every particle of the species"},
+     GE(0),
+     .doc = "force -b m v on every particle of the species (in a Lees-Edwards box v is taken "
+            "relative to the shear profile: a medium that moves with the shear)"},
     {S(SPECIES), "parcel_particles", NUM, "-", IN_SPECIES(parcel_particles), .def = {0},
      .default_text = "0 (not parcels)", GE(0), LE(1e15),
      .doc = "makes the species parcels (MP-PIC, docs/parcels.md), each standing for this many "

@@ -57,10 +57,10 @@ static bdl_world *shear_world(const bdl_verify_shear_setup *set, const char *pla
             "max = %.17g %.17g %.17g\nperiodic = x y z\nshear_rate = 100\n"
             "[contact]\nlaw = linear\ndamping = closed_form\n"
             "[species bead]\ndiameter = 0.0053\ndensity = 1395\nstiffness = 6e5\n"
-            "restitution = %g\n[create bed]\n%sspecies = bead\ncount = %ld\n"
-            "region_min = 0 0 0\nregion_max = %.17g %.17g %.17g\n"
+            "restitution = %g\nbackground_damping = %.17g\n[create bed]\n%sspecies = bead\n"
+            "count = %ld\nregion_min = 0 0 0\nregion_max = %.17g %.17g %.17g\n"
             "[output]\nrheology_bins = 16\n",
-            t_end, lx, ly, lz, e, fill, count, lx, ly, lz);
+            t_end, lx, ly, lz, e, set->damping, fill, count, lx, ly, lz);
     return bdl_verify_world(
         "[run]\nend_time = %g\ngravity = 0 0 0\n[domain]\nmin = 0 0 0\n"
         "max = 0.072 0.048 0.048\nperiodic = x y\n"

@@ -28,6 +28,8 @@ static bdl_force_def force_def(const bdl_world *w)
     def.wall_params = w->wall_params;
     def.species_count = w->scene.species_count;
     def.background_damping = w->background_damping;
+    def.shear_rate = w->scene.shear_rate;
+    def.shear_middle = 0.5 * (w->scene.domain_min.z + w->scene.domain_max.z);
     def.gravity = bdl_world_gravity(w, w->time);
     def.hertz = w->hertz;
     def.friction = w->friction;
