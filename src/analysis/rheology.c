@@ -207,7 +207,8 @@ static double damped_frequency(double target, double zeta, double beta, double b
     return 0.5 * (lo + hi);
 }
 
-void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate)
+void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate,
+                             double *n1_over_p)
 {
     const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
     // Flow along x, gradient along z. Steady P_zz = P_yy = p (beta - zeta) / (beta + 2 b*)
@@ -217,6 +218,7 @@ void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, doub
     const double r = beta + 2.0 * b_reduced;
     *viscosity = (beta - zeta) / (r * r);
     *rate = sqrt(1.5 * (zeta + 2.0 * b_reduced) * r * r / (beta - zeta));
+    *n1_over_p = 3.0 * (zeta + 2.0 * b_reduced) / r;
 }
 
 bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, double rho, double g,
@@ -229,12 +231,13 @@ bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, doubl
     const double y = b > 0.0 ? damped_frequency(2.0 / 3.0 * (beta - zeta) * g * g, zeta, beta, b)
                              : fabs(g) / sqrt(1.5 * zeta * beta * beta / (beta - zeta));
     const double b_reduced = b > 0.0 ? b / y : 0.0;
-    bdl_grad_dilute_reduced(e, b_reduced, &s.viscosity, &s.reduced_rate);
+    double n1_over_p;
+    bdl_grad_dilute_reduced(e, b_reduced, &s.viscosity, &s.reduced_rate, &n1_over_p);
     const double root_t = 5.0 * sqrt(pi) * d * y / (96.0 * nu);
     s.temperature = root_t * root_t;
     s.pressure = rho * nu * s.temperature;
     s.shear_stress = s.viscosity * elastic_viscosity(rho, d, s.temperature) * fabs(g);
-    s.n1 = 3.0 * (zeta + 2.0 * b_reduced) / (beta + 2.0 * b_reduced) * s.pressure;
+    s.n1 = n1_over_p * s.pressure;
     return s;
 }
 

@@ -102,10 +102,11 @@ bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, 
 /// 2). b = 0 is bdl_grad_dilute_shear; b >= 0.
 bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, double rho, double g,
                                             double b);
-/// Grad's reduced viscosity eta/eta0 and shear rate g/nu0 of that flow at a reduced drag
-/// b* = b / nu0 (b* >= 0; 0: (beta - zeta)/beta^2 and sqrt((3/2) zeta beta^2/(beta - zeta))): a
-/// run's own temperature fixes nu0 and so b*, where it is compared.
-void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate);
+/// Grad's reduced viscosity eta/eta0, shear rate g/nu0 and N1/p of that flow at a reduced drag
+/// b* = b / nu0 (b* >= 0; 0: (beta - zeta)/beta^2, sqrt((3/2) zeta beta^2/(beta - zeta)) and
+/// 3 zeta/beta): a run's own temperature fixes nu0 and so b*, where it is compared.
+void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate,
+                             double *n1_over_p);
 /// A shear flow's reduced viscosity eta/eta0 and reduced shear rate g/nu0 at its own temperature
 /// t: eta0 = (5/96) rho d sqrt(pi t), the elastic gas's viscosity, nu0 = rho nu t / eta0. In the
 /// dilute limit both depend on e alone (Grad: reduced_rate and viscosity above).

@@ -39,6 +39,7 @@ typedef struct bdl_analyze_opts {
     double amplitude; ///< rheology: the jamming law's A held fixed (0: fitted with nu_cr)
     double stiffness; ///< rheology: k_n of the soft dense branch (0: its inertial limit only)
     double a2;        ///< rheology: the soft dense branch's a2 (Mahajan 2019, eq. 6.3)
+    double damping;   ///< rheology: the runs' background damping b [1/s] for Grad's limit (0: none)
 } bdl_analyze_opts;
 
 bdl_result bdl_analyze_sweep(const bdl_analyze_opts *o);

@@ -146,7 +146,7 @@ static void write_row(FILE *f, const char *run, const run_mean *m, double e)
             v[C_PC] / scale, visc, rate);
 }
 
-static void print_row(const char *run, const run_mean *m, double e)
+static void print_row(const char *run, const run_mean *m, double e, double b)
 {
     const double *v = m->mean, *se = m->se;
     printf("%s: %ld rows, %.3g-%.3g s: nu %.4f  rate %.4g/s  T %.4g  p %.4g +- %.2g Pa  "
@@ -167,15 +167,20 @@ static void print_row(const char *run, const run_mean *m, double e)
     // Lun et al.'s theory is first order in the shear; where the flow is dilute the reduced shear
     // rate is not small, and Grad's solution of the Boltzmann equation gives the limit nu -> 0.
     const double nu = v[C_NU], d = v[C_D], rho = v[C_RHO], g = v[C_RATE];
-    const bdl_grad_shear gr = bdl_grad_dilute_shear(nu, e, d, rho, g);
     double visc, rate, visc_lun, rate_lun;
     bdl_rheology_reduced(nu, d, rho, v[C_T], v[C_TAU], g, &visc, &rate);
     bdl_rheology_reduced(nu, d, rho, l.at_rate.temperature, l.at_rate.shear_stress, g, &visc_lun,
                          &rate_lun);
+    // With a drag, Grad's values at the reduced drag b / nu0 of the run's own temperature.
+    const double b_reduced = b * rate / fabs(g);
+    double visc_grad, rate_grad, n1_grad;
+    bdl_grad_dilute_reduced(e, b_reduced, &visc_grad, &rate_grad, &n1_grad);
     printf("  reduced (eta0, nu0 at T): eta/eta0 %.4f  rate/nu0 %.4f  N1/p %.3f; Lun et al. %.4f  "
-           "%.4f  0; nu -> 0 (Boltzmann by Grad's method) %.4f  %.4f  %.3f\n",
-           visc, rate, v[C_N1] / v[C_P], visc_lun, rate_lun, gr.viscosity, gr.reduced_rate,
-           gr.n1 / gr.pressure);
+           "%.4f  0; nu -> 0 (Boltzmann by Grad's method",
+           visc, rate, v[C_N1] / v[C_P], visc_lun, rate_lun);
+    if (b > 0.0)
+        printf(", drag %g/s: b/nu0 %.4f", b, b_reduced);
+    printf(") %.4f  %.4f  %.3f\n", visc_grad, rate_grad, n1_grad);
 }
 
 static void plot_rheology(const bdl_analyze_opts *o)
@@ -269,6 +274,12 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
                 o->restitution);
         return BDL_ERR_ARGS;
     }
+    if (!(o->damping >= 0.0 && isfinite(o->damping)) ||
+        (o->damping > 0.0 && isnan(o->restitution))) {
+        fprintf(stderr, "error: --damping %g: must be >= 0, and comes with --restitution E\n",
+                o->damping);
+        return BDL_ERR_ARGS;
+    }
     if (!(o->jamming >= 0.0 && isfinite(o->jamming))) {
         fprintf(stderr, "error: --jamming %g: must be a positive exponent\n", o->jamming);
         return BDL_ERR_ARGS;
@@ -301,7 +312,7 @@ bdl_result bdl_analyze_rheology(const bdl_analyze_opts *o)
             return BDL_ERR_ARGS;
         }
         write_row(af.file, o->runs[r], &m, o->restitution);
-        print_row(o->runs[r], &m, o->restitution);
+        print_row(o->runs[r], &m, o->restitution, o->damping);
         for (int c = 0; c < C_COUNT; ++c)
             v[r][c] = m.mean[c];
     }

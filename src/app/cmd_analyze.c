@@ -29,7 +29,8 @@ static const char usage_first[] =
     "       bedlam analyze orientation RUN [--from T] [--to T] [--by-velocity] [--out DIR]\n"
     "                                  [--no-plots]\n"
     "       bedlam analyze ptv RUN/dia/NAME [--max-step PX] [--out DIR]\n"
-    "       bedlam analyze rheology RUN [RUN...] [--from T] [--to T] [--restitution E]\n"
+    "       bedlam analyze rheology RUN [RUN...] [--from T] [--to T] [--restitution E\n"
+    "                               [--damping B]]\n"
     "                               [--jamming X [--amplitude A [--stiffness K --a2 C]]]\n"
     "                               [--out DIR] [--no-plots]\n"
     "\n"
@@ -134,7 +135,9 @@ static const char usage_third[] =
     "and shear rate/nu0 (eta0 = (5/96) rho d sqrt(pi T), nu0 = rho nu T/eta0; written to the\n"
     "table for every run) and N1/p beside Lun et al.'s and beside the limit nu -> 0 of the\n"
     "Boltzmann equation's steady shear solved by Grad's method (e < 1), which the dilute flow\n"
-    "follows where the theory, first order in the shear, fails.\n"
+    "follows where the theory, first order in the shear, fails. With --damping B as well (the\n"
+    "runs' [species] background_damping in their Lees-Edwards box, 1/s): Grad's limit with that\n"
+    "drag, at the reduced drag B/nu0 of each run's own temperature.\n"
     "With --jamming X (3 runs or more): the contact pressure over rho d^2 (shear rate)^2, y,\n"
     "fitted with A (nu_cr - nu)^-X over the runs, the distance to jamming (X = 4 for AR-4 rods,\n"
     "2 for spheres: Chialvo et al. 2012, Mahajan 2019 ch. 6). With --amplitude A as well, A is\n"
@@ -180,6 +183,7 @@ static const bdl_option options[] = {
     {"--amplitude", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, amplitude)},
     {"--stiffness", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, stiffness)},
     {"--a2", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, a2)},
+    {"--damping", BDL_OPTION_NUMBER, offsetof(bdl_analyze_opts, damping)},
 };
 
 /// The run folder (or contact file): one, and no unknown option.

@@ -143,17 +143,17 @@ static bdl_result dilute_case(double b, bdl_verify_result *out)
                                         .damping = b};
     const bdl_result r = bdl_verify_shear_cell(&set, &s);
     print_shear("Lees-Edwards, dilute", &s);
-    double visc, rate, visc_grad, rate_grad;
+    double visc, rate, visc_grad, rate_grad, n1_grad;
     bdl_rheology_reduced(s.solids_fraction, d, rho, s.temperature, s.shear_stress, s.shear_rate,
                          &visc, &rate);
     const double nu0 = fabs(s.shear_rate) / rate; // the run's collision frequency p / eta0
-    bdl_grad_dilute_reduced(e, b / nu0, &visc_grad, &rate_grad);
+    bdl_grad_dilute_reduced(e, b / nu0, &visc_grad, &rate_grad, &n1_grad);
     const bdl_grad_shear g =
         bdl_grad_dilute_shear_damped(s.solids_fraction, e, d, rho, s.shear_rate, b);
     printf("  b %g/s (b/nu0 %.4f): eta/eta0 %.4f (Grad %.4f), shear rate/nu0 %.4f (Grad %.4f), "
            "N1/p %.3f (Grad %.3f); T %.4f m^2/s^2 (Grad at this b %.4f)\n",
-           b, b / nu0, visc, visc_grad, rate, rate_grad, s.n1 / s.pressure, g.n1 / g.pressure,
-           s.temperature, g.temperature);
+           b, b / nu0, visc, visc_grad, rate, rate_grad, s.n1 / s.pressure, n1_grad, s.temperature,
+           g.temperature);
     if (b == 0.0) {
         const bdl_lun_state l = bdl_lun_simple_shear(1e-9, e, d, rho, s.shear_rate);
         double visc_lun, rate_lun;

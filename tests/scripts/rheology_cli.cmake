@@ -1,6 +1,7 @@
 # bedlam run of the Lees-Edwards shear cell (a short one), then bedlam analyze rheology on it: the
 # row per run beside Lun et al., the jamming fit refused with one run but a run's own nu_cr given
-# with the amplitude held, and bad options refused with exit 2. -DBEDLAM -DSCENE -DWORK
+# with the amplitude held, Grad's limit with a drag, and bad options refused with exit 2.
+# -DBEDLAM -DSCENE -DWORK
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${BEDLAM} run ${SCENE} --quiet --out ${WORK} --set run.end_time=0.15
   --set create.bed.count=213 --set output.checkpoint_interval=0
@@ -55,6 +56,20 @@ execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 1 --no-
 if(NOT rc EQUAL 2 OR NOT err MATCHES "--restitution 1: must lie in \\(0, 1\\) \\(an elastic gas")
   message(FATAL_ERROR "a restitution of 1 was not refused (${rc}): ${err}")
 endif()
+# With --damping, Grad's limit with that drag at the run's own reduced drag; without
+# --restitution, or negative, refused.
+execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} --restitution 0.7 --damping 3 --no-plots
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0 OR NOT out MATCHES "Grad's method, drag 3/s: b/nu0 0\\.[0-9]+\\) 0\\.[0-7]")
+  message(FATAL_ERROR "no Grad's limit with the drag (${rc}):\n${out}${err}")
+endif()
+foreach(bad "--damping;3" "--restitution;0.7;--damping;-1")
+  execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK} ${bad} --no-plots
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 2 OR NOT err MATCHES "--damping")
+    message(FATAL_ERROR "${bad} was not refused (${rc}): ${err}")
+  endif()
+endforeach()
 execute_process(COMMAND ${BEDLAM} analyze rheology ${WORK}/missing --no-plots
   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
 if(NOT rc EQUAL 2)
