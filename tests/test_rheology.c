@@ -267,7 +267,8 @@ static void test_grad(void)
 }
 
 /// Grad's sheared gas with a drag -b m (v - u): its four balances re-derived from its outputs,
-/// its limit b -> 0, a drag that lowers T, and no root from b = 0.166 g on (e = 0.7).
+/// its limit b -> 0, a drag that lowers T, elastic spheres held by the drag alone, and no root
+/// from b = 0.166 g on (e = 0.7).
 static void test_grad_damped(void)
 {
     const double d = 0.0053, rho = 1395.0, g = 100.0, nu = 0.01, e = 0.7;
@@ -288,6 +289,14 @@ static void test_grad_damped(void)
         CHECK(s.temperature < t_last);
         t_last = s.temperature;
     }
+    // Elastic spheres have a steady state only with the drag: heating g tau = 3 b p, no cooling,
+    // P_zz = p / (1 + 2 b*), tau = g P_zz / (nu0 + 2 b).
+    const bdl_grad_shear el = bdl_grad_dilute_shear_damped(nu, 1.0, d, rho, g, 3.0);
+    const double nu0_el = 96.0 / 5.0 * nu * sqrt(el.temperature) / (d * sqrt(pi));
+    CHECK(isfinite(el.temperature) && el.temperature > 0.0);
+    CHECK_CLOSE(el.shear_stress * g, 3.0 * 3.0 * el.pressure, 1e-10);
+    CHECK_CLOSE(el.shear_stress * (nu0_el + 6.0), g * (el.pressure - el.n1 / 3.0), 1e-10);
+    CHECK_CLOSE((el.pressure - el.n1 / 3.0) * (nu0_el + 6.0), el.pressure * nu0_el, 1e-10);
     const bdl_grad_shear tiny = bdl_grad_dilute_shear_damped(nu, e, d, rho, g, 1e-9);
     CHECK_CLOSE(tiny.temperature, dry.temperature, 1e-9);
     CHECK_CLOSE(tiny.n1, dry.n1, 1e-9);

@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/error.h"
+
 static const double pi = 3.14159265358979323846;
 
 static void set_nan(bdl_rheology_sample *s)
@@ -193,16 +195,20 @@ static double damped_balance(double y, double zeta, double beta, double b)
 /// The hot root y >= the minimum of q of q(y) = target (bisection on the rising side), or NAN.
 static double damped_frequency(double target, double zeta, double beta, double b)
 {
-    // q' = 0 where beta zeta y^2 + b beta y - 2 b^2 = 0.
-    const double y_min = b * (sqrt(beta * beta + 8.0 * beta * zeta) - beta) / (2.0 * beta * zeta);
-    if (!(damped_balance(y_min, zeta, beta, b) <= target))
+    // q' = 0 where beta zeta y^2 + b beta y - 2 b^2 = 0: the root in a form that stays exact as
+    // zeta -> 0 (e = 1, where y_min = 2 b / beta).
+    const double y_min = 4.0 * b / (sqrt(beta * beta + 8.0 * beta * zeta) + beta);
+    if (!(damped_balance(y_min, zeta, beta, b) <= target) || !isfinite(target))
         return NAN;
-    double lo = y_min, hi = 2.0 * y_min + sqrt(target / (zeta * beta * beta));
+    double lo = y_min, hi = 2.0 * y_min; // q grows at least linearly above y_min
     while (damped_balance(hi, zeta, beta, b) < target)
         hi *= 2.0;
     for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
         const double mid = 0.5 * (lo + hi);
-        *(damped_balance(mid, zeta, beta, b) < target ? &lo : &hi) = mid;
+        if (damped_balance(mid, zeta, beta, b) < target)
+            lo = mid;
+        else
+            hi = mid;
     }
     return 0.5 * (lo + hi);
 }
@@ -224,6 +230,7 @@ void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, doub
 bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, double rho, double g,
                                             double b)
 {
+    BDL_ASSERT(b >= 0.0);
     bdl_grad_shear s;
     const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
     // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = y solves q(y) = (2/3)(beta - zeta) g^2

@@ -96,7 +96,7 @@ bdl_grad_shear bdl_grad_dilute_shear(double nu, double e, double d, double rho, 
 /// Chamorro, Vega Reyes & Garzó 2015). The drag adds 2 b P_ij to each balance, so with
 /// b* = b / nu0: P_zz = p (beta - zeta) / (beta + 2 b*), eta / eta0 = (beta - zeta) /
 /// (beta + 2 b*)^2, N1 = 3 (zeta + 2 b*) / (beta + 2 b*) p and a^2 = (3/2) (zeta + 2 b*)
-/// (beta + 2 b*)^2 / (beta - zeta). As nu0 grows with sqrt(T), T solves a cubic: the hot root
+/// (beta + 2 b*)^2 / (beta - zeta). nu0, which grows with sqrt(T), solves a cubic: the hot root
 /// is the sheared gas. Below a least shear rate (g < b / 0.166 at e = 0.7) there is no root, and
 /// every field is NAN: the truncation fails there (a run at b = 0.2 g still shears, with N1/p
 /// 2). b = 0 is bdl_grad_dilute_shear; b >= 0.

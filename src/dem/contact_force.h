@@ -16,8 +16,9 @@ typedef struct bdl_force_def {
     const double *background_damping; ///< per species [1/s]
     /// Lees–Edwards: background damping acts on the velocity relative to the imposed shear
     /// profile u_x = shear_rate (z - shear_middle), the medium moving with the shear (0: at rest)
-    double shear_rate, shear_middle;
-    bdl_vec3 gravity; ///< [m/s^2]
+    double shear_rate;   ///< [1/s]
+    double shear_middle; ///< [m]
+    bdl_vec3 gravity;    ///< [m/s^2]
     int hertz, friction, rolling;
     double dt;         ///< [s] (tangential spring increment)
     long parallel_min; ///< fewer particles than this: one thread

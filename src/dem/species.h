@@ -38,7 +38,7 @@ typedef struct bdl_species_def {
     double diameter_std;       ///< [m] (normal distribution)
     double length;             ///< rod: tip-to-tip length [m] (> diameter); 0 for spheres
     double density;            ///< [kg/m^3]
-    double background_damping; ///< b [1/s]: force -b m v on every particle of the species
+    double background_damping; ///< b [1/s]: force -b m v (Lees–Edwards: v less the shear profile)
     bdl_material material;
     // Parcels (MP-PIC, src/parcels/): a species with one of these set is made of parcels, each
     // standing for many real particles of the species' diameter and density.

@@ -371,8 +371,8 @@ typedef struct bdl_verify_shear_setup {
     int walls;
     double box[3]; ///< Lees–Edwards only [m]; zeros: 72 x 48 x 48 mm
     double from, to;
-    double
-        damping; ///< Lees–Edwards only: background damping b [1/s] (a medium moving with the shear)
+    /// Lees–Edwards only: background damping b [1/s] (a medium moving with the shear)
+    double damping;
 } bdl_verify_shear_setup;
 typedef struct bdl_verify_shear {
     double solids_fraction, shear_rate, temperature, pressure, shear_stress, n1;
