@@ -213,10 +213,19 @@ static double damped_frequency(double target, double zeta, double beta, double b
     return 0.5 * (lo + hi);
 }
 
+/// Grad's rates in units of nu0: the cooling zeta = (5/12)(1 - e^2) and the stress's relaxation
+/// beta = (1 + e)(3 - e)/4.
+static void grad_rates(double e, double *zeta, double *beta)
+{
+    *zeta = 5.0 / 12.0 * (1.0 - e * e);
+    *beta = 0.25 * (1.0 + e) * (3.0 - e);
+}
+
 void bdl_grad_dilute_reduced(double e, double b_reduced, double *viscosity, double *rate,
                              double *n1_over_p)
 {
-    const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
+    double zeta, beta;
+    grad_rates(e, &zeta, &beta);
     // Flow along x, gradient along z. Steady P_zz = P_yy = p (beta - zeta) / (beta + 2 b*)
     // (their relaxation against the cooling and the drag), P_xz = -a P_zz / (beta + 2 b*) (the
     // shear turning P_zz into P_xz), and -P_xz g = (3/2)(zeta + 2 b*) nu0 p (heating = cooling
@@ -232,14 +241,14 @@ bdl_grad_shear bdl_grad_dilute_shear_damped(double nu, double e, double d, doubl
 {
     BDL_ASSERT(b >= 0.0);
     bdl_grad_shear s;
-    const double zeta = 5.0 / 12.0 * (1.0 - e * e), beta = 0.25 * (1.0 + e) * (3.0 - e);
-    // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = y solves q(y) = (2/3)(beta - zeta) g^2
-    // (q at b = 0: zeta beta^2 y^2).
-    const double y = b > 0.0 ? damped_frequency(2.0 / 3.0 * (beta - zeta) * g * g, zeta, beta, b)
-                             : fabs(g) / sqrt(1.5 * zeta * beta * beta / (beta - zeta));
-    const double b_reduced = b > 0.0 ? b / y : 0.0;
-    double n1_over_p;
-    bdl_grad_dilute_reduced(e, b_reduced, &s.viscosity, &s.reduced_rate, &n1_over_p);
+    double zeta, beta, n1_over_p;
+    grad_rates(e, &zeta, &beta);
+    // nu0 = p / eta0 = (96/5) nu sqrt(T) / (d sqrt(pi)) = y: with a drag it solves
+    // q(y) = (2/3)(beta - zeta) g^2, and b* = b / y; without, y = g / a of b* = 0.
+    double y = b > 0.0 ? damped_frequency(2.0 / 3.0 * (beta - zeta) * g * g, zeta, beta, b) : 0.0;
+    bdl_grad_dilute_reduced(e, b > 0.0 ? b / y : 0.0, &s.viscosity, &s.reduced_rate, &n1_over_p);
+    if (!(b > 0.0))
+        y = fabs(g) / s.reduced_rate;
     const double root_t = 5.0 * sqrt(pi) * d * y / (96.0 * nu);
     s.temperature = root_t * root_t;
     s.pressure = rho * nu * s.temperature;
